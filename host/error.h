@@ -1,0 +1,25 @@
+/* error.h - filling rt_error and the scene's last-error text. */
+#ifndef RT_ERROR_H
+#define RT_ERROR_H
+
+#include <stdarg.h>
+
+#include "rt.h"
+
+/* Sets err (if not NULL) to status with a message "file:line:column: reason"
+ * (line/column left out when 0; file left out when NULL). Returns status so
+ * that callers can write: return rt_error_set(err, ...); */
+#if defined(__GNUC__)
+__attribute__((format(printf, 6, 7)))
+#endif
+rt_status
+rt_error_set(rt_error *err, rt_status status, const char *file, int line, int column,
+             const char *fmt, ...);
+
+rt_status rt_error_setv(rt_error *err, rt_status status, const char *file, int line, int column,
+                        const char *fmt, va_list args);
+
+/* Clears err to RT_OK with an empty message. */
+void rt_error_clear(rt_error *err);
+
+#endif /* RT_ERROR_H */

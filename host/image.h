@@ -1,0 +1,50 @@
+/* image.h - images through OpenImageIO: write PNG, EXR, PPM by extension,
+ * read any format OpenImageIO reads, compare two images. */
+#ifndef RT_IMAGE_H
+#define RT_IMAGE_H
+
+#include <stdint.h>
+
+#include "rt.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct rt_image {
+    int width;
+    int height;
+    int channels;
+    float *pixels; /* row-major, top row first, channels interleaved */
+} rt_image;
+
+/* Writes pixels by the file's extension: .png and .ppm store 8 bits per
+ * channel (values clamped to [0,1], rounded to nearest), .exr stores 32-bit
+ * floats. err names the file on failure. */
+rt_status rt_image_write(const char *path, const rt_image *image, rt_error *err);
+
+/* Reads an image as floats in [0,1] for 8-bit files; the caller frees with
+ * rt_image_free. */
+rt_status rt_image_read(const char *path, rt_image *out, rt_error *err);
+
+void rt_image_free(rt_image *image);
+
+typedef struct rt_image_diff {
+    double max_abs;     /* largest absolute channel difference */
+    double rmse;        /* over all channels */
+    double psnr;        /* dB, against a peak of 1; INFINITY when identical */
+    uint64_t differing; /* pixels with any channel different */
+    uint64_t pixels;
+    int first_x, first_y; /* first differing pixel in row order, -1 if none */
+} rt_image_diff;
+
+/* Compares a and b (same size and channel count, else RT_ERROR_INVALID_ARGUMENT).
+ * If diff_out is not NULL it receives |a - b| per channel (caller frees with
+ * rt_image_free). */
+rt_status rt_image_compare(const rt_image *a, const rt_image *b, rt_image_diff *result,
+                           rt_image *diff_out, rt_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* RT_IMAGE_H */

@@ -1,0 +1,177 @@
+/* rt.h - the public C API of the rtcl ray tracing library.
+ *
+ * The operations follow the library of Langr 2016 (section 3.2): meshes of
+ * triangles, objects that reference one or more meshes (keyframes) with a
+ * material and a rigid transform, point lights, a camera, and render.
+ *
+ * Conventions
+ * - Every function that can fail returns an rt_status. On failure the scene
+ *   keeps a message with context (file, line, column, reason where they
+ *   apply); rt_scene_error() returns it. The library never prints.
+ * - Ids are dense 0-based indices in creation order.
+ * - Matrices are 4x4, row-major, acting on column vectors: p' = M p, so the
+ *   translation is in elements 3, 7 and 11.
+ */
+#ifndef RT_H
+#define RT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum rt_status {
+    RT_OK = 0,
+    RT_ERROR_INVALID_ARGUMENT, /* a bad id, a NaN, a null pointer */
+    RT_ERROR_IO,               /* a file could not be opened or read */
+    RT_ERROR_PARSE,            /* a file's content is malformed */
+    RT_ERROR_OUT_OF_MEMORY,
+    RT_ERROR_UNSUPPORTED, /* a backend or feature that this build or machine lacks */
+    RT_ERROR_BACKEND      /* a device or driver failure */
+} rt_status;
+
+/* A short name for a status ("parse error", ...). */
+const char *rt_status_string(rt_status status);
+
+/* An error with the place it came from. line and column are 1-based; 0 means
+ * not applicable. message holds the whole text, "file:line:column: reason". */
+typedef struct rt_error {
+    rt_status status;
+    int line;
+    int column;
+    char file[512];
+    char message[1024];
+} rt_error;
+
+typedef struct rt_scene rt_scene;
+
+typedef struct rt_material {
+    float color[3];
+    float ambient;      /* coefficient on the scene's ambient light */
+    float diffuse;      /* Lambert coefficient */
+    float specular;     /* Phong coefficient */
+    int shininess;      /* Phong exponent, an integer >= 0 */
+    float reflectivity; /* 0..1: share of the mirror direction */
+    float transparency; /* 0..1: share of the refracted direction */
+    float ior;          /* index of refraction (> 0) */
+} rt_material;
+
+/* White, diffuse, ambient 1, no specular, reflection or refraction, ior 1. */
+rt_material rt_material_default(void);
+
+typedef struct rt_camera {
+    float position[3];
+    float look_at[3]; /* the point the camera looks at */
+    float up[3];
+    float hfov_degrees; /* horizontal field of view, 0 < hfov < 180 */
+    int width;
+    int height;
+} rt_camera;
+
+/* ---- scene lifetime ---------------------------------------------------- */
+
+rt_status rt_scene_create(rt_scene **out);
+void rt_scene_destroy(rt_scene *scene);
+
+/* Loads a scene file: a .json scene or a bare .obj (which gets the default
+ * camera, light and material, see docs/SCENE_FORMAT.md). On failure *out is
+ * NULL and err describes the first problem; nothing is half-loaded.
+ * width/height of 0 keep the file's resolution (or 1024x576 for a bare OBJ). */
+rt_status rt_scene_load(const char *path, rt_scene **out, rt_error *err);
+
+/* The last error's message, "" when none. */
+const char *rt_scene_error(const rt_scene *scene);
+
+/* ---- meshes ------------------------------------------------------------ */
+
+rt_status rt_mesh_create(rt_scene *scene, uint32_t *mesh_id);
+
+/* Appends vertex_count vertices (positions: 3 floats each; normals: 3 floats
+ * each or NULL) and triangle_count triangles whose indices (3 each) are
+ * relative to the vertices appended by this call. A mesh has normals for all
+ * its vertices or for none. */
+rt_status rt_mesh_add_triangles(rt_scene *scene, uint32_t mesh_id, const float *positions,
+                                const float *normals, uint32_t vertex_count,
+                                const uint32_t *indices, uint32_t triangle_count);
+
+/* ---- materials, lights, ambient, background ----------------------------- */
+
+rt_status rt_material_add(rt_scene *scene, const rt_material *material, uint32_t *material_id);
+rt_status rt_light_add(rt_scene *scene, const float position[3], const float color[3],
+                       uint32_t *light_id);
+rt_status rt_scene_set_ambient(rt_scene *scene, const float color[3]);
+rt_status rt_scene_set_background(rt_scene *scene, const float color[3]);
+
+/* ---- objects ----------------------------------------------------------- */
+
+rt_status rt_object_create(rt_scene *scene, uint32_t material_id, uint32_t *object_id);
+
+/* Adds a keyframe. The first mesh added is selected. */
+rt_status rt_object_add_mesh(rt_scene *scene, uint32_t object_id, uint32_t mesh_id);
+
+/* Selects keyframe 'keyframe' (0-based, in the order meshes were added). */
+rt_status rt_object_select_mesh(rt_scene *scene, uint32_t object_id, uint32_t keyframe);
+
+/* Queues a rigid transform: at the next rt_scene_commit (which rt_render
+ * calls) the object's matrix becomes matrix * current. Transforms queued
+ * between two frames compose in the order they were queued. */
+rt_status rt_object_transform(rt_scene *scene, uint32_t object_id, const float matrix[16]);
+
+/* Applies queued transforms now. */
+rt_status rt_scene_commit(rt_scene *scene);
+
+/* ---- camera ------------------------------------------------------------ */
+
+rt_status rt_camera_set(rt_scene *scene, const rt_camera *camera);
+rt_status rt_camera_get(const rt_scene *scene, rt_camera *camera);
+
+/* Moves eye and look-at point together, in the camera's frame:
+ * right, up and forward distances. */
+rt_status rt_camera_move(rt_scene *scene, float right, float up, float forward);
+
+/* Turns the view direction: yaw about the camera's up vector, then pitch
+ * about its right vector, in degrees. */
+rt_status rt_camera_rotate(rt_scene *scene, float yaw_degrees, float pitch_degrees);
+
+/* ---- rendering --------------------------------------------------------- */
+
+typedef enum rt_aov {
+    RT_AOV_NONE = 0,
+    RT_AOV_DEPTH,  /* t of the primary hit (inf on a miss) */
+    RT_AOV_PRIMID, /* triangle index (in file order) of the primary hit, -1 on a miss */
+    RT_AOV_INSTID, /* object index of the primary hit, -1 on a miss */
+    RT_AOV_NORMAL, /* world-space shading normal, 0 on a miss */
+    RT_AOV_BOX_TESTS,
+    RT_AOV_TRI_TESTS
+} rt_aov;
+
+typedef struct rt_framebuffer {
+    int width;
+    int height;
+    int channels;  /* 3 for colour and normals, 1 for the other AOVs */
+    float *pixels; /* row-major, top row first; the caller frees with free() */
+} rt_framebuffer;
+
+typedef struct rt_render_options {
+    const char *backend; /* "cpu" (default), "packet", "opencl", "vulkan" */
+    int threads;         /* <= 0: all cores */
+    rt_aov aov;          /* RT_AOV_NONE: the shaded image */
+    /* Progress in [0, 1] for long renders; may be NULL. */
+    void (*progress)(void *user, double done);
+    void *progress_user;
+} rt_render_options;
+
+rt_render_options rt_render_options_default(void);
+
+/* Renders one frame of width x height (the camera's resolution) into fb,
+ * after applying queued transforms. */
+rt_status rt_render(rt_scene *scene, const rt_render_options *options, rt_framebuffer *fb);
+
+void rt_framebuffer_free(rt_framebuffer *fb);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* RT_H */

@@ -1,0 +1,98 @@
+/* scene.h - the scene model behind rt.h (Langr 2016, section 3.2).
+ *
+ * Plain growable arrays. Every input is validated on its way in (rt.h calls
+ * and loaders), so code that reads a scene may trust it: ids are in range,
+ * coordinates are finite, indices point at vertices.
+ */
+#ifndef RT_SCENE_H
+#define RT_SCENE_H
+
+#include <stdint.h>
+
+#include "rt.h"
+
+typedef struct rt_mesh_data {
+    char name[128];   /* where it came from (file name), for messages */
+    float *positions; /* 3 per vertex */
+    float *normals;   /* 3 per vertex, or NULL */
+    uint32_t vertex_count;
+    uint32_t vertex_capacity;
+    uint32_t *indices; /* 3 per triangle */
+    uint32_t triangle_count;
+    uint32_t triangle_capacity;
+    /* Per-triangle material id overriding the object's, or NULL.
+     * UINT32_MAX entries use the object's material. */
+    uint32_t *tri_materials;
+} rt_mesh_data;
+
+typedef struct rt_object_data {
+    uint32_t *meshes; /* keyframes */
+    uint32_t mesh_count;
+    uint32_t mesh_capacity;
+    uint32_t selected; /* index into meshes */
+    uint32_t material;
+    float transform[16]; /* object to world, row-major, p' = M p */
+    float pending[16];   /* queued transforms, composed; identity when none */
+    int has_pending;
+} rt_object_data;
+
+typedef struct rt_light_data {
+    float position[3];
+    float color[3];
+} rt_light_data;
+
+struct rt_scene {
+    rt_mesh_data *meshes;
+    uint32_t mesh_count, mesh_capacity;
+    rt_material *materials;
+    uint32_t material_count, material_capacity;
+    rt_light_data *lights;
+    uint32_t light_count, light_capacity;
+    rt_object_data *objects;
+    uint32_t object_count, object_capacity;
+    float ambient[3];
+    float background[3];
+    rt_camera camera;
+    int has_camera;
+    uint32_t version; /* bumped by every change, so backends know what to re-upload */
+    char source[512]; /* the file it was loaded from, or "" */
+    rt_error error;
+};
+
+/* Identity matrix. */
+void rt_mat4_identity(float m[16]);
+/* out = a * b (out may alias neither). */
+void rt_mat4_mul(const float a[16], const float b[16], float out[16]);
+/* Inverse of an affine matrix (last row 0 0 0 1); returns 0 if singular. */
+int rt_mat4_affine_inverse(const float m[16], float out[16]);
+
+/* Sets the scene's error and returns status. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+rt_status
+rt_scene_fail(rt_scene *scene, rt_status status, const char *fmt, ...);
+
+/* Total triangles over the selected keyframe of every object. */
+uint64_t rt_scene_triangle_count(const rt_scene *scene);
+
+/* The default view of a bare OBJ (docs/SCENE_FORMAT.md): camera, one light and
+ * ambient 0.1, from the bounding box of all meshes. Fails on an empty scene. */
+rt_status rt_scene_apply_default_view(rt_scene *scene, int width, int height);
+
+/* World-space bounds of the selected keyframes; returns 0 if empty. */
+int rt_scene_bounds(const rt_scene *scene, float bmin[3], float bmax[3]);
+
+/* Which features the scene uses; backends specialise to these. */
+typedef struct rt_scene_features {
+    int reflection;    /* some material has reflectivity > 0 */
+    int refraction;    /* some material has transparency > 0 */
+    int instancing;    /* more than one object, or a non-identity transform */
+    int normals;       /* some mesh has per-vertex normals */
+    int keyframes;     /* some object has more than one mesh */
+    int tri_materials; /* some mesh has per-triangle materials */
+} rt_scene_features;
+
+rt_scene_features rt_scene_features_of(const rt_scene *scene);
+
+#endif /* RT_SCENE_H */

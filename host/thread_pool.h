@@ -1,0 +1,34 @@
+/* thread_pool.h - a persistent pool of pthreads.
+ *
+ * Threads are created once and sleep between jobs, so a build or a frame costs
+ * no thread creation. One job runs at a time; the calling thread takes part as
+ * worker 0.
+ */
+#ifndef RT_THREAD_POOL_H
+#define RT_THREAD_POOL_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct rt_pool rt_pool;
+
+/* Runs on every worker: worker is 0..worker_count-1. */
+typedef void (*rt_pool_fn)(void *ctx, int worker, int worker_count);
+
+/* threads <= 0: one per online core. Returns NULL when out of memory or when
+ * no thread could be created. */
+rt_pool *rt_pool_create(int threads);
+void rt_pool_destroy(rt_pool *pool);
+int rt_pool_size(const rt_pool *pool);
+
+/* Calls fn(ctx, w, n) once for each worker w and returns when all are done. */
+void rt_pool_run(rt_pool *pool, rt_pool_fn fn, void *ctx);
+
+/* Number of online cores. */
+int rt_cpu_count(void);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* RT_THREAD_POOL_H */

@@ -1,0 +1,64 @@
+/* check.h - a few assertion macros for plain ctest programs.
+ *
+ * A failed CHECK prints the file, line and expression and counts a failure;
+ * the program goes on so that one run shows every failure. TEST_END returns
+ * 1 if anything failed. A test that cannot run here calls test_skip(), which
+ * prints why and exits 77 (ctest reports it as skipped). */
+#ifndef RT_CHECK_H
+#define RT_CHECK_H
+
+#include <stdio.h>
+#include <string.h>
+
+extern int test_failures;
+extern int test_checks;
+
+#define CHECK(cond)                                                                                \
+    do {                                                                                           \
+        test_checks++;                                                                             \
+        if (!(cond)) {                                                                             \
+            test_failures++;                                                                       \
+            fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond);               \
+        }                                                                                          \
+    } while (0)
+
+#define CHECK_MSG(cond, ...)                                                                       \
+    do {                                                                                           \
+        test_checks++;                                                                             \
+        if (!(cond)) {                                                                             \
+            test_failures++;                                                                       \
+            fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond);               \
+            fprintf(stderr, __VA_ARGS__);                                                          \
+            fputc('\n', stderr);                                                                   \
+        }                                                                                          \
+    } while (0)
+
+#define CHECK_EQ_INT(a, b)                                                                         \
+    do {                                                                                           \
+        long long va_ = (long long)(a), vb_ = (long long)(b);                                      \
+        CHECK_MSG(va_ == vb_, "%lld != %lld", va_, vb_);                                           \
+    } while (0)
+
+/* Checks that haystack contains needle. */
+#define CHECK_CONTAINS(haystack, needle)                                                           \
+    CHECK_MSG(strstr((haystack), (needle)) != NULL, "\"%s\" does not contain \"%s\"", (haystack),  \
+              (needle))
+
+#define TEST_END() test_report(__FILE__)
+
+int test_report(const char *name);
+
+/* Prints "skipped: reason" and exits 77. */
+void test_skip(const char *reason);
+
+/* $RT_SOURCE_DIR/rel (the repository root) in a static buffer. */
+const char *test_source_path(const char *rel);
+
+/* $RT_SHARED_SCENES/rel, or NULL when the shared scenes are not present. */
+const char *test_shared_scene(const char *rel);
+
+/* Writes text to a new file in a per-process temporary folder and returns its
+ * path (static buffer, valid until the next call). */
+const char *test_write_temp(const char *name, const char *text);
+
+#endif /* RT_CHECK_H */

@@ -1,0 +1,130 @@
+/* test_core_scene.c - the scene model's operations and their validation. */
+#include <math.h>
+#include <string.h>
+
+#include "check.h"
+#include "scene.h"
+
+static void test_mesh_and_objects(void) {
+    rt_scene *s;
+    CHECK(rt_scene_create(&s) == RT_OK);
+    uint32_t mesh, mat, obj, light;
+    CHECK(rt_mesh_create(s, &mesh) == RT_OK);
+    const float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const uint32_t idx[3] = {0, 1, 2};
+    CHECK(rt_mesh_add_triangles(s, mesh, pos, NULL, 3, idx, 1) == RT_OK);
+    CHECK(rt_mesh_add_triangles(s, mesh, pos, NULL, 3, idx, 1) == RT_OK);
+    CHECK_EQ_INT(s->meshes[mesh].triangle_count, 2);
+    CHECK_EQ_INT(s->meshes[mesh].indices[3], 3); /* second block is offset */
+
+    const uint32_t bad_idx[3] = {0, 1, 3};
+    CHECK(rt_mesh_add_triangles(s, mesh, pos, NULL, 3, bad_idx, 1) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK_CONTAINS(rt_scene_error(s), "refers to vertex 3 of 3");
+    CHECK_EQ_INT(s->meshes[mesh].triangle_count, 2); /* nothing half-added */
+
+    float nan_pos[9] = {0, 0, 0, 1, 0, 0, 0, NAN, 0};
+    CHECK(rt_mesh_add_triangles(s, mesh, nan_pos, NULL, 3, idx, 1) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK_CONTAINS(rt_scene_error(s), "NaN");
+    CHECK(rt_mesh_add_triangles(s, mesh, pos, pos, 3, idx, 1) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK(rt_mesh_add_triangles(s, 7, pos, NULL, 3, idx, 1) == RT_ERROR_INVALID_ARGUMENT);
+
+    rt_material m = rt_material_default();
+    CHECK(rt_object_create(s, 0, &obj) == RT_ERROR_INVALID_ARGUMENT); /* no material yet */
+    CHECK(rt_material_add(s, &m, &mat) == RT_OK);
+    m.ior = 0.0f;
+    CHECK(rt_material_add(s, &m, &mat) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK(rt_object_create(s, 0, &obj) == RT_OK);
+    CHECK(rt_object_add_mesh(s, obj, mesh) == RT_OK);
+    CHECK(rt_object_add_mesh(s, obj, 5) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK(rt_object_select_mesh(s, obj, 1) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK(rt_object_select_mesh(s, obj, 0) == RT_OK);
+    CHECK_EQ_INT(rt_scene_triangle_count(s), 2);
+
+    const float p[3] = {1, 2, 3}, c[3] = {1, 1, 1};
+    CHECK(rt_light_add(s, p, c, &light) == RT_OK);
+    const float inf_p[3] = {1, INFINITY, 3};
+    CHECK(rt_light_add(s, inf_p, c, &light) == RT_ERROR_INVALID_ARGUMENT);
+    rt_scene_destroy(s);
+}
+
+static void test_queued_transforms(void) {
+    rt_scene *s;
+    rt_scene_create(&s);
+    uint32_t mat, obj;
+    rt_material m = rt_material_default();
+    rt_material_add(s, &m, &mat);
+    rt_object_create(s, mat, &obj);
+    float t1[16], t2[16];
+    rt_mat4_identity(t1);
+    rt_mat4_identity(t2);
+    t1[3] = 1.0f; /* translate x by 1 */
+    t2[7] = 2.0f; /* translate y by 2 */
+    CHECK(rt_object_transform(s, obj, t1) == RT_OK);
+    CHECK(rt_object_transform(s, obj, t2) == RT_OK);
+    CHECK(s->objects[obj].transform[3] == 0.0f); /* queued, not applied */
+    CHECK(rt_scene_commit(s) == RT_OK);
+    CHECK(s->objects[obj].transform[3] == 1.0f);
+    CHECK(s->objects[obj].transform[7] == 2.0f);
+    float singular[16] = {0};
+    singular[15] = 1.0f;
+    CHECK(rt_object_transform(s, obj, singular) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK_CONTAINS(rt_scene_error(s), "singular");
+    float projective[16];
+    rt_mat4_identity(projective);
+    projective[14] = 0.5f;
+    CHECK(rt_object_transform(s, obj, projective) == RT_ERROR_INVALID_ARGUMENT);
+    rt_scene_destroy(s);
+}
+
+static void test_camera(void) {
+    rt_scene *s;
+    rt_scene_create(&s);
+    rt_camera c = {{0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 60.0f, 64, 32};
+    CHECK(rt_camera_set(s, &c) == RT_OK);
+    rt_camera bad = c;
+    bad.up[0] = 0, bad.up[1] = 0, bad.up[2] = 1; /* parallel to the view */
+    CHECK(rt_camera_set(s, &bad) == RT_ERROR_INVALID_ARGUMENT);
+    bad = c;
+    bad.hfov_degrees = 180.0f;
+    CHECK(rt_camera_set(s, &bad) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK(rt_camera_move(s, 0, 0, 1) == RT_OK); /* forward is -z */
+    rt_camera got;
+    rt_camera_get(s, &got);
+    CHECK(fabsf(got.position[2] - 4.0f) < 1e-6f && fabsf(got.look_at[2] + 1.0f) < 1e-6f);
+    CHECK(rt_camera_rotate(s, 90.0f, 0.0f) == RT_OK); /* now looks along -x */
+    rt_camera_get(s, &got);
+    CHECK(got.look_at[0] - got.position[0] < -4.9f);
+    rt_scene_destroy(s);
+}
+
+static void test_default_view(void) {
+    rt_scene *s;
+    rt_scene_create(&s);
+    CHECK(rt_scene_apply_default_view(s, 0, 0) == RT_ERROR_INVALID_ARGUMENT); /* empty */
+    uint32_t mesh, mat, obj;
+    rt_mesh_create(s, &mesh);
+    const float pos[9] = {0, 0, 0, 2, 0, 0, 0, 2, 0};
+    const uint32_t idx[3] = {0, 1, 2};
+    rt_mesh_add_triangles(s, mesh, pos, NULL, 3, idx, 1);
+    rt_material m = rt_material_default();
+    rt_material_add(s, &m, &mat);
+    rt_object_create(s, mat, &obj);
+    rt_object_add_mesh(s, obj, mesh);
+    CHECK(rt_scene_apply_default_view(s, 0, 0) == RT_OK);
+    CHECK_EQ_INT(s->camera.width, 1024);
+    CHECK_EQ_INT(s->camera.height, 576);
+    CHECK(s->camera.look_at[0] == 1.0f && s->camera.look_at[1] == 1.0f);
+    CHECK_EQ_INT(s->light_count, 1);
+    /* eye = c + normalize(0.3, 0.35, 1) * 0.9 d, d = |(2,2,0)| */
+    float d = sqrtf(8.0f), n = sqrtf(0.09f + 0.1225f + 1.0f);
+    CHECK(fabsf(s->camera.position[2] - 1.0f / n * 0.9f * d) < 1e-5f);
+    rt_scene_destroy(s);
+}
+
+int main(void) {
+    test_mesh_and_objects();
+    test_queued_transforms();
+    test_camera();
+    test_default_view();
+    return TEST_END();
+}
