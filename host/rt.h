@@ -156,24 +156,24 @@ typedef struct rt_framebuffer {
 
 /* What one frame cost and did (the thesis's Table 6 figures). */
 typedef struct rt_render_stats {
-    double sah_cost;        /* of the mesh BVHs, triangle-weighted mean (Ct = 1, Ci = 2) */
-    double build_ms;        /* host BVH builds done for this frame */
-    double render_ms;       /* tracing and shading */
-    uint64_t rays;          /* all rays traced: primary, shadow, secondary */
+    double sah_cost;  /* of the mesh BVHs, triangle-weighted mean (Ct = 1, Ci = 2) */
+    double build_ms;  /* host BVH builds done for this frame */
+    double render_ms; /* tracing and shading */
+    uint64_t rays;    /* all rays traced: primary, shadow, secondary */
     uint64_t primary_rays;
-    uint64_t box_tests;     /* ray/box tests, all rays */
-    uint64_t tri_tests;     /* ray/triangle tests, all rays */
-    uint64_t packets;       /* 2x2 packets traced (packet backend), else 0 */
+    uint64_t box_tests;        /* ray/box tests, all rays */
+    uint64_t tri_tests;        /* ray/triangle tests, all rays */
+    uint64_t packets;          /* 2x2 packets traced (packet backend), else 0 */
     uint64_t packet_box_tests; /* box tests counted once per packet step */
-    const char *backend;    /* the backend that ran */
+    const char *backend;       /* the backend that ran */
     int threads;
 } rt_render_stats;
 
 typedef struct rt_render_options {
-    const char *backend; /* "cpu" (default), "packet", "opencl", "vulkan" */
+    const char *backend;    /* "cpu" (default), "packet", "opencl", "vulkan" */
     rt_render_stats *stats; /* filled when not NULL */
-    int threads;         /* <= 0: all cores */
-    rt_aov aov;          /* RT_AOV_NONE: the shaded image */
+    int threads;            /* <= 0: all cores */
+    rt_aov aov;             /* RT_AOV_NONE: the shaded image */
     /* Progress in [0, 1] for long renders; may be NULL. */
     void (*progress)(void *user, double done);
     void *progress_user;

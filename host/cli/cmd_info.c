@@ -1,11 +1,70 @@
-/* cmd_info.c - placeholder for 'rtcl info'. */
+/* cmd_info.c - 'rtcl info': what a scene holds and which features it uses. */
 #include <stdio.h>
+#include <string.h>
 
+#include "cli_util.h"
 #include "commands.h"
+#include "scene.h"
+
+static const char usage[] =
+    "usage: rtcl info SCENE [--help]\n"
+    "\n"
+    "Prints the triangles, meshes, objects, materials and lights of SCENE (a .json\n"
+    "scene, a bare .obj, or builtin:NAME), its camera, and the features it uses:\n"
+    "backends specialise to these (no secondary rays without reflective or\n"
+    "refractive materials, no instance transforms for one identity object, no\n"
+    "normal interpolation without normals).\n";
 
 int cmd_info(int argc, char **argv) {
-    (void)argc;
-    (void)argv;
-    fprintf(stderr, "rtcl info: not built yet\n");
-    return 2;
+    const char *path = NULL;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            fputs(usage, stdout);
+            return 0;
+        }
+        if (argv[i][0] == '-' || path) {
+            cli_error("info", "unexpected argument '%s'\n%s", argv[i], usage);
+            return 2;
+        }
+        path = argv[i];
+    }
+    if (!path) {
+        cli_error("info", "no scene given\n%s", usage);
+        return 2;
+    }
+    rt_scene *s;
+    rt_error err;
+    if (cli_load_scene(path, &s, &err) != RT_OK) {
+        cli_error("info", "%s", err.message);
+        return 2;
+    }
+    uint64_t all_tris = 0;
+    for (uint32_t i = 0; i < s->mesh_count; i++) all_tris += s->meshes[i].triangle_count;
+    printf("scene        %s\n", path);
+    printf("triangles    %llu in the current frame (%llu in all meshes)\n",
+           (unsigned long long)rt_scene_triangle_count(s), (unsigned long long)all_tris);
+    printf("meshes       %u\n", s->mesh_count);
+    for (uint32_t i = 0; i < s->mesh_count; i++)
+        printf("  %-24s %u triangles, %u vertices%s\n", s->meshes[i].name,
+               s->meshes[i].triangle_count, s->meshes[i].vertex_count,
+               s->meshes[i].normals ? ", normals" : "");
+    printf("objects      %u\n", s->object_count);
+    printf("materials    %u\n", s->material_count);
+    printf("lights       %u\n", s->light_count);
+    const rt_camera *c = &s->camera;
+    printf("camera       eye (%g, %g, %g) look-at (%g, %g, %g) fov %g, %dx%d\n",
+           (double)c->position[0], (double)c->position[1], (double)c->position[2],
+           (double)c->look_at[0], (double)c->look_at[1], (double)c->look_at[2],
+           (double)c->hfov_degrees, c->width, c->height);
+    float lo[3], hi[3];
+    if (rt_scene_bounds(s, lo, hi))
+        printf("bounds       (%g, %g, %g) .. (%g, %g, %g)\n", (double)lo[0], (double)lo[1],
+               (double)lo[2], (double)hi[0], (double)hi[1], (double)hi[2]);
+    rt_scene_features f = rt_scene_features_of(s);
+    printf("features     reflection %s, refraction %s, instancing %s, normals %s, "
+           "keyframes %s, per-triangle materials %s\n",
+           f.reflection ? "on" : "off", f.refraction ? "on" : "off", f.instancing ? "on" : "off",
+           f.normals ? "on" : "off", f.keyframes ? "on" : "off", f.tri_materials ? "on" : "off");
+    rt_scene_destroy(s);
+    return 0;
 }

@@ -10,5 +10,6 @@ int cmd_info(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_trace(int argc, char **argv);
+int cmd_generate(int argc, char **argv);
 
 #endif /* RTCL_COMMANDS_H */
