@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Installs every package rtcl builds, tests and benchmarks with (Debian 12, as root).
+set -euo pipefail
+export DEBIAN_FRONTEND=noninteractive
+SUDO=""
+if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends \
+    build-essential cmake ninja-build pkg-config git ca-certificates \
+    ocl-icd-opencl-dev opencl-c-headers pocl-opencl-icd clinfo \
+    libvulkan-dev mesa-vulkan-drivers glslang-tools \
+    libopenimageio-dev openimageio-tools \
+    libsimde-dev libembree-dev libjansson-dev \
+    gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user \
+    clang-format gnuplot-nox python3 >/dev/null
+echo "dependencies installed"

@@ -1,0 +1,43 @@
+# cli_errors.sh - rtcl answers bad input with a clear message and status 2.
+. "$(dirname "$0")/cli_lib.sh"
+: "${RTCL:?RTCL must name the rtcl binary}"
+
+expect 2 "usage: rtcl COMMAND" -- "$RTCL"
+expect 0 "commands:" -- "$RTCL" --help
+expect 2 "unknown command 'frobnicate'" -- "$RTCL" frobnicate
+for c in render trace info compare bench generate; do
+    expect 0 "usage: rtcl $c" -- "$RTCL" "$c" --help
+done
+
+expect 2 "no scene given" -- "$RTCL" render
+expect 2 "unknown option '--frob'" -- "$RTCL" render builtin:cornell --frob
+expect 2 "--width: 'abc' is not an integer" -- "$RTCL" render builtin:cornell --width abc
+expect 2 "option --height needs a value" -- "$RTCL" render builtin:cornell --height
+expect 2 "unknown AOV 'colour'" -- "$RTCL" render --aov colour builtin:cornell
+expect 2 "no built-in scene named 'nope'" -- "$RTCL" info builtin:nope
+expect 2 "missing.obj.*(No such file|cannot open)" -- "$RTCL" info "$tmp/missing.obj"
+expect 2 "missing.json.*(No such file|cannot open)" -- "$RTCL" render "$tmp/missing.json"
+expect 2 "unknown scene type" -- "$RTCL" info "$tmp/scene.txt"
+
+# A malformed OBJ names the file and the line.
+printf 'v 0 0 0\nv 1 0 0\nv 0 1.2.3 0\nf 1 2 3\n' >"$tmp/badnum.obj"
+expect 2 "badnum.obj:3(:[0-9]+)?: .*number" -- "$RTCL" info "$tmp/badnum.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n' >"$tmp/badidx.obj"
+expect 2 "badidx.obj:4(:[0-9]+)?: .*index" -- "$RTCL" info "$tmp/badidx.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n' >"$tmp/short.obj"
+expect 2 "short.obj:4(:[0-9]+)?: .*3 vertices" -- "$RTCL" info "$tmp/short.obj"
+printf 'v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n' >"$tmp/nan.obj"
+expect 2 "nan.obj:2(:[0-9]+)?: .*(NaN|infinite)" -- "$RTCL" info "$tmp/nan.obj"
+printf '# nothing here\n' >"$tmp/empty.obj"
+expect 2 "empty.obj.*(no faces|empty)" -- "$RTCL" info "$tmp/empty.obj"
+
+# A malformed JSON scene names the file, line and column.
+printf '{\n  "camera": {"fov": 60,\n' >"$tmp/truncated.json"
+expect 2 "truncated.json:[0-9]+:[0-9]+: " -- "$RTCL" info "$tmp/truncated.json"
+printf '{\n  "objects": [],\n  "colour": 1\n}\n' >"$tmp/unknown.json"
+expect 2 "unknown.json:3:[0-9]+: .*colour" -- "$RTCL" info "$tmp/unknown.json"
+
+# A good bare OBJ loads and gets the default view.
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$tmp/tri.obj"
+expect 0 "triangles +1 " -- "$RTCL" info "$tmp/tri.obj"
+finish

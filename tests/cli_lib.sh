@@ -1,0 +1,27 @@
+# cli_lib.sh - helpers for the shell tests of rtcl (sourced, not run).
+# expect STATUS PATTERN -- CMD...: runs CMD, checks its exit status and that
+# its stdout+stderr match the extended regular expression PATTERN.
+fails=0
+checks=0
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+expect() {
+    local want=$1 pattern=$2
+    shift 3
+    local out rc
+    out=$("$@" 2>&1) && rc=0 || rc=$?
+    checks=$((checks + 1))
+    if [ "$rc" != "$want" ]; then
+        echo "FAIL: '$*' exited $rc, expected $want; output:"; echo "$out" | head -20
+        fails=$((fails + 1))
+    elif ! grep -q -E -- "$pattern" <<<"$out"; then
+        echo "FAIL: '$*' output does not match /$pattern/; output:"; echo "$out" | head -20
+        fails=$((fails + 1))
+    fi
+}
+
+finish() {
+    echo "$(basename "$0"): $checks checks, $fails failed"
+    [ "$fails" = 0 ]
+}
