@@ -1,0 +1,516 @@
+/* rt_shared.h - the one source of the ray tracing maths: ray/box and
+ * ray/triangle tests, single- and two-level BVH traversal (closest hit and
+ * any hit), the camera, surface offsets and Whitted shading.
+ *
+ * Valid C99 and valid OpenCL C. The CPU oracle (cpu_ref/), the packet path and
+ * the OpenCL kernels include it, so they evaluate the same operations in the
+ * same order and get the same bits. Rules that keep it so:
+ * - only + - * /, sqrt, comparisons, fabs; minimum and maximum written as
+ *   comparisons (so NaN handling is spelled out); integer powers by repeated
+ *   multiplication; no vector operators; no recursion, no function pointers,
+ *   no allocation;
+ * - C builds with -ffp-contract=off and without fast-math; OpenCL builds with
+ *   '#pragma OPENCL FP_CONTRACT OFF', without -cl-mad-enable or fast-relaxed
+ *   maths, and with -cl-fp32-correctly-rounded-divide-sqrt (OpenCL's default
+ *   division and sqrt may be off by up to 3 ulp);
+ * - the evaluation order of every sum is written out (a + b + c is (a + b) + c).
+ *
+ * Closest hit has a total order: smaller t wins; equal t goes to the lower
+ * instance, then the lower triangle index. The hit then does not depend on
+ * traversal order, node layout or thread count. [tmin, tmax] is inclusive; the
+ * direction is not normalised and t is in units of its length.
+ */
+#ifndef RT_SHARED_H
+#define RT_SHARED_H
+
+#include "rt_layout.h"
+
+#ifdef RT_OPENCL
+#define RT_GLOBAL __global
+#define RT_FN
+#define RT_SQRT(x)     sqrt(x)
+#define RT_FABS(x)     fabs(x)
+#define RT_AS_INT(x)   as_int(x)
+#define RT_AS_FLOAT(x) as_float(x)
+#define RT_INF         INFINITY
+#else
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+#define RT_GLOBAL
+#define RT_FN          static inline
+#define RT_SQRT(x)     sqrtf(x)
+#define RT_FABS(x)     fabsf(x)
+#define RT_AS_INT(x)   rt_as_int_(x)
+#define RT_AS_FLOAT(x) rt_as_float_(x)
+#define RT_INF         INFINITY
+static inline rt_i32 rt_as_int_(float f) {
+    rt_i32 i;
+    memcpy(&i, &f, sizeof i);
+    return i;
+}
+static inline float rt_as_float_(rt_i32 i) {
+    float f;
+    memcpy(&f, &i, sizeof f);
+    return f;
+}
+#endif
+
+#define RT_NO_HIT 0xffffffffu
+
+/* Traversal stack entries; host/flatten.c rejects deeper trees. */
+#define RT_STACK_SIZE 64
+
+/* Ize 2013: the far slab distance times 1 + 2 gamma(3), gamma(n) =
+ * n eps / (1 - n eps), eps = 2^-24, makes the float slab test conservative.
+ * 1 + 2 gamma(3) = 1 + 3.58e-7 is rounded up to 1 + 4 * 2^-23. */
+#define RT_BOX_FAR_SCALE 1.000000476837158203125f
+
+/* The t range a box is tested against is widened by this relative margin, so
+ * that a triangle whose computed t rounds onto the range's end is never culled
+ * by its box (the triangle test's t has rounding errors of its own). */
+#define RT_BOX_T_MARGIN 0.0000152587890625f /* 2^-16 */
+
+/* Shadow rays run from the offset surface point (t = 0) to the light (t = 1),
+ * excluding the light itself. */
+#define RT_SHADOW_TMAX 0.999999940395355224609375f /* 1 - 2^-24 */
+
+/* Shading stack: depth-first, each bounce pushes at most two rays, so
+ * max_depth + 2 entries suffice; flatten caps max_depth at 8. */
+#define RT_SHADE_STACK 12
+#define RT_MAX_DEPTH   8
+
+typedef struct rt_ray_d {
+    float org[3];
+    float dir[3];
+    float tmin;
+    float tmax;
+} rt_ray_d;
+
+/* Per-ray values both tests reuse. */
+typedef struct rt_ray_pre {
+    float inv[3];   /* 1 / dir (inf for a zero component) */
+    rt_i32 sign[3]; /* inv < 0 */
+    rt_i32 kx, ky, kz;
+    float sx, sy, sz; /* watertight shear */
+} rt_ray_pre;
+
+typedef struct rt_hit_d {
+    float t, u, v; /* p = (1 - u - v) v0 + u v1 + v v2 */
+    rt_u32 prim;   /* triangle index in its mesh, RT_NO_HIT on a miss */
+    rt_u32 inst;   /* instance index, RT_NO_HIT on a miss */
+    rt_u32 entry;  /* index into the layout's tris (for shading) */
+} rt_hit_d;
+
+typedef struct rt_counters {
+    rt_u32 box_tests;
+    rt_u32 tri_tests;
+    rt_u32 rays;
+} rt_counters;
+
+/* Everything a backend reads. In OpenCL each pointer is a kernel argument. */
+typedef struct rt_scene_view {
+    RT_GLOBAL const rt_scene_header *hdr;
+    RT_GLOBAL const rt_node *nodes;
+    RT_GLOBAL const rt_tri *tris;
+    RT_GLOBAL const rt_u32 *tri_ids;
+    RT_GLOBAL const float *tri_normals;
+    RT_GLOBAL const rt_u32 *tri_mats;
+    RT_GLOBAL const rt_instance *instances;
+    RT_GLOBAL const rt_u32 *inst_ids;
+    RT_GLOBAL const rt_material_d *materials;
+    RT_GLOBAL const rt_light_d *lights;
+} rt_scene_view;
+
+/* ---- small vector helpers (explicit order of operations) ---------------- */
+
+RT_FN float rt_dot3(const float a[3], const float b[3]) {
+    return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2];
+}
+
+RT_FN void rt_cross3(const float a[3], const float b[3], float out[3]) {
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+RT_FN void rt_normalize3(float v[3]) {
+    float len = RT_SQRT(rt_dot3(v, v));
+    if (len > 0.0f) {
+        v[0] = v[0] / len;
+        v[1] = v[1] / len;
+        v[2] = v[2] / len;
+    }
+}
+
+/* ---- rays ----------------------------------------------------------------- */
+
+RT_FN void rt_ray_prepare(const rt_ray_d *r, rt_ray_pre *p) {
+    for (int i = 0; i < 3; i++) {
+        p->inv[i] = 1.0f / r->dir[i];
+        p->sign[i] = p->inv[i] < 0.0f;
+    }
+    /* Watertight test: kz is the axis where |dir| is largest. */
+    float ax = RT_FABS(r->dir[0]), ay = RT_FABS(r->dir[1]), az = RT_FABS(r->dir[2]);
+    rt_i32 kz = 0;
+    if (ay > ax) kz = 1;
+    if (az > (kz == 1 ? ay : ax)) kz = 2;
+    rt_i32 kx = kz + 1 == 3 ? 0 : kz + 1;
+    rt_i32 ky = kx + 1 == 3 ? 0 : kx + 1;
+    if (r->dir[kz] < 0.0f) { /* keep the winding */
+        rt_i32 tmp = kx;
+        kx = ky;
+        ky = tmp;
+    }
+    p->kx = kx;
+    p->ky = ky;
+    p->kz = kz;
+    p->sx = r->dir[kx] / r->dir[kz];
+    p->sy = r->dir[ky] / r->dir[kz];
+    p->sz = 1.0f / r->dir[kz];
+}
+
+/* The primary ray through the centre of pixel (px, py); see rt_layout.h. */
+RT_FN void rt_camera_ray(RT_GLOBAL const rt_scene_header *h, rt_i32 px, rt_i32 py, rt_ray_d *r) {
+    float sx = (2.0f * ((float)px + 0.5f)) / (float)h->width - 1.0f;
+    float sy = 1.0f - (2.0f * ((float)py + 0.5f)) / (float)h->height;
+    for (int i = 0; i < 3; i++) {
+        r->org[i] = h->cam_pos[i];
+        r->dir[i] = (h->cam_forward[i] + sx * h->cam_right[i]) + sy * h->cam_up[i];
+    }
+    r->tmin = 0.0f;
+    r->tmax = RT_INF;
+}
+
+/* Waechter and Binder 2019 (Ray Tracing Gems, ch. 6): moves p off the surface
+ * along n by a fixed number of ulps (256 |n|), which scales with p's magnitude;
+ * near the origin, where ulps are tiny, by a fixed 2^-16 |n| instead. */
+RT_FN void rt_offset_point(const float p[3], const float n[3], float sign, float out[3]) {
+    for (int i = 0; i < 3; i++) {
+        float ni = sign * n[i];
+        rt_i32 of = (rt_i32)(256.0f * ni);
+        float pi = RT_AS_FLOAT(RT_AS_INT(p[i]) + (p[i] < 0.0f ? -of : of));
+        out[i] = RT_FABS(p[i]) < 0.03125f ? p[i] + 0.0000152587890625f * ni : pi;
+    }
+}
+
+/* ---- ray/box: robust slab test (Ize 2013) --------------------------------- */
+
+/* Tests the box against [tmin, tmax]; *tnear is the entry distance. A 0 * inf
+ * (origin on a slab plane, direction parallel to it) gives NaN, which the
+ * comparisons below skip, keeping the test conservative. */
+RT_FN int rt_box_test(RT_GLOBAL const rt_node *n, const rt_ray_d *r, const rt_ray_pre *p,
+                      float tmin, float tmax, float *tnear) {
+    float lo = tmin, hi = RT_INF;
+    for (int i = 0; i < 3; i++) {
+        float a = p->sign[i] ? n->bmax[i] : n->bmin[i];
+        float b = p->sign[i] ? n->bmin[i] : n->bmax[i];
+        float t0 = (a - r->org[i]) * p->inv[i];
+        float t1 = (b - r->org[i]) * p->inv[i];
+        lo = t0 > lo ? t0 : lo;
+        hi = t1 < hi ? t1 : hi;
+    }
+    hi = hi * RT_BOX_FAR_SCALE;
+    hi = tmax < hi ? tmax : hi;
+    *tnear = lo;
+    return lo <= hi;
+}
+
+/* ---- ray/triangle tests --------------------------------------------------- */
+
+/* Each returns 1 and sets t, u, v when the ray hits the triangle with t in
+ * [tmin, tmax]. Both faces count. A ray in the triangle's plane and a
+ * zero-area triangle give a zero determinant: a miss. */
+
+/* Woop, Benthin and Wald 2013: shear and scale so the ray is the +z axis, then
+ * 2D edge functions. Watertight: a ray through a shared edge or vertex hits at
+ * least one of the triangles. (The paper's double precision re-test of exactly
+ * zero edge functions is left out: zero counts as inside, which keeps the test
+ * watertight, and OpenCL devices may lack doubles.) */
+RT_FN int rt_tri_watertight(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, const rt_ray_pre *p,
+                            float tmin, float tmax, float *t, float *u, float *v) {
+    float A[3], B[3], C[3];
+    for (int i = 0; i < 3; i++) {
+        A[i] = tri->v0[i] - r->org[i];
+        B[i] = tri->v1[i] - r->org[i];
+        C[i] = tri->v2[i] - r->org[i];
+    }
+    const rt_i32 kx = p->kx, ky = p->ky, kz = p->kz;
+    float Ax = A[kx] - p->sx * A[kz], Ay = A[ky] - p->sy * A[kz];
+    float Bx = B[kx] - p->sx * B[kz], By = B[ky] - p->sy * B[kz];
+    float Cx = C[kx] - p->sx * C[kz], Cy = C[ky] - p->sy * C[kz];
+    float U = Cx * By - Cy * Bx;
+    float V = Ax * Cy - Ay * Cx;
+    float W = Bx * Ay - By * Ax;
+    if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) return 0;
+    float det = (U + V) + W;
+    if (det == 0.0f) return 0;
+    float Az = p->sz * A[kz], Bz = p->sz * B[kz], Cz = p->sz * C[kz];
+    float T = (U * Az + V * Bz) + W * Cz;
+    float tt = T / det;
+    if (!(tt >= tmin && tt <= tmax)) return 0;
+    *t = tt;
+    *u = V / det;
+    *v = W / det;
+    return 1;
+}
+
+/* Moller and Trumbore 1997. */
+RT_FN int rt_tri_moller(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, float tmin, float tmax,
+                        float *t, float *u, float *v) {
+    float e1[3], e2[3], s[3], pv[3], q[3];
+    for (int i = 0; i < 3; i++) {
+        e1[i] = tri->v1[i] - tri->v0[i];
+        e2[i] = tri->v2[i] - tri->v0[i];
+        s[i] = r->org[i] - tri->v0[i];
+    }
+    rt_cross3(r->dir, e2, pv);
+    float det = rt_dot3(e1, pv);
+    if (det == 0.0f) return 0;
+    float inv = 1.0f / det;
+    float uu = rt_dot3(s, pv) * inv;
+    if (!(uu >= 0.0f && uu <= 1.0f)) return 0;
+    rt_cross3(s, e1, q);
+    float vv = rt_dot3(r->dir, q) * inv;
+    if (!(vv >= 0.0f && uu + vv <= 1.0f)) return 0;
+    float tt = rt_dot3(e2, q) * inv;
+    if (!(tt >= tmin && tt <= tmax)) return 0;
+    *t = tt;
+    *u = uu;
+    *v = vv;
+    return 1;
+}
+
+/* Signed volumes of the ray with each edge (the Pluecker inner products,
+ * written as triple products of the vertices relative to the origin). */
+RT_FN int rt_tri_pluecker(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, float tmin, float tmax,
+                          float *t, float *u, float *v) {
+    float a[3], b[3], c[3], bc[3], ca[3], ab[3];
+    for (int i = 0; i < 3; i++) {
+        a[i] = tri->v0[i] - r->org[i];
+        b[i] = tri->v1[i] - r->org[i];
+        c[i] = tri->v2[i] - r->org[i];
+    }
+    rt_cross3(b, c, bc);
+    rt_cross3(c, a, ca);
+    rt_cross3(a, b, ab);
+    float U = rt_dot3(r->dir, bc), V = rt_dot3(r->dir, ca), W = rt_dot3(r->dir, ab);
+    if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) return 0;
+    float det = (U + V) + W;
+    if (det == 0.0f) return 0;
+    float tt = rt_dot3(a, bc) / det;
+    if (!(tt >= tmin && tt <= tmax)) return 0;
+    *t = tt;
+    *u = V / det;
+    *v = W / det;
+    return 1;
+}
+
+/* Badouel 1990 (Wald's projection variant): hit the plane, then a 2D
+ * barycentric test in the projection that drops the normal's largest axis. */
+RT_FN int rt_tri_badouel(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, float tmin, float tmax,
+                         float *t, float *u, float *v) {
+    float e1[3], e2[3], n[3], a[3];
+    for (int i = 0; i < 3; i++) {
+        e1[i] = tri->v1[i] - tri->v0[i];
+        e2[i] = tri->v2[i] - tri->v0[i];
+        a[i] = tri->v0[i] - r->org[i];
+    }
+    rt_cross3(e1, e2, n);
+    float nd = rt_dot3(n, r->dir);
+    if (nd == 0.0f) return 0;
+    float tt = rt_dot3(n, a) / nd;
+    if (!(tt >= tmin && tt <= tmax)) return 0;
+    float nx = RT_FABS(n[0]), ny = RT_FABS(n[1]), nz = RT_FABS(n[2]);
+    rt_i32 k = 0;
+    if (ny > nx) k = 1;
+    if (nz > (k == 1 ? ny : nx)) k = 2;
+    rt_i32 i1 = k == 0 ? 1 : 0, i2 = k == 2 ? 1 : 2;
+    float p1 = (r->org[i1] + tt * r->dir[i1]) - tri->v0[i1];
+    float p2 = (r->org[i2] + tt * r->dir[i2]) - tri->v0[i2];
+    float det = e1[i1] * e2[i2] - e1[i2] * e2[i1];
+    float uu = (p1 * e2[i2] - p2 * e2[i1]) / det;
+    float vv = (e1[i1] * p2 - e1[i2] * p1) / det;
+    if (!(uu >= 0.0f && vv >= 0.0f && uu + vv <= 1.0f)) return 0;
+    *t = tt;
+    *u = uu;
+    *v = vv;
+    return 1;
+}
+
+/* The triangle test selected by method (RT_TRI_*). OpenCL kernels pass a
+ * compile-time constant, so the switch folds away. */
+RT_FN int rt_tri_test(rt_u32 method, RT_GLOBAL const rt_tri *tri, const rt_ray_d *r,
+                      const rt_ray_pre *p, float tmin, float tmax, float *t, float *u, float *v) {
+    if (method == RT_TRI_MOLLER) return rt_tri_moller(tri, r, tmin, tmax, t, u, v);
+    if (method == RT_TRI_PLUECKER) return rt_tri_pluecker(tri, r, tmin, tmax, t, u, v);
+    if (method == RT_TRI_BADOUEL) return rt_tri_badouel(tri, r, tmin, tmax, t, u, v);
+    return rt_tri_watertight(tri, r, p, tmin, tmax, t, u, v);
+}
+
+/* ---- traversal ------------------------------------------------------------ */
+
+/* The total order of hits: is (t, inst, prim) before the best so far? */
+RT_FN int rt_hit_before(float t, rt_u32 inst, rt_u32 prim, const rt_hit_d *best) {
+    if (t != best->t) return t < best->t;
+    if (inst != best->inst) return inst < best->inst;
+    return prim < best->prim;
+}
+
+RT_FN void rt_hit_init(rt_hit_d *h, const rt_ray_d *r) {
+    h->t = r->tmax;
+    h->u = 0.0f;
+    h->v = 0.0f;
+    h->prim = RT_NO_HIT;
+    h->inst = RT_NO_HIT;
+    h->entry = RT_NO_HIT;
+}
+
+/* The box range for a ray whose accepted t range is [tmin, tmax]. */
+RT_FN float rt_box_lo(float tmin) {
+    return tmin - RT_FABS(tmin) * RT_BOX_T_MARGIN;
+}
+RT_FN float rt_box_hi(float tmax) {
+    return tmax + RT_FABS(tmax) * RT_BOX_T_MARGIN;
+}
+
+/* Tests the triangles of one leaf; returns 1 when any_hit found one. */
+RT_FN int rt_leaf_test(const rt_scene_view *s, rt_u32 first, rt_u32 count, rt_u32 inst,
+                       const rt_ray_d *r, const rt_ray_pre *p, int any_hit, rt_hit_d *best,
+                       rt_counters *c) {
+    rt_u32 method = s->hdr->tri_method;
+    for (rt_u32 e = first; e < first + count; e++) {
+        float t, u, v;
+        c->tri_tests++;
+        if (!rt_tri_test(method, &s->tris[e], r, p, r->tmin, best->t, &t, &u, &v)) continue;
+        rt_u32 prim = s->tri_ids[e];
+        if (any_hit || rt_hit_before(t, inst, prim, best)) {
+            best->t = t;
+            best->u = u;
+            best->v = v;
+            best->prim = prim;
+            best->inst = inst;
+            best->entry = e;
+            if (any_hit) return 1;
+        }
+    }
+    return 0;
+}
+
+/* Traverses one mesh BVH from node 'root' with a ray already in the mesh's
+ * space. best->t is the current upper end of the range. Returns 1 when any_hit
+ * found an occluder. */
+RT_FN int rt_trace_mesh(const rt_scene_view *s, rt_u32 root, rt_u32 inst, const rt_ray_d *r,
+                        const rt_ray_pre *p, int any_hit, rt_hit_d *best, rt_counters *c) {
+    rt_u32 stack[RT_STACK_SIZE];
+    int sp = 0;
+    float tn;
+    c->box_tests++;
+    if (!rt_box_test(&s->nodes[root], r, p, rt_box_lo(r->tmin), rt_box_hi(best->t), &tn)) return 0;
+    rt_u32 node = root;
+    for (;;) {
+        RT_GLOBAL const rt_node *n = &s->nodes[node];
+        if (n->b & RT_NODE_LEAF_FLAG) {
+            if (rt_leaf_test(s, n->a, n->b & RT_NODE_COUNT_MASK, inst, r, p, any_hit, best, c))
+                return 1;
+            if (sp == 0) return 0;
+            node = stack[--sp];
+            continue;
+        }
+        float t0, t1, lo = rt_box_lo(r->tmin), hi = rt_box_hi(best->t);
+        c->box_tests += 2;
+        int h0 = rt_box_test(&s->nodes[n->a], r, p, lo, hi, &t0);
+        int h1 = rt_box_test(&s->nodes[n->b], r, p, lo, hi, &t1);
+        if (h0 && h1) {
+            rt_u32 nearer = t1 < t0 ? n->b : n->a, farther = t1 < t0 ? n->a : n->b;
+            stack[sp++] = farther;
+            node = nearer;
+        } else if (h0) {
+            node = n->a;
+        } else if (h1) {
+            node = n->b;
+        } else {
+            if (sp == 0) return 0;
+            node = stack[--sp];
+        }
+    }
+}
+
+/* The ray in an instance's object space: o' = M o + m, d' = M d, with M the
+ * inverse transform. t keeps its meaning because d' is not normalised. */
+RT_FN void rt_ray_to_object(RT_GLOBAL const rt_instance *in, const rt_ray_d *r, rt_ray_d *o) {
+    RT_GLOBAL const float *m = in->world_to_object;
+    for (int i = 0; i < 3; i++) {
+        o->org[i] = ((m[4 * i] * r->org[0] + m[4 * i + 1] * r->org[1]) + m[4 * i + 2] * r->org[2]) +
+                    m[4 * i + 3];
+        o->dir[i] = (m[4 * i] * r->dir[0] + m[4 * i + 1] * r->dir[1]) + m[4 * i + 2] * r->dir[2];
+    }
+    o->tmin = r->tmin;
+    o->tmax = r->tmax;
+}
+
+/* Traces one instance: transforms the ray unless the instance is the
+ * identity. */
+RT_FN int rt_trace_instance(const rt_scene_view *s, rt_u32 inst, const rt_ray_d *r,
+                            const rt_ray_pre *p, int any_hit, rt_hit_d *best, rt_counters *c) {
+    RT_GLOBAL const rt_instance *in = &s->instances[inst];
+    if (in->flags & RT_INST_IDENTITY)
+        return rt_trace_mesh(s, in->root, inst, r, p, any_hit, best, c);
+    rt_ray_d o;
+    rt_ray_pre op;
+    rt_ray_to_object(in, r, &o);
+    rt_ray_prepare(&o, &op);
+    return rt_trace_mesh(s, in->root, inst, &o, &op, any_hit, best, c);
+}
+
+/* The two-level traversal (Langr 2016, section 3.2.1): the object BVH, then
+ * each reached instance's mesh BVH. With one identity instance the object BVH
+ * is skipped. Returns 1 on a hit (for any_hit: some hit in range). */
+RT_FN int rt_trace(const rt_scene_view *s, const rt_ray_d *r, int any_hit, rt_hit_d *best,
+                   rt_counters *c) {
+    rt_ray_pre p;
+    rt_ray_prepare(r, &p);
+    rt_hit_init(best, r);
+    c->rays++;
+    if (s->hdr->instance_count == 0) return 0;
+    if (s->hdr->flags & RT_SCENE_SINGLE) {
+        rt_trace_instance(s, 0, r, &p, any_hit, best, c);
+        return best->prim != RT_NO_HIT;
+    }
+    rt_u32 stack[RT_STACK_SIZE];
+    int sp = 0;
+    float tn;
+    rt_u32 node = s->hdr->top_root;
+    c->box_tests++;
+    if (!rt_box_test(&s->nodes[node], r, &p, rt_box_lo(r->tmin), rt_box_hi(best->t), &tn)) return 0;
+    for (;;) {
+        RT_GLOBAL const rt_node *n = &s->nodes[node];
+        if (n->b & RT_NODE_LEAF_FLAG) {
+            rt_u32 count = n->b & RT_NODE_COUNT_MASK;
+            for (rt_u32 e = n->a; e < n->a + count; e++)
+                if (rt_trace_instance(s, s->inst_ids[e], r, &p, any_hit, best, c)) return 1;
+            if (sp == 0) break;
+            node = stack[--sp];
+            continue;
+        }
+        float t0, t1, lo = rt_box_lo(r->tmin), hi = rt_box_hi(best->t);
+        c->box_tests += 2;
+        int h0 = rt_box_test(&s->nodes[n->a], r, &p, lo, hi, &t0);
+        int h1 = rt_box_test(&s->nodes[n->b], r, &p, lo, hi, &t1);
+        if (h0 && h1) {
+            rt_u32 nearer = t1 < t0 ? n->b : n->a, farther = t1 < t0 ? n->a : n->b;
+            stack[sp++] = farther;
+            node = nearer;
+        } else if (h0) {
+            node = n->a;
+        } else if (h1) {
+            node = n->b;
+        } else {
+            if (sp == 0) break;
+            node = stack[--sp];
+        }
+    }
+    return best->prim != RT_NO_HIT;
+}
+
+#endif /* RT_SHARED_H */

@@ -1,0 +1,181 @@
+/* test_core_tri.c - the ray/box and ray/triangle tests of kernels/rt_shared.h
+ * on hand-made cases: hit, miss, edge, vertex, parallel, degenerate, the
+ * inclusive [tmin, tmax], both faces, and watertightness on a shared edge. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "check.h"
+#include "rt_shared.h"
+
+static const char *const method_names[] = {"watertight", "moller", "pluecker", "badouel"};
+
+static rt_tri make_tri(float ax, float ay, float az, float bx, float by, float bz, float cx,
+                       float cy, float cz) {
+    rt_tri t = {{ax, ay, az}, {bx, by, bz}, {cx, cy, cz}};
+    return t;
+}
+
+static rt_ray_d make_ray(float ox, float oy, float oz, float dx, float dy, float dz, float tmin,
+                         float tmax) {
+    rt_ray_d r = {{ox, oy, oz}, {dx, dy, dz}, tmin, tmax};
+    return r;
+}
+
+static int hit(int method, const rt_tri *tri, const rt_ray_d *r, float *t, float *u, float *v) {
+    rt_ray_pre p;
+    rt_ray_prepare(r, &p);
+    return rt_tri_test((rt_u32)method, tri, r, &p, r->tmin, r->tmax, t, u, v);
+}
+
+static void triangle_cases(int m) {
+    const char *name = method_names[m];
+    rt_tri tri = make_tri(0, 0, 0, 1, 0, 0, 0, 1, 0);
+    float t = -1, u = -1, v = -1;
+
+    rt_ray_d r = make_ray(0.25f, 0.5f, 1, 0, 0, -1, 0, INFINITY);
+    CHECK_MSG(hit(m, &tri, &r, &t, &u, &v), "%s: plain hit", name);
+    CHECK_MSG(t == 1.0f && u == 0.25f && v == 0.5f, "%s: t %g u %g v %g", name, t, u, v);
+
+    /* t is in units of the (unnormalised) direction. */
+    r = make_ray(0.25f, 0.5f, 1, 0, 0, -2, 0, INFINITY);
+    CHECK_MSG(hit(m, &tri, &r, &t, &u, &v) && t == 0.5f, "%s: t in direction units: %g", name, t);
+
+    /* Back face counts too. */
+    r = make_ray(0.25f, 0.25f, -1, 0, 0, 1, 0, INFINITY);
+    CHECK_MSG(hit(m, &tri, &r, &t, &u, &v) && t == 1.0f, "%s: back face", name);
+
+    r = make_ray(0.75f, 0.75f, 1, 0, 0, -1, 0, INFINITY);
+    CHECK_MSG(!hit(m, &tri, &r, &t, &u, &v), "%s: miss beyond the hypotenuse", name);
+    r = make_ray(-0.1f, 0.5f, 1, 0, 0, -1, 0, INFINITY);
+    CHECK_MSG(!hit(m, &tri, &r, &t, &u, &v), "%s: miss left", name);
+    r = make_ray(0.25f, 0.25f, 1, 0, 0, 1, 0, INFINITY);
+    CHECK_MSG(!hit(m, &tri, &r, &t, &u, &v), "%s: triangle behind the origin", name);
+
+    /* Edges and vertices are inside. */
+    r = make_ray(0.5f, 0, 1, 0, 0, -1, 0, INFINITY);
+    CHECK_MSG(hit(m, &tri, &r, &t, &u, &v) && u == 0.5f && v == 0.0f, "%s: edge v0-v1", name);
+    r = make_ray(0, 0.5f, 1, 0, 0, -1, 0, INFINITY);
+    CHECK_MSG(hit(m, &tri, &r, &t, &u, &v) && u == 0.0f && v == 0.5f, "%s: edge v0-v2", name);
+    r = make_ray(0.5f, 0.5f, 1, 0, 0, -1, 0, INFINITY);
+    CHECK_MSG(hit(m, &tri, &r, &t, &u, &v), "%s: hypotenuse", name);
+    r = make_ray(0, 0, 1, 0, 0, -1, 0, INFINITY);
+    CHECK_MSG(hit(m, &tri, &r, &t, &u, &v) && u == 0.0f && v == 0.0f, "%s: vertex v0", name);
+    r = make_ray(1, 0, 1, 0, 0, -1, 0, INFINITY);
+    CHECK_MSG(hit(m, &tri, &r, &t, &u, &v) && u == 1.0f && v == 0.0f, "%s: vertex v1", name);
+
+    /* A ray in the triangle's plane misses, through its inside or not. */
+    r = make_ray(-1, 0.25f, 0, 1, 0, 0, -INFINITY, INFINITY);
+    CHECK_MSG(!hit(m, &tri, &r, &t, &u, &v), "%s: ray in the plane", name);
+    r = make_ray(-1, -1, 0, 1, 1, 0, -INFINITY, INFINITY);
+    CHECK_MSG(!hit(m, &tri, &r, &t, &u, &v), "%s: diagonal ray in the plane", name);
+    r = make_ray(-1, 0.25f, 1, 1, 0, 0, -INFINITY, INFINITY);
+    CHECK_MSG(!hit(m, &tri, &r, &t, &u, &v), "%s: parallel above", name);
+
+    /* Degenerate triangles: collinear, and collapsed to a point (how the
+     * layout stores every zero-area triangle). */
+    rt_tri line = make_tri(0, 0, 0, 1, 1, 0, 2, 2, 0);
+    r = make_ray(1, 1, 1, 0, 0, -1, 0, INFINITY);
+    CHECK_MSG(!hit(m, &line, &r, &t, &u, &v), "%s: collinear triangle", name);
+    rt_tri point = make_tri(1, 1, 0, 1, 1, 0, 1, 1, 0);
+    CHECK_MSG(!hit(m, &point, &r, &t, &u, &v), "%s: point triangle", name);
+    r = make_ray(0, 0, 1, 1, 1, -1, 0, INFINITY);
+    CHECK_MSG(!hit(m, &point, &r, &t, &u, &v), "%s: point triangle, oblique", name);
+
+    /* [tmin, tmax] is inclusive at both ends. */
+    r = make_ray(0.25f, 0.25f, 1, 0, 0, -1, 0, 1.0f);
+    CHECK_MSG(hit(m, &tri, &r, &t, &u, &v), "%s: t == tmax hits", name);
+    r.tmax = nextafterf(1.0f, 0.0f);
+    CHECK_MSG(!hit(m, &tri, &r, &t, &u, &v), "%s: t just above tmax misses", name);
+    r = make_ray(0.25f, 0.25f, 1, 0, 0, -1, 1.0f, INFINITY);
+    CHECK_MSG(hit(m, &tri, &r, &t, &u, &v), "%s: t == tmin hits", name);
+    r.tmin = nextafterf(1.0f, 2.0f);
+    CHECK_MSG(!hit(m, &tri, &r, &t, &u, &v), "%s: t just below tmin misses", name);
+
+    /* An oblique hit in 3D, all tests agree with the exact answer closely. */
+    rt_tri sk = make_tri(1, 0, 0, 0, 1, 0, 0, 0, 1);
+    r = make_ray(0, 0, 0, 1, 1, 1, 0, INFINITY);
+    CHECK_MSG(hit(m, &sk, &r, &t, &u, &v), "%s: oblique hit", name);
+    CHECK_MSG(fabsf(t - 1.0f / 3.0f) < 1e-6f && fabsf(u - 1.0f / 3.0f) < 1e-6f &&
+                  fabsf(v - 1.0f / 3.0f) < 1e-6f,
+              "%s: oblique t %g u %g v %g", name, t, u, v);
+}
+
+/* Rays through points of the edge shared by two triangles hit at least one of
+ * them with the watertight test, from any origin. */
+static void watertight_shared_edge(void) {
+    rt_tri a = make_tri(0, 0, 0, 1, 0, 0, 1, 1, 0), b = make_tri(0, 0, 0, 1, 1, 0, 0, 1, 0);
+    srand(7);
+    int misses = 0;
+    for (int i = 0; i < 20000; i++) {
+        float s = (float)rand() / (float)RAND_MAX;
+        float o[3] = {(float)rand() / RAND_MAX * 4 - 2, (float)rand() / RAND_MAX * 4 - 2,
+                      0.1f + (float)rand() / RAND_MAX * 3};
+        rt_ray_d r = make_ray(o[0], o[1], o[2], s - o[0], s - o[1], -o[2], 0, INFINITY);
+        float t, u, v;
+        int ha = hit(RT_TRI_WATERTIGHT, &a, &r, &t, &u, &v);
+        int hb = hit(RT_TRI_WATERTIGHT, &b, &r, &t, &u, &v);
+        if (!ha && !hb) misses++;
+    }
+    CHECK_MSG(misses == 0, "watertight: %d rays slipped through a shared edge", misses);
+}
+
+static int box_hit(const rt_node *n, const rt_ray_d *r) {
+    rt_ray_pre p;
+    float tn;
+    rt_ray_prepare(r, &p);
+    return rt_box_test(n, r, &p, r->tmin, r->tmax, &tn);
+}
+
+static void box_cases(void) {
+    rt_node n = {{0, 0, 0}, {1, 1, 1}, 0, 0};
+    rt_ray_d r = make_ray(-1, 0.5f, 0.5f, 1, 0, 0, 0, INFINITY);
+    CHECK(box_hit(&n, &r));
+    r = make_ray(-1, 2, 0.5f, 1, 0, 0, 0, INFINITY);
+    CHECK(!box_hit(&n, &r));
+    r = make_ray(2, 0.5f, 0.5f, 1, 0, 0, 0, INFINITY);
+    CHECK_MSG(!box_hit(&n, &r), "box behind the ray");
+    /* Origin on a slab plane, direction parallel to it (0 * inf = NaN). */
+    r = make_ray(-1, 0, 0.5f, 1, 0, 0, 0, INFINITY);
+    CHECK_MSG(box_hit(&n, &r), "ray along the face y = 0");
+    r = make_ray(-1, 1, 1, 1, 0, 0, 0, INFINITY);
+    CHECK_MSG(box_hit(&n, &r), "ray along the edge y = z = 1");
+    r = make_ray(-1, 0.5f, 0.5f, 1, -0.0f, 0, 0, INFINITY);
+    CHECK_MSG(box_hit(&n, &r), "negative zero direction");
+    /* Inclusive ends: the box starts exactly at tmax. */
+    r = make_ray(-1, 0.5f, 0.5f, 1, 0, 0, 0, 1.0f);
+    CHECK_MSG(box_hit(&n, &r), "box entry == tmax");
+    r.tmax = 0.5f;
+    CHECK_MSG(!box_hit(&n, &r), "box beyond tmax");
+    /* A flat box (one triangle in a plane). */
+    rt_node flat = {{0, 0, 0}, {1, 1, 0}, 0, 0};
+    r = make_ray(0.5f, 0.5f, 1, 0, 0, -1, 0, INFINITY);
+    CHECK_MSG(box_hit(&flat, &r), "flat box");
+    r = make_ray(0.5f, 0.5f, 1, 0.001f, 0.002f, -1, 0, INFINITY);
+    CHECK_MSG(box_hit(&flat, &r), "flat box, oblique");
+}
+
+/* The surface offset moves a point to the normal's side by a distance that
+ * scales with its magnitude, also far from the origin. */
+static void offset_cases(void) {
+    const float n[3] = {0, 0, 1};
+    const float far_p[3] = {1e5f, -1e5f, 1e5f}, near_p[3] = {0.001f, 0, 0};
+    float o[3];
+    rt_offset_point(far_p, n, 1.0f, o);
+    CHECK(o[0] == far_p[0] && o[1] == far_p[1] && o[2] > far_p[2]);
+    CHECK_MSG(o[2] - far_p[2] > 1.0f, "offset at 1e5: %g", o[2] - far_p[2]);
+    rt_offset_point(far_p, n, -1.0f, o);
+    CHECK(o[2] < far_p[2]);
+    rt_offset_point(near_p, n, 1.0f, o);
+    CHECK(o[2] > 0.0f && o[2] < 1e-4f);
+    const float neg[3] = {0, 0, -5e4f};
+    rt_offset_point(neg, n, 1.0f, o);
+    CHECK(o[2] > neg[2]);
+}
+
+int main(void) {
+    for (int m = 0; m < 4; m++) triangle_cases(m);
+    watertight_shared_edge();
+    box_cases();
+    offset_cases();
+    return TEST_END();
+}
