@@ -74,7 +74,9 @@ typedef struct rt_instance {
     rt_u32 root;               /* index of the mesh BVH's root node */
     rt_u32 material;
     rt_u32 flags;
-    rt_u32 mesh; /* the scene's mesh id (for information) */
+    rt_u32 mesh;      /* the scene's mesh id (for information) */
+    rt_u32 tri_first; /* the mesh's entries in tris: tri_first .. + tri_count - 1 */
+    rt_u32 tri_count;
 } rt_instance;
 
 typedef struct rt_material_d {
