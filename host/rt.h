@@ -187,6 +187,34 @@ rt_status rt_render(rt_scene *scene, const rt_render_options *options, rt_frameb
 
 void rt_framebuffer_free(rt_framebuffer *fb);
 
+/* ---- ray queries ---------------------------------------------------------- */
+
+/* A ray o + t d for t in [tmin, tmax] (inclusive). d need not be normalised;
+ * t is in units of its length. */
+typedef struct rt_ray {
+    float org[3];
+    float dir[3];
+    float tmin;
+    float tmax;
+} rt_ray;
+
+/* The closest hit (smaller t wins; equal t: lower inst, then lower prim) or,
+ * for any-hit queries, some hit in range. p = (1 - u - v) v0 + u v1 + v v2.
+ * A miss: hit 0, t inf, u = v = 0, prim = inst = UINT32_MAX. */
+typedef struct rt_hit {
+    float t, u, v;
+    uint32_t prim; /* 0-based triangle index in the mesh's file order */
+    uint32_t inst; /* object index */
+    int hit;
+} rt_hit;
+
+/* Traces count rays through the scene (after applying queued transforms) with
+ * a backend ("cpu" or NULL: the scalar oracle; "packet": 2x2 packets; both
+ * give identical closest hits). A ray with a NaN or infinite component, or a
+ * zero direction, is a miss. */
+rt_status rt_trace_rays(rt_scene *scene, const rt_ray *rays, size_t count, rt_hit *hits,
+                        int any_hit, const char *backend);
+
 #ifdef __cplusplus
 }
 #endif

@@ -106,6 +106,7 @@ void rt_scene_destroy(rt_scene *scene) {
     free(scene->materials);
     free(scene->lights);
     free(scene->objects);
+    rt_render_cache_free(scene->render_cache);
     free(scene);
 }
 

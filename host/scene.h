@@ -57,7 +57,13 @@ struct rt_scene {
     uint32_t version; /* bumped by every change, so backends know what to re-upload */
     char source[512]; /* the file it was loaded from, or "" */
     rt_error error;
+    /* Renderer state kept between frames (mesh BVHs, flattened layout,
+     * threads); owned by host/render.c, freed with the scene. */
+    struct rt_render_cache *render_cache;
 };
+
+/* Frees the renderer's state (host/render.c); NULL is fine. */
+void rt_render_cache_free(struct rt_render_cache *cache);
 
 /* Identity matrix. */
 void rt_mat4_identity(float m[16]);

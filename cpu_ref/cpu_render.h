@@ -1,0 +1,47 @@
+/* cpu_render.h - the CPU backends over the flattened layout: the scalar
+ * oracle ("cpu") and the 2x2 NEON packet path ("packet"). Both write the same
+ * bits: the packet path only changes how primary rays find their hits. */
+#ifndef RT_CPU_RENDER_H
+#define RT_CPU_RENDER_H
+
+#include <stdint.h>
+
+#include "flatten.h"
+#include "rt.h"
+#include "rt_shade.h"
+#include "thread_pool.h"
+
+typedef struct rt_cpu_counts {
+    uint64_t rays, primary_rays, box_tests, tri_tests;
+    uint64_t packets, packet_box_tests; /* packet path only */
+} rt_cpu_counts;
+
+typedef struct rt_cpu_frame {
+    const rt_flat *flat;
+    rt_aov aov;
+    float *pixels; /* width * height * channels */
+    int channels;  /* 3 for the image and normals, else 1 */
+    void (*progress)(void *user, double done);
+    void *progress_user;
+} rt_cpu_frame;
+
+/* Renders with the scalar oracle on the pool's workers (interleaved rows). */
+void rt_cpu_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *counts);
+
+/* Renders with 2x2 packets on the pool's workers (interleaved strips of two
+ * rows). */
+void rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *counts);
+
+/* Finishes one pixel whose primary ray and hit are known: shading (or the
+ * AOV) into the frame. Both backends call it. */
+void rt_cpu_finish_pixel(const rt_cpu_frame *frame, const rt_scene_view *view, int x, int y,
+                         const rt_ray_d *ray, const rt_hit_d *hit, rt_counters *c);
+
+/* Traces n rays (closest or any hit) with the scalar code, or in packets of
+ * four; misses get prim = RT_NO_HIT. */
+void rt_cpu_trace_rays(const rt_flat *flat, const rt_ray_d *rays, size_t n, rt_hit_d *hits,
+                       int any_hit, rt_counters *c);
+void rt_packet_trace_rays(const rt_flat *flat, const rt_ray_d *rays, size_t n, rt_hit_d *hits,
+                          int any_hit, rt_counters *c);
+
+#endif /* RT_CPU_RENDER_H */

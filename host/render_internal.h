@@ -1,0 +1,25 @@
+/* render_internal.h - what rt_render and rt_trace_rays share: bringing the
+ * scene's BVHs and flattened layout up to date. */
+#ifndef RT_RENDER_INTERNAL_H
+#define RT_RENDER_INTERNAL_H
+
+#include "flatten.h"
+#include "scene.h"
+#include "thread_pool.h"
+
+typedef struct rt_prepared {
+    const rt_flat *flat;
+    rt_pool *pool;
+    double sah_cost; /* triangle-weighted mean over the objects' meshes */
+    double build_ms; /* BVH builds and flattening done by this call */
+} rt_prepared;
+
+/* Applies queued transforms, rebuilds the BVHs of meshes that changed (one
+ * cache entry per mesh), the object BVH when objects changed, and the layout.
+ * threads <= 0: all cores. */
+rt_status rt_render_prepare(rt_scene *scene, int threads, rt_prepared *out);
+
+/* Milliseconds on a monotonic clock. */
+double rt_now_ms(void);
+
+#endif /* RT_RENDER_INTERNAL_H */

@@ -1,0 +1,86 @@
+/* trace.c - rt_trace_rays: the caller's rays through the same layout and
+ * traversal as rendering, split over the pool's workers in chunks. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cpu_render.h"
+#include "render_internal.h"
+
+typedef struct trace_job {
+    const rt_flat *flat;
+    const rt_ray_d *rays;
+    rt_hit_d *hits;
+    size_t count;
+    int any_hit, packet;
+} trace_job;
+
+static void trace_chunk(void *ctx, int worker, int workers) {
+    trace_job *job = ctx;
+    /* Contiguous chunks (multiples of 4, so packets stay whole). */
+    size_t per = (job->count + (size_t)workers - 1) / (size_t)workers;
+    per = (per + 3) & ~(size_t)3;
+    size_t first = per * (size_t)worker;
+    if (first >= job->count) return;
+    size_t n = job->count - first < per ? job->count - first : per;
+    rt_counters c = {0, 0, 0};
+    if (job->packet)
+        rt_packet_trace_rays(job->flat, job->rays + first, n, job->hits + first, job->any_hit, &c);
+    else
+        rt_cpu_trace_rays(job->flat, job->rays + first, n, job->hits + first, job->any_hit, &c);
+}
+
+static int ray_valid(const rt_ray *r) {
+    for (int k = 0; k < 3; k++)
+        if (!isfinite(r->org[k]) || !isfinite(r->dir[k])) return 0;
+    if (isnan(r->tmin) || isnan(r->tmax)) return 0;
+    return r->dir[0] != 0.0f || r->dir[1] != 0.0f || r->dir[2] != 0.0f;
+}
+
+rt_status rt_trace_rays(rt_scene *scene, const rt_ray *rays, size_t count, rt_hit *hits,
+                        int any_hit, const char *backend) {
+    if (!scene || (count && (!rays || !hits))) return RT_ERROR_INVALID_ARGUMENT;
+    const char *b = backend ? backend : "cpu";
+    int packet = strcmp(b, "packet") == 0;
+    if (!packet && strcmp(b, "cpu") != 0)
+        return rt_scene_fail(
+            scene, RT_ERROR_UNSUPPORTED,
+            "unknown or unavailable backend '%s' (ray queries run on: cpu, packet)", b);
+    rt_prepared prep;
+    rt_status st = rt_render_prepare(scene, 0, &prep);
+    if (st != RT_OK) return st;
+    rt_ray_d *in = malloc(sizeof(rt_ray_d) * (count ? count : 1));
+    rt_hit_d *out = malloc(sizeof(rt_hit_d) * (count ? count : 1));
+    if (!in || !out) {
+        free(in);
+        free(out);
+        return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    }
+    for (size_t i = 0; i < count; i++) {
+        memcpy(in[i].org, rays[i].org, sizeof in[i].org);
+        memcpy(in[i].dir, rays[i].dir, sizeof in[i].dir);
+        in[i].tmin = rays[i].tmin;
+        in[i].tmax = rays[i].tmax;
+        if (!ray_valid(&rays[i])) { /* an empty range: a miss, whatever the scene */
+            in[i].tmin = 1.0f;
+            in[i].tmax = 0.0f;
+            in[i].dir[0] = 1.0f;
+            in[i].dir[1] = in[i].dir[2] = 0.0f;
+            for (int k = 0; k < 3; k++) in[i].org[k] = 0.0f;
+        }
+    }
+    trace_job job = {prep.flat, in, out, count, any_hit, packet};
+    rt_pool_run(prep.pool, trace_chunk, &job);
+    for (size_t i = 0; i < count; i++) {
+        rt_hit *h = &hits[i];
+        h->hit = out[i].prim != RT_NO_HIT;
+        h->t = h->hit ? out[i].t : INFINITY;
+        h->u = h->hit ? out[i].u : 0.0f;
+        h->v = h->hit ? out[i].v : 0.0f;
+        h->prim = h->hit ? out[i].prim : UINT32_MAX;
+        h->inst = h->hit ? out[i].inst : UINT32_MAX;
+    }
+    free(in);
+    free(out);
+    return RT_OK;
+}

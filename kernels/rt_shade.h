@@ -1,0 +1,198 @@
+/* rt_shade.h - Whitted shading over the shared traversal (Langr 2016,
+ * sections 3.2.5 and 3.2.6): Phong (ambient + diffuse + specular), one shadow
+ * ray per light, reflection and refraction through an explicit stack.
+ *
+ * Valid C99 and OpenCL C, under the rules of rt_shared.h. The packet path
+ * traces primary rays in packets and then calls rt_shade_hit per lane, so its
+ * images are bit-identical to the scalar renderer's.
+ */
+#ifndef RT_SHADE_H
+#define RT_SHADE_H
+
+#include "rt_shared.h"
+
+/* The surface at a hit, in world space. */
+typedef struct rt_surface {
+    float p[3];   /* org + t * dir */
+    float ng[3];  /* unit geometric normal, facing the ray's origin side */
+    float ns[3];  /* unit shading normal (interpolated when the mesh has
+                     normals), facing the ray's origin side */
+    rt_i32 front; /* the ray arrived on the outside (the side the
+                     unflipped shading normal points to) */
+    rt_u32 material;
+} rt_surface;
+
+/* n_world = (M^-1)^T n for a normal in object space. */
+RT_FN void rt_normal_to_world(RT_GLOBAL const rt_instance *in, const float n[3], float out[3]) {
+    RT_GLOBAL const float *m = in->world_to_object;
+    for (int i = 0; i < 3; i++) out[i] = (m[i] * n[0] + m[4 + i] * n[1]) + m[8 + i] * n[2];
+}
+
+RT_FN void rt_surface_at(const rt_scene_view *s, const rt_ray_d *r, const rt_hit_d *h,
+                         rt_surface *sf) {
+    RT_GLOBAL const rt_tri *tri = &s->tris[h->entry];
+    RT_GLOBAL const rt_instance *in = &s->instances[h->inst];
+    int identity = (in->flags & RT_INST_IDENTITY) != 0;
+    float e1[3], e2[3], n[3], ns[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = tri->v1[k] - tri->v0[k];
+        e2[k] = tri->v2[k] - tri->v0[k];
+        sf->p[k] = r->org[k] + h->t * r->dir[k];
+    }
+    rt_cross3(e1, e2, n);
+    if (identity) {
+        for (int k = 0; k < 3; k++) sf->ng[k] = n[k];
+    } else {
+        rt_normal_to_world(in, n, sf->ng);
+    }
+    rt_normalize3(sf->ng);
+    for (int k = 0; k < 3; k++) sf->ns[k] = sf->ng[k];
+    if (in->flags & RT_INST_NORMALS) {
+        RT_GLOBAL const float *vn = s->tri_normals + 9 * h->entry;
+        float w = (1.0f - h->u) - h->v;
+        for (int k = 0; k < 3; k++) n[k] = (w * vn[k] + h->u * vn[3 + k]) + h->v * vn[6 + k];
+        if (identity) {
+            for (int k = 0; k < 3; k++) ns[k] = n[k];
+        } else {
+            rt_normal_to_world(in, n, ns);
+        }
+        rt_normalize3(ns);
+        if (rt_dot3(ns, ns) > 0.0f)
+            for (int k = 0; k < 3; k++) sf->ns[k] = ns[k];
+    }
+    sf->front = rt_dot3(sf->ns, r->dir) < 0.0f;
+    if (rt_dot3(sf->ng, r->dir) > 0.0f)
+        for (int k = 0; k < 3; k++) sf->ng[k] = -sf->ng[k];
+    if (!sf->front)
+        for (int k = 0; k < 3; k++) sf->ns[k] = -sf->ns[k];
+    sf->material = in->material;
+    if ((s->hdr->flags & RT_SCENE_TRI_MATS) && s->tri_mats[h->entry] != RT_NO_MATERIAL)
+        sf->material = s->tri_mats[h->entry];
+}
+
+/* Phong at a surface seen along unit direction dn: ambient, then per light
+ * that is in front of the shading normal and not occluded, diffuse and
+ * specular (integer shininess by repeated multiplication). */
+RT_FN void rt_phong(const rt_scene_view *s, const rt_surface *sf, const float dn[3], rt_counters *c,
+                    float out[3]) {
+    RT_GLOBAL const rt_material_d *m = &s->materials[sf->material];
+    for (int k = 0; k < 3; k++) out[k] = (m->ambient * m->color[k]) * s->hdr->ambient[k];
+    for (rt_u32 li = 0; li < s->hdr->light_count; li++) {
+        RT_GLOBAL const rt_light_d *light = &s->lights[li];
+        float L[3], Ln[3];
+        for (int k = 0; k < 3; k++) L[k] = light->position[k] - sf->p[k];
+        float dist = RT_SQRT(rt_dot3(L, L));
+        if (!(dist > 0.0f)) continue;
+        for (int k = 0; k < 3; k++) Ln[k] = L[k] / dist;
+        float ndl = rt_dot3(sf->ns, Ln);
+        if (!(ndl > 0.0f)) continue;
+        /* Shadow ray from the offset point to the light (t = 1 at the light). */
+        rt_ray_d sr;
+        rt_hit_d sh;
+        rt_offset_point(sf->p, sf->ng, rt_dot3(sf->ng, L) >= 0.0f ? 1.0f : -1.0f, sr.org);
+        for (int k = 0; k < 3; k++) sr.dir[k] = light->position[k] - sr.org[k];
+        sr.tmin = 0.0f;
+        sr.tmax = RT_SHADOW_TMAX;
+        if (rt_trace(s, &sr, 1, &sh, c)) continue;
+        for (int k = 0; k < 3; k++)
+            out[k] = out[k] + ((m->diffuse * m->color[k]) * light->color[k]) * ndl;
+        if (m->specular > 0.0f) {
+            float R[3];
+            for (int k = 0; k < 3; k++) R[k] = (2.0f * ndl) * sf->ns[k] - Ln[k];
+            float rv = -rt_dot3(R, dn); /* R . V with V = -dn */
+            if (rv > 0.0f) {
+                float pw = 1.0f;
+                for (rt_i32 i = 0; i < m->shininess; i++) pw = pw * rv;
+                for (int k = 0; k < 3; k++) out[k] = out[k] + (m->specular * light->color[k]) * pw;
+            }
+        }
+    }
+}
+
+typedef struct rt_shade_entry {
+    rt_ray_d ray;
+    float w[3];
+    rt_u32 depth;
+} rt_shade_entry;
+
+RT_FN int rt_weight_counts(const float w[3], float min_weight) {
+    return w[0] >= min_weight || w[1] >= min_weight || w[2] >= min_weight;
+}
+
+/* The colour seen along a primary ray whose closest hit is already known:
+ * depth-first over reflection and refraction rays with an explicit stack,
+ * up to hdr->max_depth bounces and while a ray's weight reaches
+ * hdr->min_weight. Every contribution is added in the same order on every
+ * backend. */
+RT_FN void rt_shade_hit(const rt_scene_view *s, const rt_ray_d *primary,
+                        const rt_hit_d *primary_hit, rt_counters *c, float rgb[3]) {
+    rt_shade_entry stack[RT_SHADE_STACK];
+    int sp = 0, first = 1;
+    stack[sp].ray = *primary;
+    stack[sp].w[0] = stack[sp].w[1] = stack[sp].w[2] = 1.0f;
+    stack[sp].depth = 0;
+    sp++;
+    rgb[0] = rgb[1] = rgb[2] = 0.0f;
+    while (sp > 0) {
+        rt_shade_entry e = stack[--sp];
+        rt_hit_d h;
+        if (first) {
+            h = *primary_hit;
+            first = 0;
+        } else {
+            rt_trace(s, &e.ray, 0, &h, c);
+        }
+        if (h.prim == RT_NO_HIT) {
+            for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + e.w[k] * s->hdr->background[k];
+            continue;
+        }
+        rt_surface sf;
+        rt_surface_at(s, &e.ray, &h, &sf);
+        RT_GLOBAL const rt_material_d *m = &s->materials[sf.material];
+        float dn[3] = {e.ray.dir[0], e.ray.dir[1], e.ray.dir[2]};
+        rt_normalize3(dn);
+        float lw = (1.0f - m->reflectivity) - m->transparency;
+        if (lw > 0.0f) {
+            float local[3];
+            rt_phong(s, &sf, dn, c, local);
+            for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + (e.w[k] * lw) * local[k];
+        }
+        if (!(s->hdr->flags & RT_SCENE_SECONDARY) || e.depth >= s->hdr->max_depth) continue;
+        float refl = m->reflectivity;
+        float cosi = -rt_dot3(dn, sf.ns);
+        if (m->transparency > 0.0f) {
+            float eta = sf.front ? 1.0f / m->ior : m->ior;
+            float k2 = 1.0f - (eta * eta) * (1.0f - cosi * cosi);
+            if (k2 < 0.0f) {
+                refl = refl + m->transparency; /* total internal reflection */
+            } else {
+                rt_shade_entry t;
+                float a = eta * cosi - RT_SQRT(k2);
+                for (int k = 0; k < 3; k++) {
+                    t.ray.dir[k] = eta * dn[k] + a * sf.ns[k];
+                    t.w[k] = e.w[k] * m->transparency;
+                }
+                rt_offset_point(sf.p, sf.ng, -1.0f, t.ray.org);
+                t.ray.tmin = 0.0f;
+                t.ray.tmax = RT_INF;
+                t.depth = e.depth + 1;
+                if (rt_weight_counts(t.w, s->hdr->min_weight) && sp < RT_SHADE_STACK)
+                    stack[sp++] = t;
+            }
+        }
+        if (refl > 0.0f) {
+            rt_shade_entry t;
+            for (int k = 0; k < 3; k++) {
+                t.ray.dir[k] = dn[k] + (2.0f * cosi) * sf.ns[k];
+                t.w[k] = e.w[k] * refl;
+            }
+            rt_offset_point(sf.p, sf.ng, 1.0f, t.ray.org);
+            t.ray.tmin = 0.0f;
+            t.ray.tmax = RT_INF;
+            t.depth = e.depth + 1;
+            if (rt_weight_counts(t.w, s->hdr->min_weight) && sp < RT_SHADE_STACK) stack[sp++] = t;
+        }
+    }
+}
+
+#endif /* RT_SHADE_H */
