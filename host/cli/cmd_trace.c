@@ -1,11 +1,170 @@
-/* cmd_trace.c - placeholder for 'rtcl trace'. */
+/* cmd_trace.c - 'rtcl trace': rays from a text file through a scene, one hit
+ * line per ray (rt_trace_rays). */
+#include <errno.h>
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
+#include "cli_util.h"
 #include "commands.h"
+#include "scene.h"
+
+static const char usage[] =
+    "usage: rtcl trace SCENE --rays RAYS.txt --out HITS.txt [--backend B] [--any-hit] [--help]\n"
+    "\n"
+    "Traces the rays of RAYS.txt through SCENE (a .json scene, a bare .obj, or\n"
+    "builtin:NAME) and writes one line per ray to HITS.txt.\n"
+    "\n"
+    "RAYS.txt   one ray per line: ox oy oz dx dy dz tmin tmax (the ray o + t d for\n"
+    "           t in [tmin, tmax], inclusive; d need not be normalised, t is in its\n"
+    "           units). Blank lines and lines starting with '#' are skipped. A ray\n"
+    "           with a NaN or infinite component or a zero direction is a miss.\n"
+    "HITS.txt   per ray: 'hit t u v prim', plus ' inst' when the scene has more\n"
+    "           than one object. hit is 1 or 0; p = (1-u-v) v0 + u v1 + v v2; prim is\n"
+    "           the 0-based triangle index in its mesh's file order; inst the object\n"
+    "           index. Floats as %.9g. A miss is '0 inf 0 0 -1' (plus ' -1').\n"
+    "\n"
+    "  --backend B  cpu (the scalar oracle) or packet (2x2 SIMD rays) [cpu]\n"
+    "  --any-hit    stop at any hit in range (shadow-ray queries): hit is then\n"
+    "               exact, t u v prim inst belong to some hit, not the closest\n";
+
+/* Reads the rays; on a bad line prints file:line and returns 0. */
+static int read_rays(const char *path, rt_ray **out, size_t *count) {
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        cli_error("trace", "%s: cannot open: %s", path, strerror(errno));
+        return 0;
+    }
+    size_t n = 0, cap = 1024;
+    rt_ray *rays = malloc(cap * sizeof *rays);
+    char line[4096];
+    int lineno = 0, ok = rays != NULL;
+    while (ok && fgets(line, sizeof line, f)) {
+        lineno++;
+        char *p = line;
+        while (*p == ' ' || *p == '\t') p++;
+        if (*p == '#' || *p == '\n' || *p == '\r' || *p == 0) continue;
+        float v[8];
+        int got = 0;
+        while (got < 9) {
+            char *end;
+            errno = 0;
+            float x = strtof(p, &end);
+            if (end == p) break;
+            if (got < 8) v[got] = x;
+            got++;
+            p = end;
+        }
+        while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r') p++;
+        if (got != 8 || *p) {
+            cli_error("trace", "%s:%d: expected 8 numbers 'ox oy oz dx dy dz tmin tmax'%s%s", path,
+                      lineno, *p ? ", found: " : "", *p ? p : "");
+            ok = 0;
+            break;
+        }
+        if (n == cap) {
+            rt_ray *r = realloc(rays, 2 * cap * sizeof *rays);
+            if (!r) {
+                ok = 0;
+                break;
+            }
+            rays = r;
+            cap *= 2;
+        }
+        rt_ray *r = &rays[n++];
+        memcpy(r->org, v, sizeof r->org);
+        memcpy(r->dir, v + 3, sizeof r->dir);
+        r->tmin = v[6];
+        r->tmax = v[7];
+    }
+    fclose(f);
+    if (!ok) {
+        free(rays);
+        return 0;
+    }
+    *out = rays;
+    *count = n;
+    return 1;
+}
 
 int cmd_trace(int argc, char **argv) {
-    (void)argc;
-    (void)argv;
-    fprintf(stderr, "rtcl trace: not built yet\n");
-    return 2;
+    const char *scene_path = NULL, *rays_path = NULL, *out_path = NULL, *backend = "cpu";
+    int any_hit = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            fputs(usage, stdout);
+            return 0;
+        } else if (!strcmp(a, "--rays")) {
+            if (!(rays_path = cli_value(argc, argv, &i, "trace"))) return 2;
+        } else if (!strcmp(a, "--out") || !strcmp(a, "-o")) {
+            if (!(out_path = cli_value(argc, argv, &i, "trace"))) return 2;
+        } else if (!strcmp(a, "--backend")) {
+            if (!(backend = cli_value(argc, argv, &i, "trace"))) return 2;
+        } else if (!strcmp(a, "--any-hit")) {
+            any_hit = 1;
+        } else if (a[0] == '-' && a[1]) {
+            cli_error("trace", "unknown option '%s'\n%s", a, usage);
+            return 2;
+        } else if (scene_path) {
+            cli_error("trace", "more than one scene given ('%s' and '%s')", scene_path, a);
+            return 2;
+        } else {
+            scene_path = a;
+        }
+    }
+    if (!scene_path || !rays_path || !out_path) {
+        cli_error("trace", "need SCENE, --rays and --out\n%s", usage);
+        return 2;
+    }
+    rt_ray *rays = NULL;
+    size_t n = 0;
+    if (!read_rays(rays_path, &rays, &n)) return 2;
+    rt_scene *scene;
+    rt_error err;
+    if (cli_load_scene(scene_path, &scene, &err) != RT_OK) {
+        cli_error("trace", "%s", err.message);
+        free(rays);
+        return 2;
+    }
+    rt_hit *hits = malloc((n ? n : 1) * sizeof *hits);
+    rt_status st =
+        hits ? rt_trace_rays(scene, rays, n, hits, any_hit, backend) : RT_ERROR_OUT_OF_MEMORY;
+    if (st != RT_OK) {
+        cli_error("trace", "%s", hits ? rt_scene_error(scene) : "out of memory");
+        free(rays);
+        free(hits);
+        rt_scene_destroy(scene);
+        return 2;
+    }
+    int with_inst = scene->object_count > 1;
+    FILE *f = fopen(out_path, "w");
+    if (!f) {
+        cli_error("trace", "%s: cannot write: %s", out_path, strerror(errno));
+        free(rays);
+        free(hits);
+        rt_scene_destroy(scene);
+        return 2;
+    }
+    for (size_t i = 0; i < n; i++) {
+        const rt_hit *h = &hits[i];
+        if (h->hit)
+            fprintf(f, "1 %.9g %.9g %.9g %u", h->t, h->u, h->v, h->prim);
+        else
+            fputs("0 inf 0 0 -1", f);
+        if (with_inst) {
+            if (h->hit)
+                fprintf(f, " %u", h->inst);
+            else
+                fputs(" -1", f);
+        }
+        fputc('\n', f);
+    }
+    int bad = fclose(f) != 0;
+    if (bad) cli_error("trace", "%s: write failed", out_path);
+    free(rays);
+    free(hits);
+    rt_scene_destroy(scene);
+    return bad ? 2 : 0;
 }

@@ -1,0 +1,53 @@
+# cli_trace.sh - 'rtcl trace': hit lines, misses, tmin/tmax, backends agree,
+# any-hit, bad ray lines reported with file:line.
+source "$RT_SOURCE_DIR/tests/cli_lib.sh"
+
+rays=$tmp/rays.txt
+cat > "$rays" <<'R'
+# the back wall of the Cornell room, straight ahead
+0 1.5 3 0 0 -1 0 inf
+# the same with a direction of length 2: t halves
+0 1.5 3 0 0 -2 0 inf
+# out of the open front: a miss
+0 1.5 3 0 0 1 0 inf
+# tmax short of the wall: a miss; tmax exactly at the wall: a hit
+0 1.5 3 0 0 -1 0 3.5
+0 1.5 3 0 0 -1 0 4
+
+# NaN and zero directions are misses
+0 1.5 3 nan 0 -1 0 inf
+0 1.5 3 0 0 0 0 inf
+R
+expect 0 '' -- "$RTCL" trace builtin:cornell --rays "$rays" --out "$tmp/hits.txt"
+checks=$((checks + 1))
+want=$'1 4 U V P 0\n1 2 U V P 0\n0 inf 0 0 -1 -1\n0 inf 0 0 -1 -1\n1 4 U V P 0\n0 inf 0 0 -1 -1\n0 inf 0 0 -1 -1'
+got=$(awk '{ if ($1 == 1) { $3 = "U"; $4 = "V"; $5 = "P" } print }' "$tmp/hits.txt")
+if [ "$got" != "$want" ]; then
+    echo "FAIL: hits:"; cat "$tmp/hits.txt"; fails=$((fails + 1))
+fi
+
+# Random rays: the packet backend gives the same lines as the scalar one.
+awk 'BEGIN { srand(3); for (i = 0; i < 2000; i++) printf "%f %f %f %f %f %f 0 inf\n",
+     rand() * 3 - 1.5, rand() * 1.8, rand() * 4 - 1, rand() - 0.5, rand() - 0.5, rand() - 0.5 }' > "$tmp/random.txt"
+expect 0 '' -- "$RTCL" trace builtin:cornell --rays "$tmp/random.txt" --out "$tmp/cpu.txt"
+expect 0 '' -- "$RTCL" trace builtin:cornell --rays "$tmp/random.txt" --out "$tmp/packet.txt" --backend packet
+checks=$((checks + 1))
+if ! cmp -s "$tmp/cpu.txt" "$tmp/packet.txt"; then
+    echo "FAIL: packet and cpu hits differ"; fails=$((fails + 1))
+fi
+# Any-hit agrees with closest hit on whether a ray hits.
+expect 0 '' -- "$RTCL" trace builtin:cornell --rays "$tmp/random.txt" --out "$tmp/any.txt" --any-hit
+checks=$((checks + 1))
+if [ "$(cut -d' ' -f1 "$tmp/cpu.txt")" != "$(cut -d' ' -f1 "$tmp/any.txt")" ]; then
+    echo "FAIL: any-hit and closest-hit disagree on hits"; fails=$((fails + 1))
+fi
+
+printf '0 0 0 1 0 0 0 inf\n0 0 0 1 0\n' > "$tmp/bad.txt"
+expect 2 'bad.txt:2: expected 8 numbers' -- "$RTCL" trace builtin:cornell --rays "$tmp/bad.txt" --out "$tmp/x.txt"
+printf '0 0 0 1 0 0 0 inf x\n' > "$tmp/bad2.txt"
+expect 2 'bad2.txt:1: .*found: x' -- "$RTCL" trace builtin:cornell --rays "$tmp/bad2.txt" --out "$tmp/x.txt"
+expect 2 'cannot open' -- "$RTCL" trace builtin:cornell --rays "$tmp/missing.txt" --out "$tmp/x.txt"
+expect 2 "unknown or unavailable backend 'warp'" -- "$RTCL" trace builtin:cornell --rays "$rays" --out "$tmp/x.txt" --backend warp
+expect 2 'need SCENE' -- "$RTCL" trace builtin:cornell --rays "$rays"
+expect 0 'usage: rtcl trace' -- "$RTCL" trace --help
+finish
