@@ -109,8 +109,8 @@ static rt_status read_floats(obj_parser *o, const char *what, const char *part, 
         rt_text_skip_blanks(&o->c);
         if (rt_text_at_statement_end(&o->c)) {
             if (i >= count) return RT_OK;
-            return fail(o, RT_ERROR_PARSE, rt_text_column(&o->c), "%s has %d %s, needs %d",
-                        what, i, part, count);
+            return fail(o, RT_ERROR_PARSE, rt_text_column(&o->c), "%s has %d %s, needs %d", what, i,
+                        part, count);
         }
         float value;
         const char *next;
@@ -169,8 +169,7 @@ static rt_status read_index(obj_parser *o, const char *kind, const char *plural,
                     kind, (int)(next - start > 40 ? 40 : next - start), start, count, plural);
     if (value == 0)
         return fail(o, RT_ERROR_PARSE, column,
-                    "%s index 0 is invalid (indices start at 1; negative ones count back)",
-                    kind);
+                    "%s index 0 is invalid (indices start at 1; negative ones count back)", kind);
     int64_t index = value > 0 ? value - 1 : (int64_t)count + value;
     if (index < 0 || (uint64_t)index >= count)
         return fail(o, RT_ERROR_PARSE, column, "%s index %lld is out of range (%zu %s so far)",
@@ -313,8 +312,7 @@ static rt_status parse_mtllib(obj_parser *o) {
         rt_text_skip_blanks(&o->c);
         if (rt_text_at_statement_end(&o->c)) return RT_OK;
         const char *s = o->c.p;
-        while (o->c.p < o->c.end && !rt_text_is_blank(*o->c.p) && *o->c.p != '\n' &&
-               *o->c.p != '#')
+        while (o->c.p < o->c.end && !rt_text_is_blank(*o->c.p) && *o->c.p != '\n' && *o->c.p != '#')
             o->c.p++;
         if (!o->base_dir) continue; /* parsing text with no folder: materials are not read */
         size_t len = (size_t)(o->c.p - s);
