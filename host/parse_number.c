@@ -152,7 +152,10 @@ rt_number_result rt_parse_int64_full(const char *p, const char *end, int64_t *ou
     int64_t value = 0;
     int too_large = 0;
     for (; s < end && rt_is_digit(*s); s++) {
-        if (value <= limit) value = value * 10 + (*s - '0');
+        if (value > limit / 10)
+            too_large = 1; /* keep reading the digits */
+        else
+            value = value * 10 + (*s - '0');
         if (value > limit) too_large = 1;
     }
     *next = s;
