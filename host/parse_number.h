@@ -90,7 +90,9 @@ static inline rt_number_result rt_parse_int64(const char *p, const char *end, in
     if (s < end && (*s == '-' || *s == '+')) negative = *s++ == '-';
     const char *digits_start = s;
     int64_t value = 0;
-    while (s < end && rt_is_digit(*s) && s - digits_start < 18) value = value * 10 + (*s++ - '0');
+    /* At most 18 digits here (no overflow); longer go to the full parser. */
+    const char *limit = end - s > 18 ? s + 18 : end;
+    while (s < limit && rt_is_digit(*s)) value = value * 10 + (*s++ - '0');
     if (s == digits_start || (s < end && rt_is_digit(*s)))
         return rt_parse_int64_full(p, end, out, next);
     *out = negative ? -value : value;
