@@ -383,11 +383,13 @@ static rt_status build_vertices_with_normals(obj_parser *o, rt_obj_mesh *out) {
     uint32_t *next = malloc(corners * sizeof *next);
     uint32_t *normal_of = malloc(corners * sizeof *normal_of);
     uint32_t *position_of = malloc(corners * sizeof *position_of);
-    uint32_t *indices = malloc(corners * sizeof *indices);
+    /* The output indices overwrite tri_pos in place: corner k is read
+     * before it is written. */
+    uint32_t *indices = o->tri_pos;
     float *positions = NULL, *normals = NULL;
     uint32_t count = 0;
     rt_status st = RT_OK;
-    if (!first || !next || !normal_of || !position_of || !indices) goto oom;
+    if (!first || !next || !normal_of || !position_of) goto oom;
     for (size_t i = 0; i < o->position_count; i++) first[i] = NO_INDEX;
     for (size_t k = 0; k < corners; k++) {
         uint32_t p = o->tri_pos[k], n = o->tri_nrm[k];
@@ -414,7 +416,7 @@ static rt_status build_vertices_with_normals(obj_parser *o, rt_obj_mesh *out) {
     out->normals = normals;
     out->vertex_count = count;
     out->indices = indices;
-    indices = NULL;
+    o->tri_pos = NULL;
     positions = normals = NULL;
     goto done;
 oom:
@@ -424,7 +426,6 @@ done:
     free(next);
     free(normal_of);
     free(position_of);
-    free(indices);
     free(positions);
     free(normals);
     return st;
