@@ -531,9 +531,12 @@ static rt_status load_inline_mesh(loader *L, json_t *v, const char *name, uint32
         leave(L);
     }
     if (st == RT_OK) {
+        /* An empty mesh is only created: rt_mesh_add_triangles would hand
+         * memcpy a NULL array (undefined even for 0 bytes). */
         if (rt_mesh_create(L->scene, id) != RT_OK ||
-            rt_mesh_add_triangles(L->scene, *id, positions, normals, (uint32_t)(npos / 3), indices,
-                                  (uint32_t)(nidx / 3)) != RT_OK)
+            (npos > 0 &&
+             rt_mesh_add_triangles(L->scene, *id, positions, normals, (uint32_t)(npos / 3), indices,
+                                   (uint32_t)(nidx / 3)) != RT_OK))
             st = fail_scene(L);
         else
             snprintf(L->scene->meshes[*id].name, sizeof L->scene->meshes[*id].name, "%s", name);
