@@ -61,8 +61,8 @@ int main(int argc, char **argv) {
         if (runs % 2 == 0) median = 0.5 * (times[runs / 2 - 1] + times[runs / 2]);
         const char *name = strrchr(argv[f], '/');
         name = name ? name + 1 : argv[f];
-        printf("%-40s %10u %10.2f %10.2f %14.2f %14.2f\n", name, triangles, 1e3 * min,
-               1e3 * median, 1e-6 * triangles / min, 1e-6 * triangles / median);
+        printf("%-40s %10u %10.2f %10.2f %14.2f %14.2f\n", name, triangles, 1e3 * min, 1e3 * median,
+               1e-6 * triangles / min, 1e-6 * triangles / median);
     }
     free(times);
     return status;

@@ -43,11 +43,10 @@ static rt_status read_number(mtl_reader *r, const char *keyword, float *out) {
         res = RT_NUMBER_MALFORMED;
     if (res != RT_NUMBER_OK) {
         int len = (int)(token_length(&r->c) > 40 ? 40 : token_length(&r->c));
-        return rt_error_set(r->err, RT_ERROR_PARSE, r->name, rt_text_line(&r->c),
-                            rt_text_column(&r->c), "%s: %s \"%.*s\"", keyword,
-                            res == RT_NUMBER_NOT_FINITE ? "not a finite number"
-                                                        : "malformed number",
-                            len, r->c.p);
+        return rt_error_set(
+            r->err, RT_ERROR_PARSE, r->name, rt_text_line(&r->c), rt_text_column(&r->c),
+            "%s: %s \"%.*s\"", keyword,
+            res == RT_NUMBER_NOT_FINITE ? "not a finite number" : "malformed number", len, r->c.p);
     }
     r->c.p = next;
     return RT_OK;
@@ -79,8 +78,8 @@ static int keyword_is(const char *p, size_t len, const char *word) {
     return len == strlen(word) && memcmp(p, word, len) == 0;
 }
 
-rt_status rt_mtl_parse(const char *text, size_t len, const char *name,
-                       rt_obj_material **materials, uint32_t *count, rt_error *err) {
+rt_status rt_mtl_parse(const char *text, size_t len, const char *name, rt_obj_material **materials,
+                       uint32_t *count, rt_error *err) {
     mtl_reader r = {{text ? text : "", (text ? text : "") + len, text ? text : "", 1}, name, err};
     rt_obj_material *list = *materials;
     uint32_t n = *count, cap = n;

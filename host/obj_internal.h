@@ -56,6 +56,12 @@ static inline int rt_text_at_statement_end(const rt_text_cursor *c) {
 
 /* Moves to the start of the next line (past continuations). */
 static inline void rt_text_next_line(rt_text_cursor *c) {
+    if (c->p < c->end && *c->p == '\n') { /* the usual case after a statement */
+        c->p++;
+        c->line++;
+        c->line_start = c->p;
+        return;
+    }
     for (;;) {
         const char *from = c->p;
         const char *nl = memchr(from, '\n', (size_t)(c->end - from));
@@ -94,7 +100,7 @@ rt_status rt_mtl_load(const char *path, rt_obj_material **materials, uint32_t *c
                       rt_error *err);
 
 /* The same on text already in memory; name is used in messages. */
-rt_status rt_mtl_parse(const char *text, size_t len, const char *name,
-                       rt_obj_material **materials, uint32_t *count, rt_error *err);
+rt_status rt_mtl_parse(const char *text, size_t len, const char *name, rt_obj_material **materials,
+                       uint32_t *count, rt_error *err);
 
 #endif /* RT_OBJ_INTERNAL_H */

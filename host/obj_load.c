@@ -51,7 +51,7 @@ typedef struct obj_parser {
 /* ---- small helpers ------------------------------------------------------ */
 
 /* Makes room for need elements of size elem in *data (capacity *cap). */
-static int reserve(void **data, size_t *cap, size_t need, size_t elem) {
+static inline int reserve(void **data, size_t *cap, size_t need, size_t elem) {
     if (need <= *cap) return 1;
     size_t new_cap = *cap ? *cap : 1024;
     while (new_cap < need) {
@@ -103,14 +103,14 @@ static int token_length(const rt_text_cursor *c) {
 
 /* Reads the count numbers of a v or vn statement into out; any further
  * numbers (v's optional w, vertex colours) must be numbers and are ignored. */
-static rt_status read_floats(obj_parser *o, const char *what, const char *part, int count,
-                             float *out) {
+static inline rt_status read_floats(obj_parser *o, const char *what, const char *part, int count,
+                                    float *out) {
     for (int i = 0;; i++) {
         rt_text_skip_blanks(&o->c);
         if (rt_text_at_statement_end(&o->c)) {
             if (i >= count) return RT_OK;
-            return fail(o, RT_ERROR_PARSE, rt_text_column(&o->c), "%s has %d %s, needs %d",
-                        what, i, part, count);
+            return fail(o, RT_ERROR_PARSE, rt_text_column(&o->c), "%s has %d %s, needs %d", what, i,
+                        part, count);
         }
         float value;
         const char *next;
@@ -152,8 +152,8 @@ static rt_status parse_normal(obj_parser *o) {
 
 /* Reads one index at the cursor and turns it into a 0-based index below
  * count (negative indices count back from the newest element). */
-static rt_status read_index(obj_parser *o, const char *kind, const char *plural, size_t count,
-                            const char *corner_start, uint32_t *out) {
+static inline rt_status read_index(obj_parser *o, const char *kind, const char *plural,
+                                   size_t count, const char *corner_start, uint32_t *out) {
     int64_t value;
     const char *next;
     const char *start = o->c.p;
@@ -169,8 +169,7 @@ static rt_status read_index(obj_parser *o, const char *kind, const char *plural,
                     kind, (int)(next - start > 40 ? 40 : next - start), start, count, plural);
     if (value == 0)
         return fail(o, RT_ERROR_PARSE, column,
-                    "%s index 0 is invalid (indices start at 1; negative ones count back)",
-                    kind);
+                    "%s index 0 is invalid (indices start at 1; negative ones count back)", kind);
     int64_t index = value > 0 ? value - 1 : (int64_t)count + value;
     if (index < 0 || (uint64_t)index >= count)
         return fail(o, RT_ERROR_PARSE, column, "%s index %lld is out of range (%zu %s so far)",
@@ -181,7 +180,7 @@ static rt_status read_index(obj_parser *o, const char *kind, const char *plural,
 }
 
 /* One face corner: v, v/vt, v//vn or v/vt/vn. *nrm is NO_INDEX without vn. */
-static rt_status read_corner(obj_parser *o, uint32_t *pos, uint32_t *nrm) {
+static inline rt_status read_corner(obj_parser *o, uint32_t *pos, uint32_t *nrm) {
     const char *corner_start = o->c.p;
     rt_status st = read_index(o, "vertex", "vertices", o->position_count, corner_start, pos);
     if (st != RT_OK) return st;
@@ -212,7 +211,7 @@ static rt_status read_corner(obj_parser *o, uint32_t *pos, uint32_t *nrm) {
     return RT_OK;
 }
 
-static rt_status emit_triangle(obj_parser *o, const uint32_t pos[3], const uint32_t nrm[3]) {
+static inline rt_status emit_triangle(obj_parser *o, const uint32_t pos[3], const uint32_t nrm[3]) {
     if (o->tri_count >= MAX_COUNT)
         return fail(o, RT_ERROR_PARSE, 1, "more than %u triangles", (unsigned)MAX_COUNT);
     size_t t = o->tri_count;
@@ -240,7 +239,7 @@ static rt_status parse_face(obj_parser *o, int face_column) {
     for (;;) {
         rt_text_skip_blanks(&o->c);
         if (rt_text_at_statement_end(&o->c)) break;
-        uint32_t p, n;
+        uint32_t p = 0, n = NO_INDEX;
         rt_status st = read_corner(o, &p, &n);
         if (st != RT_OK) return st;
         if (n == NO_INDEX && o->all_normals) {
@@ -313,8 +312,7 @@ static rt_status parse_mtllib(obj_parser *o) {
         rt_text_skip_blanks(&o->c);
         if (rt_text_at_statement_end(&o->c)) return RT_OK;
         const char *s = o->c.p;
-        while (o->c.p < o->c.end && !rt_text_is_blank(*o->c.p) && *o->c.p != '\n' &&
-               *o->c.p != '#')
+        while (o->c.p < o->c.end && !rt_text_is_blank(*o->c.p) && *o->c.p != '\n' && *o->c.p != '#')
             o->c.p++;
         if (!o->base_dir) continue; /* parsing text with no folder: materials are not read */
         size_t len = (size_t)(o->c.p - s);
@@ -461,7 +459,15 @@ static rt_status build_mesh(obj_parser *o, rt_obj_mesh *out) {
         st = build_vertices_with_normals(o, out);
         if (st != RT_OK) return st;
     } else {
-        /* Positions as they are (unused ones included), no normals. */
+        /* Positions as they are (unused ones included), no normals. The
+         * arrays give back their unused capacity (realloc to less cannot
+         * fail in a way that loses data: on NULL the old block stays). */
+        float *fit_positions =
+            o->position_count ? realloc(o->positions, 3 * o->position_count * sizeof(float)) : NULL;
+        if (fit_positions) o->positions = fit_positions;
+        uint32_t *fit_indices =
+            o->tri_count ? realloc(o->tri_pos, 3 * o->tri_count * sizeof(uint32_t)) : NULL;
+        if (fit_indices) o->tri_pos = fit_indices;
         out->positions = o->positions;
         out->vertex_count = (uint32_t)o->position_count;
         out->indices = o->tri_pos;

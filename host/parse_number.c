@@ -22,9 +22,9 @@
 static const float exact_powers_of_ten[11] = {1e0f, 1e1f, 1e2f, 1e3f, 1e4f, 1e5f,
                                               1e6f, 1e7f, 1e8f, 1e9f, 1e10f};
 
-static int is_digit(char c) { return (unsigned)(c - '0') < 10u; }
-
-static int lower(char c) { return (c >= 'A' && c <= 'Z') ? c + ('a' - 'A') : c; }
+static int lower(char c) {
+    return (c >= 'A' && c <= 'Z') ? c + ('a' - 'A') : c;
+}
 
 /* Whether [p, end) starts with word, ignoring case. */
 static int starts_with_word(const char *p, const char *end, const char *word) {
@@ -51,7 +51,8 @@ static rt_number_result float_by_strtof(const char *p, const char *q, float *out
     return RT_NUMBER_OK;
 }
 
-rt_number_result rt_parse_float(const char *p, const char *end, float *out, const char **next) {
+rt_number_result rt_parse_float_full(const char *p, const char *end, float *out,
+                                     const char **next) {
     const char *s = p;
     int negative = 0;
     if (s < end && (*s == '+' || *s == '-')) {
@@ -64,16 +65,18 @@ rt_number_result rt_parse_float(const char *p, const char *end, float *out, cons
     int significant = 0;
     int64_t exponent = 0;
     int digits = 0;
-    for (; s < end && is_digit(*s); s++, digits++) {
+    for (; s < end && rt_is_digit(*s); s++, digits++) {
         if (m || *s != '0') {
-            if (significant < 19) m = m * 10 + (uint64_t)(*s - '0');
-            else exponent++;
+            if (significant < 19)
+                m = m * 10 + (uint64_t)(*s - '0');
+            else
+                exponent++;
             significant++;
         }
     }
     if (s < end && *s == '.') {
         s++;
-        for (; s < end && is_digit(*s); s++, digits++) {
+        for (; s < end && rt_is_digit(*s); s++, digits++) {
             if (m || *s != '0') {
                 if (significant < 19) {
                     m = m * 10 + (uint64_t)(*s - '0');
@@ -99,12 +102,12 @@ rt_number_result rt_parse_float(const char *p, const char *end, float *out, cons
             exp_negative = *e == '-';
             e++;
         }
-        if (e >= end || !is_digit(*e)) {
+        if (e >= end || !rt_is_digit(*e)) {
             *next = e;
             return RT_NUMBER_MALFORMED;
         }
         int64_t written = 0;
-        for (; e < end && is_digit(*e); e++)
+        for (; e < end && rt_is_digit(*e); e++)
             if (written < 1000000) written = written * 10 + (*e - '0');
         exponent += exp_negative ? -written : written;
         s = e;
@@ -123,30 +126,36 @@ rt_number_result rt_parse_float(const char *p, const char *end, float *out, cons
     if (FAST_FLOAT_EXACT && significant <= 19 && m <= (1u << 24) && exponent >= -10 &&
         exponent <= 10) {
         float value = (float)m;
-        if (exponent < 0) value = value / exact_powers_of_ten[-exponent];
-        else value = value * exact_powers_of_ten[exponent];
+        if (exponent < 0)
+            value = value / exact_powers_of_ten[-exponent];
+        else
+            value = value * exact_powers_of_ten[exponent];
         *out = negative ? -value : value;
         return RT_NUMBER_OK;
     }
     return float_by_strtof(p, s, out);
 }
 
-rt_number_result rt_parse_int64(const char *p, const char *end, int64_t *out, const char **next) {
+rt_number_result rt_parse_int64_full(const char *p, const char *end, int64_t *out,
+                                     const char **next) {
     const char *s = p;
     int negative = 0;
     if (s < end && (*s == '+' || *s == '-')) {
         negative = *s == '-';
         s++;
     }
-    if (s >= end || !is_digit(*s)) {
+    if (s >= end || !rt_is_digit(*s)) {
         *next = p;
         return RT_NUMBER_MALFORMED;
     }
     const int64_t limit = (int64_t)1 << 62;
     int64_t value = 0;
     int too_large = 0;
-    for (; s < end && is_digit(*s); s++) {
-        if (value <= limit) value = value * 10 + (*s - '0');
+    for (; s < end && rt_is_digit(*s); s++) {
+        if (value > limit / 10)
+            too_large = 1; /* keep reading the digits */
+        else
+            value = value * 10 + (*s - '0');
         if (value > limit) too_large = 1;
     }
     *next = s;
