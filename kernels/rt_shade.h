@@ -23,7 +23,7 @@ typedef struct rt_surface {
 } rt_surface;
 
 /* n_world = (M^-1)^T n for a normal in object space. */
-RT_FN void rt_normal_to_world(RT_GLOBAL const rt_instance *in, const float n[3], float out[3]) {
+RT_FN void rt_normal_to_world(RT_GLOBAL const rt_instance *in, const float *n, float *out) {
     RT_GLOBAL const float *m = in->world_to_object;
     for (int i = 0; i < 3; i++) out[i] = (m[i] * n[0] + m[4 + i] * n[1]) + m[8 + i] * n[2];
 }
@@ -73,7 +73,7 @@ RT_FN void rt_surface_at(const rt_scene_view *s, const rt_ray_d *r, const rt_hit
 /* Phong at a surface seen along unit direction dn: ambient, then per light
  * that is in front of the shading normal and not occluded, diffuse and
  * specular (integer shininess by repeated multiplication). */
-RT_FN void rt_phong(const rt_scene_view *s, const rt_surface *sf, const float dn[3], rt_counters *c,
+RT_FN void rt_phong(const rt_scene_view *s, const rt_surface *sf, const float *dn, rt_counters *c,
                     float out[3]) {
     RT_GLOBAL const rt_material_d *m = &s->materials[sf->material];
     for (int k = 0; k < 3; k++) out[k] = (m->ambient * m->color[k]) * s->hdr->ambient[k];
@@ -115,7 +115,7 @@ typedef struct rt_shade_entry {
     rt_u32 depth;
 } rt_shade_entry;
 
-RT_FN int rt_weight_counts(const float w[3], float min_weight) {
+RT_FN int rt_weight_counts(const float *w, float min_weight) {
     return w[0] >= min_weight || w[1] >= min_weight || w[2] >= min_weight;
 }
 
@@ -125,7 +125,7 @@ RT_FN int rt_weight_counts(const float w[3], float min_weight) {
  * hdr->min_weight. Every contribution is added in the same order on every
  * backend. */
 RT_FN void rt_shade_hit(const rt_scene_view *s, const rt_ray_d *primary,
-                        const rt_hit_d *primary_hit, rt_counters *c, float rgb[3]) {
+                        const rt_hit_d *primary_hit, rt_counters *c, float *rgb) {
     rt_shade_entry stack[RT_SHADE_STACK];
     int sp = 0, first = 1;
     stack[sp].ray = *primary;
@@ -153,9 +153,9 @@ RT_FN void rt_shade_hit(const rt_scene_view *s, const rt_ray_d *primary,
         rt_normalize3(dn);
         float lw = (1.0f - m->reflectivity) - m->transparency;
         if (lw > 0.0f) {
-            float local[3];
-            rt_phong(s, &sf, dn, c, local);
-            for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + (e.w[k] * lw) * local[k];
+            float lit[3];
+            rt_phong(s, &sf, dn, c, lit);
+            for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + (e.w[k] * lw) * lit[k];
         }
         if (!(s->hdr->flags & RT_SCENE_SECONDARY) || e.depth >= s->hdr->max_depth) continue;
         float refl = m->reflectivity;

@@ -33,7 +33,14 @@
 #define RT_AS_INT(x)   as_int(x)
 #define RT_AS_FLOAT(x) as_float(x)
 #define RT_INF         INFINITY
+#ifdef cl_khr_fp64
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#define RT_HAVE_DOUBLE 1
 #else
+#define RT_HAVE_DOUBLE 0
+#endif
+#else
+#define RT_HAVE_DOUBLE 1
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
@@ -124,17 +131,17 @@ typedef struct rt_scene_view {
 
 /* ---- small vector helpers (explicit order of operations) ---------------- */
 
-RT_FN float rt_dot3(const float a[3], const float b[3]) {
+RT_FN float rt_dot3(const float *a, const float *b) {
     return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2];
 }
 
-RT_FN void rt_cross3(const float a[3], const float b[3], float out[3]) {
+RT_FN void rt_cross3(const float *a, const float *b, float *out) {
     out[0] = a[1] * b[2] - a[2] * b[1];
     out[1] = a[2] * b[0] - a[0] * b[2];
     out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-RT_FN void rt_normalize3(float v[3]) {
+RT_FN void rt_normalize3(float *v) {
     float len = RT_SQRT(rt_dot3(v, v));
     if (len > 0.0f) {
         v[0] = v[0] / len;
@@ -185,7 +192,7 @@ RT_FN void rt_camera_ray(RT_GLOBAL const rt_scene_header *h, rt_i32 px, rt_i32 p
 /* Waechter and Binder 2019 (Ray Tracing Gems, ch. 6): moves p off the surface
  * along n by a fixed number of ulps (256 |n|), which scales with p's magnitude;
  * near the origin, where ulps are tiny, by a fixed 2^-16 |n| instead. */
-RT_FN void rt_offset_point(const float p[3], const float n[3], float sign, float out[3]) {
+RT_FN void rt_offset_point(const float *p, const float *n, float sign, float *out) {
     for (int i = 0; i < 3; i++) {
         float ni = sign * n[i];
         rt_i32 of = (rt_i32)(256.0f * ni);
@@ -224,9 +231,10 @@ RT_FN int rt_box_test(RT_GLOBAL const rt_node *n, const rt_ray_d *r, const rt_ra
 
 /* Woop, Benthin and Wald 2013: shear and scale so the ray is the +z axis, then
  * 2D edge functions. Watertight: a ray through a shared edge or vertex hits at
- * least one of the triangles. (The paper's double precision re-test of exactly
- * zero edge functions is left out: zero counts as inside, which keeps the test
- * watertight, and OpenCL devices may lack doubles.) */
+ * least one of the triangles. Edge functions that come out exactly zero are
+ * recomputed in double where doubles exist (RT_HAVE_DOUBLE: always in C; in
+ * OpenCL with cl_khr_fp64); a device without doubles can differ from the
+ * oracle on such rare rays. */
 RT_FN int rt_tri_watertight(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, const rt_ray_pre *p,
                             float tmin, float tmax, float *t, float *u, float *v) {
     float A[3], B[3], C[3];
@@ -242,6 +250,17 @@ RT_FN int rt_tri_watertight(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, cons
     float U = Cx * By - Cy * Bx;
     float V = Ax * Cy - Ay * Cx;
     float W = Bx * Ay - By * Ax;
+#if RT_HAVE_DOUBLE
+    /* An edge function of exactly zero may be rounding (two equal products):
+     * recompute all three with exact products (float * float is exact in
+     * double), as the paper does. Without this, sliver triangles of scanned
+     * meshes report hits for rays that pass far from them. */
+    if (U == 0.0f || V == 0.0f || W == 0.0f) {
+        U = (float)((double)Cx * (double)By - (double)Cy * (double)Bx);
+        V = (float)((double)Ax * (double)Cy - (double)Ay * (double)Cx);
+        W = (float)((double)Bx * (double)Ay - (double)By * (double)Ax);
+    }
+#endif
     if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) return 0;
     float det = (U + V) + W;
     if (det == 0.0f) return 0;
