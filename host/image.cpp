@@ -14,9 +14,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <new>
 #include <string>
+
+#include <unistd.h>
 
 extern "C" {
 #include "error.h"
@@ -93,6 +96,16 @@ unsigned char to_8bit(float v) {
     return static_cast<unsigned char>(std::floor(static_cast<double>(v) * 255.0 + 0.5));
 }
 
+// Some OIIO writers (PNG) do not say why a file could not be created; the
+// usual reason is the folder, so that is checked and named.
+std::string folder_problem(const char *path) {
+    std::string folder(path);
+    size_t slash = folder.rfind('/');
+    folder = slash == std::string::npos ? std::string(".") : folder.substr(0, slash ? slash : 1);
+    if (access(folder.c_str(), W_OK) == 0) return std::string();
+    return " (folder " + folder + ": " + std::strerror(errno) + ")";
+}
+
 rt_status write_image(const char *path, const rt_image *image, rt_error *err) {
     size_t count = 0;
     rt_status status = check_image(image, "the", path, &count, err);
@@ -131,8 +144,8 @@ rt_status write_image(const char *path, const rt_image *image, rt_error *err) {
                             "OpenImageIO has no writer for this file: %s",
                             one_line(OIIO::geterror()).c_str());
     if (!out->open(path, spec))
-        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot open for writing: %s",
-                            one_line(out->geterror()).c_str());
+        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot open for writing: %s%s",
+                            one_line(out->geterror()).c_str(), folder_problem(path).c_str());
     bool written = eight_bit ? out->write_image(OIIO::TypeDesc::UINT8, bytes.get())
                              : out->write_image(OIIO::TypeDesc::FLOAT, image->pixels);
     std::string write_error = written ? std::string() : one_line(out->geterror());
@@ -252,6 +265,29 @@ std::string png_structure_problem(std::FILE *file) {
     }
 }
 
+// Integer levels k of an n-bit file become k / (2^n - 1) as a correctly
+// rounded float division, so that an 8-bit value written from k / 255.0f
+// reads back as exactly the same float. (OIIO's own conversion multiplies by
+// the reciprocal, which can be one ulp off.)
+template <typename T>
+bool read_levels(OIIO::ImageInput &in, OIIO::TypeDesc type, size_t count, float *pixels) {
+    std::unique_ptr<T[]> levels(new T[count]);
+    if (!in.read_image(0, 0, 0, in.spec().nchannels, type, levels.get())) return false;
+    const float top = static_cast<float>(std::numeric_limits<T>::max());
+    for (size_t i = 0; i < count; i++) pixels[i] = static_cast<float>(levels[i]) / top;
+    return true;
+}
+
+bool read_pixels(OIIO::ImageInput &in, size_t count, float *pixels) {
+    const OIIO::ImageSpec &spec = in.spec();
+    bool one_format = spec.channelformats.empty();
+    if (one_format && spec.format == OIIO::TypeDesc::UINT8)
+        return read_levels<unsigned char>(in, OIIO::TypeDesc::UINT8, count, pixels);
+    if (one_format && spec.format == OIIO::TypeDesc::UINT16)
+        return read_levels<unsigned short>(in, OIIO::TypeDesc::UINT16, count, pixels);
+    return in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels);
+}
+
 rt_status read_image(const char *path, rt_image *out, rt_error *err) {
     // A file we cannot open at all is an i/o error with the system's reason;
     // a file OIIO cannot make sense of is a parse error with OIIO's reason.
@@ -290,7 +326,7 @@ rt_status read_image(const char *path, rt_image *out, rt_error *err) {
                             spec.nchannels);
     // Some readers (TIFF) report a cut-short file as an error but still
     // return true, so the error state counts too.
-    bool read = in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels);
+    bool read = read_pixels(*in, count, pixels);
     if (!read || in->has_error()) {
         std::free(pixels);
         return rt_error_set(err, RT_ERROR_PARSE, path, 0, 0,
