@@ -1,5 +1,5 @@
 # cli_errors.sh - rtcl answers bad input with a clear message and status 2.
-. "$(dirname "$0")/cli_lib.sh"
+. "$(dirname "$0")/shell_check.sh"
 : "${RTCL:?RTCL must name the rtcl binary}"
 
 expect 2 "usage: rtcl COMMAND" -- "$RTCL"
