@@ -110,12 +110,16 @@ static void chunk_of(const task *t, int w, int n, uint32_t *b, uint32_t *e) {
 /* Sets up binning; returns 0 when no axis can be binned. */
 static int setup_binning(const build_ctx *c, const task *t, fast_binning *bn) {
     int any = 0;
-    bn->bins = c->bins;
+    /* No more bins than primitives: small nodes are the most numerous, and
+     * clearing and sweeping 3 x 16 bins for 3 primitives cost more than the
+     * binning itself. */
+    uint32_t n = t->end - t->begin;
+    bn->bins = n < (uint32_t)c->bins ? (int)n : c->bins;
     bn->cmin[3] = 0.0f;
     bn->scale[3] = 0.0f;
     for (int a = 0; a < 3; a++) {
         float ext = t->cmax[a] - t->cmin[a];
-        float scale = (float)c->bins / ext;
+        float scale = (float)bn->bins / ext;
         bn->axis_ok[a] = ext > 0.0f && ext <= FLT_MAX && scale <= FLT_MAX;
         bn->cmin[a] = bn->axis_ok[a] ? t->cmin[a] : 0.0f;
         bn->scale[a] = bn->axis_ok[a] ? scale : 0.0f;
@@ -137,7 +141,7 @@ static split_kind pre_decide(const build_ctx *c, const task *t, fast_binning *bn
 /* SAH sweep over the bins of every binnable axis. */
 static void choose_split(const build_ctx *c, const task *t, const fast_binning *bn,
                          const fast_bins *bins, split_plan *plan) {
-    const int B = c->bins;
+    const int B = bn->bins;
     uint32_t n = t->end - t->begin;
     double best = DBL_MAX;
     int best_axis = -1, best_bin = -1;
@@ -291,7 +295,7 @@ static int split_serial(build_ctx *c, const task *t, fast_bins *bins, task *l, t
     split_plan plan;
     plan.kind = pre_decide(c, t, &bn);
     if (plan.kind == SPLIT_BINNED) {
-        fast_bins_clear(bins, c->bins);
+        fast_bins_clear(bins, bn.bins);
         fast_bin_range(c->refs[t->buf], t->begin, t->end, &bn, bins, c->use_neon);
         choose_split(c, t, &bn, bins, &plan);
     }
@@ -375,7 +379,7 @@ static void bin_job(void *ctx, int worker, int worker_count) {
     uint32_t b, e;
     chunk_of(c->job, worker, worker_count, &b, &e);
     fast_bins *bins = &c->worker_bins[worker];
-    fast_bins_clear(bins, c->bins);
+    fast_bins_clear(bins, c->job_bn.bins);
     fast_bin_range(c->refs[c->job->buf], b, e, &c->job_bn, bins, c->use_neon);
 }
 
@@ -414,7 +418,7 @@ static int split_parallel(build_ctx *c, rt_pool *pool, const task *t, task *l, t
         for (int w = 1; w < W; w++) {
             const fast_bins *o = &c->worker_bins[w];
             for (int a = 0; a < 3; a++) {
-                for (int k = 0; k < c->bins; k++) {
+                for (int k = 0; k < bn.bins; k++) {
                     for (int j = 0; j < 3; j++) {
                         all->box[a][k].lo[j] = fmin_exact(all->box[a][k].lo[j], o->box[a][k].lo[j]);
                         all->box[a][k].hi[j] = fmax_exact(all->box[a][k].hi[j], o->box[a][k].hi[j]);
