@@ -619,14 +619,7 @@ rt_status rt_bvh_build_fast(const rt_aabb *boxes, uint32_t count, const rt_build
                     "bins must be 2..256, leaf size >= 1");
     if (count > RT_NODE_COUNT_MASK / 2)
         return fail(msg, msg_size, RT_ERROR_INVALID_ARGUMENT, "too many primitives");
-    if (count == 0) {
-        /* One empty leaf, so that every tree has a root. */
-        out->nodes = calloc(1, sizeof *out->nodes);
-        if (!out->nodes) return fail(msg, msg_size, RT_ERROR_OUT_OF_MEMORY, "out of memory");
-        out->nodes[0].b = RT_NODE_LEAF_FLAG;
-        out->node_count = 1;
-        return RT_OK;
-    }
+    if (count == 0) return RT_OK; /* the empty tree (bvh.h): no nodes */
 
     /* Worker count: the given pool's, or options->threads (a pool of our own
      * is then made for this build: pass a pool to avoid creating threads).
