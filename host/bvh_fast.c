@@ -40,7 +40,8 @@
 enum {
     FORCE_MEDIAN_DEPTH = 32, /* depth <= 32 + log2(n) <= 64 */
     STACK_SIZE = 128,
-    MIN_BIG_NODE = 4096 /* smaller nodes are not worth a parallel pass */
+    MIN_BIG_NODE = 4096, /* smaller nodes are not worth a parallel pass */
+    SMALL_N = 4          /* subtrees this small are built by exact SAH */
 };
 
 typedef struct task {
@@ -286,6 +287,94 @@ static void binned_children(const task *t, const split_plan *p, const fast_cboun
     set_cbounds(r, rcb);
 }
 
+/* ---- small subtrees: exact SAH over every partition ----------------------- */
+
+/* Nodes of at most SMALL_N primitives are the most numerous (with the
+ * thesis's costs the SAH splits down to one or two triangles per leaf). For
+ * them, binning costs more than trying every partition into two sets
+ * (2^(n-1) - 1 of them), which also finds the exact SAH optimum. The whole
+ * subtree is built from a local copy. */
+typedef struct small_item {
+    float lo[3], hi[3];
+    uint32_t index;
+} small_item;
+
+static void box_of(const small_item *items, uint32_t mask, int n, float lo[3], float hi[3],
+                   uint32_t *count) {
+    *count = 0;
+    for (int j = 0; j < 3; j++) {
+        lo[j] = FLT_MAX;
+        hi[j] = -FLT_MAX;
+    }
+    for (int i = 0; i < n; i++) {
+        if (!(mask >> i & 1u)) continue;
+        ++*count;
+        for (int j = 0; j < 3; j++) {
+            lo[j] = fmin_exact(lo[j], items[i].lo[j]);
+            hi[j] = fmax_exact(hi[j], items[i].hi[j]);
+        }
+    }
+}
+
+static void small_node(build_ctx *c, small_item *items, int n, uint32_t slot, uint32_t begin,
+                       const float lo[3], const float hi[3]) {
+    rt_node *node = &c->slots[slot];
+    memcpy(node->bmin, lo, 3 * sizeof(float));
+    memcpy(node->bmax, hi, 3 * sizeof(float));
+    uint32_t all = (1u << n) - 1u, best_mask = 0;
+    double best = DBL_MAX;
+    float blo[2][3], bhi[2][3];
+    /* Item n-1 always on the right: each partition is tried once. */
+    for (uint32_t mask = 1; n > 1 && mask < (1u << (n - 1)); mask++) {
+        float llo[3], lhi[3], rlo[3], rhi[3];
+        uint32_t nl, nr;
+        box_of(items, mask, n, llo, lhi, &nl);
+        box_of(items, all & ~mask, n, rlo, rhi, &nr);
+        double cost = half_area(llo, lhi) * nl + half_area(rlo, rhi) * nr;
+        if (cost < best) {
+            best = cost;
+            best_mask = mask;
+            memcpy(blo[0], llo, sizeof llo);
+            memcpy(bhi[0], lhi, sizeof lhi);
+            memcpy(blo[1], rlo, sizeof rlo);
+            memcpy(bhi[1], rhi, sizeof rhi);
+        }
+    }
+    double area = half_area(lo, hi);
+    if (n == 1 || (n <= c->leaf_size &&
+                   (double)c->cost_tri * n * area <= c->cost_box * area + c->cost_tri * best)) {
+        node->a = begin;
+        node->b = (uint32_t)n | RT_NODE_LEAF_FLAG;
+        for (int i = 0; i < n; i++) c->prim_indices[begin + (uint32_t)i] = items[i].index;
+        return;
+    }
+    small_item sorted[SMALL_N];
+    int nl = 0;
+    for (int i = 0; i < n; i++)
+        if (best_mask >> i & 1u) sorted[nl++] = items[i];
+    int k = nl;
+    for (int i = 0; i < n; i++)
+        if (!(best_mask >> i & 1u)) sorted[k++] = items[i];
+    node->a = slot + 1;
+    node->b = slot + 2 * (uint32_t)nl;
+    small_node(c, sorted, nl, slot + 1, begin, blo[0], bhi[0]);
+    small_node(c, sorted + nl, n - nl, slot + 2 * (uint32_t)nl, begin + (uint32_t)nl, blo[1],
+               bhi[1]);
+}
+
+static void small_subtree(build_ctx *c, const task *t) {
+    small_item items[SMALL_N];
+    int n = (int)(t->end - t->begin);
+    const fast_ref *refs = c->refs[t->buf];
+    for (int i = 0; i < n; i++) {
+        const fast_ref *r = &refs[t->begin + (uint32_t)i];
+        memcpy(items[i].lo, r->lo, sizeof items[i].lo);
+        memcpy(items[i].hi, r->hi, sizeof items[i].hi);
+        memcpy(&items[i].index, &r->lo[3], 4);
+    }
+    small_node(c, items, n, t->slot, t->begin, t->lo, t->hi);
+}
+
 /* ---- serial subtree build (task phase) ---------------------------------- */
 
 /* Splits t once, serially. Returns 1 with children in l and r, or 0 for a
@@ -293,6 +382,10 @@ static void binned_children(const task *t, const split_plan *p, const fast_cboun
 static int split_serial(build_ctx *c, const task *t, fast_bins *bins, task *l, task *r) {
     fast_binning bn;
     split_plan plan;
+    if (t->end - t->begin <= SMALL_N) {
+        small_subtree(c, t);
+        return 0;
+    }
     plan.kind = pre_decide(c, t, &bn);
     if (plan.kind == SPLIT_BINNED) {
         fast_bins_clear(bins, bn.bins);
