@@ -40,7 +40,8 @@
 enum {
     FORCE_MEDIAN_DEPTH = 32, /* depth <= 32 + log2(n) <= 64 */
     STACK_SIZE = 128,
-    MIN_BIG_NODE = 4096 /* smaller nodes are not worth a parallel pass */
+    MIN_BIG_NODE = 4096, /* smaller nodes are not worth a parallel pass */
+    SMALL_N = 4          /* subtrees this small are built by exact SAH */
 };
 
 typedef struct task {
@@ -110,12 +111,16 @@ static void chunk_of(const task *t, int w, int n, uint32_t *b, uint32_t *e) {
 /* Sets up binning; returns 0 when no axis can be binned. */
 static int setup_binning(const build_ctx *c, const task *t, fast_binning *bn) {
     int any = 0;
-    bn->bins = c->bins;
+    /* No more bins than primitives: small nodes are the most numerous, and
+     * clearing and sweeping 3 x 16 bins for 3 primitives cost more than the
+     * binning itself. */
+    uint32_t n = t->end - t->begin;
+    bn->bins = n < (uint32_t)c->bins ? (int)n : c->bins;
     bn->cmin[3] = 0.0f;
     bn->scale[3] = 0.0f;
     for (int a = 0; a < 3; a++) {
         float ext = t->cmax[a] - t->cmin[a];
-        float scale = (float)c->bins / ext;
+        float scale = (float)bn->bins / ext;
         bn->axis_ok[a] = ext > 0.0f && ext <= FLT_MAX && scale <= FLT_MAX;
         bn->cmin[a] = bn->axis_ok[a] ? t->cmin[a] : 0.0f;
         bn->scale[a] = bn->axis_ok[a] ? scale : 0.0f;
@@ -137,7 +142,7 @@ static split_kind pre_decide(const build_ctx *c, const task *t, fast_binning *bn
 /* SAH sweep over the bins of every binnable axis. */
 static void choose_split(const build_ctx *c, const task *t, const fast_binning *bn,
                          const fast_bins *bins, split_plan *plan) {
-    const int B = c->bins;
+    const int B = bn->bins;
     uint32_t n = t->end - t->begin;
     double best = DBL_MAX;
     int best_axis = -1, best_bin = -1;
@@ -282,6 +287,94 @@ static void binned_children(const task *t, const split_plan *p, const fast_cboun
     set_cbounds(r, rcb);
 }
 
+/* ---- small subtrees: exact SAH over every partition ----------------------- */
+
+/* Nodes of at most SMALL_N primitives are the most numerous (with the
+ * thesis's costs the SAH splits down to one or two triangles per leaf). For
+ * them, binning costs more than trying every partition into two sets
+ * (2^(n-1) - 1 of them), which also finds the exact SAH optimum. The whole
+ * subtree is built from a local copy. */
+typedef struct small_item {
+    float lo[3], hi[3];
+    uint32_t index;
+} small_item;
+
+static void box_of(const small_item *items, uint32_t mask, int n, float lo[3], float hi[3],
+                   uint32_t *count) {
+    *count = 0;
+    for (int j = 0; j < 3; j++) {
+        lo[j] = FLT_MAX;
+        hi[j] = -FLT_MAX;
+    }
+    for (int i = 0; i < n; i++) {
+        if (!(mask >> i & 1u)) continue;
+        ++*count;
+        for (int j = 0; j < 3; j++) {
+            lo[j] = fmin_exact(lo[j], items[i].lo[j]);
+            hi[j] = fmax_exact(hi[j], items[i].hi[j]);
+        }
+    }
+}
+
+static void small_node(build_ctx *c, small_item *items, int n, uint32_t slot, uint32_t begin,
+                       const float lo[3], const float hi[3]) {
+    rt_node *node = &c->slots[slot];
+    memcpy(node->bmin, lo, 3 * sizeof(float));
+    memcpy(node->bmax, hi, 3 * sizeof(float));
+    uint32_t all = (1u << n) - 1u, best_mask = 0;
+    double best = DBL_MAX;
+    float blo[2][3], bhi[2][3];
+    /* Item n-1 always on the right: each partition is tried once. */
+    for (uint32_t mask = 1; n > 1 && mask < (1u << (n - 1)); mask++) {
+        float llo[3], lhi[3], rlo[3], rhi[3];
+        uint32_t nl, nr;
+        box_of(items, mask, n, llo, lhi, &nl);
+        box_of(items, all & ~mask, n, rlo, rhi, &nr);
+        double cost = half_area(llo, lhi) * nl + half_area(rlo, rhi) * nr;
+        if (cost < best) {
+            best = cost;
+            best_mask = mask;
+            memcpy(blo[0], llo, sizeof llo);
+            memcpy(bhi[0], lhi, sizeof lhi);
+            memcpy(blo[1], rlo, sizeof rlo);
+            memcpy(bhi[1], rhi, sizeof rhi);
+        }
+    }
+    double area = half_area(lo, hi);
+    if (n == 1 || (n <= c->leaf_size &&
+                   (double)c->cost_tri * n * area <= c->cost_box * area + c->cost_tri * best)) {
+        node->a = begin;
+        node->b = (uint32_t)n | RT_NODE_LEAF_FLAG;
+        for (int i = 0; i < n; i++) c->prim_indices[begin + (uint32_t)i] = items[i].index;
+        return;
+    }
+    small_item sorted[SMALL_N];
+    int nl = 0;
+    for (int i = 0; i < n; i++)
+        if (best_mask >> i & 1u) sorted[nl++] = items[i];
+    int k = nl;
+    for (int i = 0; i < n; i++)
+        if (!(best_mask >> i & 1u)) sorted[k++] = items[i];
+    node->a = slot + 1;
+    node->b = slot + 2 * (uint32_t)nl;
+    small_node(c, sorted, nl, slot + 1, begin, blo[0], bhi[0]);
+    small_node(c, sorted + nl, n - nl, slot + 2 * (uint32_t)nl, begin + (uint32_t)nl, blo[1],
+               bhi[1]);
+}
+
+static void small_subtree(build_ctx *c, const task *t) {
+    small_item items[SMALL_N];
+    int n = (int)(t->end - t->begin);
+    const fast_ref *refs = c->refs[t->buf];
+    for (int i = 0; i < n; i++) {
+        const fast_ref *r = &refs[t->begin + (uint32_t)i];
+        memcpy(items[i].lo, r->lo, sizeof items[i].lo);
+        memcpy(items[i].hi, r->hi, sizeof items[i].hi);
+        memcpy(&items[i].index, &r->lo[3], 4);
+    }
+    small_node(c, items, n, t->slot, t->begin, t->lo, t->hi);
+}
+
 /* ---- serial subtree build (task phase) ---------------------------------- */
 
 /* Splits t once, serially. Returns 1 with children in l and r, or 0 for a
@@ -289,9 +382,13 @@ static void binned_children(const task *t, const split_plan *p, const fast_cboun
 static int split_serial(build_ctx *c, const task *t, fast_bins *bins, task *l, task *r) {
     fast_binning bn;
     split_plan plan;
+    if (t->end - t->begin <= SMALL_N) {
+        small_subtree(c, t);
+        return 0;
+    }
     plan.kind = pre_decide(c, t, &bn);
     if (plan.kind == SPLIT_BINNED) {
-        fast_bins_clear(bins, c->bins);
+        fast_bins_clear(bins, bn.bins);
         fast_bin_range(c->refs[t->buf], t->begin, t->end, &bn, bins, c->use_neon);
         choose_split(c, t, &bn, bins, &plan);
     }
@@ -375,7 +472,7 @@ static void bin_job(void *ctx, int worker, int worker_count) {
     uint32_t b, e;
     chunk_of(c->job, worker, worker_count, &b, &e);
     fast_bins *bins = &c->worker_bins[worker];
-    fast_bins_clear(bins, c->bins);
+    fast_bins_clear(bins, c->job_bn.bins);
     fast_bin_range(c->refs[c->job->buf], b, e, &c->job_bn, bins, c->use_neon);
 }
 
@@ -414,7 +511,7 @@ static int split_parallel(build_ctx *c, rt_pool *pool, const task *t, task *l, t
         for (int w = 1; w < W; w++) {
             const fast_bins *o = &c->worker_bins[w];
             for (int a = 0; a < 3; a++) {
-                for (int k = 0; k < c->bins; k++) {
+                for (int k = 0; k < bn.bins; k++) {
                     for (int j = 0; j < 3; j++) {
                         all->box[a][k].lo[j] = fmin_exact(all->box[a][k].lo[j], o->box[a][k].lo[j]);
                         all->box[a][k].hi[j] = fmax_exact(all->box[a][k].hi[j], o->box[a][k].hi[j]);
@@ -615,14 +712,7 @@ rt_status rt_bvh_build_fast(const rt_aabb *boxes, uint32_t count, const rt_build
                     "bins must be 2..256, leaf size >= 1");
     if (count > RT_NODE_COUNT_MASK / 2)
         return fail(msg, msg_size, RT_ERROR_INVALID_ARGUMENT, "too many primitives");
-    if (count == 0) {
-        /* One empty leaf, so that every tree has a root. */
-        out->nodes = calloc(1, sizeof *out->nodes);
-        if (!out->nodes) return fail(msg, msg_size, RT_ERROR_OUT_OF_MEMORY, "out of memory");
-        out->nodes[0].b = RT_NODE_LEAF_FLAG;
-        out->node_count = 1;
-        return RT_OK;
-    }
+    if (count == 0) return RT_OK; /* the empty tree (bvh.h): no nodes */
 
     /* Worker count: the given pool's, or options->threads (a pool of our own
      * is then made for this build: pass a pool to avoid creating threads).

@@ -3,6 +3,13 @@
  * The NEON loops take four primitives per step from the structure-of-arrays
  * centroids and finish the last 0..3 with the scalar code. */
 #include "bvh_thesis_kernels.h"
+
+/* Off ARM, SIMDe reproduces NEON's answers for NaN operands and for float to
+ * int conversions out of range, at a cost. Neither happens here: boxes are
+ * checked finite before building, and (c - cmin) * scale is in [0, bins). So
+ * SIMDe may use the plain x86 instructions. (No effect on ARM.) */
+#define SIMDE_FAST_NANS
+#define SIMDE_FAST_CONVERSION_RANGE
 #include "simd_neon.h"
 
 #include <string.h>

@@ -20,11 +20,20 @@ typedef struct rt_image {
 
 /* Writes pixels by the file's extension: .png and .ppm store 8 bits per
  * channel (values clamped to [0,1], rounded to nearest), .exr stores 32-bit
- * floats. err names the file on failure. */
+ * floats. err names the file on failure. The extension is case-insensitive;
+ * any other is RT_ERROR_UNSUPPORTED, as is a .ppm with other than 1 (written
+ * as a grey P5 file) or 3 channels. NaN is stored as 0 in 8-bit files. An
+ * alpha channel is stored as given, never premultiplied. A file that cannot
+ * be created is RT_ERROR_IO with OpenImageIO's reason. */
 rt_status rt_image_write(const char *path, const rt_image *image, rt_error *err);
 
 /* Reads an image as floats in [0,1] for 8-bit files; the caller frees with
- * rt_image_free. */
+ * rt_image_free. 8- and 16-bit levels k read as exactly k / 255.0f and
+ * k / 65535.0f, so an 8-bit file written from such values reads back
+ * bit-identical. Subimage 0 only, all its channels. A file that cannot be
+ * opened is RT_ERROR_IO; one that is not an image or is damaged or cut short
+ * is RT_ERROR_PARSE (RT_ERROR_UNSUPPORTED for deep images). On failure *out
+ * is zeroed. */
 rt_status rt_image_read(const char *path, rt_image *out, rt_error *err);
 
 void rt_image_free(rt_image *image);
@@ -40,7 +49,9 @@ typedef struct rt_image_diff {
 
 /* Compares a and b (same size and channel count, else RT_ERROR_INVALID_ARGUMENT).
  * If diff_out is not NULL it receives |a - b| per channel (caller frees with
- * rt_image_free). */
+ * rt_image_free; zeroed on failure). Equal values, infinities included,
+ * differ by 0; NaN against NaN counts as equal, NaN against a number as an
+ * infinite difference, so a NaN in one image never passes as a match. */
 rt_status rt_image_compare(const rt_image *a, const rt_image *b, rt_image_diff *result,
                            rt_image *diff_out, rt_error *err);
 

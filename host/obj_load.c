@@ -4,8 +4,9 @@
  * growing arrays, faces are fan-triangulated on the fly into triangles of
  * (position index, normal index) corners. At the end, if every corner had a
  * normal, the (position, normal) pairs become the output vertices (each pair
- * once, in order of first use); otherwise the positions are the vertices
- * as they are and normals are dropped. See docs/OBJ.md. */
+ * once, in order of first use) unless every corner pairs position k with
+ * normal k, when the vertices stay in file order; otherwise the positions are
+ * the vertices as they are and normals are dropped. See docs/OBJ.md. */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -454,13 +455,29 @@ static rt_status build_materials(obj_parser *o, rt_obj_mesh *out) {
     return RT_OK;
 }
 
+/* True when every corner's normal index equals its position index and there
+ * are as many normals as positions (files written per vertex, like Sponza or
+ * rtcl generate): then the vertices stay as they are, in file order. */
+static int normals_match_positions(const obj_parser *o) {
+    if (o->normal_count != o->position_count) return 0;
+    for (size_t k = 0; k < 3 * o->tri_count; k++)
+        if (o->tri_nrm[k] != o->tri_pos[k]) return 0;
+    return 1;
+}
+
 static rt_status build_mesh(obj_parser *o, rt_obj_mesh *out) {
     rt_status st;
-    if (o->all_normals && o->tri_count > 0) {
+    int keep_vertices = o->all_normals && o->tri_count > 0 && normals_match_positions(o);
+    if (keep_vertices) {
+        out->normals = o->normals;
+        o->normals = NULL;
+    }
+    if (o->all_normals && o->tri_count > 0 && !keep_vertices) {
         st = build_vertices_with_normals(o, out);
         if (st != RT_OK) return st;
     } else {
-        /* Positions as they are (unused ones included), no normals. The
+        /* Positions as they are (unused ones included), with the normals
+         * kept above or none. The
          * arrays give back their unused capacity (realloc to less cannot
          * fail in a way that loses data: on NULL the old block stays). */
         float *fit_positions =

@@ -158,6 +158,7 @@ rt_status rt_mesh_add_triangles(rt_scene *scene, uint32_t mesh_id, const float *
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "mesh %u: too many triangles",
                              mesh_id);
 
+    if (vertex_count == 0 && triangle_count == 0) return RT_OK; /* nothing to add */
     uint32_t v0 = m->vertex_count, t0 = m->triangle_count;
     uint32_t vcap = m->vertex_capacity, tcap = m->triangle_capacity;
     /* Grow every array first, so that a failure leaves the mesh as it was. */

@@ -581,9 +581,7 @@ static rt_status load_mesh_file(loader *L, json_t *v, uint32_t *id) {
     }
     memcpy(full, L->path, dir_len);
     strcpy(full + dir_len, name);
-    uint32_t material = 0;
-    st = white_material(L, &material);
-    if (st == RT_OK) st = rt_scene_add_obj(L->scene, full, material, id, L->err);
+    st = rt_scene_add_obj(L->scene, full, id, L->err);
     if (st != RT_OK && L->err) {
         /* The OBJ loader's message names the OBJ file and line; add where the
          * scene refers to it. */

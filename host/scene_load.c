@@ -27,8 +27,7 @@ static rt_material material_from_mtl(const rt_obj_material *m) {
     return out;
 }
 
-rt_status rt_scene_add_obj(rt_scene *scene, const char *path, uint32_t material, uint32_t *mesh_id,
-                           rt_error *err) {
+rt_status rt_scene_add_obj(rt_scene *scene, const char *path, uint32_t *mesh_id, rt_error *err) {
     rt_obj_mesh obj;
     rt_status st = rt_obj_load(path, &obj, err);
     if (st != RT_OK) return st;
@@ -70,7 +69,6 @@ rt_status rt_scene_add_obj(rt_scene *scene, const char *path, uint32_t material,
         rt_error_set(err, st, path, 0, 0, "%s",
                      scene->error.message[0] ? scene->error.message : rt_status_string(st));
     }
-    (void)material;
     rt_obj_free(&obj);
     return st;
 }
@@ -80,7 +78,7 @@ static rt_status load_bare_obj(rt_scene *scene, const char *path, rt_error *err)
     rt_material white = rt_material_default();
     uint32_t mat, mesh, obj;
     rt_status st = rt_material_add(scene, &white, &mat);
-    if (st == RT_OK) st = rt_scene_add_obj(scene, path, mat, &mesh, err);
+    if (st == RT_OK) st = rt_scene_add_obj(scene, path, &mesh, err);
     if (st != RT_OK) return st;
     st = rt_object_create(scene, mat, &obj);
     if (st == RT_OK) st = rt_object_add_mesh(scene, obj, mesh);

@@ -1,5 +1,5 @@
 # cli_errors.sh - rtcl answers bad input with a clear message and status 2.
-. "$(dirname "$0")/cli_lib.sh"
+. "$(dirname "$0")/shell_check.sh"
 : "${RTCL:?RTCL must name the rtcl binary}"
 
 expect 2 "usage: rtcl COMMAND" -- "$RTCL"
@@ -25,7 +25,7 @@ expect 2 "badnum.obj:3(:[0-9]+)?: .*number" -- "$RTCL" info "$tmp/badnum.obj"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n' >"$tmp/badidx.obj"
 expect 2 "badidx.obj:4(:[0-9]+)?: .*index" -- "$RTCL" info "$tmp/badidx.obj"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n' >"$tmp/short.obj"
-expect 2 "short.obj:4(:[0-9]+)?: .*3 vertices" -- "$RTCL" info "$tmp/short.obj"
+expect 2 "short.obj:4(:[0-9]+)?: .*at least 3" -- "$RTCL" info "$tmp/short.obj"
 printf 'v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n' >"$tmp/nan.obj"
 expect 2 "nan.obj:2(:[0-9]+)?: .*(NaN|infinite)" -- "$RTCL" info "$tmp/nan.obj"
 printf '# nothing here\n' >"$tmp/empty.obj"

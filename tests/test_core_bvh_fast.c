@@ -49,8 +49,9 @@ static void check_valid(const rt_bvh *bvh, const rt_aabb *boxes, uint32_t n, uin
 }
 
 static int same_bvh(const rt_bvh *a, const rt_bvh *b) {
-    return a->node_count == b->node_count && a->prim_count == b->prim_count &&
-           memcmp(a->nodes, b->nodes, sizeof(rt_node) * a->node_count) == 0 &&
+    if (a->node_count != b->node_count || a->prim_count != b->prim_count) return 0;
+    if (a->node_count == 0) return 1; /* the empty tree: no arrays to compare */
+    return memcmp(a->nodes, b->nodes, sizeof(rt_node) * a->node_count) == 0 &&
            memcmp(a->prim_indices, b->prim_indices, sizeof(uint32_t) * a->prim_count) == 0;
 }
 

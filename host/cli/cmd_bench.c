@@ -1,11 +1,406 @@
-/* cmd_bench.c - placeholder for 'rtcl bench'. */
+/* cmd_bench.c - 'rtcl bench': BVH build times and tree quality per scene,
+ * every builder side by side (and Embree's, when this build has it).
+ *
+ * Per scene, one BVH is built over the boxes of all triangles of all meshes
+ * (as the thesis timed one tree per scene). Each builder runs once as a
+ * warm-up (not counted), then --reps times; min and median are reported.
+ * The timed part is rt_bvh_build (for Embree: rtcBuildBVH alone); computing
+ * the triangle boxes is shared input and not timed.
+ */
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
 
+#include "bvh.h"
 #include "commands.h"
+#include "rt.h"
+#include "scene.h"
+#include "thread_pool.h"
+#ifdef RT_HAVE_EMBREE
+#include "embree_peer.h"
+#endif
+
+enum { MAX_ROWS = 8 };
+
+typedef struct row {
+    const char *builder;
+    int threads;
+    double ms_min, ms_median;
+    double sah;
+    long nodes;      /* -1 for reference rows (no tree) */
+    char error[200]; /* non-empty: this builder failed or is unavailable */
+} row;
+
+typedef struct bench_args {
+    int json, reps, threads, progress;
+} bench_args;
+
+static double now_ms(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
+}
+
+static int cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static void summarize(row *r, double *times, int n) {
+    qsort(times, (size_t)n, sizeof *times, cmp_double);
+    r->ms_min = times[0];
+    r->ms_median = n % 2 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
+}
+
+static void usage(FILE *f) {
+    fprintf(f, "usage: rtcl bench SCENE... [--json] [--reps N] [--threads N] [--no-render]\n"
+               "\n"
+               "Builds one BVH over all triangles of each scene with every builder\n"
+               "(thesis-scalar, thesis-neon, thesis-mt, fast, and embree when available)\n"
+               "and reports min and median build time over N repetitions (default 5, after\n"
+               "one warm-up run that is not counted), SAH cost and node count. Embree's\n"
+               "rtcCommitScene at low and medium quality is shown for reference.\n"
+               "  --json       one JSON object per scene per line\n"
+               "  --reps N     timed repetitions (default 5)\n"
+               "  --threads N  threads for the threaded builders and Embree (default: all cores)\n"
+               "  --no-render  build only (rendering benchmarks are not part of this build yet)\n");
+}
+
+/* The triangles of every mesh: boxes, and positions/indices for Embree. */
+typedef struct tri_input {
+    rt_aabb *boxes;
+    uint32_t count;
+    float *positions;
+    uint32_t *indices;
+    uint32_t vertex_count;
+} tri_input;
+
+static int gather_triangles(const rt_scene *scene, tri_input *in) {
+    uint64_t tris = 0, verts = 0;
+    for (uint32_t m = 0; m < scene->mesh_count; m++) {
+        tris += scene->meshes[m].triangle_count;
+        verts += scene->meshes[m].vertex_count;
+    }
+    if (tris > RT_NODE_COUNT_MASK / 2 || verts > UINT32_MAX) return 0;
+    memset(in, 0, sizeof *in);
+    in->boxes = malloc(sizeof *in->boxes * (tris ? tris : 1));
+    in->positions = malloc(sizeof(float) * 3 * (verts ? verts : 1));
+    in->indices = malloc(sizeof(uint32_t) * 3 * (tris ? tris : 1));
+    if (!in->boxes || !in->positions || !in->indices) return 0;
+    uint32_t t = 0, base = 0;
+    for (uint32_t m = 0; m < scene->mesh_count; m++) {
+        const rt_mesh_data *mesh = &scene->meshes[m];
+        memcpy(in->positions + 3 * (size_t)base, mesh->positions,
+               sizeof(float) * 3 * mesh->vertex_count);
+        for (uint32_t i = 0; i < mesh->triangle_count; i++, t++) {
+            rt_aabb *b = &in->boxes[t];
+            for (int k = 0; k < 3; k++) {
+                b->bmin[k] = mesh->positions[3 * mesh->indices[3 * i] + k];
+                b->bmax[k] = b->bmin[k];
+            }
+            for (int j = 0; j < 3; j++) {
+                uint32_t v = mesh->indices[3 * i + j];
+                in->indices[3 * (size_t)t + j] = base + v;
+                for (int k = 0; k < 3; k++) {
+                    float x = mesh->positions[3 * v + k];
+                    b->bmin[k] = x < b->bmin[k] ? x : b->bmin[k];
+                    b->bmax[k] = x > b->bmax[k] ? x : b->bmax[k];
+                }
+            }
+        }
+        base += mesh->vertex_count;
+    }
+    in->count = t;
+    in->vertex_count = base;
+    return 1;
+}
+
+static void free_input(tri_input *in) {
+    free(in->boxes);
+    free(in->positions);
+    free(in->indices);
+}
+
+static void progress(const bench_args *a, const char *scene, const char *what) {
+    if (a->progress) fprintf(stderr, "\r\033[K%s: %s", scene, what);
+}
+
+static void bench_ours(const bench_args *a, const tri_input *in, rt_builder builder, rt_pool *pool,
+                       row *r) {
+    rt_build_options o = rt_build_options_default();
+    o.builder = builder;
+    int single = builder == RT_BUILDER_THESIS_SCALAR || builder == RT_BUILDER_THESIS_NEON;
+    o.threads = single ? 1 : a->threads;
+    r->builder = rt_builder_name(builder);
+    r->threads = o.threads;
+    r->nodes = 0;
+    double *times = malloc(sizeof(double) * (size_t)a->reps);
+    if (!times) {
+        snprintf(r->error, sizeof r->error, "out of memory");
+        return;
+    }
+    for (int i = -1; i < a->reps; i++) {
+        rt_bvh bvh;
+        char msg[160] = "";
+        double t0 = now_ms();
+        rt_status st =
+            rt_bvh_build(in->boxes, in->count, &o, single ? NULL : pool, &bvh, msg, sizeof msg);
+        double t = now_ms() - t0;
+        if (st != RT_OK) {
+            snprintf(r->error, sizeof r->error, "%s", msg[0] ? msg : rt_status_string(st));
+            free(times);
+            return;
+        }
+        if (i >= 0) times[i] = t;
+        if (i == a->reps - 1) {
+            rt_bvh_quality q = rt_bvh_measure(&bvh, o.cost_box, o.cost_tri);
+            r->sah = q.sah;
+            r->nodes = q.nodes;
+        }
+        rt_bvh_free(&bvh);
+    }
+    summarize(r, times, a->reps);
+    free(times);
+}
+
+#ifdef RT_HAVE_EMBREE
+static int bench_embree(const bench_args *a, const tri_input *in, row *rows) {
+    rt_embree *em = NULL;
+    char msg[160] = "";
+    row *b = &rows[0], *low = &rows[1], *med = &rows[2];
+    b->builder = "embree";
+    low->builder = "embree-commit-low";
+    med->builder = "embree-commit-medium";
+    for (int i = 0; i < 3; i++) rows[i].threads = a->threads;
+    low->nodes = med->nodes = -1;
+    if (rt_embree_create(a->threads, &em, msg, sizeof msg) != RT_OK) {
+        for (int i = 0; i < 3; i++) snprintf(rows[i].error, sizeof rows[i].error, "%s", msg);
+        return 3;
+    }
+    rt_build_options o = rt_build_options_default();
+    double *times = malloc(sizeof(double) * (size_t)a->reps * 3);
+    if (!times) {
+        rt_embree_destroy(em);
+        return 0;
+    }
+    for (int i = -1; i < a->reps && !b->error[0]; i++) {
+        rt_bvh bvh;
+        double ms;
+        if (rt_embree_build_bvh(em, in->boxes, in->count, &o, &bvh, &ms, msg, sizeof msg) !=
+            RT_OK) {
+            snprintf(b->error, sizeof b->error, "%s", msg);
+            break;
+        }
+        if (i >= 0) times[i] = ms;
+        if (i == a->reps - 1) {
+            rt_bvh_quality q = rt_bvh_measure(&bvh, o.cost_box, o.cost_tri);
+            b->sah = q.sah;
+            b->nodes = q.nodes;
+            summarize(b, times, a->reps);
+        }
+        rt_bvh_free(&bvh);
+    }
+    for (int quality = 0; quality < 2; quality++) {
+        row *r = quality ? med : low;
+        double *t = times + (size_t)a->reps * (size_t)(1 + quality);
+        for (int i = -1; i < a->reps; i++) {
+            double ms;
+            if (rt_embree_commit_ms(em, in->positions, in->vertex_count, in->indices, in->count,
+                                    quality, &ms, msg, sizeof msg) != RT_OK) {
+                snprintf(r->error, sizeof r->error, "%s", msg);
+                break;
+            }
+            if (i >= 0) t[i] = ms;
+        }
+        if (!r->error[0]) summarize(r, t, a->reps);
+    }
+    free(times);
+    rt_embree_destroy(em);
+    return 3;
+}
+#endif
+
+static void json_string(const char *s) {
+    putchar('"');
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            printf("\\%c", c);
+        else if (c < 0x20)
+            printf("\\u%04x", c);
+        else
+            putchar(c);
+    }
+    putchar('"');
+}
+
+static void print_json_row(const row *r) {
+    printf("{\"builder\": ");
+    json_string(r->builder);
+    printf(", \"threads\": %d", r->threads);
+    if (r->error[0]) {
+        printf(", \"ms_min\": null, \"ms_median\": null, \"error\": ");
+        json_string(r->error);
+    } else {
+        printf(", \"ms_min\": %.4f, \"ms_median\": %.4f", r->ms_min, r->ms_median);
+    }
+    if (r->nodes >= 0) {
+        if (r->error[0])
+            printf(", \"sah\": null, \"nodes\": null");
+        else
+            printf(", \"sah\": %.4f, \"nodes\": %ld", r->sah, r->nodes);
+    }
+    putchar('}');
+}
+
+static void print_json(const char *path, const tri_input *in, const bench_args *a, const row *rows,
+                       int n_build, int n_rows) {
+    printf("{\"scene\": ");
+    json_string(path);
+    printf(", \"triangles\": %u, \"reps\": %d, \"warmup\": 1, \"build\": [", in->count, a->reps);
+    for (int i = 0; i < n_build; i++) {
+        if (i) printf(", ");
+        print_json_row(&rows[i]);
+    }
+    printf("], \"reference\": [");
+    for (int i = n_build; i < n_rows; i++) {
+        if (i > n_build) printf(", ");
+        print_json_row(&rows[i]);
+    }
+    printf("]}\n");
+}
+
+static void print_text(const char *path, const tri_input *in, const bench_args *a, const row *rows,
+                       int n_rows) {
+    const row *peer = NULL;
+    for (int i = 0; i < n_rows; i++)
+        if (!strcmp(rows[i].builder, "embree") && !rows[i].error[0]) peer = &rows[i];
+    printf("%s: %u triangles; %d timed runs after 1 warm-up run\n", path, in->count, a->reps);
+    printf("  %-22s %7s %10s %10s %9s %9s", "builder", "threads", "min ms", "median ms", "SAH",
+           "nodes");
+    if (peer) printf("  %12s %9s", "time/embree", "SAH/embree");
+    putchar('\n');
+    for (int i = 0; i < n_rows; i++) {
+        const row *r = &rows[i];
+        printf("  %-22s %7d ", r->builder, r->threads);
+        if (r->error[0]) {
+            printf("unavailable: %s\n", r->error);
+            continue;
+        }
+        printf("%10.2f %10.2f ", r->ms_min, r->ms_median);
+        if (r->nodes >= 0)
+            printf("%9.2f %9ld", r->sah, r->nodes);
+        else
+            printf("%9s %9s", "-", "-");
+        if (peer) {
+            printf("  %12.2f", r->ms_median / peer->ms_median);
+            if (r->nodes >= 0) printf(" %9.3f", r->sah / peer->sah);
+        }
+        putchar('\n');
+    }
+}
+
+static int bench_scene(const char *path, const bench_args *a, rt_pool *pool) {
+    rt_scene *scene = NULL;
+    rt_error err;
+    progress(a, path, "loading");
+    if (rt_scene_load(path, &scene, &err) != RT_OK) {
+        if (a->progress) fputc('\n', stderr);
+        fprintf(stderr, "rtcl bench: %s\n", err.message);
+        return 0;
+    }
+    tri_input in;
+    if (!gather_triangles(scene, &in)) {
+        fprintf(stderr, "rtcl bench: %s: out of memory or too many triangles\n", path);
+        free_input(&in);
+        rt_scene_destroy(scene);
+        return 0;
+    }
+    rt_scene_destroy(scene);
+    row rows[MAX_ROWS];
+    memset(rows, 0, sizeof rows);
+    const rt_builder ours[] = {RT_BUILDER_THESIS_SCALAR, RT_BUILDER_THESIS_NEON,
+                               RT_BUILDER_THESIS_MT, RT_BUILDER_FAST};
+    int n = 0;
+    for (int i = 0; i < 4; i++) {
+        progress(a, path, rt_builder_name(ours[i]));
+        bench_ours(a, &in, ours[i], pool, &rows[n++]);
+    }
+    int n_build = n, n_rows = n;
+#ifdef RT_HAVE_EMBREE
+    progress(a, path, "embree");
+    if (bench_embree(a, &in, &rows[n])) {
+        n_build = n + 1;
+        n_rows = n + 3;
+    }
+#endif
+    if (a->progress) fprintf(stderr, "\r\033[K");
+    if (a->json)
+        print_json(path, &in, a, rows, n_build, n_rows);
+    else
+        print_text(path, &in, a, rows, n_rows);
+    fflush(stdout);
+    free_input(&in);
+    return 1;
+}
+
+static int parse_int(const char *s, int lo, int hi, int *out) {
+    char *end;
+    long v = strtol(s, &end, 10);
+    if (!*s || *end || v < lo || v > hi) return 0;
+    *out = (int)v;
+    return 1;
+}
 
 int cmd_bench(int argc, char **argv) {
-    (void)argc;
-    (void)argv;
-    fprintf(stderr, "rtcl bench: not built yet\n");
-    return 2;
+    bench_args a = {0, 5, 0, isatty(2)};
+    const char **scenes = calloc((size_t)argc, sizeof *scenes);
+    int n_scenes = 0;
+    if (!scenes) return 2;
+    for (int i = 1; i < argc; i++) {
+        const char *s = argv[i];
+        if (!strcmp(s, "--help") || !strcmp(s, "-h")) {
+            usage(stdout);
+            free(scenes);
+            return 0;
+        } else if (!strcmp(s, "--json")) {
+            a.json = 1;
+        } else if (!strcmp(s, "--no-render")) {
+            /* building is all this command measures for now */
+        } else if (!strcmp(s, "--reps") || !strcmp(s, "--threads")) {
+            int *dst = s[2] == 'r' ? &a.reps : &a.threads;
+            if (i + 1 >= argc || !parse_int(argv[i + 1], 1, 1000, dst)) {
+                fprintf(stderr, "rtcl bench: %s needs a number from 1 to 1000\n", s);
+                free(scenes);
+                return 2;
+            }
+            i++;
+        } else if (s[0] == '-' && s[1]) {
+            fprintf(stderr, "rtcl bench: unknown option %s\n", s);
+            usage(stderr);
+            free(scenes);
+            return 2;
+        } else {
+            scenes[n_scenes++] = s;
+        }
+    }
+    if (!n_scenes) {
+        usage(stderr);
+        free(scenes);
+        return 2;
+    }
+    if (a.threads <= 0) a.threads = rt_cpu_count();
+    rt_pool *pool = rt_pool_create(a.threads);
+    if (!pool) {
+        fprintf(stderr, "rtcl bench: cannot create %d threads\n", a.threads);
+        free(scenes);
+        return 2;
+    }
+    int failed = 0;
+    for (int i = 0; i < n_scenes; i++) failed |= !bench_scene(scenes[i], &a, pool);
+    rt_pool_destroy(pool);
+    free(scenes);
+    return failed ? 2 : 0;
 }

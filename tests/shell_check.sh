@@ -1,4 +1,4 @@
-# cli_lib.sh - helpers for the shell tests of rtcl (sourced, not run).
+# shell_check.sh - helpers for the shell tests of rtcl (sourced, not run).
 # expect STATUS PATTERN -- CMD...: runs CMD, checks its exit status and that
 # its stdout+stderr match the extended regular expression PATTERN.
 fails=0
