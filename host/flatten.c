@@ -219,15 +219,16 @@ rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bv
         any_mats |= md->tri_materials != NULL;
     }
     int single = nobj == 1 && rt_transform_is_identity(scene->objects[0].transform);
+    /* The object BVH may leave out objects whose mesh is empty. */
     if (nobj > 1 || (nobj == 1 && !single)) {
-        if (!top || top->prim_count != nobj || !top->node_count) {
+        if (!top || top->prim_count > nobj || (top->prim_count && !top->node_count)) {
             snprintf(msg, msg_size, "the object BVH is missing or holds the wrong objects");
             goto fail;
         }
         if (!bvh_valid(top, nobj, msg, msg_size, "object")) goto fail;
     }
     uint32_t top_root = (uint32_t)nodes;
-    if (!single && nobj) nodes += top->node_count;
+    if (!single && nobj) nodes += top->node_count ? top->node_count : 1;
     if (nodes >= RT_NODE_COUNT_MASK || tris >= RT_NODE_COUNT_MASK) {
         snprintf(msg, msg_size, "scene too large for 31-bit indices");
         goto fail;
@@ -273,9 +274,22 @@ rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bv
                 out->tri_mats[e] = md->tri_materials ? md->tri_materials[t] : RT_NO_MATERIAL;
         }
     }
-    if (!single && nobj) {
+    if (!single && nobj && !top->node_count) empty_node(&out->nodes[top_root], 0);
+    if (!single && nobj && top->node_count) {
         copy_nodes(top, out->nodes + top_root, top_root, 0);
         memcpy(out->inst_ids, top->prim_indices, sizeof(uint32_t) * top->prim_count);
+        /* World boxes come from transformed, rounded corners and rays are
+         * transformed into object space with rounding of their own: widen
+         * the object BVH's boxes by a relative 2^-20 so that no hit found in
+         * object space falls outside them. */
+        for (uint32_t i = 0; i < top->node_count; i++) {
+            rt_node *n = &out->nodes[top_root + i];
+            for (int k = 0; k < 3; k++) {
+                float pad = (fabsf(n->bmin[k]) + fabsf(n->bmax[k])) * 0x1p-20f;
+                n->bmin[k] -= pad;
+                n->bmax[k] += pad;
+            }
+        }
     }
 
     for (uint32_t o = 0; o < nobj; o++) {

@@ -7,6 +7,7 @@
 
 #include "cpu_render.h"
 #include "render_internal.h"
+#include "tlas.h"
 
 struct rt_render_cache {
     uint32_t mesh_count;
@@ -133,15 +134,8 @@ rt_status rt_render_prepare(rt_scene *scene, int threads, rt_prepared *out) {
         /* The object BVH, every frame the scene changed: objects move. */
         rt_bvh_free(&c->top);
         if (scene->object_count) {
-            rt_aabb *boxes = malloc(sizeof(rt_aabb) * scene->object_count);
-            if (!boxes) return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory");
-            for (uint32_t o = 0; o < scene->object_count; o++)
-                rt_object_world_box(scene, o, &boxes[o]);
-            rt_build_options bo = rt_build_options_default();
-            bo.leaf_size = 1;
             char msg[256] = "";
-            st = rt_bvh_build(boxes, scene->object_count, &bo, c->pool, &c->top, msg, sizeof msg);
-            free(boxes);
+            st = rt_tlas_build(scene, c->bvhs, NULL, c->pool, &c->top, msg, sizeof msg);
             if (st != RT_OK) return rt_scene_fail(scene, st, "object BVH: %s", msg);
         }
         rt_flat_free(&c->flat);

@@ -1,6 +1,6 @@
 # cli_trace.sh - 'rtcl trace': hit lines, misses, tmin/tmax, backends agree,
 # any-hit, bad ray lines reported with file:line.
-source "$RT_SOURCE_DIR/tests/cli_lib.sh"
+source "$RT_SOURCE_DIR/tests/shell_check.sh"
 
 rays=$tmp/rays.txt
 cat > "$rays" <<'R'

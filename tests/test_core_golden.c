@@ -7,8 +7,8 @@
  *
  * To regenerate after an intended change of the renderer's output:
  *   RT_GOLDEN_UPDATE=DIR build/tests/test_core_golden
- * writes DIR/NAME.hash and DIR/NAME.ppm; copy the hashes (and PNGs made from
- * the PPMs) to tests/golden and say why in the commit. */
+ * writes DIR/NAME.hash and DIR/NAME.ppm; copy the hashes to tests/golden,
+ * regenerate the PNGs as test_golden.c says, and say why in the commit. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
