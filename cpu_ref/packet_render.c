@@ -85,8 +85,11 @@ static void count_boxes(packet_state *st, uint32_t mask) {
         if (mask & (1u << l)) st->c[l].box_tests++;
 }
 
-/* Traverses one BVH (a mesh's when inst != RT_NO_HIT, else the object BVH,
- * whose leaves call back into the meshes) with the lanes in 'active'. */
+static void packet_instance(packet_state *st, const packet *world, rt_u32 inst, uint32_t active);
+
+/* Traverses one BVH with the lanes in 'active': a mesh's (inst is its
+ * instance), or the object BVH (inst == RT_NO_HIT), whose leaves hand each
+ * instance to packet_instance. */
 static void packet_mesh(packet_state *st, const packet *p, rt_u32 root, rt_u32 inst,
                         uint32_t active) {
     const rt_scene_view *s = st->s;
@@ -101,11 +104,16 @@ static void packet_mesh(packet_state *st, const packet *p, rt_u32 root, rt_u32 i
     while (mask) {
         const rt_node *n = &s->nodes[node];
         if (n->b & RT_NODE_LEAF_FLAG) {
-            for (int l = 0; l < 4; l++) {
-                if (!(mask & (1u << l)) || (st->done & (1u << l))) continue;
-                if (rt_leaf_test(s, n->a, n->b & RT_NODE_COUNT_MASK, inst, &p->ray[l], &p->pre[l],
-                                 st->any_hit, &st->hit[l], &st->c[l]))
-                    st->done |= 1u << l;
+            if (inst == RT_NO_HIT) {
+                for (rt_u32 e = n->a; e < n->a + (n->b & RT_NODE_COUNT_MASK); e++)
+                    packet_instance(st, p, s->inst_ids[e], mask);
+            } else {
+                for (int l = 0; l < 4; l++) {
+                    if (!(mask & (1u << l)) || (st->done & (1u << l))) continue;
+                    if (rt_leaf_test(s, n->a, n->b & RT_NODE_COUNT_MASK, inst, &p->ray[l],
+                                     &p->pre[l], st->any_hit, &st->hit[l], &st->c[l]))
+                        st->done |= 1u << l;
+                }
             }
             mask = 0;
         } else {
@@ -167,46 +175,7 @@ static void packet_trace(packet_state *st, const packet *p, uint32_t active) {
         packet_instance(st, p, 0, active);
         return;
     }
-    rt_u32 stack_node[RT_STACK_SIZE];
-    uint32_t stack_mask[RT_STACK_SIZE];
-    int sp = 0;
-    float tn0[4], tn1[4];
-    rt_u32 node = s->hdr->top_root;
-    count_boxes(st, active);
-    uint32_t mask = packet_box(&s->nodes[node], p, packet_hi(st), active, tn0);
-    while (mask) {
-        const rt_node *n = &s->nodes[node];
-        if (n->b & RT_NODE_LEAF_FLAG) {
-            for (rt_u32 e = n->a; e < n->a + (n->b & RT_NODE_COUNT_MASK); e++)
-                packet_instance(st, p, s->inst_ids[e], mask);
-            mask = 0;
-        } else {
-            float32x4_t hi = packet_hi(st);
-            mask &= ~st->done;
-            count_boxes(st, mask);
-            count_boxes(st, mask);
-            uint32_t m0 = packet_box(&s->nodes[n->a], p, hi, mask, tn0);
-            uint32_t m1 = packet_box(&s->nodes[n->b], p, hi, mask, tn1);
-            if (m0 && m1) {
-                uint32_t both = m0 & m1;
-                int l = both ? (both & 1 ? 0 : both & 2 ? 1 : both & 4 ? 2 : 3) : -1;
-                int right_first = l >= 0 && tn1[l] < tn0[l];
-                stack_node[sp] = right_first ? n->a : n->b;
-                stack_mask[sp++] = right_first ? m0 : m1;
-                node = right_first ? n->b : n->a;
-                mask = right_first ? m1 : m0;
-                continue;
-            }
-            node = m0 ? n->a : n->b;
-            mask = m0 ? m0 : m1;
-            if (mask) continue;
-        }
-        while (!mask && sp > 0) {
-            --sp;
-            node = stack_node[sp];
-            mask = stack_mask[sp] & ~st->done;
-        }
-    }
+    packet_mesh(st, p, s->hdr->top_root, RT_NO_HIT, active);
 }
 
 /* ---- rendering ------------------------------------------------------------ */

@@ -416,6 +416,31 @@ RT_FN int rt_leaf_test(const rt_scene_view *s, rt_u32 first, rt_u32 count, rt_u3
     return 0;
 }
 
+/* One inner-node step of a traversal, shared by both levels: tests the two
+ * children, goes on with the nearer one that the ray hits and pushes the
+ * other, or pops the stack. Returns 0 when the stack is empty. */
+RT_FN int rt_descend(const rt_scene_view *s, RT_GLOBAL const rt_node *n, const rt_ray_d *r,
+                     const rt_ray_pre *p, const rt_hit_d *best, rt_counters *c, rt_u32 *stack,
+                     int *sp, rt_u32 *node) {
+    float t0, t1, lo = rt_box_lo(r->tmin), hi = rt_box_hi(best->t);
+    c->box_tests += 2;
+    int h0 = rt_box_test(&s->nodes[n->a], r, p, lo, hi, &t0);
+    int h1 = rt_box_test(&s->nodes[n->b], r, p, lo, hi, &t1);
+    if (h0 && h1) {
+        int right_first = t1 < t0;
+        stack[(*sp)++] = right_first ? n->a : n->b;
+        *node = right_first ? n->b : n->a;
+    } else if (h0) {
+        *node = n->a;
+    } else if (h1) {
+        *node = n->b;
+    } else {
+        if (*sp == 0) return 0;
+        *node = stack[--*sp];
+    }
+    return 1;
+}
+
 /* Traverses one mesh BVH from node 'root' with a ray already in the mesh's
  * space. best->t is the current upper end of the range. Returns 1 when any_hit
  * found an occluder. */
@@ -436,22 +461,7 @@ RT_FN int rt_trace_mesh(const rt_scene_view *s, rt_u32 root, rt_u32 inst, const 
             node = stack[--sp];
             continue;
         }
-        float t0, t1, lo = rt_box_lo(r->tmin), hi = rt_box_hi(best->t);
-        c->box_tests += 2;
-        int h0 = rt_box_test(&s->nodes[n->a], r, p, lo, hi, &t0);
-        int h1 = rt_box_test(&s->nodes[n->b], r, p, lo, hi, &t1);
-        if (h0 && h1) {
-            rt_u32 nearer = t1 < t0 ? n->b : n->a, farther = t1 < t0 ? n->a : n->b;
-            stack[sp++] = farther;
-            node = nearer;
-        } else if (h0) {
-            node = n->a;
-        } else if (h1) {
-            node = n->b;
-        } else {
-            if (sp == 0) return 0;
-            node = stack[--sp];
-        }
+        if (!rt_descend(s, n, r, p, best, c, stack, &sp, &node)) return 0;
     }
 }
 
@@ -512,22 +522,7 @@ RT_FN int rt_trace(const rt_scene_view *s, const rt_ray_d *r, int any_hit, rt_hi
             node = stack[--sp];
             continue;
         }
-        float t0, t1, lo = rt_box_lo(r->tmin), hi = rt_box_hi(best->t);
-        c->box_tests += 2;
-        int h0 = rt_box_test(&s->nodes[n->a], r, &p, lo, hi, &t0);
-        int h1 = rt_box_test(&s->nodes[n->b], r, &p, lo, hi, &t1);
-        if (h0 && h1) {
-            rt_u32 nearer = t1 < t0 ? n->b : n->a, farther = t1 < t0 ? n->a : n->b;
-            stack[sp++] = farther;
-            node = nearer;
-        } else if (h0) {
-            node = n->a;
-        } else if (h1) {
-            node = n->b;
-        } else {
-            if (sp == 0) break;
-            node = stack[--sp];
-        }
+        if (!rt_descend(s, n, r, &p, best, c, stack, &sp, &node)) break;
     }
     return best->prim != RT_NO_HIT;
 }
