@@ -353,45 +353,38 @@ typedef struct small_item {
     uint32_t index;
 } small_item;
 
-static void box_of(const small_item *items, uint32_t mask, int n, float lo[3], float hi[3],
-                   uint32_t *count) {
-    *count = 0;
-    for (int j = 0; j < 3; j++) {
-        lo[j] = FLT_MAX;
-        hi[j] = -FLT_MAX;
-    }
-    for (int i = 0; i < n; i++) {
-        if (!(mask >> i & 1u)) continue;
-        ++*count;
-        for (int j = 0; j < 3; j++) {
-            lo[j] = fmin_exact(lo[j], items[i].lo[j]);
-            hi[j] = fmax_exact(hi[j], items[i].hi[j]);
-        }
-    }
-}
-
 static void small_node(build_ctx *c, small_item *items, int n, uint32_t slot, uint32_t begin,
                        const float lo[3], const float hi[3]) {
     rt_node *node = &c->slots[slot];
     memcpy(node->bmin, lo, 3 * sizeof(float));
     memcpy(node->bmax, hi, 3 * sizeof(float));
+    /* The box and area of every subset, each built from a smaller subset
+     * plus one item (min/max are exact, so the boxes are the same as if
+     * each subset were boxed from scratch). */
+    enum { SUBSETS = 1 << SMALL_N };
+    float slo[SUBSETS][3], shi[SUBSETS][3];
+    double sarea[SUBSETS];
     uint32_t all = (1u << n) - 1u, best_mask = 0;
+    for (int j = 0; j < 3; j++) {
+        slo[0][j] = FLT_MAX;
+        shi[0][j] = -FLT_MAX;
+    }
+    for (uint32_t m = 1; m <= all; m++) {
+        uint32_t rest = m & (m - 1), i = (uint32_t)__builtin_ctz(m);
+        for (int j = 0; j < 3; j++) {
+            slo[m][j] = fmin_exact(slo[rest][j], items[i].lo[j]);
+            shi[m][j] = fmax_exact(shi[rest][j], items[i].hi[j]);
+        }
+        sarea[m] = half_area(slo[m], shi[m]);
+    }
     double best = DBL_MAX;
-    float blo[2][3], bhi[2][3];
     /* Item n-1 always on the right: each partition is tried once. */
     for (uint32_t mask = 1; n > 1 && mask < (1u << (n - 1)); mask++) {
-        float llo[3], lhi[3], rlo[3], rhi[3];
-        uint32_t nl, nr;
-        box_of(items, mask, n, llo, lhi, &nl);
-        box_of(items, all & ~mask, n, rlo, rhi, &nr);
-        double cost = half_area(llo, lhi) * nl + half_area(rlo, rhi) * nr;
+        int nl = __builtin_popcount(mask);
+        double cost = sarea[mask] * nl + sarea[all & ~mask] * (n - nl);
         if (cost < best) {
             best = cost;
             best_mask = mask;
-            memcpy(blo[0], llo, sizeof llo);
-            memcpy(bhi[0], lhi, sizeof lhi);
-            memcpy(blo[1], rlo, sizeof rlo);
-            memcpy(bhi[1], rhi, sizeof rhi);
         }
     }
     double area = half_area(lo, hi);
@@ -409,11 +402,12 @@ static void small_node(build_ctx *c, small_item *items, int n, uint32_t slot, ui
     int k = nl;
     for (int i = 0; i < n; i++)
         if (!(best_mask >> i & 1u)) sorted[k++] = items[i];
+    uint32_t right_mask = all & ~best_mask;
     node->a = slot + 1;
     node->b = slot + 2 * (uint32_t)nl;
-    small_node(c, sorted, nl, slot + 1, begin, blo[0], bhi[0]);
-    small_node(c, sorted + nl, n - nl, slot + 2 * (uint32_t)nl, begin + (uint32_t)nl, blo[1],
-               bhi[1]);
+    small_node(c, sorted, nl, slot + 1, begin, slo[best_mask], shi[best_mask]);
+    small_node(c, sorted + nl, n - nl, slot + 2 * (uint32_t)nl, begin + (uint32_t)nl,
+               slo[right_mask], shi[right_mask]);
 }
 
 static void small_subtree(build_ctx *c, const task *t) {
