@@ -28,6 +28,7 @@
  * FORCE_MEDIAN_DEPTH on, splits are median splits, which halve the count.
  */
 #include <float.h>
+#include <math.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -193,56 +194,29 @@ static split_kind pre_decide(const build_ctx *c, const task *t, fast_binning *bn
     return SPLIT_BINNED;
 }
 
+/* A power of two that brings the largest half extent of the node box into
+ * [1, 2), so that the sweep's float areas and costs cannot overflow. */
+static float sweep_scale(const task *t) {
+    float m = 0.0f;
+    for (int j = 0; j < 3; j++) m = fmax_exact(m, t->hi[j] * 0.5f - t->lo[j] * 0.5f);
+    if (!(m > 0.0f)) return 1.0f;
+    int e = ilogbf(m);
+    if (e < -100) e = -100;
+    return ldexpf(1.0f, -e);
+}
+
 /* SAH sweep over the bins of every binnable axis. */
 static void choose_split(const build_ctx *c, const task *t, const fast_binning *bn,
                          const fast_bins *bins, split_plan *plan) {
     const int B = bn->bins;
     uint32_t n = t->end - t->begin;
-    double best = DBL_MAX;
-    int best_axis = -1, best_bin = -1;
-    double right_area[FAST_MAX_BINS];
-    uint32_t right_count[FAST_MAX_BINS];
-    for (int a = 0; a < 3; a++) {
-        if (!bn->axis_ok[a]) continue;
-        /* right_area[k]: bins k+1..B-1 */
-        float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
-        uint32_t cnt = 0;
-        for (int k = B - 1; k > 0; k--) {
-            const fast_box4 *b = &bins->box[a][k];
-            for (int j = 0; j < 3; j++) {
-                lo[j] = fmin_exact(lo[j], b->lo[j]);
-                hi[j] = fmax_exact(hi[j], b->hi[j]);
-            }
-            cnt += bins->count[a][k];
-            right_count[k - 1] = cnt;
-            right_area[k - 1] = cnt ? half_area(lo, hi) : 0.0;
-        }
-        for (int j = 0; j < 3; j++) {
-            lo[j] = FLT_MAX;
-            hi[j] = -FLT_MAX;
-        }
-        cnt = 0;
-        for (int k = 0; k < B - 1; k++) {
-            const fast_box4 *b = &bins->box[a][k];
-            for (int j = 0; j < 3; j++) {
-                lo[j] = fmin_exact(lo[j], b->lo[j]);
-                hi[j] = fmax_exact(hi[j], b->hi[j]);
-            }
-            cnt += bins->count[a][k];
-            if (cnt == 0 || right_count[k] == 0) continue;
-            double cost = half_area(lo, hi) * cnt + right_area[k] * right_count[k];
-            if (cost < best) {
-                best = cost;
-                best_axis = a;
-                best_bin = k;
-            }
-        }
-    }
-    if (best_axis < 0) {
+    float scale = sweep_scale(t), best_f;
+    int best_axis, best_bin;
+    if (!fast_sweep(bins, bn, scale, &best_f, &best_axis, &best_bin)) {
         plan->kind = n <= (uint32_t)c->leaf_size ? SPLIT_LEAF : SPLIT_MEDIAN;
         return;
     }
-    double area = half_area(t->lo, t->hi);
+    double area = fast_scaled_area(t->lo, t->hi, scale), best = best_f;
     double split_cost = c->cost_box * area + c->cost_tri * best;
     double leaf_cost = (double)c->cost_tri * n * area;
     if (n <= (uint32_t)c->leaf_size && leaf_cost <= split_cost) {
@@ -262,7 +236,7 @@ static void choose_split(const build_ctx *c, const task *t, const fast_binning *
             lo[j] = fmin_exact(lo[j], b->lo[j]);
             hi[j] = fmax_exact(hi[j], b->hi[j]);
         }
-        if (k <= best_bin) nl += bins->count[best_axis][k];
+        if (k <= best_bin) nl += bins->count[k][best_axis];
     }
     plan->n_left = nl;
     memcpy(plan->llo, llo, sizeof llo);
@@ -564,7 +538,7 @@ static int split_parallel(build_ctx *c, rt_pool *pool, const task *t, task *l, t
                         all->box[a][k].lo[j] = fmin_exact(all->box[a][k].lo[j], o->box[a][k].lo[j]);
                         all->box[a][k].hi[j] = fmax_exact(all->box[a][k].hi[j], o->box[a][k].hi[j]);
                     }
-                    all->count[a][k] += o->count[a][k];
+                    all->count[k][a] += o->count[k][a];
                 }
             }
         }
@@ -573,7 +547,7 @@ static int split_parallel(build_ctx *c, rt_pool *pool, const task *t, task *l, t
             uint32_t before = 0;
             for (int w = 0; w < W; w++) {
                 uint32_t left = 0;
-                for (int k = 0; k <= plan.bin; k++) left += c->worker_bins[w].count[plan.axis][k];
+                for (int k = 0; k <= plan.bin; k++) left += c->worker_bins[w].count[k][plan.axis];
                 c->job_left[w] = before;
                 before += left;
             }
