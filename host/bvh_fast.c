@@ -327,65 +327,56 @@ typedef struct small_item {
     uint32_t index;
 } small_item;
 
-static void small_node(build_ctx *c, small_item *items, int n, uint32_t slot, uint32_t begin,
-                       const float lo[3], const float hi[3]) {
+/* Subset boxes and areas of up to SMALL_N items, indexed by item mask. */
+typedef struct subset_table {
+    float lo[1 << SMALL_N][3], hi[1 << SMALL_N][3];
+    double area[1 << SMALL_N];
+} subset_table;
+
+/* Builds the node of the items in `set` (a mask over items, in item order)
+ * at slot; its children are subsets of it, so the one table built in
+ * small_subtree serves the whole subtree. */
+static void small_node(build_ctx *c, const small_item *items, const subset_table *tab, uint32_t set,
+                       uint32_t slot, uint32_t begin) {
     rt_node *node = &c->slots[slot];
-    memcpy(node->bmin, lo, 3 * sizeof(float));
-    memcpy(node->bmax, hi, 3 * sizeof(float));
-    /* The box and area of every subset, each built from a smaller subset
-     * plus one item (min/max are exact, so the boxes are the same as if
-     * each subset were boxed from scratch). */
-    enum { SUBSETS = 1 << SMALL_N };
-    float slo[SUBSETS][3], shi[SUBSETS][3];
-    double sarea[SUBSETS];
-    uint32_t all = (1u << n) - 1u, best_mask = 0;
-    for (int j = 0; j < 3; j++) {
-        slo[0][j] = FLT_MAX;
-        shi[0][j] = -FLT_MAX;
-    }
-    for (uint32_t m = 1; m <= all; m++) {
-        uint32_t rest = m & (m - 1), i = (uint32_t)__builtin_ctz(m);
-        for (int j = 0; j < 3; j++) {
-            slo[m][j] = fmin_exact(slo[rest][j], items[i].lo[j]);
-            shi[m][j] = fmax_exact(shi[rest][j], items[i].hi[j]);
-        }
-        sarea[m] = half_area(slo[m], shi[m]);
-    }
+    memcpy(node->bmin, tab->lo[set], 3 * sizeof(float));
+    memcpy(node->bmax, tab->hi[set], 3 * sizeof(float));
+    static const uint8_t bits[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+    int n = bits[set];
     double best = DBL_MAX;
-    /* Item n-1 always on the right: each partition is tried once. */
-    for (uint32_t mask = 1; n > 1 && mask < (1u << (n - 1)); mask++) {
-        int nl = __builtin_popcount(mask);
-        double cost = sarea[mask] * nl + sarea[all & ~mask] * (n - nl);
+    uint32_t best_mask = 0;
+    /* The set's last member always on the right: each partition once. The
+     * left sides are the non-empty subsets of `rest`, in increasing order
+     * ((mask - rest) & rest steps through them). */
+    uint32_t last = 1u << (31 - __builtin_clz(set)), rest = set & ~last;
+    for (uint32_t mask = (0u - rest) & rest; mask; mask = (mask - rest) & rest) {
+        int nl = bits[mask];
+        double cost = tab->area[mask] * nl + tab->area[set & ~mask] * (n - nl);
         if (cost < best) {
             best = cost;
             best_mask = mask;
         }
     }
-    double area = half_area(lo, hi);
+    double area = tab->area[set];
     if (n == 1 || (n <= c->leaf_size &&
                    (double)c->cost_tri * n * area <= c->cost_box * area + c->cost_tri * best)) {
         node->a = begin;
         node->b = (uint32_t)n | RT_NODE_LEAF_FLAG;
-        for (int i = 0; i < n; i++) c->prim_indices[begin + (uint32_t)i] = items[i].index;
+        uint32_t k = begin;
+        for (int i = 0; i < SMALL_N; i++)
+            if (set >> i & 1u) c->prim_indices[k++] = items[i].index;
         return;
     }
-    small_item sorted[SMALL_N];
-    int nl = 0;
-    for (int i = 0; i < n; i++)
-        if (best_mask >> i & 1u) sorted[nl++] = items[i];
-    int k = nl;
-    for (int i = 0; i < n; i++)
-        if (!(best_mask >> i & 1u)) sorted[k++] = items[i];
-    uint32_t right_mask = all & ~best_mask;
+    uint32_t nl = bits[best_mask];
     node->a = slot + 1;
-    node->b = slot + 2 * (uint32_t)nl;
-    small_node(c, sorted, nl, slot + 1, begin, slo[best_mask], shi[best_mask]);
-    small_node(c, sorted + nl, n - nl, slot + 2 * (uint32_t)nl, begin + (uint32_t)nl,
-               slo[right_mask], shi[right_mask]);
+    node->b = slot + 2 * nl;
+    small_node(c, items, tab, best_mask, slot + 1, begin);
+    small_node(c, items, tab, set & ~best_mask, slot + 2 * nl, begin + nl);
 }
 
 static void small_subtree(build_ctx *c, const task *t) {
     small_item items[SMALL_N];
+    subset_table tab;
     int n = (int)(t->end - t->begin);
     const fast_ref *refs = c->refs[t->buf];
     for (int i = 0; i < n; i++) {
@@ -394,7 +385,24 @@ static void small_subtree(build_ctx *c, const task *t) {
         memcpy(items[i].hi, r->hi, sizeof items[i].hi);
         memcpy(&items[i].index, &r->lo[3], 4);
     }
-    small_node(c, items, n, t->slot, t->begin, t->lo, t->hi);
+    /* Every subset's box from a smaller subset plus one item (min/max are
+     * exact: the same box as from scratch). SMALL_N = 4 keeps the masks
+     * within the 16-entry bit count table of small_node. */
+    uint32_t all = (1u << n) - 1u;
+    for (int j = 0; j < 3; j++) {
+        tab.lo[0][j] = FLT_MAX;
+        tab.hi[0][j] = -FLT_MAX;
+    }
+    for (uint32_t m = 1; m <= all; m++) {
+        uint32_t rest = m & (m - 1), i = (uint32_t)__builtin_ctz(m);
+        for (int j = 0; j < 3; j++) {
+            tab.lo[m][j] = fmin_exact(tab.lo[rest][j], items[i].lo[j]);
+            tab.hi[m][j] = fmax_exact(tab.hi[rest][j], items[i].hi[j]);
+        }
+        tab.area[m] = half_area(tab.lo[m], tab.hi[m]);
+    }
+    /* The node box is the task's (the union of all items: the same). */
+    small_node(c, items, &tab, all, t->slot, t->begin);
 }
 
 /* ---- serial subtree build (task phase) ---------------------------------- */
