@@ -42,7 +42,9 @@ enum {
     FORCE_MEDIAN_DEPTH = 32, /* depth <= 32 + log2(n) <= 64 */
     STACK_SIZE = 128,
     MIN_BIG_NODE = 4096, /* smaller nodes are not worth a parallel pass */
-    SMALL_N = 4          /* subtrees this small are built by exact SAH */
+    SMALL_N = 4,         /* subtrees this small are built by exact SAH */
+    SMALL_BINS_BELOW = 64,
+    SMALL_BINS = 8
 };
 
 /* Scratch memory kept between builds: the two reference buffers and the
@@ -171,6 +173,7 @@ static int setup_binning(const build_ctx *c, const task *t, fast_binning *bn) {
      * binning itself. */
     uint32_t n = t->end - t->begin;
     bn->bins = n < (uint32_t)c->bins ? (int)n : c->bins;
+    if (n < SMALL_BINS_BELOW && bn->bins > SMALL_BINS) bn->bins = SMALL_BINS;
     bn->cmin[3] = 0.0f;
     bn->scale[3] = 0.0f;
     for (int a = 0; a < 3; a++) {
