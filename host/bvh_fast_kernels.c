@@ -34,9 +34,109 @@ void fast_bins_clear(fast_bins *bins, int bin_count) {
                 bins->box[a][k].lo[i] = FLT_MAX;
                 bins->box[a][k].hi[i] = -FLT_MAX;
             }
-            bins->count[a][k] = 0;
+            bins->count[k][a] = 0;
         }
     }
+}
+
+/* ---- SAH sweep ------------------------------------------------------------ */
+
+/* Scaled half extents of a box: (hi * 0.5 - lo * 0.5) * scale (halved first
+ * so that no finite box overflows). */
+static inline float32x4_t scaled_extent(float32x4_t lo, float32x4_t hi, float32x4_t scale) {
+    const float32x4_t half = vdupq_n_f32(0.5f);
+    return vmulq_f32(vsubq_f32(vmulq_f32(hi, half), vmulq_f32(lo, half)), scale);
+}
+
+/* Half areas of three boxes given by their extents: lane a is box a's.
+ * The transposition uses full-width zips only (they map to single
+ * unpack instructions on x86 through SIMDe, unlike 64-bit halves). */
+static inline float32x4_t areas3(float32x4_t d0, float32x4_t d1, float32x4_t d2) {
+    float32x4_t z0 = vzip1q_f32(d0, d2); /* x0 x2 y0 y2 */
+    float32x4_t z1 = vzip2q_f32(d0, d2); /* z0 z2 w0 w2 */
+    float32x4_t z2 = vzip1q_f32(d1, d1); /* x1 x1 y1 y1 */
+    float32x4_t z3 = vzip2q_f32(d1, d1); /* z1 z1 w1 w1 */
+    float32x4_t dx = vzip1q_f32(z0, z2); /* x0 x1 x2 x1 */
+    float32x4_t dy = vzip2q_f32(z0, z2); /* y0 y1 y2 y1 */
+    float32x4_t dz = vzip1q_f32(z1, z3); /* z0 z1 z2 z1 */
+    return vaddq_f32(vaddq_f32(vmulq_f32(dx, dy), vmulq_f32(dy, dz)), vmulq_f32(dz, dx));
+}
+
+float fast_scaled_area(const float lo[3], const float hi[3], float scale) {
+    float d[3];
+    for (int j = 0; j < 3; j++) d[j] = (hi[j] * 0.5f - lo[j] * 0.5f) * scale;
+    return (d[0] * d[1] + d[1] * d[2]) + d[2] * d[0];
+}
+
+int fast_sweep(const fast_bins *bins, const fast_binning *bn, float scale, float *best_cost,
+               int *best_axis, int *best_bin) {
+    const int B = bn->bins;
+    const float32x4_t s = vdupq_n_f32(scale);
+    const float32x4_t inf = vdupq_n_f32(__builtin_inff());
+    float32x4_t right_area[FAST_MAX_BINS];
+    uint32x4_t right_count[FAST_MAX_BINS];
+    /* right_*[k]: bins k+1..B-1, for the three axes in lanes 0..2. */
+    float32x4_t lo[3], hi[3];
+    for (int a = 0; a < 3; a++) {
+        lo[a] = vdupq_n_f32(FLT_MAX);
+        hi[a] = vdupq_n_f32(-FLT_MAX);
+    }
+    uint32x4_t cnt = vdupq_n_u32(0);
+    for (int k = B - 1; k > 0; k--) {
+        for (int a = 0; a < 3; a++) {
+            lo[a] = vminq_f32(lo[a], vld1q_f32(bins->box[a][k].lo));
+            hi[a] = vmaxq_f32(hi[a], vld1q_f32(bins->box[a][k].hi));
+        }
+        cnt = vaddq_u32(cnt, vld1q_u32(bins->count[k]));
+        right_count[k - 1] = cnt;
+        right_area[k - 1] = areas3(scaled_extent(lo[0], hi[0], s), scaled_extent(lo[1], hi[1], s),
+                                   scaled_extent(lo[2], hi[2], s));
+    }
+    const uint32_t ok_bits[4] = {bn->axis_ok[0] ? ~0u : 0u, bn->axis_ok[1] ? ~0u : 0u,
+                                 bn->axis_ok[2] ? ~0u : 0u, 0u};
+    const uint32x4_t axis_ok = vld1q_u32(ok_bits);
+    const uint32x4_t zero = vdupq_n_u32(0);
+    float32x4_t best = inf;
+    uint32x4_t best_k = zero;
+    for (int a = 0; a < 3; a++) {
+        lo[a] = vdupq_n_f32(FLT_MAX);
+        hi[a] = vdupq_n_f32(-FLT_MAX);
+    }
+    cnt = zero;
+    for (int k = 0; k < B - 1; k++) {
+        for (int a = 0; a < 3; a++) {
+            lo[a] = vminq_f32(lo[a], vld1q_f32(bins->box[a][k].lo));
+            hi[a] = vmaxq_f32(hi[a], vld1q_f32(bins->box[a][k].hi));
+        }
+        cnt = vaddq_u32(cnt, vld1q_u32(bins->count[k]));
+        float32x4_t left_area =
+            areas3(scaled_extent(lo[0], hi[0], s), scaled_extent(lo[1], hi[1], s),
+                   scaled_extent(lo[2], hi[2], s));
+        float32x4_t cost = vaddq_f32(
+            vmulq_f32(left_area, vcvtq_f32_s32(vreinterpretq_s32_u32(cnt))),
+            vmulq_f32(right_area[k], vcvtq_f32_s32(vreinterpretq_s32_u32(right_count[k]))));
+        /* Both sides non-empty, axis binnable; the empty sides' areas are
+         * not finite, so those lanes are replaced before the compare. */
+        uint32x4_t valid =
+            vandq_u32(axis_ok, vandq_u32(vmvnq_u32(vceqq_u32(cnt, zero)),
+                                         vmvnq_u32(vceqq_u32(right_count[k], zero))));
+        cost = vbslq_f32(valid, cost, inf);
+        uint32x4_t better = vcltq_f32(cost, best);
+        best = vbslq_f32(better, cost, best);
+        best_k = vbslq_u32(better, vdupq_n_u32((uint32_t)k), best_k);
+    }
+    float bc[4];
+    uint32_t bk[4];
+    vst1q_f32(bc, best);
+    vst1q_u32(bk, best_k);
+    int axis = -1;
+    for (int a = 0; a < 3; a++)
+        if (bc[a] < __builtin_inff() && (axis < 0 || bc[a] < bc[axis])) axis = a;
+    if (axis < 0) return 0;
+    *best_cost = bc[axis];
+    *best_axis = axis;
+    *best_bin = (int)bk[axis];
+    return 1;
 }
 
 void fast_cbounds_empty(fast_cbounds *cb) {
@@ -77,7 +177,7 @@ static void bin_range_scalar(const fast_ref *refs, uint32_t begin, uint32_t end,
                 b->lo[j] = fmin_exact(b->lo[j], r->lo[j]);
                 b->hi[j] = fmax_exact(b->hi[j], r->hi[j]);
             }
-            bins->count[a][k]++;
+            bins->count[k][a]++;
         }
     }
 }
@@ -134,7 +234,7 @@ static void bin_range_neon(const fast_ref *refs, uint32_t begin, uint32_t end,
             fast_box4 *b = &bins->box[a][kk[a]];
             vst1q_f32(b->lo, vminq_f32(vld1q_f32(b->lo), lo));
             vst1q_f32(b->hi, vmaxq_f32(vld1q_f32(b->hi), hi));
-            bins->count[a][kk[a]]++;
+            bins->count[kk[a]][a]++;
         }
     }
 }

@@ -30,10 +30,12 @@ typedef struct fast_box4 {
     float hi[4];
 } fast_box4;
 
-/* Bins over all three axes; lane 3 of the boxes is unused. */
+/* Bins over all three axes; lane 3 of the boxes is unused. count[k][a] is
+ * bin k of axis a (the three axes side by side for the vector sweep; lane 3
+ * unused). */
 typedef struct fast_bins {
     fast_box4 box[3][FAST_MAX_BINS];
-    uint32_t count[3][FAST_MAX_BINS];
+    uint32_t count[FAST_MAX_BINS][4];
 } fast_bins;
 
 /* How centroids map to bins in one node: bin = min((c - cmin) * scale, B-1).
@@ -53,6 +55,20 @@ typedef struct fast_cbounds {
 } fast_cbounds;
 
 void fast_bins_clear(fast_bins *bins, int bin_count);
+
+/* The SAH sweep over the bins of the three axes at once (one code path,
+ * NEON, for the scalar and NEON builds alike). The cost of splitting after
+ * bin k of axis a is area(left) * n_left + area(right) * n_right with the
+ * areas (half surface areas) of boxes scaled by `scale` (a power of two per
+ * node that keeps the float sums far from overflow) after halving.
+ * Returns 0 when no axis has a split with both sides non-empty; otherwise
+ * the lowest cost, ties going to the lower axis, then the lower bin. Axes
+ * with axis_ok[a] == 0 are skipped. */
+int fast_sweep(const fast_bins *bins, const fast_binning *bn, float scale, float *best_cost,
+               int *best_axis, int *best_bin);
+
+/* The scaled half area, as fast_sweep computes it, of one box. */
+float fast_scaled_area(const float lo[3], const float hi[3], float scale);
 
 /* Adds refs[begin, end) to bins. */
 void fast_bin_range(const fast_ref *refs, uint32_t begin, uint32_t end, const fast_binning *bn,

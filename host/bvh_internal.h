@@ -13,4 +13,8 @@ rt_status rt_bvh_build_thesis(const rt_aabb *boxes, uint32_t count, const rt_bui
 rt_status rt_bvh_build_fast(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
                             rt_pool *pool, int use_neon, rt_bvh *out, char *msg, size_t msg_size);
 
+/* The fast builder keeps its scratch memory (up to 64 MiB) between builds;
+ * this frees it now (it is otherwise reused or held until exit). */
+void rt_bvh_fast_release_scratch(void);
+
 #endif /* RT_BVH_INTERNAL_H */

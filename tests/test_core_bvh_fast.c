@@ -172,8 +172,34 @@ static void test_bad_input(void) {
           RT_ERROR_INVALID_ARGUMENT);
 }
 
+/* The scratch memory kept between builds: a smaller build in between, and a
+ * build after it was released, give the same tree as a fresh one. */
+static void test_scratch_reuse(void) {
+    const uint32_t n = 20000, small = 300;
+    rt_aabb *boxes = make_soup(n, 11);
+    rt_bvh first, tiny, again, fresh;
+    rt_bvh_fast_release_scratch();
+    if (!build(boxes, n, 2, 1, &first)) return;
+    if (build(boxes + 5, small, 1, 0, &tiny)) {
+        check_valid(&tiny, boxes + 5, small, 10, "small build on kept scratch");
+        rt_bvh_free(&tiny);
+    }
+    if (build(boxes, n, 1, 0, &again)) {
+        CHECK_MSG(same_bvh(&first, &again), "rebuild on kept scratch differs");
+        rt_bvh_free(&again);
+    }
+    rt_bvh_fast_release_scratch();
+    if (build(boxes, n, 2, 1, &fresh)) {
+        CHECK_MSG(same_bvh(&first, &fresh), "build after release differs");
+        rt_bvh_free(&fresh);
+    }
+    rt_bvh_free(&first);
+    free(boxes);
+}
+
 int main(void) {
     test_determinism();
+    test_scratch_reuse();
     test_sah_leaves();
     test_degenerate();
     test_bad_input();
