@@ -39,11 +39,26 @@ static rt_status fail(char *msg, size_t size, rt_status st, const char *fmt, ...
 
 /* ---- device state ------------------------------------------------------- */
 
-enum { B_HDR, B_NODES, B_TRIS, B_TRI_IDS, B_NORMALS, B_TRI_MATS, B_INST, B_INST_IDS, B_MATS,
-       B_LIGHTS, B_RAYS, B_HITS, B_COUNTERS, B_FB, B_COUNT };
+enum {
+    B_HDR,
+    B_NODES,
+    B_TRIS,
+    B_TRI_IDS,
+    B_NORMALS,
+    B_TRI_MATS,
+    B_INST,
+    B_INST_IDS,
+    B_MATS,
+    B_LIGHTS,
+    B_RAYS,
+    B_HITS,
+    B_COUNTERS,
+    B_FB,
+    B_COUNT
+};
 static const char *const buffer_names[B_COUNT] = {
-    "header", "nodes", "tris", "tri_ids", "tri_normals", "tri_mats", "instances",
-    "inst_ids", "materials", "lights", "rays", "hits", "counters", "framebuffer"};
+    "header",   "nodes",     "tris",   "tri_ids", "tri_normals", "tri_mats", "instances",
+    "inst_ids", "materials", "lights", "rays",    "hits",        "counters", "framebuffer"};
 
 typedef struct cl_state {
     rt_cl_device_info dev;
@@ -80,8 +95,8 @@ static void state_free(void *p) {
 }
 
 /* The state for the selected device, made (or remade for another device). */
-static rt_status get_state(const rt_prepared *prep, const char *selector, cl_state **out,
-                           char *msg, size_t size) {
+static rt_status get_state(const rt_prepared *prep, const char *selector, cl_state **out, char *msg,
+                           size_t size) {
     cl_state *s = *prep->backend_state;
     const char *sel = selector ? selector : "";
     if (s && *prep->backend_state_free == state_free && strcmp(s->selector, sel) == 0) {
@@ -111,8 +126,8 @@ static rt_status get_state(const rt_prepared *prep, const char *selector, cl_sta
     snprintf(s->selector, sizeof s->selector, "%s", sel);
     s->tile = RT_CL_TILE_FIRST;
     cl_device_id d = s->dev.device_id;
-    cl_context_properties props[] = {CL_CONTEXT_PLATFORM,
-                                     (cl_context_properties)s->dev.platform_id, 0};
+    cl_context_properties props[] = {CL_CONTEXT_PLATFORM, (cl_context_properties)s->dev.platform_id,
+                                     0};
     cl_int err;
     s->ctx = clCreateContext(props, 1, &d, NULL, NULL, &err);
     if (!s->ctx) {
@@ -228,15 +243,15 @@ static rt_status ensure(cl_state *s, int b, size_t bytes, int *remade, char *msg
 }
 
 static rt_status write_buf(cl_state *s, int b, size_t offset, const void *data, size_t bytes,
-                       uint64_t *uploaded, char *msg, size_t size) {
+                           uint64_t *uploaded, char *msg, size_t size) {
     if (!bytes) return RT_OK;
-    cl_int err = clEnqueueWriteBuffer(s->queue, s->buf[b], CL_FALSE, offset, bytes, data, 0, NULL,
-                                      NULL);
+    cl_int err =
+        clEnqueueWriteBuffer(s->queue, s->buf[b], CL_FALSE, offset, bytes, data, 0, NULL, NULL);
     if (err != CL_SUCCESS)
         return fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
                     "%s: writing buffer '%s' (%zu bytes) on '%s' (%s)",
-                    out_of_memory(err) ? "out of device memory" : "upload failed",
-                    buffer_names[b], bytes, s->dev.name, rt_cl_error_name(err));
+                    out_of_memory(err) ? "out of device memory" : "upload failed", buffer_names[b],
+                    bytes, s->dev.name, rt_cl_error_name(err));
     *uploaded += bytes;
     return RT_OK;
 }
@@ -267,8 +282,8 @@ static uint32_t *mesh_signature(const rt_prepared *prep, size_t *len) {
 /* Uploads the mesh part when it changed, and the per-frame part (object BVH,
  * instances, header with the camera, materials, lights) when the scene
  * changed since the last upload. */
-static rt_status upload_scene(cl_state *s, const rt_prepared *prep, uint64_t *bytes,
-                              double *ms, char *msg, size_t size) {
+static rt_status upload_scene(cl_state *s, const rt_prepared *prep, uint64_t *bytes, double *ms,
+                              char *msg, size_t size) {
     const rt_flat *f = prep->flat;
     double t0 = rt_now_ms();
     size_t sig_len;
@@ -310,7 +325,7 @@ static rt_status upload_scene(cl_state *s, const rt_prepared *prep, uint64_t *by
              * with the objects. */
             size_t from = all ? 0 : sizeof(rt_node) * mesh_nodes;
             st = write_buf(s, B_NODES, from, (const char *)f->nodes + from, arrays[i].bytes - from,
-                       bytes, msg, size);
+                           bytes, msg, size);
         } else if (!arrays[i].mesh || all) {
             st = write_buf(s, arrays[i].b, 0, arrays[i].data, arrays[i].bytes, bytes, msg, size);
         }
@@ -470,7 +485,8 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
         if (st == RT_OK) st = set_arg(kt, 10, sizeof n, &n, msg, sizeof msg);
         if (st == RT_OK) st = set_arg(ks, 10, sizeof f, &f, msg, sizeof msg);
         if (st == RT_OK) st = set_arg(ks, 11, sizeof n, &n, msg, sizeof msg);
-        if (st == RT_OK) st = launch(s, kc, n, "rt_k_camera", &stats->kernel_ms[0], msg, sizeof msg);
+        if (st == RT_OK)
+            st = launch(s, kc, n, "rt_k_camera", &stats->kernel_ms[0], msg, sizeof msg);
         if (st == RT_OK) st = launch(s, kt, n, "rt_k_trace", &stats->kernel_ms[1], msg, sizeof msg);
         if (st == RT_OK) st = launch(s, ks, n, "rt_k_shade", &stats->kernel_ms[2], msg, sizeof msg);
         if (st != RT_OK) break;
@@ -550,5 +566,4 @@ static int cl_available(char *msg, size_t size) {
     return 1;
 }
 
-const rt_backend_ops rt_opencl_backend = {"opencl", cl_render, cl_trace, cl_available,
-                                          state_free};
+const rt_backend_ops rt_opencl_backend = {"opencl", cl_render, cl_trace, cl_available, state_free};

@@ -26,7 +26,7 @@ static void unused_helpers(void) {
     (void)oracle_brute_force;
 }
 
-static const char *const aov_names[] = {"image",  "depth",  "primid",  "instid",
+static const char *const aov_names[] = {"image",  "depth",    "primid",  "instid",
                                         "normal", "boxtests", "tritests"};
 
 /* Renders with a backend at a small size; returns the status. */
@@ -48,9 +48,10 @@ static void same_pixels(const char *scene, const char *what, const rt_framebuffe
     for (size_t i = 0; i < n; i++) {
         if (memcmp(&a->pixels[i], &b->pixels[i], sizeof(float)) != 0) {
             size_t px = i / (size_t)a->channels;
-            CHECK_MSG(0, "%s %s: first difference at pixel (%zu, %zu) channel %zu: cpu %.9g opencl %.9g",
-                      scene, what, px % (size_t)a->width, px / (size_t)a->width,
-                      i % (size_t)a->channels, (double)a->pixels[i], (double)b->pixels[i]);
+            CHECK_MSG(
+                0, "%s %s: first difference at pixel (%zu, %zu) channel %zu: cpu %.9g opencl %.9g",
+                scene, what, px % (size_t)a->width, px / (size_t)a->width, i % (size_t)a->channels,
+                (double)a->pixels[i], (double)b->pixels[i]);
             return;
         }
     }
@@ -127,8 +128,9 @@ static void check_hits(const char *name, rt_scene *s) {
         int hits = 0;
         for (int i = 0; i < N && st == RT_OK; i++) {
             hits += a[i].hit;
-            if (a[i].hit != b[i].hit || memcmp(&a[i].t, &b[i].t, 4) || memcmp(&a[i].u, &b[i].u, 4) ||
-                memcmp(&a[i].v, &b[i].v, 4) || a[i].prim != b[i].prim || a[i].inst != b[i].inst) {
+            if (a[i].hit != b[i].hit || memcmp(&a[i].t, &b[i].t, 4) ||
+                memcmp(&a[i].u, &b[i].u, 4) || memcmp(&a[i].v, &b[i].v, 4) ||
+                a[i].prim != b[i].prim || a[i].inst != b[i].inst) {
                 CHECK_MSG(0,
                           "%s %s ray %d: cpu hit %d t %.9g u %.9g v %.9g prim %u inst %u; opencl "
                           "hit %d t %.9g u %.9g v %.9g prim %u inst %u",

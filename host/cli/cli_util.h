@@ -35,8 +35,6 @@ void cli_error(const char *command, const char *fmt, ...)
 #endif
     ;
 
-
-
 /* The backend name rt_render and rt_trace_rays take: "B" or, with --device,
  * "B:DEVICE" (in buf). Prints an error and returns NULL when a device is given
  * for a backend without devices. */

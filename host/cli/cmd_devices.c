@@ -72,8 +72,7 @@ int cmd_devices(int argc, char **argv) {
                d->cr_div_sqrt ? "correctly rounded" : "NOT correctly rounded");
         printf("    float fma         %s\n", d->fma ? "yes" : "no");
         printf("    fp64              %s\n", d->fp64 ? "yes (cl_khr_fp64)" : "no");
-        printf("    exact             %s: %s\n", d->exact ? "yes" : "no",
-               rt_cl_exactness_note(d));
+        printf("    exact             %s: %s\n", d->exact ? "yes" : "no", rt_cl_exactness_note(d));
     }
     free(devs);
     return 0;
