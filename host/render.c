@@ -1,6 +1,7 @@
 /* render.c - rt_render: keeps the scene's BVHs and layout up to date and runs
  * one frame on the chosen backend ("cpu", the scalar oracle, or "packet", the
  * 2x2 NEON path). */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -20,6 +21,9 @@ struct rt_render_cache {
     uint32_t flat_version;
     rt_pool *pool;
     int pool_threads;
+    uint32_t mesh_generation; /* bumped by every mesh BVH (re)build */
+    void *backend_state;      /* a device backend's state (uploaded buffers) */
+    void (*backend_state_free)(void *state);
 };
 
 double rt_now_ms(void) {
@@ -51,6 +55,7 @@ void rt_render_cache_free(struct rt_render_cache *c) {
     rt_bvh_free(&c->top);
     rt_flat_free(&c->flat);
     if (c->pool) rt_pool_destroy(c->pool);
+    if (c->backend_state_free) c->backend_state_free(c->backend_state);
     free(c);
 }
 
@@ -98,6 +103,7 @@ static rt_status build_mesh(rt_scene *scene, struct rt_render_cache *c, uint32_t
         if (st != RT_OK) return rt_scene_fail(scene, st, "BVH of mesh '%s': %s", md->name, msg);
     }
     c->built[m] = 1;
+    c->mesh_generation++;
     c->built_tris[m] = md->triangle_count;
     c->built_verts[m] = md->vertex_count;
     return RT_OK;
@@ -148,6 +154,10 @@ rt_status rt_render_prepare(rt_scene *scene, int threads, rt_prepared *out) {
     }
     out->build_ms = rt_now_ms() - t0;
     out->flat = &c->flat;
+    out->mesh_generation = c->mesh_generation;
+    out->flat_version = c->flat_version;
+    out->backend_state = &c->backend_state;
+    out->backend_state_free = &c->backend_state_free;
 
     double sah = 0.0, weight = 0.0;
     for (uint32_t o = 0; o < scene->object_count; o++) {
@@ -162,20 +172,72 @@ rt_status rt_render_prepare(rt_scene *scene, int threads, rt_prepared *out) {
     return RT_OK;
 }
 
+const char *rt_backend_split(const char *backend, char *name_out, size_t name_size) {
+    const char *colon = strchr(backend, ':');
+    size_t n = colon ? (size_t)(colon - backend) : strlen(backend);
+    if (n >= name_size) n = name_size - 1;
+    memcpy(name_out, backend, n);
+    name_out[n] = 0;
+    return colon ? colon + 1 : NULL;
+}
+
+/* Which backend runs: "cpu", "packet", or a device backend. "auto" takes
+ * OpenCL when this build has it and a device exists, else the CPU with a
+ * notice in the statistics (the caller decides whether to show it). */
+typedef struct backend_choice {
+    int packet;
+    const rt_backend_ops *device_ops;
+    const char *device; /* after "opencl:" */
+    const char *notice;
+} backend_choice;
+
+static rt_status choose_backend(rt_scene *scene, const char *backend, const char *what,
+                                backend_choice *out) {
+    static char notice[320];
+    char name[32];
+    memset(out, 0, sizeof *out);
+    out->device = rt_backend_split(backend, name, sizeof name);
+    const rt_backend_ops *cl = RT_OPENCL_OPS;
+    if (strcmp(name, "cpu") == 0 && !out->device) return RT_OK;
+    if (strcmp(name, "packet") == 0 && !out->device) {
+        out->packet = 1;
+        return RT_OK;
+    }
+    if (strcmp(name, "opencl") == 0) {
+        if (!cl)
+            return rt_scene_fail(scene, RT_ERROR_UNSUPPORTED,
+                                 "this build has no OpenCL backend (configure with "
+                                 "-DRT_OPENCL=ON and the OpenCL ICD loader installed)");
+        out->device_ops = cl;
+        return RT_OK;
+    }
+    if (strcmp(name, "auto") == 0) {
+        char why[256] = "this build has no OpenCL backend";
+        if (cl && cl->available(why, sizeof why)) {
+            out->device_ops = cl;
+            return RT_OK;
+        }
+        snprintf(notice, sizeof notice, "OpenCL not available (%s): using the CPU", why);
+        out->notice = notice;
+        return RT_OK;
+    }
+    return rt_scene_fail(scene, RT_ERROR_UNSUPPORTED,
+                         "unknown or unavailable backend '%s' (%s: cpu, packet, auto%s)", backend,
+                         what, cl ? ", opencl[:DEVICE]" : "");
+}
+
 rt_status rt_render(rt_scene *scene, const rt_render_options *options, rt_framebuffer *fb) {
     if (!scene || !fb) return RT_ERROR_INVALID_ARGUMENT;
     rt_render_options opt = options ? *options : rt_render_options_default();
     const char *backend = opt.backend ? opt.backend : "cpu";
-    int packet = strcmp(backend, "packet") == 0;
-    if (!packet && strcmp(backend, "cpu") != 0)
-        return rt_scene_fail(scene, RT_ERROR_UNSUPPORTED,
-                             "unknown or unavailable backend '%s' (this build renders with: cpu, "
-                             "packet)",
-                             backend);
+    backend_choice choice;
+    rt_status st = choose_backend(scene, backend, "this build renders with", &choice);
+    if (st != RT_OK) return st;
+    int packet = choice.packet;
     if (opt.aov < RT_AOV_NONE || opt.aov > RT_AOV_TRI_TESTS)
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "unknown AOV %d", (int)opt.aov);
     rt_prepared prep;
-    rt_status st = rt_render_prepare(scene, opt.threads, &prep);
+    st = rt_render_prepare(scene, opt.threads, &prep);
     if (st != RT_OK) return st;
 
     const rt_scene_header *h = &prep.flat->hdr;
@@ -186,6 +248,21 @@ rt_status rt_render(rt_scene *scene, const rt_render_options *options, rt_frameb
     fb->width = h->width;
     fb->height = h->height;
     fb->channels = channels;
+
+    if (choice.device_ops) {
+        rt_render_stats local;
+        rt_render_stats *s = opt.stats ? opt.stats : &local;
+        memset(s, 0, sizeof *s);
+        st = choice.device_ops->render(scene, &prep, choice.device, &opt, fb, s);
+        if (st != RT_OK) {
+            rt_framebuffer_free(fb);
+            return st;
+        }
+        s->sah_cost = prep.sah_cost;
+        s->build_ms = prep.build_ms;
+        s->backend = choice.device_ops->name;
+        return RT_OK;
+    }
 
     rt_cpu_frame frame = {prep.flat, opt.aov,      fb->pixels,
                           channels,  opt.progress, opt.progress_user};
@@ -210,6 +287,19 @@ rt_status rt_render(rt_scene *scene, const rt_render_options *options, rt_frameb
         s->packet_box_tests = counts.packet_box_tests;
         s->backend = packet ? "packet" : "cpu";
         s->threads = rt_pool_size(prep.pool);
+        s->notice = choice.notice;
     }
+    return RT_OK;
+}
+
+/* rt_trace_rays's backend choice (host/trace.c). */
+rt_status rt_trace_backend(rt_scene *scene, const char *backend, int *packet,
+                           const rt_backend_ops **device_ops, const char **device) {
+    backend_choice choice;
+    rt_status st = choose_backend(scene, backend, "ray queries run on", &choice);
+    if (st != RT_OK) return st;
+    *packet = choice.packet;
+    *device_ops = choice.device_ops;
+    *device = choice.device;
     return RT_OK;
 }

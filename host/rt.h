@@ -167,10 +167,27 @@ typedef struct rt_render_stats {
     uint64_t packet_box_tests; /* box tests counted once per packet step */
     const char *backend;       /* the backend that ran */
     int threads;
+    /* Set when "auto" could not use the device and rendered on the CPU: the
+     * reason, for the caller to show (the library never prints). */
+    const char *notice;
+    /* Device backends (opencl); zero or empty on the CPU. */
+    char device[128];         /* the device that ran */
+    int exact;                /* the device promises the CPU oracle's bits */
+    char specialisation[192]; /* the -D feature switches of the kernels */
+    double compile_ms;        /* kernel program builds done for this frame */
+    double upload_ms;         /* host-to-device copies */
+    uint64_t upload_bytes;    /* bytes copied to the device for this frame */
+    double download_ms;       /* device-to-host copies */
+    double kernel_ms[3];      /* summed OpenCL profiling times: camera, trace, shade */
+    uint32_t launches;        /* kernel launches (tiles x kernels) */
+    uint32_t tile_pixels;     /* the largest tile launched */
 } rt_render_stats;
 
 typedef struct rt_render_options {
-    const char *backend;    /* "cpu" (default), "packet", "opencl", "vulkan" */
+    /* "cpu" (default), "packet", "opencl" (or "opencl:DEVICE", a device index
+     * or a part of its name), "auto" (opencl when a device exists, else cpu
+     * with stats->notice set). */
+    const char *backend;
     rt_render_stats *stats; /* filled when not NULL */
     int threads;            /* <= 0: all cores */
     rt_aov aov;             /* RT_AOV_NONE: the shaded image */
@@ -209,9 +226,9 @@ typedef struct rt_hit {
 } rt_hit;
 
 /* Traces count rays through the scene (after applying queued transforms) with
- * a backend ("cpu" or NULL: the scalar oracle; "packet": 2x2 packets; both
- * give identical closest hits). A ray with a NaN or infinite component, or a
- * zero direction, is a miss. */
+ * a backend ("cpu" or NULL: the scalar oracle; "packet": 2x2 packets;
+ * "opencl[:DEVICE]" where built; all give identical closest hits). A ray with a NaN or infinite
+ * component, or a zero direction, is a miss. */
 rt_status rt_trace_rays(rt_scene *scene, const rt_ray *rays, size_t count, rt_hit *hits,
                         int any_hit, const char *backend);
 

@@ -41,13 +41,13 @@ rt_status rt_trace_rays(rt_scene *scene, const rt_ray *rays, size_t count, rt_hi
                         int any_hit, const char *backend) {
     if (!scene || (count && (!rays || !hits))) return RT_ERROR_INVALID_ARGUMENT;
     const char *b = backend ? backend : "cpu";
-    int packet = strcmp(b, "packet") == 0;
-    if (!packet && strcmp(b, "cpu") != 0)
-        return rt_scene_fail(
-            scene, RT_ERROR_UNSUPPORTED,
-            "unknown or unavailable backend '%s' (ray queries run on: cpu, packet)", b);
+    int packet = 0;
+    const rt_backend_ops *device_ops = NULL;
+    const char *device = NULL;
+    rt_status st = rt_trace_backend(scene, b, &packet, &device_ops, &device);
+    if (st != RT_OK) return st;
     rt_prepared prep;
-    rt_status st = rt_render_prepare(scene, 0, &prep);
+    st = rt_render_prepare(scene, 0, &prep);
     if (st != RT_OK) return st;
     rt_ray_d *in = malloc(sizeof(rt_ray_d) * (count ? count : 1));
     rt_hit_d *out = malloc(sizeof(rt_hit_d) * (count ? count : 1));
@@ -69,8 +69,17 @@ rt_status rt_trace_rays(rt_scene *scene, const rt_ray *rays, size_t count, rt_hi
             for (int k = 0; k < 3; k++) in[i].org[k] = 0.0f;
         }
     }
-    trace_job job = {prep.flat, in, out, count, any_hit, packet};
-    rt_pool_run(prep.pool, trace_chunk, &job);
+    if (device_ops) {
+        st = device_ops->trace(scene, &prep, device, in, count, out, any_hit);
+        if (st != RT_OK) {
+            free(in);
+            free(out);
+            return st;
+        }
+    } else {
+        trace_job job = {prep.flat, in, out, count, any_hit, packet};
+        rt_pool_run(prep.pool, trace_chunk, &job);
+    }
     for (size_t i = 0; i < count; i++) {
         rt_hit *h = &hits[i];
         h->hit = out[i].prim != RT_NO_HIT;

@@ -32,7 +32,7 @@ RT_FN void rt_surface_at(const rt_scene_view *s, const rt_ray_d *r, const rt_hit
                          rt_surface *sf) {
     RT_GLOBAL const rt_tri *tri = &s->tris[h->entry];
     RT_GLOBAL const rt_instance *in = &s->instances[h->inst];
-    int identity = (in->flags & RT_INST_IDENTITY) != 0;
+    int identity = (RT_INST_FLAGS(in) & RT_INST_IDENTITY) != 0;
     float e1[3], e2[3], n[3], ns[3];
     for (int k = 0; k < 3; k++) {
         e1[k] = tri->v1[k] - tri->v0[k];
@@ -47,7 +47,7 @@ RT_FN void rt_surface_at(const rt_scene_view *s, const rt_ray_d *r, const rt_hit
     }
     rt_normalize3(sf->ng);
     for (int k = 0; k < 3; k++) sf->ns[k] = sf->ng[k];
-    if (in->flags & RT_INST_NORMALS) {
+    if (RT_INST_FLAGS(in) & RT_INST_NORMALS) {
         RT_GLOBAL const float *vn = s->tri_normals + 9 * h->entry;
         float w = (1.0f - h->u) - h->v;
         for (int k = 0; k < 3; k++) n[k] = (w * vn[k] + h->u * vn[3 + k]) + h->v * vn[6 + k];
@@ -66,7 +66,7 @@ RT_FN void rt_surface_at(const rt_scene_view *s, const rt_ray_d *r, const rt_hit
     if (!sf->front)
         for (int k = 0; k < 3; k++) sf->ns[k] = -sf->ns[k];
     sf->material = in->material;
-    if ((s->hdr->flags & RT_SCENE_TRI_MATS) && s->tri_mats[h->entry] != RT_NO_MATERIAL)
+    if ((RT_SCENE_FLAGS(s) & RT_SCENE_TRI_MATS) && s->tri_mats[h->entry] != RT_NO_MATERIAL)
         sf->material = s->tri_mats[h->entry];
 }
 
@@ -157,7 +157,7 @@ RT_FN void rt_shade_hit(const rt_scene_view *s, const rt_ray_d *primary,
             rt_phong(s, &sf, dn, c, lit);
             for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + (e.w[k] * lw) * lit[k];
         }
-        if (!(s->hdr->flags & RT_SCENE_SECONDARY) || e.depth >= s->hdr->max_depth) continue;
+        if (!(RT_SCENE_FLAGS(s) & RT_SCENE_SECONDARY) || e.depth >= s->hdr->max_depth) continue;
         float refl = m->reflectivity;
         float cosi = -rt_dot3(dn, sf.ns);
         if (m->transparency > 0.0f) {

@@ -65,6 +65,25 @@ static inline float rt_as_float_(rt_i32 i) {
 
 #define RT_NO_HIT 0xffffffffu
 
+/* Feature switches. By default the header and instance flags are read at run
+ * time. An OpenCL kernel specialised to a scene is compiled with
+ * -DRT_STATIC_FLAGS=<header flags> (and RT_STATIC_INST_SET / _MASK, and
+ * RT_STATIC_TRI_METHOD), so unused paths (secondary rays, instance transforms,
+ * normal interpolation) fold away. The values are those of the scene being
+ * rendered, so the result is the same either way. */
+#ifdef RT_STATIC_FLAGS
+#define RT_SCENE_FLAGS(s) (RT_STATIC_FLAGS)
+#define RT_INST_FLAGS(in) ((((in)->flags) | (RT_STATIC_INST_SET)) & (RT_STATIC_INST_MASK))
+#else
+#define RT_SCENE_FLAGS(s) ((s)->hdr->flags)
+#define RT_INST_FLAGS(in) ((in)->flags)
+#endif
+#ifdef RT_STATIC_TRI_METHOD
+#define RT_TRI_METHOD(s) (RT_STATIC_TRI_METHOD)
+#else
+#define RT_TRI_METHOD(s) ((s)->hdr->tri_method)
+#endif
+
 /* Traversal stack entries; host/flatten.c rejects deeper trees. */
 #define RT_STACK_SIZE 64
 
@@ -397,7 +416,7 @@ RT_FN float rt_box_hi(float tmax) {
 RT_FN int rt_leaf_test(const rt_scene_view *s, rt_u32 first, rt_u32 count, rt_u32 inst,
                        const rt_ray_d *r, const rt_ray_pre *p, int any_hit, rt_hit_d *best,
                        rt_counters *c) {
-    rt_u32 method = s->hdr->tri_method;
+    rt_u32 method = RT_TRI_METHOD(s);
     for (rt_u32 e = first; e < first + count; e++) {
         float t, u, v;
         c->tri_tests++;
@@ -483,7 +502,7 @@ RT_FN void rt_ray_to_object(RT_GLOBAL const rt_instance *in, const rt_ray_d *r, 
 RT_FN int rt_trace_instance(const rt_scene_view *s, rt_u32 inst, const rt_ray_d *r,
                             const rt_ray_pre *p, int any_hit, rt_hit_d *best, rt_counters *c) {
     RT_GLOBAL const rt_instance *in = &s->instances[inst];
-    if (in->flags & RT_INST_IDENTITY)
+    if (RT_INST_FLAGS(in) & RT_INST_IDENTITY)
         return rt_trace_mesh(s, in->root, inst, r, p, any_hit, best, c);
     rt_ray_d o;
     rt_ray_pre op;
@@ -502,7 +521,7 @@ RT_FN int rt_trace(const rt_scene_view *s, const rt_ray_d *r, int any_hit, rt_hi
     rt_hit_init(best, r);
     c->rays++;
     if (s->hdr->instance_count == 0) return 0;
-    if (s->hdr->flags & RT_SCENE_SINGLE) {
+    if (RT_SCENE_FLAGS(s) & RT_SCENE_SINGLE) {
         rt_trace_instance(s, 0, r, &p, any_hit, best, c);
         return best->prim != RT_NO_HIT;
     }

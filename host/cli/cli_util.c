@@ -80,3 +80,14 @@ void cli_progress_done(void) {
     if (progress_drawn) fputc('\n', stderr);
     progress_drawn = 0;
 }
+
+const char *cli_backend_name(const char *command, const char *backend, const char *device,
+                             char *buf, size_t size) {
+    if (!device) return backend;
+    if (strcmp(backend, "opencl") != 0 && strcmp(backend, "auto") != 0) {
+        cli_error(command, "--device applies to --backend opencl or auto, not '%s'", backend);
+        return NULL;
+    }
+    snprintf(buf, size, "%s:%s", backend, device);
+    return buf;
+}

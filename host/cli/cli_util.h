@@ -3,6 +3,8 @@
 #ifndef RTCL_CLI_UTIL_H
 #define RTCL_CLI_UTIL_H
 
+#include <stddef.h>
+
 #include "rt.h"
 
 /* The value after option argv[*i]; advances *i. Prints a usage error and
@@ -33,4 +35,9 @@ void cli_error(const char *command, const char *fmt, ...)
 #endif
     ;
 
+/* The backend name rt_render and rt_trace_rays take: "B" or, with --device,
+ * "B:DEVICE" (in buf). Prints an error and returns NULL when a device is given
+ * for a backend without devices. */
+const char *cli_backend_name(const char *command, const char *backend, const char *device,
+                             char *buf, size_t size);
 #endif /* RTCL_CLI_UTIL_H */

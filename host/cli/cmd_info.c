@@ -65,6 +65,12 @@ int cmd_info(int argc, char **argv) {
            "keyframes %s, per-triangle materials %s\n",
            f.reflection ? "on" : "off", f.refraction ? "on" : "off", f.instancing ? "on" : "off",
            f.normals ? "on" : "off", f.keyframes ? "on" : "off", f.tri_materials ? "on" : "off");
+    /* What the specialised backends (OpenCL -D switches, see rtcl render
+     * --stats) switch on for this scene. */
+    printf("specialised  secondary-ray pass %s, instance transforms %s, normal interpolation %s, "
+           "per-triangle materials %s\n",
+           (f.reflection || f.refraction) ? "on" : "off", f.instancing ? "on" : "off",
+           f.normals ? "on" : "off", f.tri_materials ? "on" : "off");
     rt_scene_destroy(s);
     return 0;
 }

@@ -11,7 +11,8 @@
 #include "scene.h"
 
 static const char usage[] =
-    "usage: rtcl trace SCENE --rays RAYS.txt --out HITS.txt [--backend B] [--any-hit] [--help]\n"
+    "usage: rtcl trace SCENE --rays RAYS.txt --out HITS.txt [--backend B] [--device D]\n"
+    "                  [--any-hit] [--help]\n"
     "\n"
     "Traces the rays of RAYS.txt through SCENE (a .json scene, a bare .obj, or\n"
     "builtin:NAME) and writes one line per ray to HITS.txt.\n"
@@ -25,7 +26,9 @@ static const char usage[] =
     "           the 0-based triangle index in its mesh's file order; inst the object\n"
     "           index. Floats as %.9g. A miss is '0 inf 0 0 -1' (plus ' -1').\n"
     "\n"
-    "  --backend B  cpu (the scalar oracle) or packet (2x2 SIMD rays) [cpu]\n"
+    "  --backend B  cpu (the scalar oracle), packet (2x2 SIMD rays), opencl, or auto\n"
+    "               (opencl when a device exists, else cpu) [cpu]\n"
+    "  --device D   the OpenCL device: an index or part of a name (rtcl devices)\n"
     "  --any-hit    stop at any hit in range (shadow-ray queries): hit is then\n"
     "               exact, t u v prim inst belong to some hit, not the closest\n";
 
@@ -90,6 +93,8 @@ static int read_rays(const char *path, rt_ray **out, size_t *count) {
 
 int cmd_trace(int argc, char **argv) {
     const char *scene_path = NULL, *rays_path = NULL, *out_path = NULL, *backend = "cpu";
+    const char *device = NULL;
+    char backend_buf[256];
     int any_hit = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -102,6 +107,8 @@ int cmd_trace(int argc, char **argv) {
             if (!(out_path = cli_value(argc, argv, &i, "trace"))) return 2;
         } else if (!strcmp(a, "--backend")) {
             if (!(backend = cli_value(argc, argv, &i, "trace"))) return 2;
+        } else if (!strcmp(a, "--device")) {
+            if (!(device = cli_value(argc, argv, &i, "trace"))) return 2;
         } else if (!strcmp(a, "--any-hit")) {
             any_hit = 1;
         } else if (a[0] == '-' && a[1]) {
@@ -118,6 +125,8 @@ int cmd_trace(int argc, char **argv) {
         cli_error("trace", "need SCENE, --rays and --out\n%s", usage);
         return 2;
     }
+    if (!(backend = cli_backend_name("trace", backend, device, backend_buf, sizeof backend_buf)))
+        return 2;
     rt_ray *rays = NULL;
     size_t n = 0;
     if (!read_rays(rays_path, &rays, &n)) return 2;

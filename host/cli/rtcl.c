@@ -13,6 +13,7 @@ static const struct {
     {"trace", cmd_trace, "trace rays from a text file and write their hits"},
     {"info", cmd_info, "print what a scene holds and which features it uses"},
     {"compare", cmd_compare, "compare two images (exit 1 when they differ too much)"},
+    {"devices", cmd_devices, "list OpenCL platforms and devices, and which are bit-exact"},
     {"bench", cmd_bench, "measure BVH builds (and renders) on scenes, beside Embree"},
     {"generate", cmd_generate, "write the built-in scenes as JSON + OBJ files"},
 };

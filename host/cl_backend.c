@@ -1,0 +1,569 @@
+/* cl_backend.c - the OpenCL backend: device state kept with the scene,
+ * uploads of what changed, the kernel program specialised to the scene, and
+ * frames rendered in bounded tiles (kernels/rt_render.cl).
+ *
+ * The kernels compute with the CPU oracle's header, built with no contraction
+ * and correctly rounded division and sqrt, so on a device that promises both
+ * (and fp64) the results are the oracle's bits. */
+#include <CL/cl.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "render_internal.h"
+#include "cl_device.h"
+
+extern const char rt_cl_source_rt_render[]; /* generated from kernels/ at build time */
+
+/* Tile sizes in pixels: adapted per frame so that one launch stays near
+ * RT_CL_TARGET_MS (a GPU watchdog fires after a few seconds; we keep far from
+ * it), within [RT_CL_TILE_MIN, RT_CL_TILE_MAX]. */
+#define RT_CL_TILE_MIN   1024u
+#define RT_CL_TILE_MAX   (1u << 18)
+#define RT_CL_TILE_FIRST 16384u
+#define RT_CL_TARGET_MS  50.0
+
+static rt_status fail(char *msg, size_t size, rt_status st, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+static rt_status fail(char *msg, size_t size, rt_status st, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, size, fmt, ap);
+    va_end(ap);
+    return st;
+}
+
+/* ---- device state ------------------------------------------------------- */
+
+enum {
+    B_HDR,
+    B_NODES,
+    B_TRIS,
+    B_TRI_IDS,
+    B_NORMALS,
+    B_TRI_MATS,
+    B_INST,
+    B_INST_IDS,
+    B_MATS,
+    B_LIGHTS,
+    B_RAYS,
+    B_HITS,
+    B_COUNTERS,
+    B_FB,
+    B_COUNT
+};
+static const char *const buffer_names[B_COUNT] = {
+    "header",   "nodes",     "tris",   "tri_ids", "tri_normals", "tri_mats", "instances",
+    "inst_ids", "materials", "lights", "rays",    "hits",        "counters", "framebuffer"};
+
+typedef struct cl_state {
+    rt_cl_device_info dev;
+    char selector[128]; /* the --device text this state was made for */
+    cl_context ctx;
+    cl_command_queue queue;
+    cl_program program;
+    char options[512]; /* the program's build options */
+    char defines[192]; /* the specialisation part of options */
+    cl_kernel k_camera, k_trace, k_shade;
+    cl_mem buf[B_COUNT];
+    size_t cap[B_COUNT];
+    /* What the device holds: the mesh part (signature) and the scene version. */
+    uint32_t *mesh_sig;
+    size_t mesh_sig_len;
+    int uploaded;
+    uint32_t uploaded_version;
+    uint32_t tile;
+} cl_state;
+
+static void state_free(void *p) {
+    cl_state *s = p;
+    if (!s) return;
+    for (int i = 0; i < B_COUNT; i++)
+        if (s->buf[i]) clReleaseMemObject(s->buf[i]);
+    if (s->k_camera) clReleaseKernel(s->k_camera);
+    if (s->k_trace) clReleaseKernel(s->k_trace);
+    if (s->k_shade) clReleaseKernel(s->k_shade);
+    if (s->program) clReleaseProgram(s->program);
+    if (s->queue) clReleaseCommandQueue(s->queue);
+    if (s->ctx) clReleaseContext(s->ctx);
+    free(s->mesh_sig);
+    free(s);
+}
+
+/* The state for the selected device, made (or remade for another device). */
+static rt_status get_state(const rt_prepared *prep, const char *selector, cl_state **out, char *msg,
+                           size_t size) {
+    cl_state *s = *prep->backend_state;
+    const char *sel = selector ? selector : "";
+    if (s && *prep->backend_state_free == state_free && strcmp(s->selector, sel) == 0) {
+        *out = s;
+        return RT_OK;
+    }
+    if (s && *prep->backend_state_free) (*prep->backend_state_free)(s);
+    *prep->backend_state = NULL;
+    *prep->backend_state_free = NULL;
+
+    rt_cl_device_info *devs;
+    int count;
+    rt_status st = rt_cl_devices(&devs, &count, msg, size);
+    if (st != RT_OK) return st;
+    int pick = rt_cl_select(devs, count, sel, msg, size);
+    if (pick < 0) {
+        free(devs);
+        return RT_ERROR_INVALID_ARGUMENT;
+    }
+    s = calloc(1, sizeof *s);
+    if (!s) {
+        free(devs);
+        return fail(msg, size, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    }
+    s->dev = devs[pick];
+    free(devs);
+    snprintf(s->selector, sizeof s->selector, "%s", sel);
+    s->tile = RT_CL_TILE_FIRST;
+    cl_device_id d = s->dev.device_id;
+    cl_context_properties props[] = {CL_CONTEXT_PLATFORM, (cl_context_properties)s->dev.platform_id,
+                                     0};
+    cl_int err;
+    s->ctx = clCreateContext(props, 1, &d, NULL, NULL, &err);
+    if (!s->ctx) {
+        state_free(s);
+        return fail(msg, size, RT_ERROR_BACKEND, "OpenCL context on '%s': %s", s->dev.name,
+                    rt_cl_error_name(err));
+    }
+    s->queue = clCreateCommandQueue(s->ctx, d, CL_QUEUE_PROFILING_ENABLE, &err);
+    if (!s->queue) {
+        fail(msg, size, RT_ERROR_BACKEND, "OpenCL queue on '%s': %s", s->dev.name,
+             rt_cl_error_name(err));
+        state_free(s);
+        return RT_ERROR_BACKEND;
+    }
+    *prep->backend_state = s;
+    *prep->backend_state_free = state_free;
+    *out = s;
+    return RT_OK;
+}
+
+/* ---- the program -------------------------------------------------------- */
+
+/* The -D switches for the scene: its header flags (secondary rays, single
+ * identity instance, normals, per-triangle materials) and triangle test, so
+ * the compiler drops what the scene does not use. */
+static void scene_defines(const rt_flat *f, char *out, size_t size) {
+    uint32_t flags = f->hdr.flags;
+    uint32_t inst_set = (flags & RT_SCENE_SINGLE) ? RT_INST_IDENTITY : 0u;
+    uint32_t inst_mask = RT_INST_IDENTITY | ((flags & RT_SCENE_NORMALS) ? RT_INST_NORMALS : 0u);
+    snprintf(out, size,
+             "-DRT_STATIC_FLAGS=%uu -DRT_STATIC_INST_SET=%uu -DRT_STATIC_INST_MASK=%uu "
+             "-DRT_STATIC_TRI_METHOD=%uu",
+             flags, inst_set, inst_mask, f->hdr.tri_method);
+}
+
+static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms, char *msg,
+                               size_t size) {
+    char defines[192], options[512];
+    scene_defines(f, defines, sizeof defines);
+    /* No -cl-mad-enable, no -cl-fast-relaxed-math: they change results. */
+    snprintf(options, sizeof options, "%s%s",
+             s->dev.cr_div_sqrt ? "-cl-fp32-correctly-rounded-divide-sqrt " : "", defines);
+    if (s->program && strcmp(options, s->options) == 0) return RT_OK;
+    if (s->k_camera) clReleaseKernel(s->k_camera);
+    if (s->k_trace) clReleaseKernel(s->k_trace);
+    if (s->k_shade) clReleaseKernel(s->k_shade);
+    if (s->program) clReleaseProgram(s->program);
+    s->k_camera = s->k_trace = s->k_shade = NULL;
+    s->program = NULL;
+    double t0 = rt_now_ms();
+    const char *src = rt_cl_source_rt_render;
+    cl_int err;
+    s->program = clCreateProgramWithSource(s->ctx, 1, &src, NULL, &err);
+    if (!s->program)
+        return fail(msg, size, RT_ERROR_BACKEND, "OpenCL program: %s", rt_cl_error_name(err));
+    cl_device_id d = s->dev.device_id;
+    err = clBuildProgram(s->program, 1, &d, options, NULL, NULL);
+    if (err != CL_SUCCESS) {
+        char log[900] = "";
+        size_t n = 0;
+        clGetProgramBuildInfo(s->program, d, CL_PROGRAM_BUILD_LOG, sizeof log - 1, log, &n);
+        if (n == 0) clGetProgramBuildInfo(s->program, d, CL_PROGRAM_BUILD_LOG, 0, NULL, &n);
+        log[sizeof log - 1] = 0;
+        clReleaseProgram(s->program);
+        s->program = NULL;
+        return fail(msg, size, RT_ERROR_BACKEND,
+                    "OpenCL kernel build failed on '%s' (%s; options: %s); build log%s:\n%s",
+                    s->dev.name, rt_cl_error_name(err), options,
+                    n > sizeof log - 1 ? " (truncated)" : "", log);
+    }
+    s->k_camera = clCreateKernel(s->program, "rt_k_camera", &err);
+    if (s->k_camera) s->k_trace = clCreateKernel(s->program, "rt_k_trace", &err);
+    if (s->k_trace) s->k_shade = clCreateKernel(s->program, "rt_k_shade", &err);
+    if (!s->k_shade)
+        return fail(msg, size, RT_ERROR_BACKEND, "OpenCL kernels: %s", rt_cl_error_name(err));
+    snprintf(s->options, sizeof s->options, "%s", options);
+    snprintf(s->defines, sizeof s->defines, "%s", defines);
+    *compile_ms += rt_now_ms() - t0;
+    return RT_OK;
+}
+
+/* ---- buffers and uploads ------------------------------------------------ */
+
+static int out_of_memory(cl_int err) {
+    return err == CL_MEM_OBJECT_ALLOCATION_FAILURE || err == CL_OUT_OF_RESOURCES ||
+           err == CL_OUT_OF_HOST_MEMORY || err == CL_INVALID_BUFFER_SIZE;
+}
+
+/* Makes buffer b hold at least bytes (never 0: empty arrays get a stub).
+ * Returns 1 when it was (re)made, so its contents are gone. */
+static rt_status ensure(cl_state *s, int b, size_t bytes, int *remade, char *msg, size_t size) {
+    if (bytes < 16) bytes = 16;
+    *remade = 0;
+    if (s->buf[b] && s->cap[b] >= bytes) return RT_OK;
+    if (s->buf[b]) clReleaseMemObject(s->buf[b]);
+    s->buf[b] = NULL;
+    s->cap[b] = 0;
+    if ((uint64_t)bytes > s->dev.max_alloc)
+        return fail(msg, size, RT_ERROR_OUT_OF_MEMORY,
+                    "out of device memory: buffer '%s' needs %zu bytes, more than the largest "
+                    "allocation of '%s' (%llu bytes)",
+                    buffer_names[b], bytes, s->dev.name, (unsigned long long)s->dev.max_alloc);
+    cl_int err;
+    s->buf[b] = clCreateBuffer(s->ctx, CL_MEM_READ_WRITE, bytes, NULL, &err);
+    if (!s->buf[b])
+        return fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                    "%s: buffer '%s' of %zu bytes on '%s' (%s)",
+                    out_of_memory(err) ? "out of device memory" : "cannot allocate",
+                    buffer_names[b], bytes, s->dev.name, rt_cl_error_name(err));
+    s->cap[b] = bytes;
+    *remade = 1;
+    return RT_OK;
+}
+
+static rt_status write_buf(cl_state *s, int b, size_t offset, const void *data, size_t bytes,
+                           uint64_t *uploaded, char *msg, size_t size) {
+    if (!bytes) return RT_OK;
+    cl_int err =
+        clEnqueueWriteBuffer(s->queue, s->buf[b], CL_FALSE, offset, bytes, data, 0, NULL, NULL);
+    if (err != CL_SUCCESS)
+        return fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                    "%s: writing buffer '%s' (%zu bytes) on '%s' (%s)",
+                    out_of_memory(err) ? "out of device memory" : "upload failed", buffer_names[b],
+                    bytes, s->dev.name, rt_cl_error_name(err));
+    *uploaded += bytes;
+    return RT_OK;
+}
+
+/* What identifies the mesh part of the layout (mesh BVH nodes and triangle
+ * arrays): it is unchanged while no mesh was rebuilt and every instance
+ * still points at the same place. */
+static uint32_t *mesh_signature(const rt_prepared *prep, size_t *len) {
+    const rt_flat *f = prep->flat;
+    size_t n = 5 + 3 * (size_t)f->hdr.instance_count;
+    uint32_t *sig = malloc(n * sizeof *sig);
+    if (!sig) return NULL;
+    uint32_t mesh_nodes = (f->hdr.flags & RT_SCENE_SINGLE) ? f->node_count : f->hdr.top_root;
+    sig[0] = prep->mesh_generation;
+    sig[1] = mesh_nodes;
+    sig[2] = f->tri_count;
+    sig[3] = f->hdr.flags & (RT_SCENE_NORMALS | RT_SCENE_TRI_MATS);
+    sig[4] = f->hdr.instance_count;
+    for (uint32_t i = 0; i < f->hdr.instance_count; i++) {
+        sig[5 + 3 * i] = f->instances[i].mesh;
+        sig[6 + 3 * i] = f->instances[i].root;
+        sig[7 + 3 * i] = f->instances[i].tri_first;
+    }
+    *len = n;
+    return sig;
+}
+
+/* Uploads the mesh part when it changed, and the per-frame part (object BVH,
+ * instances, header with the camera, materials, lights) when the scene
+ * changed since the last upload. */
+static rt_status upload_scene(cl_state *s, const rt_prepared *prep, uint64_t *bytes, double *ms,
+                              char *msg, size_t size) {
+    const rt_flat *f = prep->flat;
+    double t0 = rt_now_ms();
+    size_t sig_len;
+    uint32_t *sig = mesh_signature(prep, &sig_len);
+    if (!sig) return fail(msg, size, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    int mesh_same = s->uploaded && s->mesh_sig && s->mesh_sig_len == sig_len &&
+                    memcmp(s->mesh_sig, sig, sig_len * sizeof *sig) == 0;
+    if (mesh_same && s->uploaded_version == prep->flat_version) {
+        free(sig);
+        return RT_OK;
+    }
+    uint32_t mesh_nodes = sig[1];
+    size_t tri_n = f->tri_count;
+    struct {
+        int b;
+        const void *data;
+        size_t bytes;
+        int mesh; /* part of the mesh data */
+    } arrays[] = {
+        {B_HDR, &f->hdr, sizeof f->hdr, 0},
+        {B_NODES, f->nodes, sizeof(rt_node) * f->node_count, 0},
+        {B_TRIS, f->tris, sizeof(rt_tri) * tri_n, 1},
+        {B_TRI_IDS, f->tri_ids, sizeof(uint32_t) * tri_n, 1},
+        {B_NORMALS, f->tri_normals, f->tri_normals ? 9 * sizeof(float) * tri_n : 0, 1},
+        {B_TRI_MATS, f->tri_mats, f->tri_mats ? sizeof(uint32_t) * tri_n : 0, 1},
+        {B_INST, f->instances, sizeof(rt_instance) * f->hdr.instance_count, 0},
+        {B_INST_IDS, f->inst_ids, sizeof(uint32_t) * f->inst_id_count, 0},
+        {B_MATS, f->materials, sizeof(rt_material_d) * f->hdr.material_count, 0},
+        {B_LIGHTS, f->lights, sizeof(rt_light_d) * f->hdr.light_count, 0},
+    };
+    rt_status st = RT_OK;
+    for (size_t i = 0; i < sizeof arrays / sizeof arrays[0] && st == RT_OK; i++) {
+        int remade;
+        st = ensure(s, arrays[i].b, arrays[i].bytes, &remade, msg, size);
+        if (st != RT_OK) break;
+        int all = remade || !mesh_same;
+        if (arrays[i].b == B_NODES) {
+            /* Mesh BVH nodes first, then the object BVH: only the latter moves
+             * with the objects. */
+            size_t from = all ? 0 : sizeof(rt_node) * mesh_nodes;
+            st = write_buf(s, B_NODES, from, (const char *)f->nodes + from, arrays[i].bytes - from,
+                           bytes, msg, size);
+        } else if (!arrays[i].mesh || all) {
+            st = write_buf(s, arrays[i].b, 0, arrays[i].data, arrays[i].bytes, bytes, msg, size);
+        }
+    }
+    if (st == RT_OK) {
+        cl_int err = clFinish(s->queue);
+        if (err != CL_SUCCESS)
+            st = fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                      "upload to '%s' failed (%s)", s->dev.name, rt_cl_error_name(err));
+    }
+    if (st != RT_OK) {
+        free(sig);
+        s->uploaded = 0;
+        return st;
+    }
+    free(s->mesh_sig);
+    s->mesh_sig = sig;
+    s->mesh_sig_len = sig_len;
+    s->uploaded = 1;
+    s->uploaded_version = prep->flat_version;
+    *ms += rt_now_ms() - t0;
+    return RT_OK;
+}
+
+/* ---- launches --------------------------------------------------------------- */
+
+static rt_status set_arg(cl_kernel k, cl_uint i, size_t n, const void *v, char *msg, size_t size) {
+    cl_int err = clSetKernelArg(k, i, n, v);
+    if (err != CL_SUCCESS)
+        return fail(msg, size, RT_ERROR_BACKEND, "kernel argument %u: %s", i,
+                    rt_cl_error_name(err));
+    return RT_OK;
+}
+
+/* The ten scene arrays, arguments 0..9 of rt_k_trace and rt_k_shade. */
+static rt_status set_view(cl_state *s, cl_kernel k, char *msg, size_t size) {
+    for (int b = B_HDR; b <= B_LIGHTS; b++) {
+        rt_status st = set_arg(k, (cl_uint)b, sizeof(cl_mem), &s->buf[b], msg, size);
+        if (st != RT_OK) return st;
+    }
+    return RT_OK;
+}
+
+/* Enqueues k over count items and adds its profiled time to *ms. */
+static rt_status launch(cl_state *s, cl_kernel k, uint32_t count, const char *name, double *ms,
+                        char *msg, size_t size) {
+    /* A fixed work-group size: PoCL compiles a kernel per size at first use,
+     * so letting the runtime pick one per tile size costs compiles. */
+    size_t local = 64, wg = 0;
+    if (clGetKernelWorkGroupInfo(k, s->dev.device_id, CL_KERNEL_WORK_GROUP_SIZE, sizeof wg, &wg,
+                                 NULL) == CL_SUCCESS &&
+        wg > 0 && wg < local)
+        local = wg;
+    size_t global = ((size_t)count + local - 1) / local * local;
+    cl_event ev;
+    cl_int err = clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, &local, 0, NULL, &ev);
+    if (err == CL_SUCCESS) err = clWaitForEvents(1, &ev);
+    if (err != CL_SUCCESS)
+        return fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                    "kernel %s on '%s' (%u items): %s", name, s->dev.name, count,
+                    rt_cl_error_name(err));
+    cl_ulong start = 0, end = 0;
+    if (clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_START, sizeof start, &start, NULL) ==
+            CL_SUCCESS &&
+        clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_END, sizeof end, &end, NULL) ==
+            CL_SUCCESS &&
+        end >= start)
+        *ms += (double)(end - start) * 1e-6;
+    clReleaseEvent(ev);
+    return RT_OK;
+}
+
+static rt_status read_buf(cl_state *s, int b, size_t bytes, void *dst, char *msg, size_t size) {
+    cl_int err = clEnqueueReadBuffer(s->queue, s->buf[b], CL_TRUE, 0, bytes, dst, 0, NULL, NULL);
+    if (err != CL_SUCCESS)
+        return fail(msg, size, RT_ERROR_BACKEND, "reading buffer '%s' (%zu bytes) from '%s': %s",
+                    buffer_names[b], bytes, s->dev.name, rt_cl_error_name(err));
+    return RT_OK;
+}
+
+/* Per-ray buffers for tiles of up to 'tile' rays. */
+static rt_status ensure_ray_buffers(cl_state *s, uint32_t tile, char *msg, size_t size) {
+    int remade;
+    rt_status st = ensure(s, B_RAYS, sizeof(rt_ray_d) * tile, &remade, msg, size);
+    if (st == RT_OK) st = ensure(s, B_HITS, sizeof(rt_hit_d) * tile, &remade, msg, size);
+    if (st == RT_OK) st = ensure(s, B_COUNTERS, sizeof(rt_counters) * tile, &remade, msg, size);
+    return st;
+}
+
+/* The next tile size: halve above the target time, double well below it. */
+static uint32_t next_tile(uint32_t tile, double ms) {
+    if (ms > RT_CL_TARGET_MS && tile > RT_CL_TILE_MIN) return tile / 2;
+    if (ms < RT_CL_TARGET_MS / 4 && tile < RT_CL_TILE_MAX) return tile * 2;
+    return tile;
+}
+
+static rt_status prepare(rt_scene *scene, const rt_prepared *prep, const char *device,
+                         cl_state **out, rt_render_stats *stats, char *msg, size_t size) {
+    rt_status st = get_state(prep, device, out, msg, size);
+    if (st == RT_OK) st = build_program(*out, prep->flat, &stats->compile_ms, msg, size);
+    if (st == RT_OK)
+        st = upload_scene(*out, prep, &stats->upload_bytes, &stats->upload_ms, msg, size);
+    if (st == RT_OK) {
+        snprintf(stats->device, sizeof stats->device, "%s", (*out)->dev.name);
+        snprintf(stats->specialisation, sizeof stats->specialisation, "%s", (*out)->defines);
+        stats->exact = (*out)->dev.exact;
+    }
+    (void)scene;
+    return st;
+}
+
+static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char *device,
+                           const rt_render_options *opt, rt_framebuffer *fb,
+                           rt_render_stats *stats) {
+    char msg[1000] = "";
+    cl_state *s;
+    rt_status st = prepare(scene, prep, device, &s, stats, msg, sizeof msg);
+    if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
+    const rt_scene_header *h = &prep->flat->hdr;
+    uint32_t pixels = (uint32_t)h->width * (uint32_t)h->height;
+    size_t fb_bytes = sizeof(float) * (size_t)pixels * (size_t)fb->channels;
+    int remade;
+    st = ensure(s, B_FB, fb_bytes, &remade, msg, sizeof msg);
+    if (st == RT_OK) st = ensure_ray_buffers(s, RT_CL_TILE_MAX, msg, sizeof msg);
+    if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
+
+    cl_int aov = (cl_int)opt->aov, channels = fb->channels, any = 0;
+    st = set_view(s, s->k_trace, msg, sizeof msg);
+    if (st == RT_OK) st = set_view(s, s->k_shade, msg, sizeof msg);
+    cl_kernel kc = s->k_camera, kt = s->k_trace, ks = s->k_shade;
+    if (st == RT_OK) st = set_arg(kc, 0, sizeof(cl_mem), &s->buf[B_HDR], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(kc, 3, sizeof(cl_mem), &s->buf[B_RAYS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(kt, 11, sizeof any, &any, msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(kt, 12, sizeof(cl_mem), &s->buf[B_RAYS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(kt, 13, sizeof(cl_mem), &s->buf[B_HITS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(kt, 14, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(ks, 12, sizeof aov, &aov, msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(ks, 13, sizeof channels, &channels, msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(ks, 14, sizeof(cl_mem), &s->buf[B_RAYS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(ks, 15, sizeof(cl_mem), &s->buf[B_HITS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(ks, 16, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(ks, 17, sizeof(cl_mem), &s->buf[B_FB], msg, sizeof msg);
+    if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
+
+    rt_counters *counts = NULL;
+    if (opt->stats) {
+        counts = malloc(sizeof(rt_counters) * RT_CL_TILE_MAX);
+        if (!counts) return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    }
+    double t_render = rt_now_ms();
+    for (uint32_t first = 0; first < pixels && st == RT_OK;) {
+        cl_uint n = pixels - first < s->tile ? pixels - first : s->tile;
+        cl_uint f = first;
+        double before = stats->kernel_ms[0] + stats->kernel_ms[1] + stats->kernel_ms[2];
+        st = set_arg(kc, 1, sizeof f, &f, msg, sizeof msg);
+        if (st == RT_OK) st = set_arg(kc, 2, sizeof n, &n, msg, sizeof msg);
+        if (st == RT_OK) st = set_arg(kt, 10, sizeof n, &n, msg, sizeof msg);
+        if (st == RT_OK) st = set_arg(ks, 10, sizeof f, &f, msg, sizeof msg);
+        if (st == RT_OK) st = set_arg(ks, 11, sizeof n, &n, msg, sizeof msg);
+        if (st == RT_OK)
+            st = launch(s, kc, n, "rt_k_camera", &stats->kernel_ms[0], msg, sizeof msg);
+        if (st == RT_OK) st = launch(s, kt, n, "rt_k_trace", &stats->kernel_ms[1], msg, sizeof msg);
+        if (st == RT_OK) st = launch(s, ks, n, "rt_k_shade", &stats->kernel_ms[2], msg, sizeof msg);
+        if (st != RT_OK) break;
+        stats->launches += 3;
+        if (n > stats->tile_pixels) stats->tile_pixels = n;
+        if (counts) {
+            double t0 = rt_now_ms();
+            st = read_buf(s, B_COUNTERS, sizeof(rt_counters) * n, counts, msg, sizeof msg);
+            stats->download_ms += rt_now_ms() - t0;
+            for (cl_uint i = 0; i < n && st == RT_OK; i++) {
+                stats->rays += counts[i].rays;
+                stats->box_tests += counts[i].box_tests;
+                stats->tri_tests += counts[i].tri_tests;
+            }
+        }
+        double tile_ms = stats->kernel_ms[0] + stats->kernel_ms[1] + stats->kernel_ms[2] - before;
+        first += n;
+        s->tile = next_tile(s->tile, tile_ms);
+        if (opt->progress) opt->progress(opt->progress_user, (double)first / pixels);
+    }
+    free(counts);
+    if (st == RT_OK) {
+        double t0 = rt_now_ms();
+        st = read_buf(s, B_FB, fb_bytes, fb->pixels, msg, sizeof msg);
+        stats->download_ms += rt_now_ms() - t0;
+    }
+    if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
+    /* Wall time of the launches and their read-backs: comparable with the
+     * CPU backends' render_ms. */
+    stats->render_ms = rt_now_ms() - t_render;
+    stats->primary_rays = pixels;
+    stats->threads = (int)s->dev.compute_units;
+    return RT_OK;
+}
+
+static rt_status cl_trace(rt_scene *scene, const rt_prepared *prep, const char *device,
+                          const rt_ray_d *rays, size_t count, rt_hit_d *hits, int any_hit) {
+    char msg[1000] = "";
+    rt_render_stats stats;
+    memset(&stats, 0, sizeof stats);
+    cl_state *s = NULL;
+    rt_status st = prepare(scene, prep, device, &s, &stats, msg, sizeof msg);
+    if (st == RT_OK) st = ensure_ray_buffers(s, RT_CL_TILE_MAX, msg, sizeof msg);
+    cl_kernel k = s ? s->k_trace : NULL;
+    cl_int any = any_hit ? 1 : 0;
+    if (st == RT_OK) st = set_view(s, k, msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(k, 11, sizeof any, &any, msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(k, 12, sizeof(cl_mem), &s->buf[B_RAYS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(k, 13, sizeof(cl_mem), &s->buf[B_HITS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(k, 14, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, sizeof msg);
+    for (size_t first = 0; first < count && st == RT_OK;) {
+        cl_uint n = (cl_uint)(count - first < s->tile ? count - first : s->tile);
+        uint64_t ignored = 0;
+        double ms = 0.0;
+        st = write_buf(s, B_RAYS, 0, rays + first, sizeof(rt_ray_d) * n, &ignored, msg, sizeof msg);
+        if (st == RT_OK) st = set_arg(k, 10, sizeof n, &n, msg, sizeof msg);
+        if (st == RT_OK) st = launch(s, k, n, "rt_k_trace", &ms, msg, sizeof msg);
+        if (st == RT_OK) {
+            cl_int err = clEnqueueReadBuffer(s->queue, s->buf[B_HITS], CL_TRUE, 0,
+                                             sizeof(rt_hit_d) * n, hits + first, 0, NULL, NULL);
+            if (err != CL_SUCCESS)
+                st = fail(msg, sizeof msg, RT_ERROR_BACKEND, "reading hits: %s",
+                          rt_cl_error_name(err));
+        }
+        first += n;
+        s->tile = next_tile(s->tile, ms);
+    }
+    if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
+    return RT_OK;
+}
+
+static int cl_available(char *msg, size_t size) {
+    rt_cl_device_info *devs;
+    int count;
+    if (rt_cl_devices(&devs, &count, msg, size) != RT_OK) return 0;
+    free(devs);
+    return 1;
+}
+
+const rt_backend_ops rt_opencl_backend = {"opencl", cl_render, cl_trace, cl_available, state_free};

@@ -1,0 +1,49 @@
+/* cl_device.h - OpenCL platforms and devices (host/cl_device.c): listing,
+ * capabilities that decide bit-exactness with the CPU oracle, and selection
+ * by index or name. Compiled only when the build found the OpenCL ICD loader
+ * (RT_HAVE_OPENCL). No OpenCL types here, so callers need no CL headers. */
+#ifndef RT_CL_DEVICE_H
+#define RT_CL_DEVICE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "rt.h"
+
+typedef struct rt_cl_device_info {
+    int index;          /* over all platforms: the number --device takes */
+    int platform_index; /* the platform's position in the ICD loader's list */
+    char platform[128];
+    char name[128];
+    char vendor[128];
+    char version[128]; /* "OpenCL 3.0 ..." */
+    char driver[64];
+    uint32_t compute_units;
+    uint64_t global_mem; /* bytes */
+    uint64_t max_alloc;  /* the largest single buffer, bytes */
+    int cr_div_sqrt;     /* CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT for float */
+    int fma;             /* CL_FP_FMA for float (hardware FMA; kernels do not contract) */
+    int fp64;            /* cl_khr_fp64: the watertight test's exact re-check */
+    int exact;           /* the oracle's bits are promised: cr_div_sqrt && fp64 */
+    void *platform_id;   /* cl_platform_id */
+    void *device_id;     /* cl_device_id */
+} rt_cl_device_info;
+
+/* Every device of every platform. RT_ERROR_UNSUPPORTED with a message when
+ * there is no platform or no device; *out is then NULL. free() the list. */
+rt_status rt_cl_devices(rt_cl_device_info **out, int *count, char *msg, size_t msg_size);
+
+/* Picks a device: selector NULL or "" is the first device (an exact one when
+ * there is one), a number is an index, anything else the first device whose
+ * name contains it (case-insensitive). Returns the position in devs, or -1
+ * with a message. */
+int rt_cl_select(const rt_cl_device_info *devs, int count, const char *selector, char *msg,
+                 size_t msg_size);
+
+/* Why a device does or does not promise the oracle's bits, one line. */
+const char *rt_cl_exactness_note(const rt_cl_device_info *d);
+
+/* A name for an OpenCL error code ("CL_OUT_OF_RESOURCES"). */
+const char *rt_cl_error_name(int code);
+
+#endif /* RT_CL_DEVICE_H */

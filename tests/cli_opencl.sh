@@ -1,0 +1,49 @@
+# cli_opencl.sh - 'rtcl devices', render and trace with --backend opencl
+# (byte-identical to the CPU oracle on PoCL), --device errors, and what
+# happens without any OpenCL platform: explicit opencl fails with status 2 and
+# a reason, auto falls back to the CPU with a notice.
+source "$RT_SOURCE_DIR/tests/shell_check.sh"
+
+if ! "$RTCL" devices >"$tmp/devices.txt" 2>&1; then
+    if grep -q "no OpenCL backend" "$tmp/devices.txt"; then
+        echo "skipped: this build has no OpenCL backend"; exit 77
+    fi
+    if grep -q -E "no OpenCL (platform|device)" "$tmp/devices.txt"; then
+        echo "skipped: no OpenCL device: $(cat "$tmp/devices.txt")"; exit 77
+    fi
+fi
+expect 0 'device 0: .*' -- "$RTCL" devices
+expect 0 'exact +(yes|no): ' -- "$RTCL" devices --device 0
+expect 2 'no OpenCL device 99' -- "$RTCL" devices --device 99
+expect 2 "no OpenCL device named like 'no-such-gpu'" -- "$RTCL" devices --device no-such-gpu
+
+# Images: the PNG files are byte-identical.
+for scene in builtin:cornell builtin:keyframes; do
+    expect 0 'wrote' -- "$RTCL" render "$scene" --width 160 --height 90 -o "$tmp/cpu.png"
+    expect 0 'specialisation +-DRT_STATIC_FLAGS' -- "$RTCL" render "$scene" --width 160 \
+        --height 90 --backend opencl --device 0 --stats -o "$tmp/cl.png"
+    checks=$((checks + 1))
+    cmp -s "$tmp/cpu.png" "$tmp/cl.png" || { echo "FAIL: $scene: opencl PNG differs"; fails=$((fails + 1)); }
+done
+expect 2 'no OpenCL device 99' -- "$RTCL" render builtin:cornell --backend opencl --device 99 -o "$tmp/x.png"
+expect 2 '--device applies to --backend opencl or auto' -- "$RTCL" render builtin:cornell --device 0 -o "$tmp/x.png"
+
+# Ray queries: the same hit lines, closest and any hit.
+awk 'BEGIN { srand(5); for (i = 0; i < 3000; i++) printf "%f %f %f %f %f %f 0 inf\n",
+     rand() * 4 - 2, rand() * 3, rand() * 6 - 1, rand() - 0.5, rand() - 0.5, rand() - 0.5 }' >"$tmp/rays.txt"
+for any in "" --any-hit; do
+    expect 0 '' -- "$RTCL" trace builtin:cornell --rays "$tmp/rays.txt" --out "$tmp/h_cpu.txt" $any
+    expect 0 '' -- "$RTCL" trace builtin:cornell --rays "$tmp/rays.txt" --out "$tmp/h_cl.txt" --backend opencl $any
+    checks=$((checks + 1))
+    cmp -s "$tmp/h_cpu.txt" "$tmp/h_cl.txt" || { echo "FAIL: trace $any: opencl hits differ"; fails=$((fails + 1)); }
+done
+
+# No platform at all (the ICD loader reads no vendor file).
+mkdir "$tmp/no_vendors"
+export OCL_ICD_VENDORS="$tmp/no_vendors"
+expect 2 'no OpenCL platform' -- "$RTCL" devices
+expect 2 'opencl: no OpenCL platform' -- "$RTCL" render builtin:cornell --width 32 --height 18 --backend opencl -o "$tmp/x.png"
+expect 2 'opencl: no OpenCL platform' -- "$RTCL" trace builtin:cornell --rays "$tmp/rays.txt" --out "$tmp/x.txt" --backend opencl
+expect 0 'notice: OpenCL not available \(no OpenCL platform' -- "$RTCL" render builtin:cornell --width 32 --height 18 --backend auto -o "$tmp/x.png"
+unset OCL_ICD_VENDORS
+finish

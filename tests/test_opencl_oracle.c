@@ -1,0 +1,218 @@
+/* test_opencl_oracle.c - the OpenCL backend against the CPU oracle: on every
+ * built-in scene, the hit buffers of ray queries (t, u, v as bits, prim,
+ * inst; closest and any hit) and the rendered images (float framebuffer of
+ * the image and of every AOV, and the 8-bit PNG) are identical. The first
+ * difference is reported with both values. Also: uploads on later frames are
+ * only what changed, and a bad --device is an error. Skips only when there is
+ * no OpenCL device (or the build has no OpenCL). */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "rt.h"
+#include "scene_builtin.h"
+#ifdef RT_HAVE_OPENCL
+#include "cl_device.h"
+#include "image.h"
+#include "oracle_util.h"
+#include "render_internal.h"
+
+/* oracle_util.h's other helpers are for the brute-force tests. */
+static void unused_helpers(void) {
+    (void)oracle_same_hit;
+    (void)oracle_brute_force;
+}
+
+static const char *const aov_names[] = {"image",  "depth",    "primid",  "instid",
+                                        "normal", "boxtests", "tritests"};
+
+/* Renders with a backend at a small size; returns the status. */
+static rt_status render(rt_scene *s, const char *backend, rt_aov aov, rt_framebuffer *fb,
+                        rt_render_stats *stats) {
+    rt_render_options o = rt_render_options_default();
+    o.backend = backend;
+    o.aov = aov;
+    o.stats = stats;
+    return rt_render(s, &o, fb);
+}
+
+/* Bitwise comparison of two framebuffers; reports the first difference. */
+static void same_pixels(const char *scene, const char *what, const rt_framebuffer *a,
+                        const rt_framebuffer *b) {
+    CHECK_MSG(a->width == b->width && a->height == b->height && a->channels == b->channels,
+              "%s %s: sizes differ", scene, what);
+    size_t n = (size_t)a->width * a->height * a->channels;
+    for (size_t i = 0; i < n; i++) {
+        if (memcmp(&a->pixels[i], &b->pixels[i], sizeof(float)) != 0) {
+            size_t px = i / (size_t)a->channels;
+            CHECK_MSG(
+                0, "%s %s: first difference at pixel (%zu, %zu) channel %zu: cpu %.9g opencl %.9g",
+                scene, what, px % (size_t)a->width, px / (size_t)a->width, i % (size_t)a->channels,
+                (double)a->pixels[i], (double)b->pixels[i]);
+            return;
+        }
+    }
+    test_checks++;
+}
+
+static int same_file(const char *a, const char *b) {
+    FILE *fa = fopen(a, "rb"), *fb = fopen(b, "rb");
+    int same = fa && fb;
+    while (same) {
+        int ca = fgetc(fa), cb = fgetc(fb);
+        if (ca != cb) same = 0;
+        if (ca == EOF || cb == EOF) break;
+    }
+    if (fa) fclose(fa);
+    if (fb) fclose(fb);
+    return same;
+}
+
+static void check_images(const char *name, rt_scene *s) {
+    for (int aov = RT_AOV_NONE; aov <= RT_AOV_TRI_TESTS; aov++) {
+        rt_framebuffer cpu, cl;
+        rt_render_stats st;
+        CHECK(render(s, "cpu", (rt_aov)aov, &cpu, NULL) == RT_OK);
+        rt_status status = render(s, "opencl", (rt_aov)aov, &cl, &st);
+        CHECK_MSG(status == RT_OK, "%s: %s", name, rt_scene_error(s));
+        if (status != RT_OK) {
+            rt_framebuffer_free(&cpu);
+            continue;
+        }
+        CHECK(strcmp(st.backend, "opencl") == 0 && st.device[0] && st.exact);
+        CHECK(st.primary_rays == (uint64_t)cpu.width * (uint64_t)cpu.height);
+        same_pixels(name, aov_names[aov], &cpu, &cl);
+        if (aov == RT_AOV_NONE) { /* the 8-bit image too */
+            char pa[64], pb[64];
+            snprintf(pa, sizeof pa, "%s_cpu.png", name);
+            snprintf(pb, sizeof pb, "%s_cl.png", name);
+            char a[512], b[512];
+            snprintf(a, sizeof a, "%s", test_write_temp(pa, ""));
+            snprintf(b, sizeof b, "%s", test_write_temp(pb, ""));
+            rt_image ia = {cpu.width, cpu.height, 3, cpu.pixels};
+            rt_image ib = {cl.width, cl.height, 3, cl.pixels};
+            rt_error err;
+            CHECK(rt_image_write(a, &ia, &err) == RT_OK);
+            CHECK(rt_image_write(b, &ib, &err) == RT_OK);
+            CHECK_MSG(same_file(a, b), "%s: the 8-bit PNGs differ", name);
+        }
+        rt_framebuffer_free(&cpu);
+        rt_framebuffer_free(&cl);
+    }
+}
+
+static void check_hits(const char *name, rt_scene *s) {
+    rt_prepared prep;
+    CHECK(rt_render_prepare(s, 0, &prep) == RT_OK);
+    const rt_scene_header *h = &prep.flat->hdr;
+    float lo[3], hi[3];
+    CHECK(rt_scene_bounds(s, lo, hi));
+    enum { N = 20000 };
+    rt_ray *rays = malloc(sizeof *rays * N);
+    rt_hit *a = malloc(sizeof *a * N), *b = malloc(sizeof *b * N);
+    for (int i = 0; i < N; i++) {
+        rt_ray_d r;
+        oracle_ray(h, lo, hi, i, &r);
+        memcpy(rays[i].org, r.org, sizeof r.org);
+        memcpy(rays[i].dir, r.dir, sizeof r.dir);
+        rays[i].tmin = r.tmin;
+        rays[i].tmax = r.tmax;
+    }
+    for (int any = 0; any <= 1; any++) {
+        CHECK(rt_trace_rays(s, rays, N, a, any, "cpu") == RT_OK);
+        rt_status st = rt_trace_rays(s, rays, N, b, any, "opencl");
+        CHECK_MSG(st == RT_OK, "%s", rt_scene_error(s));
+        int hits = 0;
+        for (int i = 0; i < N && st == RT_OK; i++) {
+            hits += a[i].hit;
+            if (a[i].hit != b[i].hit || memcmp(&a[i].t, &b[i].t, 4) ||
+                memcmp(&a[i].u, &b[i].u, 4) || memcmp(&a[i].v, &b[i].v, 4) ||
+                a[i].prim != b[i].prim || a[i].inst != b[i].inst) {
+                CHECK_MSG(0,
+                          "%s %s ray %d: cpu hit %d t %.9g u %.9g v %.9g prim %u inst %u; opencl "
+                          "hit %d t %.9g u %.9g v %.9g prim %u inst %u",
+                          name, any ? "any-hit" : "closest", i, a[i].hit, (double)a[i].t,
+                          (double)a[i].u, (double)a[i].v, a[i].prim, a[i].inst, b[i].hit,
+                          (double)b[i].t, (double)b[i].u, (double)b[i].v, b[i].prim, b[i].inst);
+                break;
+            }
+        }
+        CHECK_MSG(hits > N / 10, "%s: only %d of %d rays hit: a weak test", name, hits, N);
+    }
+    free(rays);
+    free(a);
+    free(b);
+}
+
+/* Frame 2 uploads nothing; after moving an object only the per-frame part
+ * (object BVH, instances, header), and the image is still the oracle's. */
+static void check_uploads(void) {
+    rt_scene *s;
+    rt_error err;
+    CHECK(rt_scene_builtin("keyframes", &s, &err) == RT_OK);
+    rt_camera cam;
+    rt_camera_get(s, &cam);
+    cam.width = 96;
+    cam.height = 54;
+    CHECK(rt_camera_set(s, &cam) == RT_OK);
+    rt_framebuffer fb;
+    rt_render_stats first, again, moved;
+    CHECK(render(s, "opencl", RT_AOV_NONE, &fb, &first) == RT_OK);
+    rt_framebuffer_free(&fb);
+    CHECK(render(s, "opencl", RT_AOV_NONE, &fb, &again) == RT_OK);
+    rt_framebuffer_free(&fb);
+    CHECK_EQ_INT(again.upload_bytes, 0);
+    float m[16] = {1, 0, 0, 0.05f, 0, 1, 0, 0, 0, 0, 1, -0.1f, 0, 0, 0, 1};
+    CHECK(rt_object_transform(s, 0, m) == RT_OK);
+    CHECK(render(s, "opencl", RT_AOV_NONE, &fb, &moved) == RT_OK);
+    CHECK_MSG(moved.upload_bytes > 0 && moved.upload_bytes < first.upload_bytes,
+              "upload after a move: %llu bytes (first frame %llu)",
+              (unsigned long long)moved.upload_bytes, (unsigned long long)first.upload_bytes);
+    rt_framebuffer cpu;
+    CHECK(render(s, "cpu", RT_AOV_NONE, &cpu, NULL) == RT_OK);
+    same_pixels("keyframes (moved)", "image", &cpu, &fb);
+    rt_framebuffer_free(&fb);
+    rt_framebuffer_free(&cpu);
+    rt_scene_destroy(s);
+}
+#endif
+
+int main(void) {
+#ifndef RT_HAVE_OPENCL
+    test_skip("this build has no OpenCL backend (RT_OPENCL=OFF or no ICD loader)");
+#else
+    unused_helpers();
+    rt_cl_device_info *devs;
+    int count;
+    char msg[512];
+    if (rt_cl_devices(&devs, &count, msg, sizeof msg) != RT_OK) test_skip(msg);
+    free(devs);
+    for (int i = 0; rt_builtin_scene_names[i]; i++) {
+        const char *name = rt_builtin_scene_names[i];
+        rt_scene *s;
+        rt_error err;
+        CHECK(rt_scene_builtin(name, &s, &err) == RT_OK);
+        rt_camera cam;
+        rt_camera_get(s, &cam);
+        cam.width = 192; /* small: PoCL on a shared CPU */
+        cam.height = 108;
+        CHECK(rt_camera_set(s, &cam) == RT_OK);
+        check_images(name, s);
+        check_hits(name, s);
+        rt_scene_destroy(s);
+    }
+    check_uploads();
+    /* A device that does not exist is an error with a reason. */
+    rt_scene *s;
+    rt_error err;
+    CHECK(rt_scene_builtin("cornell", &s, &err) == RT_OK);
+    rt_framebuffer fb;
+    CHECK(render(s, "opencl:99", RT_AOV_NONE, &fb, NULL) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK_CONTAINS(rt_scene_error(s), "no OpenCL device 99");
+    rt_scene_destroy(s);
+    return TEST_END();
+#endif
+}
