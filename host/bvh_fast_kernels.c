@@ -223,11 +223,11 @@ static void bin_range_neon(const fast_ref *refs, uint32_t begin, uint32_t end,
                            const fast_binning *bn, fast_bins *bins) {
     const float32x4_t cmin = vld1q_f32(bn->cmin);
     const float32x4_t scale = vld1q_f32(bn->scale);
-    const int32x4_t last = vdupq_n_s32(bn->bins - 1);
+    const float32x4_t last = vdupq_n_f32((float)(bn->bins - 1));
     for (uint32_t i = begin; i < end; i++) {
         float32x4_t lo, hi;
         float32x4_t c = centroid_neon(&refs[i], &lo, &hi);
-        int32x4_t k = vminq_s32(vcvtq_s32_f32(vmulq_f32(vsubq_f32(c, cmin), scale)), last);
+        int32x4_t k = vcvtq_s32_f32(vminq_f32(vmulq_f32(vsubq_f32(c, cmin), scale), last));
         int32_t kk[4];
         vst1q_s32(kk, k);
         for (int a = 0; a < 3; a++) {
@@ -242,18 +242,17 @@ static void bin_range_neon(const fast_ref *refs, uint32_t begin, uint32_t end,
 static void partition_range_neon(const fast_ref *src, uint32_t begin, uint32_t end, fast_ref *dst,
                                  uint32_t left, uint32_t right, const fast_binning *bn, int axis,
                                  int split, fast_cbounds *lcb, fast_cbounds *rcb) {
-    const float32x4_t cmin = vld1q_f32(bn->cmin);
-    const float32x4_t scale = vld1q_f32(bn->scale);
-    const int32x4_t last = vdupq_n_s32(bn->bins - 1);
+    /* The side test is on the split axis only, in float: for x >= 0,
+     * trunc(x) <= split exactly when x < split + 1 (split < bins - 1, so the
+     * clamp to the last bin does not matter; split + 1 is exact). */
+    const float limit = (float)(split + 1);
+    const float cmin_a = bn->cmin[axis], scale_a = bn->scale[axis];
     float32x4_t lmin = vld1q_f32(lcb->cmin), lmax = vld1q_f32(lcb->cmax);
     float32x4_t rmin = vld1q_f32(rcb->cmin), rmax = vld1q_f32(rcb->cmax);
     for (uint32_t i = begin; i < end; i++) {
         float32x4_t lo, hi;
         float32x4_t c = centroid_neon(&src[i], &lo, &hi);
-        int32x4_t k = vminq_s32(vcvtq_s32_f32(vmulq_f32(vsubq_f32(c, cmin), scale)), last);
-        int32_t kk[4];
-        vst1q_s32(kk, k);
-        if (kk[axis] <= split) {
+        if ((centroid_scalar(&src[i], axis) - cmin_a) * scale_a < limit) {
             dst[left++] = src[i];
             lmin = vminq_f32(lmin, c);
             lmax = vmaxq_f32(lmax, c);
