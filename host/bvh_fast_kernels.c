@@ -3,6 +3,7 @@
 #include "bvh_fast_kernels.h"
 
 #include <float.h>
+#include <stddef.h>
 
 /* Inputs are finite and in range (checked at setup), so SIMDe may skip the
  * NaN and saturation fix-ups it otherwise adds to min/max and conversions on
