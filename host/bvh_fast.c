@@ -122,6 +122,11 @@ typedef struct split_plan {
     float llo[3], lhi[3], rlo[3], rhi[3]; /* child boxes (binned splits) */
 } split_plan;
 
+/* A task subtree's root slot and its index in the task list. */
+typedef struct slot_task {
+    uint32_t slot, task;
+} slot_task;
+
 typedef struct build_ctx {
     const rt_aabb *boxes;
     uint32_t count;
@@ -146,6 +151,11 @@ typedef struct build_ctx {
     uint32_t task_count, task_cap;
     atomic_uint next_task;
     atomic_int task_failed;
+    /* compaction: per task (in task order) its node count, then its first
+     * index in the output */
+    uint32_t *task_nodes, *task_base;
+    slot_task *slot_tasks; /* by slot */
+    rt_node *out_nodes;
 } build_ctx;
 
 static inline float fmin_exact(float a, float b) {
@@ -471,6 +481,23 @@ static int build_subtree(build_ctx *c, task root, fast_bins *bins) {
     }
 }
 
+/* Nodes of the subtree at slot (a walk of the slot tree, done by the worker
+ * that just built it, while it is in its cache). */
+static uint32_t count_nodes(const rt_node *slots, uint32_t slot) {
+    uint32_t stack[2 * STACK_SIZE], n = 0;
+    int top = 0;
+    stack[top++] = slot;
+    while (top) {
+        const rt_node *node = &slots[stack[--top]];
+        n++;
+        if (!(node->b & RT_NODE_LEAF_FLAG)) {
+            stack[top++] = node->b;
+            stack[top++] = node->a;
+        }
+    }
+    return n;
+}
+
 static void task_phase_job(void *ctx, int worker, int worker_count) {
     build_ctx *c = ctx;
     for (;;) {
@@ -478,6 +505,8 @@ static void task_phase_job(void *ctx, int worker, int worker_count) {
         if (i >= c->task_count) return;
         if (!build_subtree(c, c->tasks[i], &c->worker_bins[worker]))
             atomic_store(&c->task_failed, 1);
+        else
+            c->task_nodes[i] = count_nodes(c->slots, c->tasks[i].slot);
     }
 }
 
@@ -624,24 +653,68 @@ static void setup_job(void *ctx, int worker, int worker_count) {
 
 /* ---- compaction: dense depth-first numbering ------------------------------ */
 
-static void compact(const build_ctx *c, rt_node *out) {
+static int slot_task_order(const void *pa, const void *pb) {
+    const slot_task *a = pa, *b = pb;
+    return a->slot < b->slot ? -1 : a->slot > b->slot;
+}
+
+/* The task whose subtree is rooted at slot, or UINT32_MAX. */
+static uint32_t task_at_slot(const build_ctx *c, uint32_t slot) {
+    uint32_t lo = 0, hi = c->task_count;
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (c->slot_tasks[mid].slot < slot)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < c->task_count && c->slot_tasks[lo].slot == slot ? c->slot_tasks[lo].task
+                                                                : UINT32_MAX;
+}
+
+/* Numbers the subtree at slot densely from `base` into out, depth first, left
+ * child next. When `tasks` is given (the top of the tree), the roots of the
+ * task subtrees are not entered: each gets its base (task_base) and the
+ * range of its node count, and is copied by compact_job. */
+static uint32_t compact(build_ctx *c, uint32_t slot, uint32_t base, rt_node *out, int top_level) {
     struct item {
         uint32_t slot, parent; /* parent: index whose right child this is */
     } stack[2 * STACK_SIZE];
     int top = 0;
-    uint32_t next = 0;
-    stack[top++] = (struct item){0, UINT32_MAX};
+    uint32_t next = base;
+    stack[top++] = (struct item){slot, UINT32_MAX};
     while (top) {
         struct item it = stack[--top];
-        uint32_t idx = next++;
-        out[idx] = c->slots[it.slot];
+        uint32_t idx = next;
         if (it.parent != UINT32_MAX) out[it.parent].b = idx;
+        if (top_level) {
+            uint32_t t = task_at_slot(c, it.slot);
+            if (t != UINT32_MAX) {
+                c->task_base[t] = idx;
+                next += c->task_nodes[t];
+                continue;
+            }
+        }
+        next++;
+        out[idx] = c->slots[it.slot];
         if (!(out[idx].b & RT_NODE_LEAF_FLAG)) {
             uint32_t left = out[idx].a, right = out[idx].b;
             out[idx].a = idx + 1; /* the left child is numbered next */
             stack[top++] = (struct item){right, idx};
             stack[top++] = (struct item){left, UINT32_MAX};
         }
+    }
+    return next - base;
+}
+
+static void compact_job(void *ctx, int worker, int worker_count) {
+    build_ctx *c = ctx;
+    (void)worker;
+    (void)worker_count;
+    for (;;) {
+        uint32_t i = atomic_fetch_add(&c->next_task, 1);
+        if (i >= c->task_count) return;
+        compact(c, c->tasks[i].slot, c->task_base[i], c->out_nodes, 0);
     }
 }
 
@@ -653,27 +726,14 @@ static void free_ctx(build_ctx *c) {
     free(c->worker_cb);
     free(c->job_left);
     free(c->tasks);
+    free(c->task_nodes);
+    free(c->task_base);
+    free(c->slot_tasks);
 }
 
 static rt_status fail(char *msg, size_t msg_size, rt_status st, const char *text) {
     if (msg && msg_size) snprintf(msg, msg_size, "fast BVH builder: %s", text);
     return st;
-}
-
-static uint32_t count_nodes(const rt_node *slots) {
-    /* Walks the slot tree; used once to size the output. */
-    uint32_t stack[2 * STACK_SIZE], n = 0;
-    int top = 0;
-    stack[top++] = 0;
-    while (top) {
-        const rt_node *node = &slots[stack[--top]];
-        n++;
-        if (!(node->b & RT_NODE_LEAF_FLAG)) {
-            stack[top++] = node->b;
-            stack[top++] = node->a;
-        }
-    }
-    return n;
 }
 
 static rt_status run_build(build_ctx *c, rt_pool *pool, rt_bvh *out, char *msg, size_t msg_size) {
@@ -705,6 +765,7 @@ static rt_status run_build(build_ctx *c, rt_pool *pool, rt_bvh *out, char *msg, 
     }
     task big_stack[STACK_SIZE];
     int top = 0;
+    uint32_t top_nodes = 0;
     big_stack[top++] = root;
     while (top) {
         task t = big_stack[--top], ch[2];
@@ -713,6 +774,7 @@ static rt_status run_build(build_ctx *c, rt_pool *pool, rt_bvh *out, char *msg, 
                 return fail(msg, msg_size, RT_ERROR_OUT_OF_MEMORY, "out of memory");
             continue;
         }
+        top_nodes++; /* split_parallel writes one node, inner or leaf */
         if (!split_parallel(c, pool, &t, &ch[0], &ch[1])) continue;
         if (top + 2 > STACK_SIZE)
             return fail(msg, msg_size, RT_ERROR_INVALID_ARGUMENT, "tree too deep");
@@ -720,15 +782,29 @@ static rt_status run_build(build_ctx *c, rt_pool *pool, rt_bvh *out, char *msg, 
         big_stack[top++] = ch[0];
     }
     qsort(c->tasks, c->task_count, sizeof *c->tasks, task_order);
+    c->task_nodes = malloc((size_t)c->task_count * sizeof *c->task_nodes);
+    c->task_base = malloc((size_t)c->task_count * sizeof *c->task_base);
+    c->slot_tasks = malloc((size_t)c->task_count * sizeof *c->slot_tasks);
+    if (!c->task_nodes || !c->task_base || !c->slot_tasks)
+        return fail(msg, msg_size, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    for (uint32_t i = 0; i < c->task_count; i++)
+        c->slot_tasks[i] = (slot_task){c->tasks[i].slot, i};
+    qsort(c->slot_tasks, c->task_count, sizeof *c->slot_tasks, slot_task_order);
     atomic_store(&c->next_task, 0);
     rt_pool_run(pool, task_phase_job, c);
     if (atomic_load(&c->task_failed))
         return fail(msg, msg_size, RT_ERROR_INVALID_ARGUMENT, "tree too deep");
 
-    uint32_t nodes = count_nodes(c->slots);
+    /* Compaction: the few top nodes serially (which also gives every task
+     * subtree its first index), then the task subtrees in parallel. */
+    uint32_t nodes = top_nodes;
+    for (uint32_t i = 0; i < c->task_count; i++) nodes += c->task_nodes[i];
     out->nodes = malloc((size_t)nodes * sizeof *out->nodes);
     if (!out->nodes) return fail(msg, msg_size, RT_ERROR_OUT_OF_MEMORY, "out of memory");
-    compact(c, out->nodes);
+    c->out_nodes = out->nodes;
+    compact(c, 0, 0, out->nodes, 1);
+    atomic_store(&c->next_task, 0);
+    rt_pool_run(pool, compact_job, c);
     out->node_count = nodes;
     out->prim_indices = c->prim_indices;
     out->prim_count = N;
