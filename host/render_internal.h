@@ -19,6 +19,11 @@ typedef struct rt_prepared {
  * threads <= 0: all cores. */
 rt_status rt_render_prepare(rt_scene *scene, int threads, rt_prepared *out);
 
+/* A shallow copy of flat whose header selects triangle test 'test' (the
+ * arrays stay shared); an unknown test is an invalid argument. */
+rt_status rt_flat_with_tri_test(rt_scene *scene, const rt_flat *flat, rt_triangle_test test,
+                                rt_flat *out);
+
 /* Milliseconds on a monotonic clock. */
 double rt_now_ms(void);
 

@@ -39,15 +39,26 @@ static int ray_valid(const rt_ray *r) {
 
 rt_status rt_trace_rays(rt_scene *scene, const rt_ray *rays, size_t count, rt_hit *hits,
                         int any_hit, const char *backend) {
+    rt_render_options opt = rt_render_options_default();
+    opt.backend = backend;
+    return rt_trace_rays_with(scene, rays, count, hits, any_hit, &opt);
+}
+
+rt_status rt_trace_rays_with(rt_scene *scene, const rt_ray *rays, size_t count, rt_hit *hits,
+                             int any_hit, const rt_render_options *options) {
     if (!scene || (count && (!rays || !hits))) return RT_ERROR_INVALID_ARGUMENT;
-    const char *b = backend ? backend : "cpu";
+    rt_render_options opt = options ? *options : rt_render_options_default();
+    const char *b = opt.backend ? opt.backend : "cpu";
     int packet = strcmp(b, "packet") == 0;
     if (!packet && strcmp(b, "cpu") != 0)
         return rt_scene_fail(
             scene, RT_ERROR_UNSUPPORTED,
             "unknown or unavailable backend '%s' (ray queries run on: cpu, packet)", b);
     rt_prepared prep;
-    rt_status st = rt_render_prepare(scene, 0, &prep);
+    rt_status st = rt_render_prepare(scene, opt.threads, &prep);
+    if (st != RT_OK) return st;
+    rt_flat flat;
+    st = rt_flat_with_tri_test(scene, prep.flat, opt.tri_test, &flat);
     if (st != RT_OK) return st;
     rt_ray_d *in = malloc(sizeof(rt_ray_d) * (count ? count : 1));
     rt_hit_d *out = malloc(sizeof(rt_hit_d) * (count ? count : 1));
@@ -69,7 +80,7 @@ rt_status rt_trace_rays(rt_scene *scene, const rt_ray *rays, size_t count, rt_hi
             for (int k = 0; k < 3; k++) in[i].org[k] = 0.0f;
         }
     }
-    trace_job job = {prep.flat, in, out, count, any_hit, packet};
+    trace_job job = {&flat, in, out, count, any_hit, packet};
     rt_pool_run(prep.pool, trace_chunk, &job);
     for (size_t i = 0; i < count; i++) {
         rt_hit *h = &hits[i];
