@@ -1,0 +1,38 @@
+# cli_robust.sh - the numerical robustness suite (issue 6, docs/ROBUSTNESS.md):
+# tests/robust/gen_cases.py writes hard cases with exact expectations, every
+# backend traces them through 'rtcl trace' with every triangle test, and
+# tests/robust/check_hits.py prints the per-category table. The watertight
+# default must have no leak, false hit, wrong primitive or t out of bound on
+# any backend; the other tests' failures are printed, not fatal.
+source "$RT_SOURCE_DIR/tests/shell_check.sh"
+
+# The backends that run the suite: a new backend is one more word here.
+BACKENDS=${RT_ROBUST_BACKENDS:-"cpu packet"}
+TRI_TESTS="watertight mt pluecker badouel"
+
+if ! command -v python3 > /dev/null; then
+    echo "python3 not found: the robustness suite needs it"; exit 77
+fi
+cases=${RT_BINARY_DIR:-$tmp}/robust_cases
+python3 "$RT_SOURCE_DIR/tests/robust/gen_cases.py" "$cases" || exit 1
+names=$(python3 -c 'import json, sys
+for c in json.load(open(sys.argv[1]))["cases"]: print(c["name"], " ".join(c["flags"]))' "$cases/manifest.json")
+
+for backend in $BACKENDS; do
+    for tri in $TRI_TESTS; do
+        out=$tmp/$backend-$tri
+        mkdir -p "$out"
+        while read -r name flags; do
+            # shellcheck disable=SC2086
+            expect 0 '' -- "$RTCL" trace "$cases/$name.obj" --rays "$cases/$name.rays" \
+                --out "$out/$name.hits" --backend "$backend" --tri-test "$tri" $flags
+        done <<< "$names"
+        strict=""
+        [ "$tri" = watertight ] && strict=--strict
+        checks=$((checks + 1))
+        if ! python3 "$RT_SOURCE_DIR/tests/robust/check_hits.py" "$cases" "$out" "$backend/$tri" $strict; then
+            echo "FAIL: $backend/$tri"; fails=$((fails + 1))
+        fi
+    done
+done
+finish
