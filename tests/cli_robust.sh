@@ -35,4 +35,17 @@ for backend in $BACKENDS; do
         fi
     done
 done
+
+# NaN and Inf in the input are refused at load, with the file and line.
+printf '0 0 5 0 0 -1 0 inf\n' > "$tmp/one.rays"
+for bad in 'v 1 inf 0' 'v -Infinity 0 0' 'v 0 0 1e39' 'v nan 0 0'; do
+    printf 'v 0 0 0\nv 1 0 0\n%s\nf 1 2 3\n' "$bad" > "$tmp/bad.obj"
+    expect 2 "bad.obj:3(:[0-9]+)?: .*(NaN|[Ii]nf|finite)" -- "$RTCL" trace "$tmp/bad.obj" \
+        --rays "$tmp/one.rays" --out "$tmp/x.hits"
+done
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 nan 1\nf 1//1 2//1 3//1\n' > "$tmp/badn.obj"
+expect 2 "badn.obj:4(:[0-9]+)?: .*(NaN|[Ii]nf|finite)" -- "$RTCL" trace "$tmp/badn.obj" \
+    --rays "$tmp/one.rays" --out "$tmp/x.hits"
+expect 2 "unknown triangle test 'fast'" -- "$RTCL" trace "$tmp/badn.obj" --rays "$tmp/one.rays" \
+    --out "$tmp/x.hits" --tri-test fast
 finish
