@@ -57,7 +57,9 @@ static uint32_t packet_box(const rt_node *n, const packet *p, float32x4_t hi_t, 
         lo = vbslq_f32(vcgtq_f32(t0, lo), t0, lo);
         hi = vbslq_f32(vcltq_f32(t1, hi), t1, hi);
     }
-    hi = vmulq_f32(hi, vdupq_n_f32(RT_BOX_FAR_SCALE));
+    float32x4_t scale = vbslq_f32(vcltq_f32(hi, vdupq_n_f32(0.0f)),
+                                  vdupq_n_f32(RT_BOX_FAR_SCALE_NEG), vdupq_n_f32(RT_BOX_FAR_SCALE));
+    hi = vmulq_f32(hi, scale); /* as rt_box_test: widened for negative t too */
     hi = vbslq_f32(vcltq_f32(hi_t, hi), hi_t, hi);
     vst1q_f32(tnear, lo);
     return lane_bits(vcleq_f32(lo, hi)) & active;

@@ -226,6 +226,21 @@ static rt_status choose_backend(rt_scene *scene, const char *backend, const char
                          what, cl ? ", opencl[:DEVICE]" : "");
 }
 
+/* The public enum mirrors the layout's RT_TRI_* numbers. */
+_Static_assert(RT_TRI_TEST_WATERTIGHT == RT_TRI_WATERTIGHT && RT_TRI_TEST_MOLLER == RT_TRI_MOLLER &&
+                   RT_TRI_TEST_PLUECKER == RT_TRI_PLUECKER && RT_TRI_TEST_BADOUEL == RT_TRI_BADOUEL,
+               "rt_triangle_test and RT_TRI_* differ");
+
+rt_status rt_flat_with_tri_test(rt_scene *scene, const rt_flat *flat, rt_triangle_test test,
+                                rt_flat *out) {
+    if ((int)test < RT_TRI_TEST_WATERTIGHT || (int)test > RT_TRI_TEST_BADOUEL)
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "unknown triangle test %d",
+                             (int)test);
+    *out = *flat;
+    out->hdr.tri_method = (uint32_t)test;
+    return RT_OK;
+}
+
 rt_status rt_render(rt_scene *scene, const rt_render_options *options, rt_framebuffer *fb) {
     if (!scene || !fb) return RT_ERROR_INVALID_ARGUMENT;
     rt_render_options opt = options ? *options : rt_render_options_default();
@@ -240,7 +255,10 @@ rt_status rt_render(rt_scene *scene, const rt_render_options *options, rt_frameb
     st = rt_render_prepare(scene, opt.threads, &prep);
     if (st != RT_OK) return st;
 
-    const rt_scene_header *h = &prep.flat->hdr;
+    rt_flat flat;
+    st = rt_flat_with_tri_test(scene, prep.flat, opt.tri_test, &flat);
+    if (st != RT_OK) return st;
+    const rt_scene_header *h = &flat.hdr;
     int channels = (opt.aov == RT_AOV_NONE || opt.aov == RT_AOV_NORMAL) ? 3 : 1;
     memset(fb, 0, sizeof *fb);
     fb->pixels = calloc((size_t)h->width * (size_t)h->height * (size_t)channels, sizeof(float));
@@ -253,7 +271,9 @@ rt_status rt_render(rt_scene *scene, const rt_render_options *options, rt_frameb
         rt_render_stats local;
         rt_render_stats *s = opt.stats ? opt.stats : &local;
         memset(s, 0, sizeof *s);
-        st = choice.device_ops->render(scene, &prep, choice.device, &opt, fb, s);
+        rt_prepared with_test = prep; /* the device compiles the triangle test in */
+        with_test.flat = &flat;
+        st = choice.device_ops->render(scene, &with_test, choice.device, &opt, fb, s);
         if (st != RT_OK) {
             rt_framebuffer_free(fb);
             return st;
@@ -264,8 +284,7 @@ rt_status rt_render(rt_scene *scene, const rt_render_options *options, rt_frameb
         return RT_OK;
     }
 
-    rt_cpu_frame frame = {prep.flat, opt.aov,      fb->pixels,
-                          channels,  opt.progress, opt.progress_user};
+    rt_cpu_frame frame = {&flat, opt.aov, fb->pixels, channels, opt.progress, opt.progress_user};
     rt_cpu_counts counts;
     double t0 = rt_now_ms();
     if (packet)

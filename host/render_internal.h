@@ -55,6 +55,11 @@ const char *rt_backend_split(const char *backend, char *name_out, size_t name_si
 rt_status rt_trace_backend(rt_scene *scene, const char *backend, int *packet,
                            const rt_backend_ops **device_ops, const char **device);
 
+/* A shallow copy of flat whose header selects triangle test 'test' (the
+ * arrays stay shared); an unknown test is an invalid argument. */
+rt_status rt_flat_with_tri_test(rt_scene *scene, const rt_flat *flat, rt_triangle_test test,
+                                rt_flat *out);
+
 /* Milliseconds on a monotonic clock. */
 double rt_now_ms(void);
 

@@ -183,6 +183,15 @@ typedef struct rt_render_stats {
     uint32_t tile_pixels;     /* the largest tile launched */
 } rt_render_stats;
 
+/* Ray/triangle tests (rt_render_options.tri_test). Watertight is the default;
+ * the others exist for the speed-versus-error study (docs/ROBUSTNESS.md). */
+typedef enum rt_triangle_test {
+    RT_TRI_TEST_WATERTIGHT = 0, /* Woop, Benthin, Wald 2013 */
+    RT_TRI_TEST_MOLLER,         /* Moller-Trumbore 1997 */
+    RT_TRI_TEST_PLUECKER,       /* signed volumes (Pluecker coordinates) */
+    RT_TRI_TEST_BADOUEL         /* plane hit, then a 2D test (Badouel; Wald) */
+} rt_triangle_test;
+
 typedef struct rt_render_options {
     /* "cpu" (default), "packet", "opencl" (or "opencl:DEVICE", a device index
      * or a part of its name), "auto" (opencl when a device exists, else cpu
@@ -194,6 +203,7 @@ typedef struct rt_render_options {
     /* Progress in [0, 1] for long renders; may be NULL. */
     void (*progress)(void *user, double done);
     void *progress_user;
+    rt_triangle_test tri_test; /* RT_TRI_TEST_WATERTIGHT (0) unless set */
 } rt_render_options;
 
 rt_render_options rt_render_options_default(void);
@@ -231,6 +241,11 @@ typedef struct rt_hit {
  * component, or a zero direction, is a miss. */
 rt_status rt_trace_rays(rt_scene *scene, const rt_ray *rays, size_t count, rt_hit *hits,
                         int any_hit, const char *backend);
+
+/* rt_trace_rays with options: backend, threads and tri_test are read (NULL:
+ * the defaults); stats, aov and progress are ignored. */
+rt_status rt_trace_rays_with(rt_scene *scene, const rt_ray *rays, size_t count, rt_hit *hits,
+                             int any_hit, const rt_render_options *options);
 
 #ifdef __cplusplus
 }

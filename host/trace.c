@@ -39,15 +39,26 @@ static int ray_valid(const rt_ray *r) {
 
 rt_status rt_trace_rays(rt_scene *scene, const rt_ray *rays, size_t count, rt_hit *hits,
                         int any_hit, const char *backend) {
+    rt_render_options opt = rt_render_options_default();
+    opt.backend = backend;
+    return rt_trace_rays_with(scene, rays, count, hits, any_hit, &opt);
+}
+
+rt_status rt_trace_rays_with(rt_scene *scene, const rt_ray *rays, size_t count, rt_hit *hits,
+                             int any_hit, const rt_render_options *options) {
     if (!scene || (count && (!rays || !hits))) return RT_ERROR_INVALID_ARGUMENT;
-    const char *b = backend ? backend : "cpu";
+    rt_render_options opt = options ? *options : rt_render_options_default();
+    const char *b = opt.backend ? opt.backend : "cpu";
     int packet = 0;
     const rt_backend_ops *device_ops = NULL;
     const char *device = NULL;
     rt_status st = rt_trace_backend(scene, b, &packet, &device_ops, &device);
     if (st != RT_OK) return st;
     rt_prepared prep;
-    st = rt_render_prepare(scene, 0, &prep);
+    st = rt_render_prepare(scene, opt.threads, &prep);
+    if (st != RT_OK) return st;
+    rt_flat flat;
+    st = rt_flat_with_tri_test(scene, prep.flat, opt.tri_test, &flat);
     if (st != RT_OK) return st;
     rt_ray_d *in = malloc(sizeof(rt_ray_d) * (count ? count : 1));
     rt_hit_d *out = malloc(sizeof(rt_hit_d) * (count ? count : 1));
@@ -70,14 +81,17 @@ rt_status rt_trace_rays(rt_scene *scene, const rt_ray *rays, size_t count, rt_hi
         }
     }
     if (device_ops) {
-        st = device_ops->trace(scene, &prep, device, in, count, out, any_hit);
+        /* The device compiles the triangle test in from the header it is given. */
+        rt_prepared with_test = prep;
+        with_test.flat = &flat;
+        st = device_ops->trace(scene, &with_test, device, in, count, out, any_hit);
         if (st != RT_OK) {
             free(in);
             free(out);
             return st;
         }
     } else {
-        trace_job job = {prep.flat, in, out, count, any_hit, packet};
+        trace_job job = {&flat, in, out, count, any_hit, packet};
         rt_pool_run(prep.pool, trace_chunk, &job);
     }
     for (size_t i = 0; i < count; i++) {

@@ -91,6 +91,10 @@ static inline float rt_as_float_(rt_i32 i) {
  * n eps / (1 - n eps), eps = 2^-24, makes the float slab test conservative.
  * 1 + 2 gamma(3) = 1 + 3.58e-7 is rounded up to 1 + 4 * 2^-23. */
 #define RT_BOX_FAR_SCALE 1.000000476837158203125f
+/* The same margin for a far distance below zero (a ray range with negative
+ * t): there the far end must grow towards zero, 1 - 4 * 2^-23. Without it a
+ * flat box behind the origin was culled (tests/robust, grazing rays). */
+#define RT_BOX_FAR_SCALE_NEG 0.999999523162841796875f
 
 /* The t range a box is tested against is widened by this relative margin, so
  * that a triangle whose computed t rounds onto the range's end is never culled
@@ -236,7 +240,7 @@ RT_FN int rt_box_test(RT_GLOBAL const rt_node *n, const rt_ray_d *r, const rt_ra
         lo = t0 > lo ? t0 : lo;
         hi = t1 < hi ? t1 : hi;
     }
-    hi = hi * RT_BOX_FAR_SCALE;
+    hi = hi * (hi < 0.0f ? RT_BOX_FAR_SCALE_NEG : RT_BOX_FAR_SCALE);
     hi = tmax < hi ? tmax : hi;
     *tnear = lo;
     return lo <= hi;

@@ -8,11 +8,12 @@
 
 #include "cli_util.h"
 #include "commands.h"
+#include "rt_shared.h"
 #include "scene.h"
 
 static const char usage[] =
     "usage: rtcl trace SCENE --rays RAYS.txt --out HITS.txt [--backend B] [--device D]\n"
-    "                  [--any-hit] [--help]\n"
+    "                  [--tri-test T] [--any-hit] [--offset-origins] [--help]\n"
     "\n"
     "Traces the rays of RAYS.txt through SCENE (a .json scene, a bare .obj, or\n"
     "builtin:NAME) and writes one line per ray to HITS.txt.\n"
@@ -29,11 +30,20 @@ static const char usage[] =
     "  --backend B  cpu (the scalar oracle), packet (2x2 SIMD rays), opencl, or auto\n"
     "               (opencl when a device exists, else cpu) [cpu]\n"
     "  --device D   the OpenCL device: an index or part of a name (rtcl devices)\n"
+    "  --tri-test T the ray/triangle test: watertight (Woop, Benthin, Wald 2013),\n"
+    "               mt (Moller-Trumbore), pluecker or badouel [watertight]\n"
     "  --any-hit    stop at any hit in range (shadow-ray queries): hit is then\n"
-    "               exact, t u v prim inst belong to some hit, not the closest\n";
+    "               exact, t u v prim inst belong to some hit, not the closest\n"
+    "  --offset-origins  each ray line has 3 more numbers, nx ny nz: the origin\n"
+    "               is a point on a surface with that normal, and is moved off it\n"
+    "               with the engine's offset (as for shadow and secondary rays),\n"
+    "               to the side the direction points to\n";
+
+static const char *const tri_test_names[] = {"watertight", "mt", "pluecker", "badouel"};
 
 /* Reads the rays; on a bad line prints file:line and returns 0. */
-static int read_rays(const char *path, rt_ray **out, size_t *count) {
+static int read_rays(const char *path, int offset, rt_ray **out, size_t *count) {
+    const int want = offset ? 11 : 8;
     FILE *f = fopen(path, "r");
     if (!f) {
         cli_error("trace", "%s: cannot open: %s", path, strerror(errno));
@@ -48,21 +58,22 @@ static int read_rays(const char *path, rt_ray **out, size_t *count) {
         char *p = line;
         while (*p == ' ' || *p == '\t') p++;
         if (*p == '#' || *p == '\n' || *p == '\r' || *p == 0) continue;
-        float v[8];
+        float v[11];
         int got = 0;
-        while (got < 9) {
+        while (got < want + 1) {
             char *end;
             errno = 0;
             float x = strtof(p, &end);
             if (end == p) break;
-            if (got < 8) v[got] = x;
+            if (got < want) v[got] = x;
             got++;
             p = end;
         }
         while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r') p++;
-        if (got != 8 || *p) {
-            cli_error("trace", "%s:%d: expected 8 numbers 'ox oy oz dx dy dz tmin tmax'%s%s", path,
-                      lineno, *p ? ", found: " : "", *p ? p : "");
+        if (got != want || *p) {
+            cli_error("trace", "%s:%d: expected %d numbers 'ox oy oz dx dy dz tmin tmax%s'%s%s",
+                      path, lineno, want, offset ? " nx ny nz" : "", *p ? ", found: " : "",
+                      *p ? p : "");
             ok = 0;
             break;
         }
@@ -80,6 +91,10 @@ static int read_rays(const char *path, rt_ray **out, size_t *count) {
         memcpy(r->dir, v + 3, sizeof r->dir);
         r->tmin = v[6];
         r->tmax = v[7];
+        if (offset) { /* off the surface, on the side the ray leaves to */
+            float d = rt_dot3(v + 8, r->dir);
+            rt_offset_point(v, v + 8, d >= 0.0f ? 1.0f : -1.0f, r->org);
+        }
     }
     fclose(f);
     if (!ok) {
@@ -95,7 +110,8 @@ int cmd_trace(int argc, char **argv) {
     const char *scene_path = NULL, *rays_path = NULL, *out_path = NULL, *backend = "cpu";
     const char *device = NULL;
     char backend_buf[256];
-    int any_hit = 0;
+    int any_hit = 0, offset = 0;
+    rt_render_options opt = rt_render_options_default();
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -109,6 +125,20 @@ int cmd_trace(int argc, char **argv) {
             if (!(backend = cli_value(argc, argv, &i, "trace"))) return 2;
         } else if (!strcmp(a, "--device")) {
             if (!(device = cli_value(argc, argv, &i, "trace"))) return 2;
+        } else if (!strcmp(a, "--tri-test")) {
+            const char *name = cli_value(argc, argv, &i, "trace");
+            if (!name) return 2;
+            int found = -1;
+            for (int k = 0; k < 4; k++)
+                if (!strcmp(name, tri_test_names[k])) found = k;
+            if (found < 0) {
+                cli_error("trace", "unknown triangle test '%s' (watertight, mt, pluecker, badouel)",
+                          name);
+                return 2;
+            }
+            opt.tri_test = (rt_triangle_test)found;
+        } else if (!strcmp(a, "--offset-origins")) {
+            offset = 1;
         } else if (!strcmp(a, "--any-hit")) {
             any_hit = 1;
         } else if (a[0] == '-' && a[1]) {
@@ -129,7 +159,7 @@ int cmd_trace(int argc, char **argv) {
         return 2;
     rt_ray *rays = NULL;
     size_t n = 0;
-    if (!read_rays(rays_path, &rays, &n)) return 2;
+    if (!read_rays(rays_path, offset, &rays, &n)) return 2;
     rt_scene *scene;
     rt_error err;
     if (cli_load_scene(scene_path, &scene, &err) != RT_OK) {
@@ -138,8 +168,9 @@ int cmd_trace(int argc, char **argv) {
         return 2;
     }
     rt_hit *hits = malloc((n ? n : 1) * sizeof *hits);
+    opt.backend = backend;
     rt_status st =
-        hits ? rt_trace_rays(scene, rays, n, hits, any_hit, backend) : RT_ERROR_OUT_OF_MEMORY;
+        hits ? rt_trace_rays_with(scene, rays, n, hits, any_hit, &opt) : RT_ERROR_OUT_OF_MEMORY;
     if (st != RT_OK) {
         cli_error("trace", "%s", hits ? rt_scene_error(scene) : "out of memory");
         free(rays);

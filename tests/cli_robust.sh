@@ -1,0 +1,56 @@
+# cli_robust.sh - the numerical robustness suite (issue 6, docs/ROBUSTNESS.md):
+# tests/robust/gen_cases.py writes hard cases with exact expectations, every
+# backend traces them through 'rtcl trace' with every triangle test, and
+# tests/robust/check_hits.py prints the per-category table. The watertight
+# default must have no leak, false hit, wrong primitive or t out of bound on
+# any backend; the other tests' failures are printed, not fatal.
+source "$RT_SOURCE_DIR/tests/shell_check.sh"
+
+# The backends that run the suite: a new backend is one more word here.
+BACKENDS=${RT_ROBUST_BACKENDS:-"cpu packet opencl"}
+TRI_TESTS="watertight mt pluecker badouel"
+
+if ! command -v python3 > /dev/null; then
+    echo "python3 not found: the robustness suite needs it"; exit 77
+fi
+cases=${RT_BINARY_DIR:-$tmp}/robust_cases
+python3 "$RT_SOURCE_DIR/tests/robust/gen_cases.py" "$cases" || exit 1
+names=$(python3 -c 'import json, sys
+for c in json.load(open(sys.argv[1]))["cases"]: print(c["name"], " ".join(c["flags"]))' "$cases/manifest.json")
+
+for backend in $BACKENDS; do
+    if [ "$backend" = opencl ] && ! "$RTCL" devices > "$tmp/devices.txt" 2>&1; then
+        # Only a build or machine without any OpenCL device gets here; CI has PoCL.
+        echo "skipped backend opencl: $(head -1 "$tmp/devices.txt")"
+        continue
+    fi
+    for tri in $TRI_TESTS; do
+        out=$tmp/$backend-$tri
+        mkdir -p "$out"
+        while read -r name flags; do
+            # shellcheck disable=SC2086
+            expect 0 '' -- "$RTCL" trace "$cases/$name.obj" --rays "$cases/$name.rays" \
+                --out "$out/$name.hits" --backend "$backend" --tri-test "$tri" $flags
+        done <<< "$names"
+        strict=""
+        [ "$tri" = watertight ] && strict=--strict
+        checks=$((checks + 1))
+        if ! python3 "$RT_SOURCE_DIR/tests/robust/check_hits.py" "$cases" "$out" "$backend/$tri" $strict; then
+            echo "FAIL: $backend/$tri"; fails=$((fails + 1))
+        fi
+    done
+done
+
+# NaN and Inf in the input are refused at load, with the file and line.
+printf '0 0 5 0 0 -1 0 inf\n' > "$tmp/one.rays"
+for bad in 'v 1 inf 0' 'v -Infinity 0 0' 'v 0 0 1e39' 'v nan 0 0'; do
+    printf 'v 0 0 0\nv 1 0 0\n%s\nf 1 2 3\n' "$bad" > "$tmp/bad.obj"
+    expect 2 "bad.obj:3(:[0-9]+)?: .*(NaN|[Ii]nf|finite)" -- "$RTCL" trace "$tmp/bad.obj" \
+        --rays "$tmp/one.rays" --out "$tmp/x.hits"
+done
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 nan 1\nf 1//1 2//1 3//1\n' > "$tmp/badn.obj"
+expect 2 "badn.obj:4(:[0-9]+)?: .*(NaN|[Ii]nf|finite)" -- "$RTCL" trace "$tmp/badn.obj" \
+    --rays "$tmp/one.rays" --out "$tmp/x.hits"
+expect 2 "unknown triangle test 'fast'" -- "$RTCL" trace "$tmp/badn.obj" --rays "$tmp/one.rays" \
+    --out "$tmp/x.hits" --tri-test fast
+finish
