@@ -1,0 +1,37 @@
+#!/usr/bin/env python3
+"""build_table.py - turns `rtcl bench --json` lines (stdin) into the markdown
+table of docs/BENCHMARKS.md, so that no number there is typed by hand.
+
+Columns: min / median ms per builder, time and SAH ratios of `fast` to Embree's
+rtcBuildBVH, SAH of the thesis and fast trees, node counts."""
+import json
+import os
+import sys
+
+BUILDERS = ["thesis-scalar", "thesis-neon", "thesis-mt", "fast", "embree"]
+
+
+def main():
+    rows = [json.loads(line) for line in sys.stdin if line.strip().startswith("{")]
+    head = ["scene", "triangles"] + [f"{b} ms (min / med)" for b in BUILDERS] + [
+        "fast/embree time (min)", "SAH thesis", "SAH fast", "SAH embree", "nodes fast / embree"]
+    print("| " + " | ".join(head) + " |")
+    print("|" + "---|" * len(head))
+    for r in rows:
+        by = {b["builder"]: b for b in r["build"]}
+        name = "/".join(r["scene"].split(os.sep)[-2:])
+        cells = [name, f"{r['triangles']:,}"]
+        for b in BUILDERS:
+            x = by.get(b)
+            cells.append(f"{x['ms_min']:.2f} / {x['ms_median']:.2f}" if x and x.get("ms_min") is not None else "-")
+        f, e = by.get("fast"), by.get("embree")
+        cells.append(f"{f['ms_min'] / e['ms_min']:.2f}" if f and e and e.get("ms_min") else "-")
+        for b in ["thesis-scalar", "fast", "embree"]:
+            x = by.get(b)
+            cells.append(f"{x['sah']:.2f}" if x and x.get("sah") is not None else "-")
+        cells.append(f"{f['nodes']} / {e['nodes']}" if f and e else "-")
+        print("| " + " | ".join(cells) + " |")
+
+
+if __name__ == "__main__":
+    main()
