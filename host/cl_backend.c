@@ -163,6 +163,8 @@ static void scene_defines(const rt_flat *f, char *out, size_t size) {
              flags, inst_set, inst_mask, f->hdr.tri_method);
 }
 
+static rt_status warm_up(cl_state *s, char *msg, size_t size);
+
 static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms, char *msg,
                                size_t size) {
     char defines[192], options[512];
@@ -205,8 +207,9 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
         return fail(msg, size, RT_ERROR_BACKEND, "OpenCL kernels: %s", rt_cl_error_name(err));
     snprintf(s->options, sizeof s->options, "%s", options);
     snprintf(s->defines, sizeof s->defines, "%s", defines);
+    rt_status st = warm_up(s, msg, size);
     *compile_ms += rt_now_ms() - t0;
-    return RT_OK;
+    return st;
 }
 
 /* ---- buffers and uploads ------------------------------------------------ */
@@ -369,33 +372,107 @@ static rt_status set_view(cl_state *s, cl_kernel k, char *msg, size_t size) {
     return RT_OK;
 }
 
-/* Enqueues k over count items and adds its profiled time to *ms. */
-static rt_status launch(cl_state *s, cl_kernel k, uint32_t count, const char *name, double *ms,
-                        char *msg, size_t size) {
-    /* A fixed work-group size: PoCL compiles a kernel per size at first use,
-     * so letting the runtime pick one per tile size costs compiles. */
-    size_t local = 64, wg = 0;
-    if (clGetKernelWorkGroupInfo(k, s->dev.device_id, CL_KERNEL_WORK_GROUP_SIZE, sizeof wg, &wg,
-                                 NULL) == CL_SUCCESS &&
+/* The work-group size for k: 64 work-items, a multiple of the kernel's
+ * preferred multiple (8 on PoCL's pthread device, 32 on NVIDIA), within its
+ * limit. Fixed per kernel: PoCL compiles a work-group function per local size
+ * at its first use, so a size chosen per tile would cost compiles. */
+static size_t local_size(cl_state *s, cl_kernel k) {
+    size_t local = 64, wg = 0, mult = 0;
+    cl_device_id d = s->dev.device_id;
+    if (clGetKernelWorkGroupInfo(k, d, CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE, sizeof mult,
+                                 &mult, NULL) == CL_SUCCESS &&
+        mult > local && mult <= 256)
+        local = mult;
+    if (clGetKernelWorkGroupInfo(k, d, CL_KERNEL_WORK_GROUP_SIZE, sizeof wg, &wg, NULL) ==
+            CL_SUCCESS &&
         wg > 0 && wg < local)
         local = wg;
+    return local;
+}
+
+/* Enqueues k over count items (the global size rounded up to the work-group
+ * size; the kernels ignore items past count) without waiting: the launches of
+ * a tile follow each other on the in-order queue, and the host waits once per
+ * tile (see finish_launches). */
+static rt_status enqueue(cl_state *s, cl_kernel k, uint32_t count, const char *name, cl_event *ev,
+                         char *msg, size_t size) {
+    size_t local = local_size(s, k);
     size_t global = ((size_t)count + local - 1) / local * local;
-    cl_event ev;
-    cl_int err = clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, &local, 0, NULL, &ev);
-    if (err == CL_SUCCESS) err = clWaitForEvents(1, &ev);
+    if (global == 0) global = local;
+    cl_int err = clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, &local, 0, NULL, ev);
     if (err != CL_SUCCESS)
         return fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
                     "kernel %s on '%s' (%u items): %s", name, s->dev.name, count,
                     rt_cl_error_name(err));
-    cl_ulong start = 0, end = 0;
-    if (clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_START, sizeof start, &start, NULL) ==
-            CL_SUCCESS &&
-        clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_END, sizeof end, &end, NULL) ==
-            CL_SUCCESS &&
-        end >= start)
-        *ms += (double)(end - start) * 1e-6;
-    clReleaseEvent(ev);
     return RT_OK;
+}
+
+/* Waits for n launches, adds each one's profiled time to ms[i], returns the
+ * longest in *longest, and releases the events. */
+static rt_status finish_launches(cl_state *s, cl_event *ev, int n, double *ms, double *longest,
+                                 char *msg, size_t size) {
+    cl_int err = clWaitForEvents((cl_uint)n, ev);
+    *longest = 0.0;
+    for (int i = 0; i < n; i++) {
+        cl_ulong start = 0, end = 0;
+        if (err == CL_SUCCESS &&
+            clGetEventProfilingInfo(ev[i], CL_PROFILING_COMMAND_START, sizeof start, &start,
+                                    NULL) == CL_SUCCESS &&
+            clGetEventProfilingInfo(ev[i], CL_PROFILING_COMMAND_END, sizeof end, &end, NULL) ==
+                CL_SUCCESS &&
+            end >= start) {
+            double t = (double)(end - start) * 1e-6;
+            ms[i] += t;
+            if (t > *longest) *longest = t;
+        }
+        clReleaseEvent(ev[i]);
+    }
+    if (err != CL_SUCCESS)
+        return fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                    "kernels on '%s': %s", s->dev.name, rt_cl_error_name(err));
+    return RT_OK;
+}
+
+/* Enqueues k over count items, waits, and adds its profiled time to *ms. */
+static rt_status launch(cl_state *s, cl_kernel k, uint32_t count, const char *name, double *ms,
+                        char *msg, size_t size) {
+    cl_event ev;
+    rt_status st = enqueue(s, k, count, name, &ev, msg, size);
+    if (st != RT_OK) return st;
+    double longest;
+    return finish_launches(s, &ev, 1, ms, &longest, msg, size);
+}
+
+/* One empty launch of each kernel (count 0, every item returns at once) with
+ * stub buffers, right after the build: PoCL compiles (or loads from its cache)
+ * the work-group function of a kernel at its first launch, which otherwise
+ * lands in the first frame's time (about 1 s per kernel with a cold cache). */
+static rt_status warm_up(cl_state *s, char *msg, size_t size) {
+    cl_mem stub = clCreateBuffer(s->ctx, CL_MEM_READ_WRITE, 64, NULL, NULL);
+    if (!stub) return fail(msg, size, RT_ERROR_BACKEND, "cannot allocate a stub buffer");
+    cl_uint zero = 0;
+    cl_int izero = 0;
+    cl_kernel ks[3] = {s->k_camera, s->k_trace, s->k_shade};
+    cl_uint nargs[3] = {4, 15, 18};
+    const char *names[3] = {"rt_k_camera", "rt_k_trace", "rt_k_shade"};
+    rt_status st = RT_OK;
+    for (int k = 0; k < 3 && st == RT_OK; k++) {
+        for (cl_uint a = 0; a < nargs[k]; a++) {
+            /* Scalars are uint/int (4 bytes), the rest buffers. */
+            cl_int err = clSetKernelArg(ks[k], a, sizeof(cl_mem), &stub);
+            if (err != CL_SUCCESS) err = clSetKernelArg(ks[k], a, sizeof zero, &zero);
+            if (err != CL_SUCCESS) err = clSetKernelArg(ks[k], a, sizeof izero, &izero);
+            if (err != CL_SUCCESS) {
+                st = fail(msg, size, RT_ERROR_BACKEND, "warm-up argument %u of %s: %s", a, names[k],
+                          rt_cl_error_name(err));
+                break;
+            }
+        }
+        double ms = 0.0;
+        if (st == RT_OK) st = launch(s, ks[k], 0, names[k], &ms, msg, size);
+    }
+    clReleaseMemObject(stub);
+    return st;
 }
 
 static rt_status read_buf(cl_state *s, int b, size_t bytes, void *dst, char *msg, size_t size) {
@@ -415,11 +492,22 @@ static rt_status ensure_ray_buffers(cl_state *s, uint32_t tile, char *msg, size_
     return st;
 }
 
-/* The next tile size: halve above the target time, double well below it. */
-static uint32_t next_tile(uint32_t tile, double ms) {
-    if (ms > RT_CL_TARGET_MS && tile > RT_CL_TILE_MIN) return tile / 2;
-    if (ms < RT_CL_TARGET_MS / 4 && tile < RT_CL_TILE_MAX) return tile * 2;
-    return tile;
+/* The smallest tile: enough work-groups of 64 to keep every compute unit
+ * busy (PoCL's pthread device runs whole work-groups on its threads; a GPU
+ * needs many per compute unit). */
+static uint32_t tile_min(const cl_state *s) {
+    uint64_t m = (uint64_t)s->dev.compute_units * 64u * 16u;
+    if (m < RT_CL_TILE_MIN) m = RT_CL_TILE_MIN;
+    return m > RT_CL_TILE_MAX ? RT_CL_TILE_MAX : (uint32_t)m;
+}
+
+/* The next tile size from the longest launch of the last full tile: halve
+ * above the target time, double below a quarter of it. Kept in the state, so
+ * the next frame starts where this one ended. */
+static uint32_t next_tile(const cl_state *s, uint32_t tile, double longest_ms) {
+    if (longest_ms > RT_CL_TARGET_MS && tile / 2 >= tile_min(s)) return tile / 2;
+    if (longest_ms < RT_CL_TARGET_MS / 4 && tile < RT_CL_TILE_MAX) return tile * 2;
+    return tile < tile_min(s) ? tile_min(s) : tile;
 }
 
 static rt_status prepare(rt_scene *scene, const rt_prepared *prep, const char *device,
@@ -479,16 +567,26 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
     for (uint32_t first = 0; first < pixels && st == RT_OK;) {
         cl_uint n = pixels - first < s->tile ? pixels - first : s->tile;
         cl_uint f = first;
-        double before = stats->kernel_ms[0] + stats->kernel_ms[1] + stats->kernel_ms[2];
         st = set_arg(kc, 1, sizeof f, &f, msg, sizeof msg);
         if (st == RT_OK) st = set_arg(kc, 2, sizeof n, &n, msg, sizeof msg);
         if (st == RT_OK) st = set_arg(kt, 10, sizeof n, &n, msg, sizeof msg);
         if (st == RT_OK) st = set_arg(ks, 10, sizeof f, &f, msg, sizeof msg);
         if (st == RT_OK) st = set_arg(ks, 11, sizeof n, &n, msg, sizeof msg);
-        if (st == RT_OK)
-            st = launch(s, kc, n, "rt_k_camera", &stats->kernel_ms[0], msg, sizeof msg);
-        if (st == RT_OK) st = launch(s, kt, n, "rt_k_trace", &stats->kernel_ms[1], msg, sizeof msg);
-        if (st == RT_OK) st = launch(s, ks, n, "rt_k_shade", &stats->kernel_ms[2], msg, sizeof msg);
+        /* The tile's three launches back to back on the in-order queue, one
+         * wait at the end. */
+        cl_event ev[3];
+        int queued = 0;
+        if (st == RT_OK) st = enqueue(s, kc, n, "rt_k_camera", &ev[queued], msg, sizeof msg);
+        if (st == RT_OK) st = enqueue(s, kt, n, "rt_k_trace", &ev[++queued], msg, sizeof msg);
+        if (st == RT_OK) st = enqueue(s, ks, n, "rt_k_shade", &ev[++queued], msg, sizeof msg);
+        if (st == RT_OK) queued++;
+        double longest = 0.0;
+        if (queued == 3) {
+            st = finish_launches(s, ev, 3, stats->kernel_ms, &longest, msg, sizeof msg);
+        } else {
+            clFinish(s->queue);
+            for (int i = 0; i < queued; i++) clReleaseEvent(ev[i]);
+        }
         if (st != RT_OK) break;
         stats->launches += 3;
         if (n > stats->tile_pixels) stats->tile_pixels = n;
@@ -502,9 +600,9 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
                 stats->tri_tests += counts[i].tri_tests;
             }
         }
-        double tile_ms = stats->kernel_ms[0] + stats->kernel_ms[1] + stats->kernel_ms[2] - before;
         first += n;
-        s->tile = next_tile(s->tile, tile_ms);
+        /* Only a full tile says how long a tile takes. */
+        if (n == s->tile) s->tile = next_tile(s, s->tile, longest);
         if (opt->progress) opt->progress(opt->progress_user, (double)first / pixels);
     }
     free(counts);
@@ -552,7 +650,7 @@ static rt_status cl_trace(rt_scene *scene, const rt_prepared *prep, const char *
                           rt_cl_error_name(err));
         }
         first += n;
-        s->tile = next_tile(s->tile, ms);
+        if (n == s->tile) s->tile = next_tile(s, s->tile, ms);
     }
     if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
     return RT_OK;
