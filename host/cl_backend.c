@@ -468,8 +468,18 @@ static rt_status warm_up(cl_state *s, char *msg, size_t size) {
                 break;
             }
         }
-        double ms = 0.0;
-        if (st == RT_OK) st = launch(s, ks[k], 0, names[k], &ms, msg, size);
+        /* PoCL specialises for grids up to some width ("smallgrid") and
+         * builds another function for larger ones: warm up both. */
+        size_t local = local_size(s, ks[k]);
+        size_t globals[2] = {local, RT_CL_TILE_MAX};
+        for (int g = 0; g < 2 && st == RT_OK; g++) {
+            cl_int err = clEnqueueNDRangeKernel(s->queue, ks[k], 1, NULL, &globals[g], &local, 0,
+                                                NULL, NULL);
+            if (err == CL_SUCCESS) err = clFinish(s->queue);
+            if (err != CL_SUCCESS)
+                st = fail(msg, size, RT_ERROR_BACKEND, "warm-up of %s on '%s': %s", names[k],
+                          s->dev.name, rt_cl_error_name(err));
+        }
     }
     clReleaseMemObject(stub);
     return st;
