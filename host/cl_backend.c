@@ -13,6 +13,7 @@
 
 #include "render_internal.h"
 #include "cl_device.h"
+#include "rt_shade.h" /* rt_wave_entry, rt_wave_record: the wavefront's buffers */
 
 extern const char rt_cl_source_rt_render[]; /* generated from kernels/ at build time */
 
@@ -23,6 +24,10 @@ extern const char rt_cl_source_rt_render[]; /* generated from kernels/ at build 
 #define RT_CL_TILE_MAX   (1u << 18)
 #define RT_CL_TILE_FIRST 16384u
 #define RT_CL_TARGET_MS  50.0
+/* The wavefront keeps one rt_wave_record per node of the full shading tree
+ * (2^(max_depth + 1) - 1) per pixel of a tile: its tiles are capped so that
+ * buffer stays within this many bytes. */
+#define RT_CL_WAVE_RECORD_BYTES (64u << 20)
 
 static rt_status fail(char *msg, size_t size, rt_status st, const char *fmt, ...)
 #if defined(__GNUC__)
@@ -54,11 +59,17 @@ enum {
     B_HITS,
     B_COUNTERS,
     B_FB,
+    B_QUEUE_A, /* the wavefront's ray queues (rt_wave_entry), alternating */
+    B_QUEUE_B,
+    B_WAVE_HITS,
+    B_RECORDS, /* per pixel of the tile: one rt_wave_record per tree slot */
+    B_QUEUE_COUNT,
     B_COUNT
 };
 static const char *const buffer_names[B_COUNT] = {
-    "header",   "nodes",     "tris",   "tri_ids", "tri_normals", "tri_mats", "instances",
-    "inst_ids", "materials", "lights", "rays",    "hits",        "counters", "framebuffer"};
+    "header",   "nodes",     "tris",      "tri_ids", "tri_normals", "tri_mats", "instances",
+    "inst_ids", "materials", "lights",    "rays",    "hits",        "counters", "framebuffer",
+    "queue_a",  "queue_b",   "wave_hits", "records", "queue_count"};
 
 typedef struct cl_state {
     rt_cl_device_info dev;
@@ -69,6 +80,7 @@ typedef struct cl_state {
     char options[512]; /* the program's build options */
     char defines[192]; /* the specialisation part of options */
     cl_kernel k_camera, k_trace, k_shade;
+    cl_kernel k_wcam, k_wtrace, k_wshade, k_wsum; /* the wavefront */
     cl_mem buf[B_COUNT];
     size_t cap[B_COUNT];
     /* What the device holds: the mesh part (signature) and the scene version. */
@@ -77,7 +89,16 @@ typedef struct cl_state {
     int uploaded;
     uint32_t uploaded_version;
     uint32_t tile;
+    int no_wave; /* RTCL_OPENCL_NO_WAVE set: rt_k_shade for every image (tests) */
 } cl_state;
+
+static void release_wave_kernels(cl_state *s) {
+    cl_kernel *k[4] = {&s->k_wcam, &s->k_wtrace, &s->k_wshade, &s->k_wsum};
+    for (int i = 0; i < 4; i++) {
+        if (*k[i]) clReleaseKernel(*k[i]);
+        *k[i] = NULL;
+    }
+}
 
 static void state_free(void *p) {
     cl_state *s = p;
@@ -87,6 +108,7 @@ static void state_free(void *p) {
     if (s->k_camera) clReleaseKernel(s->k_camera);
     if (s->k_trace) clReleaseKernel(s->k_trace);
     if (s->k_shade) clReleaseKernel(s->k_shade);
+    release_wave_kernels(s);
     if (s->program) clReleaseProgram(s->program);
     if (s->queue) clReleaseCommandQueue(s->queue);
     if (s->ctx) clReleaseContext(s->ctx);
@@ -125,6 +147,7 @@ static rt_status get_state(const rt_prepared *prep, const char *selector, cl_sta
     free(devs);
     snprintf(s->selector, sizeof s->selector, "%s", sel);
     s->tile = RT_CL_TILE_FIRST;
+    s->no_wave = getenv("RTCL_OPENCL_NO_WAVE") != NULL;
     cl_device_id d = s->dev.device_id;
     cl_context_properties props[] = {CL_CONTEXT_PLATFORM, (cl_context_properties)s->dev.platform_id,
                                      0};
@@ -163,7 +186,7 @@ static void scene_defines(const rt_flat *f, char *out, size_t size) {
              flags, inst_set, inst_mask, f->hdr.tri_method);
 }
 
-static rt_status warm_up(cl_state *s, char *msg, size_t size);
+static rt_status warm_up(cl_state *s, int wave, char *msg, size_t size);
 
 static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms, char *msg,
                                size_t size) {
@@ -176,6 +199,7 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
     if (s->k_camera) clReleaseKernel(s->k_camera);
     if (s->k_trace) clReleaseKernel(s->k_trace);
     if (s->k_shade) clReleaseKernel(s->k_shade);
+    release_wave_kernels(s);
     if (s->program) clReleaseProgram(s->program);
     s->k_camera = s->k_trace = s->k_shade = NULL;
     s->program = NULL;
@@ -203,11 +227,15 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
     s->k_camera = clCreateKernel(s->program, "rt_k_camera", &err);
     if (s->k_camera) s->k_trace = clCreateKernel(s->program, "rt_k_trace", &err);
     if (s->k_trace) s->k_shade = clCreateKernel(s->program, "rt_k_shade", &err);
-    if (!s->k_shade)
+    if (s->k_shade) s->k_wcam = clCreateKernel(s->program, "rt_k_wave_camera", &err);
+    if (s->k_wcam) s->k_wtrace = clCreateKernel(s->program, "rt_k_wave_trace", &err);
+    if (s->k_wtrace) s->k_wshade = clCreateKernel(s->program, "rt_k_wave_shade", &err);
+    if (s->k_wshade) s->k_wsum = clCreateKernel(s->program, "rt_k_wave_sum", &err);
+    if (!s->k_wsum)
         return fail(msg, size, RT_ERROR_BACKEND, "OpenCL kernels: %s", rt_cl_error_name(err));
     snprintf(s->options, sizeof s->options, "%s", options);
     snprintf(s->defines, sizeof s->defines, "%s", defines);
-    rt_status st = warm_up(s, msg, size);
+    rt_status st = warm_up(s, (f->hdr.flags & RT_SCENE_SECONDARY) != 0, msg, size);
     *compile_ms += rt_now_ms() - t0;
     return st;
 }
@@ -447,16 +475,20 @@ static rt_status launch(cl_state *s, cl_kernel k, uint32_t count, const char *na
  * stub buffers, right after the build: PoCL compiles (or loads from its cache)
  * the work-group function of a kernel at its first launch, which otherwise
  * lands in the first frame's time (about 1 s per kernel with a cold cache). */
-static rt_status warm_up(cl_state *s, char *msg, size_t size) {
+static rt_status warm_up(cl_state *s, int wave, char *msg, size_t size) {
     cl_mem stub = clCreateBuffer(s->ctx, CL_MEM_READ_WRITE, 64, NULL, NULL);
     if (!stub) return fail(msg, size, RT_ERROR_BACKEND, "cannot allocate a stub buffer");
     cl_uint zero = 0;
     cl_int izero = 0;
-    cl_kernel ks[3] = {s->k_camera, s->k_trace, s->k_shade};
-    cl_uint nargs[3] = {4, 15, 18};
-    const char *names[3] = {"rt_k_camera", "rt_k_trace", "rt_k_shade"};
+    cl_kernel ks[7] = {s->k_camera, s->k_trace,  s->k_shade, s->k_wcam,
+                       s->k_wtrace, s->k_wshade, s->k_wsum};
+    cl_uint nargs[7] = {4, 15, 18, 4, 14, 19, 7};
+    const char *names[7] = {"rt_k_camera",      "rt_k_trace",      "rt_k_shade",
+                            "rt_k_wave_camera", "rt_k_wave_trace", "rt_k_wave_shade",
+                            "rt_k_wave_sum"};
     rt_status st = RT_OK;
-    for (int k = 0; k < 3 && st == RT_OK; k++) {
+    /* The wavefront kernels only where the scene has secondary rays. */
+    for (int k = 0; k < (wave ? 7 : 3) && st == RT_OK; k++) {
         for (cl_uint a = 0; a < nargs[k]; a++) {
             /* Scalars are uint/int (4 bytes), the rest buffers. */
             cl_int err = clSetKernelArg(ks[k], a, sizeof(cl_mem), &stub);
@@ -535,6 +567,151 @@ static rt_status prepare(rt_scene *scene, const rt_prepared *prep, const char *d
     return st;
 }
 
+/* One tile through rt_shade_hit's stack inside rt_k_shade: camera, closest
+ * hit and shading (or an AOV), back to back on the in-order queue with one
+ * wait at the end. *longest gets the longest launch (ms). */
+static rt_status direct_tile(cl_state *s, cl_uint f, cl_uint n, rt_render_stats *stats,
+                             double *longest, char *msg, size_t size) {
+    cl_kernel kc = s->k_camera, kt = s->k_trace, ks = s->k_shade;
+    rt_status st = set_arg(kc, 1, sizeof f, &f, msg, size);
+    if (st == RT_OK) st = set_arg(kc, 2, sizeof n, &n, msg, size);
+    if (st == RT_OK) st = set_arg(kt, 10, sizeof n, &n, msg, size);
+    if (st == RT_OK) st = set_arg(ks, 10, sizeof f, &f, msg, size);
+    if (st == RT_OK) st = set_arg(ks, 11, sizeof n, &n, msg, size);
+    cl_event ev[3];
+    int queued = 0;
+    if (st == RT_OK) st = enqueue(s, kc, n, "rt_k_camera", &ev[queued], msg, size);
+    if (st == RT_OK) st = enqueue(s, kt, n, "rt_k_trace", &ev[++queued], msg, size);
+    if (st == RT_OK) st = enqueue(s, ks, n, "rt_k_shade", &ev[++queued], msg, size);
+    if (st == RT_OK) queued++;
+    *longest = 0.0;
+    if (queued == 3) {
+        st = finish_launches(s, ev, 3, stats->kernel_ms, longest, msg, size);
+    } else {
+        clFinish(s->queue);
+        for (int i = 0; i < queued; i++) clReleaseEvent(ev[i]);
+    }
+    if (st == RT_OK) stats->launches += 3;
+    return st;
+}
+
+/* Launches k over count items, waits, adds the time to *ms and raises
+ * *longest. */
+static rt_status timed(cl_state *s, cl_kernel k, uint32_t count, const char *name, double *ms,
+                       double *longest, char *msg, size_t size) {
+    double t = 0.0;
+    rt_status st = launch(s, k, count, name, &t, msg, size);
+    *ms += t;
+    if (t > *longest) *longest = t;
+    return st;
+}
+
+static rt_status zero_buf(cl_state *s, int b, size_t bytes, char *msg, size_t size) {
+    cl_uint zero = 0;
+    cl_int err =
+        clEnqueueFillBuffer(s->queue, s->buf[b], &zero, sizeof zero, 0, bytes, 0, NULL, NULL);
+    if (err != CL_SUCCESS)
+        return fail(msg, size, RT_ERROR_BACKEND, "clearing buffer '%s' on '%s': %s",
+                    buffer_names[b], s->dev.name, rt_cl_error_name(err));
+    return RT_OK;
+}
+
+/* One tile of an image with secondary rays as wavefront passes (see
+ * kernels/rt_render.cl): the primary rays' queue, then per level a trace and
+ * a shade launch whose secondary rays make the next queue (its length read
+ * back between the launches), until the queue is empty; then the per-pixel
+ * sum in rt_shade_hit's order. *overflow is set (and the tile left
+ * unfinished) when a level queues more than cap rays. */
+static rt_status wave_tile(cl_state *s, cl_uint slots, cl_uint cap, cl_uint f, cl_uint n,
+                           rt_render_stats *stats, double *longest, int *overflow, char *msg,
+                           size_t size) {
+    cl_kernel kc = s->k_wcam, kt = s->k_wtrace, ks = s->k_wshade;
+    *longest = 0.0;
+    *overflow = 0;
+    rt_status st = zero_buf(s, B_COUNTERS, sizeof(rt_counters) * n, msg, size);
+    if (st == RT_OK) st = set_arg(kc, 1, sizeof f, &f, msg, size);
+    if (st == RT_OK) st = set_arg(kc, 2, sizeof n, &n, msg, size);
+    if (st == RT_OK) st = set_arg(kc, 3, sizeof(cl_mem), &s->buf[B_QUEUE_A], msg, size);
+    if (st == RT_OK)
+        st = timed(s, kc, n, "rt_k_wave_camera", &stats->kernel_ms[0], longest, msg, size);
+    if (st == RT_OK) stats->launches++;
+    cl_uint count = n;
+    int in = B_QUEUE_A, out = B_QUEUE_B;
+    while (st == RT_OK && count > 0) {
+        st = set_arg(kt, 10, sizeof count, &count, msg, size);
+        if (st == RT_OK) st = set_arg(kt, 11, sizeof(cl_mem), &s->buf[in], msg, size);
+        if (st == RT_OK) st = set_arg(ks, 10, sizeof count, &count, msg, size);
+        if (st == RT_OK) st = set_arg(ks, 11, sizeof(cl_mem), &s->buf[in], msg, size);
+        if (st == RT_OK) st = set_arg(ks, 16, sizeof(cl_mem), &s->buf[out], msg, size);
+        if (st == RT_OK)
+            st = timed(s, kt, count, "rt_k_wave_trace", &stats->kernel_ms[1], longest, msg, size);
+        if (st == RT_OK) st = zero_buf(s, B_QUEUE_COUNT, sizeof(cl_uint), msg, size);
+        if (st == RT_OK)
+            st = timed(s, ks, count, "rt_k_wave_shade", &stats->kernel_ms[2], longest, msg, size);
+        cl_uint next = 0;
+        if (st == RT_OK) st = read_buf(s, B_QUEUE_COUNT, sizeof next, &next, msg, size);
+        if (st != RT_OK) return st;
+        stats->launches += 2;
+        if (next > cap) {
+            *overflow = 1;
+            return RT_OK;
+        }
+        count = next;
+        int t = in;
+        in = out;
+        out = t;
+    }
+    cl_kernel ksum = s->k_wsum;
+    if (st == RT_OK) st = set_arg(ksum, 0, sizeof f, &f, msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 1, sizeof n, &n, msg, size);
+    if (st == RT_OK)
+        st = timed(s, ksum, n, "rt_k_wave_sum", &stats->kernel_ms[2], longest, msg, size);
+    if (st == RT_OK) stats->launches++;
+    return st;
+}
+
+/* The wavefront's largest tile: a power of two whose records fit in
+ * RT_CL_WAVE_RECORD_BYTES and the device's largest allocation. */
+static uint32_t wave_tile_max(const cl_state *s, uint32_t slots) {
+    uint64_t budget = RT_CL_WAVE_RECORD_BYTES;
+    if (s->dev.max_alloc && s->dev.max_alloc < budget) budget = s->dev.max_alloc;
+    uint64_t fit = budget / ((uint64_t)slots * sizeof(rt_wave_record));
+    uint32_t t = RT_CL_TILE_MAX;
+    while (t > 64 && t > fit) t /= 2;
+    return t;
+}
+
+/* Buffers and fixed arguments of the wavefront kernels. */
+static rt_status wave_setup(cl_state *s, cl_uint slots, uint32_t tile_max, cl_uint cap,
+                            cl_int channels, char *msg, size_t size) {
+    int remade;
+    rt_status st = ensure(s, B_QUEUE_A, sizeof(rt_wave_entry) * cap, &remade, msg, size);
+    if (st == RT_OK) st = ensure(s, B_QUEUE_B, sizeof(rt_wave_entry) * cap, &remade, msg, size);
+    if (st == RT_OK) st = ensure(s, B_WAVE_HITS, sizeof(rt_hit_d) * cap, &remade, msg, size);
+    if (st == RT_OK)
+        st = ensure(s, B_RECORDS, sizeof(rt_wave_record) * (size_t)slots * tile_max, &remade, msg,
+                    size);
+    if (st == RT_OK) st = ensure(s, B_QUEUE_COUNT, sizeof(cl_uint), &remade, msg, size);
+    if (st == RT_OK) st = set_view(s, s->k_wtrace, msg, size);
+    if (st == RT_OK) st = set_view(s, s->k_wshade, msg, size);
+    cl_kernel kc = s->k_wcam, kt = s->k_wtrace, ks = s->k_wshade, ksum = s->k_wsum;
+    if (st == RT_OK) st = set_arg(kc, 0, sizeof(cl_mem), &s->buf[B_HDR], msg, size);
+    if (st == RT_OK) st = set_arg(kt, 12, sizeof(cl_mem), &s->buf[B_WAVE_HITS], msg, size);
+    if (st == RT_OK) st = set_arg(kt, 13, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, size);
+    if (st == RT_OK) st = set_arg(ks, 12, sizeof(cl_mem), &s->buf[B_WAVE_HITS], msg, size);
+    if (st == RT_OK) st = set_arg(ks, 13, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, size);
+    if (st == RT_OK) st = set_arg(ks, 14, sizeof(cl_mem), &s->buf[B_RECORDS], msg, size);
+    if (st == RT_OK) st = set_arg(ks, 15, sizeof slots, &slots, msg, size);
+    if (st == RT_OK) st = set_arg(ks, 17, sizeof(cl_mem), &s->buf[B_QUEUE_COUNT], msg, size);
+    if (st == RT_OK) st = set_arg(ks, 18, sizeof cap, &cap, msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 2, sizeof(cl_mem), &s->buf[B_HDR], msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 3, sizeof(cl_mem), &s->buf[B_RECORDS], msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 4, sizeof slots, &slots, msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 5, sizeof channels, &channels, msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 6, sizeof(cl_mem), &s->buf[B_FB], msg, size);
+    return st;
+}
+
 static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char *device,
                            const rt_render_options *opt, rt_framebuffer *fb,
                            rt_render_stats *stats) {
@@ -566,6 +743,18 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
     if (st == RT_OK) st = set_arg(ks, 15, sizeof(cl_mem), &s->buf[B_HITS], msg, sizeof msg);
     if (st == RT_OK) st = set_arg(ks, 16, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, sizeof msg);
     if (st == RT_OK) st = set_arg(ks, 17, sizeof(cl_mem), &s->buf[B_FB], msg, sizeof msg);
+
+    /* Images with reflection or refraction go through the wavefront; AOVs
+     * (primary-ray values, or every ray's tests of a pixel) and scenes
+     * without secondary rays through rt_k_shade. */
+    int wave = aov == RT_AOV_NONE && (h->flags & RT_SCENE_SECONDARY) && !s->no_wave;
+    cl_uint slots = (2u << h->max_depth) - 1u, cap = 0;
+    if (st == RT_OK && wave) {
+        uint32_t tmax = wave_tile_max(s, slots);
+        cap = 2u * tmax;
+        st = wave_setup(s, slots, tmax, cap, channels, msg, sizeof msg);
+        if (s->tile > tmax) s->tile = tmax;
+    }
     if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
 
     rt_counters *counts = NULL;
@@ -576,29 +765,18 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
     double t_render = rt_now_ms();
     for (uint32_t first = 0; first < pixels && st == RT_OK;) {
         cl_uint n = pixels - first < s->tile ? pixels - first : s->tile;
-        cl_uint f = first;
-        st = set_arg(kc, 1, sizeof f, &f, msg, sizeof msg);
-        if (st == RT_OK) st = set_arg(kc, 2, sizeof n, &n, msg, sizeof msg);
-        if (st == RT_OK) st = set_arg(kt, 10, sizeof n, &n, msg, sizeof msg);
-        if (st == RT_OK) st = set_arg(ks, 10, sizeof f, &f, msg, sizeof msg);
-        if (st == RT_OK) st = set_arg(ks, 11, sizeof n, &n, msg, sizeof msg);
-        /* The tile's three launches back to back on the in-order queue, one
-         * wait at the end. */
-        cl_event ev[3];
-        int queued = 0;
-        if (st == RT_OK) st = enqueue(s, kc, n, "rt_k_camera", &ev[queued], msg, sizeof msg);
-        if (st == RT_OK) st = enqueue(s, kt, n, "rt_k_trace", &ev[++queued], msg, sizeof msg);
-        if (st == RT_OK) st = enqueue(s, ks, n, "rt_k_shade", &ev[++queued], msg, sizeof msg);
-        if (st == RT_OK) queued++;
         double longest = 0.0;
-        if (queued == 3) {
-            st = finish_launches(s, ev, 3, stats->kernel_ms, &longest, msg, sizeof msg);
-        } else {
-            clFinish(s->queue);
-            for (int i = 0; i < queued; i++) clReleaseEvent(ev[i]);
+        int overflow = 1;
+        if (wave) {
+            st = wave_tile(s, slots, cap, first, n, stats, &longest, &overflow, msg, sizeof msg);
+            stats->wave_tiles++;
+            if (overflow) stats->wave_fallbacks++;
         }
+        /* A level that queued more rays than the queues hold: the tile again
+         * with the stack in the kernel (the same bits). */
+        if (st == RT_OK && overflow)
+            st = direct_tile(s, first, n, stats, &longest, msg, sizeof msg);
         if (st != RT_OK) break;
-        stats->launches += 3;
         if (n > stats->tile_pixels) stats->tile_pixels = n;
         if (counts) {
             double t0 = rt_now_ms();
@@ -613,6 +791,7 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
         first += n;
         /* Only a full tile says how long a tile takes. */
         if (n == s->tile) s->tile = next_tile(s, s->tile, longest);
+        if (wave && s->tile > cap / 2) s->tile = cap / 2;
         if (opt->progress) opt->progress(opt->progress_user, (double)first / pixels);
     }
     free(counts);
