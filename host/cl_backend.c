@@ -749,9 +749,14 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
      * without secondary rays through rt_k_shade. */
     int wave = aov == RT_AOV_NONE && (h->flags & RT_SCENE_SECONDARY) && !s->no_wave;
     cl_uint slots = (2u << h->max_depth) - 1u, cap = 0;
+    uint32_t tmax = RT_CL_TILE_MAX;
     if (st == RT_OK && wave) {
-        uint32_t tmax = wave_tile_max(s, slots);
+        tmax = wave_tile_max(s, slots);
         cap = 2u * tmax;
+        /* Tests shrink the queues to force the overflow path. */
+        const char *cap_env = getenv("RTCL_OPENCL_WAVE_CAP");
+        if (cap_env && atoi(cap_env) > 0 && (cl_uint)atoi(cap_env) < cap)
+            cap = (cl_uint)atoi(cap_env);
         st = wave_setup(s, slots, tmax, cap, channels, msg, sizeof msg);
         if (s->tile > tmax) s->tile = tmax;
     }
@@ -791,7 +796,7 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
         first += n;
         /* Only a full tile says how long a tile takes. */
         if (n == s->tile) s->tile = next_tile(s, s->tile, longest);
-        if (wave && s->tile > cap / 2) s->tile = cap / 2;
+        if (wave && s->tile > tmax) s->tile = tmax;
         if (opt->progress) opt->progress(opt->progress_user, (double)first / pixels);
     }
     free(counts);
