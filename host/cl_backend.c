@@ -684,10 +684,12 @@ static uint32_t wave_tile_max(const cl_state *s, uint32_t slots) {
 /* Buffers and fixed arguments of the wavefront kernels. */
 static rt_status wave_setup(cl_state *s, cl_uint slots, uint32_t tile_max, cl_uint cap,
                             cl_int channels, char *msg, size_t size) {
+    /* A queue holds a tile's primary rays or up to cap secondary rays. */
+    size_t entries = cap > tile_max ? cap : tile_max;
     int remade;
-    rt_status st = ensure(s, B_QUEUE_A, sizeof(rt_wave_entry) * cap, &remade, msg, size);
-    if (st == RT_OK) st = ensure(s, B_QUEUE_B, sizeof(rt_wave_entry) * cap, &remade, msg, size);
-    if (st == RT_OK) st = ensure(s, B_WAVE_HITS, sizeof(rt_hit_d) * cap, &remade, msg, size);
+    rt_status st = ensure(s, B_QUEUE_A, sizeof(rt_wave_entry) * entries, &remade, msg, size);
+    if (st == RT_OK) st = ensure(s, B_QUEUE_B, sizeof(rt_wave_entry) * entries, &remade, msg, size);
+    if (st == RT_OK) st = ensure(s, B_WAVE_HITS, sizeof(rt_hit_d) * entries, &remade, msg, size);
     if (st == RT_OK)
         st = ensure(s, B_RECORDS, sizeof(rt_wave_record) * (size_t)slots * tile_max, &remade, msg,
                     size);
