@@ -703,12 +703,13 @@ static rt_status wave_setup(cl_state *s, cl_uint slots, uint32_t tile_max, cl_ui
     if (st == RT_OK) st = set_arg(ks, 12, sizeof(cl_mem), &s->buf[B_WAVE_HITS], msg, size);
     if (st == RT_OK) st = set_arg(ks, 13, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, size);
     if (st == RT_OK) st = set_arg(ks, 14, sizeof(cl_mem), &s->buf[B_RECORDS], msg, size);
-    if (st == RT_OK) st = set_arg(ks, 15, sizeof slots, &slots, msg, size);
+    cl_uint stride = tile_max; /* records are slot-major */
+    if (st == RT_OK) st = set_arg(ks, 15, sizeof stride, &stride, msg, size);
     if (st == RT_OK) st = set_arg(ks, 17, sizeof(cl_mem), &s->buf[B_QUEUE_COUNT], msg, size);
     if (st == RT_OK) st = set_arg(ks, 18, sizeof cap, &cap, msg, size);
     if (st == RT_OK) st = set_arg(ksum, 2, sizeof(cl_mem), &s->buf[B_HDR], msg, size);
     if (st == RT_OK) st = set_arg(ksum, 3, sizeof(cl_mem), &s->buf[B_RECORDS], msg, size);
-    if (st == RT_OK) st = set_arg(ksum, 4, sizeof slots, &slots, msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 4, sizeof stride, &stride, msg, size);
     if (st == RT_OK) st = set_arg(ksum, 5, sizeof channels, &channels, msg, size);
     if (st == RT_OK) st = set_arg(ksum, 6, sizeof(cl_mem), &s->buf[B_FB], msg, size);
     return st;

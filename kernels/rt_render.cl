@@ -109,7 +109,10 @@ __kernel void rt_k_shade(RT_VIEW_ARGS, uint first, uint count, int aov, int chan
  * max_depth (the child popped first by rt_shade_hit at slot + 1, the other at
  * slot + 2^(max_depth - depth)), and rt_k_wave_sum adds the terms in
  * rt_shade_hit's order by walking the records depth-first. Only slots of
- * nodes that exist are read, so the records need no clearing. */
+ * nodes that exist are read, so the records need no clearing. The records are
+ * slot-major (record of pixel p, slot k at k * stride + p, stride = the
+ * largest tile): the slots near the root, which most pixels have, are then
+ * contiguous across the tile instead of a kilobyte apart. */
 
 __kernel void rt_k_wave_camera(__global const rt_scene_header *hdr, uint first, uint count,
                                __global rt_wave_entry *queue) {
@@ -149,7 +152,7 @@ __kernel void rt_k_wave_trace(RT_VIEW_ARGS, uint count, __global const rt_wave_e
 
 __kernel void rt_k_wave_shade(RT_VIEW_ARGS, uint count, __global const rt_wave_entry *queue,
                               __global const rt_hit_d *hits, __global uint *counters,
-                              __global rt_wave_record *records, uint slots,
+                              __global rt_wave_record *records, uint stride,
                               __global rt_wave_entry *next, __global uint *next_count,
                               uint next_cap) {
     uint i = (uint)get_global_id(0);
@@ -163,7 +166,7 @@ __kernel void rt_k_wave_shade(RT_VIEW_ARGS, uint count, __global const rt_wave_e
     int has_term, children;
     rt_shade_step(&s, &q.e, &h, &c, rec.term, &has_term, child, &children);
     rec.flags = (has_term ? 1u : 0u) | ((uint)children << 1);
-    records[(size_t)q.pixel * slots + q.slot] = rec;
+    records[(size_t)q.slot * stride + q.pixel] = rec;
     add_counters(counters, q.pixel, &c);
     for (int j = 0; j < children; j++) {
         rt_wave_entry n;
@@ -177,11 +180,10 @@ __kernel void rt_k_wave_shade(RT_VIEW_ARGS, uint count, __global const rt_wave_e
 }
 
 __kernel void rt_k_wave_sum(uint first, uint count, __global const rt_scene_header *hdr,
-                            __global const rt_wave_record *records, uint slots, int channels,
+                            __global const rt_wave_record *records, uint stride, int channels,
                             __global float *fb) {
     uint i = (uint)get_global_id(0);
     if (i >= count) return;
-    __global const rt_wave_record *rec = records + (size_t)i * slots;
     uint stack_slot[RT_SHADE_STACK], stack_depth[RT_SHADE_STACK];
     int sp = 0;
     float rgb[3] = {0.0f, 0.0f, 0.0f};
@@ -191,7 +193,7 @@ __kernel void rt_k_wave_sum(uint first, uint count, __global const rt_scene_head
     while (sp > 0) {
         sp--;
         uint slot = stack_slot[sp], depth = stack_depth[sp];
-        rt_wave_record r = rec[slot];
+        rt_wave_record r = records[(size_t)slot * stride + i];
         if (r.flags & 1u)
             for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + r.term[k];
         uint children = (r.flags >> 1) & 3u;
