@@ -13,6 +13,7 @@
 
 #include "render_internal.h"
 #include "cl_device.h"
+#include "rt_shade.h" /* rt_wave_entry, rt_wave_record: the wavefront's buffers */
 
 extern const char rt_cl_source_rt_render[]; /* generated from kernels/ at build time */
 
@@ -23,6 +24,10 @@ extern const char rt_cl_source_rt_render[]; /* generated from kernels/ at build 
 #define RT_CL_TILE_MAX   (1u << 18)
 #define RT_CL_TILE_FIRST 16384u
 #define RT_CL_TARGET_MS  50.0
+/* The wavefront keeps one rt_wave_record per node of the full shading tree
+ * (2^(max_depth + 1) - 1) per pixel of a tile: its tiles are capped so that
+ * buffer stays within this many bytes. */
+#define RT_CL_WAVE_RECORD_BYTES (64u << 20)
 
 static rt_status fail(char *msg, size_t size, rt_status st, const char *fmt, ...)
 #if defined(__GNUC__)
@@ -54,11 +59,17 @@ enum {
     B_HITS,
     B_COUNTERS,
     B_FB,
+    B_QUEUE_A, /* the wavefront's ray queues (rt_wave_entry), alternating */
+    B_QUEUE_B,
+    B_WAVE_HITS,
+    B_RECORDS, /* per pixel of the tile: one rt_wave_record per tree slot */
+    B_QUEUE_COUNT,
     B_COUNT
 };
 static const char *const buffer_names[B_COUNT] = {
-    "header",   "nodes",     "tris",   "tri_ids", "tri_normals", "tri_mats", "instances",
-    "inst_ids", "materials", "lights", "rays",    "hits",        "counters", "framebuffer"};
+    "header",   "nodes",     "tris",      "tri_ids", "tri_normals", "tri_mats", "instances",
+    "inst_ids", "materials", "lights",    "rays",    "hits",        "counters", "framebuffer",
+    "queue_a",  "queue_b",   "wave_hits", "records", "queue_count"};
 
 typedef struct cl_state {
     rt_cl_device_info dev;
@@ -69,6 +80,7 @@ typedef struct cl_state {
     char options[512]; /* the program's build options */
     char defines[192]; /* the specialisation part of options */
     cl_kernel k_camera, k_trace, k_shade;
+    cl_kernel k_wcam, k_wtrace, k_wshade, k_wsum; /* the wavefront */
     cl_mem buf[B_COUNT];
     size_t cap[B_COUNT];
     /* What the device holds: the mesh part (signature) and the scene version. */
@@ -77,7 +89,16 @@ typedef struct cl_state {
     int uploaded;
     uint32_t uploaded_version;
     uint32_t tile;
+    int no_wave; /* RTCL_OPENCL_NO_WAVE set: rt_k_shade for every image (tests) */
 } cl_state;
+
+static void release_wave_kernels(cl_state *s) {
+    cl_kernel *k[4] = {&s->k_wcam, &s->k_wtrace, &s->k_wshade, &s->k_wsum};
+    for (int i = 0; i < 4; i++) {
+        if (*k[i]) clReleaseKernel(*k[i]);
+        *k[i] = NULL;
+    }
+}
 
 static void state_free(void *p) {
     cl_state *s = p;
@@ -87,6 +108,7 @@ static void state_free(void *p) {
     if (s->k_camera) clReleaseKernel(s->k_camera);
     if (s->k_trace) clReleaseKernel(s->k_trace);
     if (s->k_shade) clReleaseKernel(s->k_shade);
+    release_wave_kernels(s);
     if (s->program) clReleaseProgram(s->program);
     if (s->queue) clReleaseCommandQueue(s->queue);
     if (s->ctx) clReleaseContext(s->ctx);
@@ -125,6 +147,7 @@ static rt_status get_state(const rt_prepared *prep, const char *selector, cl_sta
     free(devs);
     snprintf(s->selector, sizeof s->selector, "%s", sel);
     s->tile = RT_CL_TILE_FIRST;
+    s->no_wave = getenv("RTCL_OPENCL_NO_WAVE") != NULL;
     cl_device_id d = s->dev.device_id;
     cl_context_properties props[] = {CL_CONTEXT_PLATFORM, (cl_context_properties)s->dev.platform_id,
                                      0};
@@ -163,6 +186,8 @@ static void scene_defines(const rt_flat *f, char *out, size_t size) {
              flags, inst_set, inst_mask, f->hdr.tri_method);
 }
 
+static rt_status warm_up(cl_state *s, int wave, char *msg, size_t size);
+
 static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms, char *msg,
                                size_t size) {
     char defines[192], options[512];
@@ -174,6 +199,7 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
     if (s->k_camera) clReleaseKernel(s->k_camera);
     if (s->k_trace) clReleaseKernel(s->k_trace);
     if (s->k_shade) clReleaseKernel(s->k_shade);
+    release_wave_kernels(s);
     if (s->program) clReleaseProgram(s->program);
     s->k_camera = s->k_trace = s->k_shade = NULL;
     s->program = NULL;
@@ -201,12 +227,17 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
     s->k_camera = clCreateKernel(s->program, "rt_k_camera", &err);
     if (s->k_camera) s->k_trace = clCreateKernel(s->program, "rt_k_trace", &err);
     if (s->k_trace) s->k_shade = clCreateKernel(s->program, "rt_k_shade", &err);
-    if (!s->k_shade)
+    if (s->k_shade) s->k_wcam = clCreateKernel(s->program, "rt_k_wave_camera", &err);
+    if (s->k_wcam) s->k_wtrace = clCreateKernel(s->program, "rt_k_wave_trace", &err);
+    if (s->k_wtrace) s->k_wshade = clCreateKernel(s->program, "rt_k_wave_shade", &err);
+    if (s->k_wshade) s->k_wsum = clCreateKernel(s->program, "rt_k_wave_sum", &err);
+    if (!s->k_wsum)
         return fail(msg, size, RT_ERROR_BACKEND, "OpenCL kernels: %s", rt_cl_error_name(err));
     snprintf(s->options, sizeof s->options, "%s", options);
     snprintf(s->defines, sizeof s->defines, "%s", defines);
+    rt_status st = warm_up(s, (f->hdr.flags & RT_SCENE_SECONDARY) != 0, msg, size);
     *compile_ms += rt_now_ms() - t0;
-    return RT_OK;
+    return st;
 }
 
 /* ---- buffers and uploads ------------------------------------------------ */
@@ -369,33 +400,121 @@ static rt_status set_view(cl_state *s, cl_kernel k, char *msg, size_t size) {
     return RT_OK;
 }
 
-/* Enqueues k over count items and adds its profiled time to *ms. */
-static rt_status launch(cl_state *s, cl_kernel k, uint32_t count, const char *name, double *ms,
-                        char *msg, size_t size) {
-    /* A fixed work-group size: PoCL compiles a kernel per size at first use,
-     * so letting the runtime pick one per tile size costs compiles. */
-    size_t local = 64, wg = 0;
-    if (clGetKernelWorkGroupInfo(k, s->dev.device_id, CL_KERNEL_WORK_GROUP_SIZE, sizeof wg, &wg,
-                                 NULL) == CL_SUCCESS &&
+/* The work-group size for k: 64 work-items, a multiple of the kernel's
+ * preferred multiple (8 on PoCL's pthread device, 32 on NVIDIA), within its
+ * limit. Fixed per kernel: PoCL compiles a work-group function per local size
+ * at its first use, so a size chosen per tile would cost compiles. */
+static size_t local_size(cl_state *s, cl_kernel k) {
+    size_t local = 64, wg = 0, mult = 0;
+    cl_device_id d = s->dev.device_id;
+    if (clGetKernelWorkGroupInfo(k, d, CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE, sizeof mult,
+                                 &mult, NULL) == CL_SUCCESS &&
+        mult > local && mult <= 256)
+        local = mult;
+    if (clGetKernelWorkGroupInfo(k, d, CL_KERNEL_WORK_GROUP_SIZE, sizeof wg, &wg, NULL) ==
+            CL_SUCCESS &&
         wg > 0 && wg < local)
         local = wg;
+    return local;
+}
+
+/* Enqueues k over count items (the global size rounded up to the work-group
+ * size; the kernels ignore items past count) without waiting: the launches of
+ * a tile follow each other on the in-order queue, and the host waits once per
+ * tile (see finish_launches). */
+static rt_status enqueue(cl_state *s, cl_kernel k, uint32_t count, const char *name, cl_event *ev,
+                         char *msg, size_t size) {
+    size_t local = local_size(s, k);
     size_t global = ((size_t)count + local - 1) / local * local;
-    cl_event ev;
-    cl_int err = clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, &local, 0, NULL, &ev);
-    if (err == CL_SUCCESS) err = clWaitForEvents(1, &ev);
+    if (global == 0) global = local;
+    cl_int err = clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, &local, 0, NULL, ev);
     if (err != CL_SUCCESS)
         return fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
                     "kernel %s on '%s' (%u items): %s", name, s->dev.name, count,
                     rt_cl_error_name(err));
-    cl_ulong start = 0, end = 0;
-    if (clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_START, sizeof start, &start, NULL) ==
-            CL_SUCCESS &&
-        clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_END, sizeof end, &end, NULL) ==
-            CL_SUCCESS &&
-        end >= start)
-        *ms += (double)(end - start) * 1e-6;
-    clReleaseEvent(ev);
     return RT_OK;
+}
+
+/* Waits for n launches, adds each one's profiled time to ms[i], returns the
+ * longest in *longest, and releases the events. */
+static rt_status finish_launches(cl_state *s, cl_event *ev, int n, double *ms, double *longest,
+                                 char *msg, size_t size) {
+    cl_int err = clWaitForEvents((cl_uint)n, ev);
+    *longest = 0.0;
+    for (int i = 0; i < n; i++) {
+        cl_ulong start = 0, end = 0;
+        if (err == CL_SUCCESS &&
+            clGetEventProfilingInfo(ev[i], CL_PROFILING_COMMAND_START, sizeof start, &start,
+                                    NULL) == CL_SUCCESS &&
+            clGetEventProfilingInfo(ev[i], CL_PROFILING_COMMAND_END, sizeof end, &end, NULL) ==
+                CL_SUCCESS &&
+            end >= start) {
+            double t = (double)(end - start) * 1e-6;
+            ms[i] += t;
+            if (t > *longest) *longest = t;
+        }
+        clReleaseEvent(ev[i]);
+    }
+    if (err != CL_SUCCESS)
+        return fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                    "kernels on '%s': %s", s->dev.name, rt_cl_error_name(err));
+    return RT_OK;
+}
+
+/* Enqueues k over count items, waits, and adds its profiled time to *ms. */
+static rt_status launch(cl_state *s, cl_kernel k, uint32_t count, const char *name, double *ms,
+                        char *msg, size_t size) {
+    cl_event ev;
+    rt_status st = enqueue(s, k, count, name, &ev, msg, size);
+    if (st != RT_OK) return st;
+    double longest;
+    return finish_launches(s, &ev, 1, ms, &longest, msg, size);
+}
+
+/* One empty launch of each kernel (count 0, every item returns at once) with
+ * stub buffers, right after the build: PoCL compiles (or loads from its cache)
+ * the work-group function of a kernel at its first launch, which otherwise
+ * lands in the first frame's time (about 1 s per kernel with a cold cache). */
+static rt_status warm_up(cl_state *s, int wave, char *msg, size_t size) {
+    cl_mem stub = clCreateBuffer(s->ctx, CL_MEM_READ_WRITE, 64, NULL, NULL);
+    if (!stub) return fail(msg, size, RT_ERROR_BACKEND, "cannot allocate a stub buffer");
+    cl_uint zero = 0;
+    cl_int izero = 0;
+    cl_kernel ks[7] = {s->k_camera, s->k_trace,  s->k_shade, s->k_wcam,
+                       s->k_wtrace, s->k_wshade, s->k_wsum};
+    cl_uint nargs[7] = {4, 15, 18, 4, 14, 19, 7};
+    const char *names[7] = {"rt_k_camera",      "rt_k_trace",      "rt_k_shade",
+                            "rt_k_wave_camera", "rt_k_wave_trace", "rt_k_wave_shade",
+                            "rt_k_wave_sum"};
+    rt_status st = RT_OK;
+    /* The wavefront kernels only where the scene has secondary rays. */
+    for (int k = 0; k < (wave ? 7 : 3) && st == RT_OK; k++) {
+        for (cl_uint a = 0; a < nargs[k]; a++) {
+            /* Scalars are uint/int (4 bytes), the rest buffers. */
+            cl_int err = clSetKernelArg(ks[k], a, sizeof(cl_mem), &stub);
+            if (err != CL_SUCCESS) err = clSetKernelArg(ks[k], a, sizeof zero, &zero);
+            if (err != CL_SUCCESS) err = clSetKernelArg(ks[k], a, sizeof izero, &izero);
+            if (err != CL_SUCCESS) {
+                st = fail(msg, size, RT_ERROR_BACKEND, "warm-up argument %u of %s: %s", a, names[k],
+                          rt_cl_error_name(err));
+                break;
+            }
+        }
+        /* PoCL specialises for grids up to some width ("smallgrid") and
+         * builds another function for larger ones: warm up both. */
+        size_t local = local_size(s, ks[k]);
+        size_t globals[2] = {local, RT_CL_TILE_MAX};
+        for (int g = 0; g < 2 && st == RT_OK; g++) {
+            cl_int err = clEnqueueNDRangeKernel(s->queue, ks[k], 1, NULL, &globals[g], &local, 0,
+                                                NULL, NULL);
+            if (err == CL_SUCCESS) err = clFinish(s->queue);
+            if (err != CL_SUCCESS)
+                st = fail(msg, size, RT_ERROR_BACKEND, "warm-up of %s on '%s': %s", names[k],
+                          s->dev.name, rt_cl_error_name(err));
+        }
+    }
+    clReleaseMemObject(stub);
+    return st;
 }
 
 static rt_status read_buf(cl_state *s, int b, size_t bytes, void *dst, char *msg, size_t size) {
@@ -415,11 +534,22 @@ static rt_status ensure_ray_buffers(cl_state *s, uint32_t tile, char *msg, size_
     return st;
 }
 
-/* The next tile size: halve above the target time, double well below it. */
-static uint32_t next_tile(uint32_t tile, double ms) {
-    if (ms > RT_CL_TARGET_MS && tile > RT_CL_TILE_MIN) return tile / 2;
-    if (ms < RT_CL_TARGET_MS / 4 && tile < RT_CL_TILE_MAX) return tile * 2;
-    return tile;
+/* The smallest tile: enough work-groups of 64 to keep every compute unit
+ * busy (PoCL's pthread device runs whole work-groups on its threads; a GPU
+ * needs many per compute unit). */
+static uint32_t tile_min(const cl_state *s) {
+    uint64_t m = (uint64_t)s->dev.compute_units * 64u * 16u;
+    if (m < RT_CL_TILE_MIN) m = RT_CL_TILE_MIN;
+    return m > RT_CL_TILE_MAX ? RT_CL_TILE_MAX : (uint32_t)m;
+}
+
+/* The next tile size from the longest launch of the last full tile: halve
+ * above the target time, double below a quarter of it. Kept in the state, so
+ * the next frame starts where this one ended. */
+static uint32_t next_tile(const cl_state *s, uint32_t tile, double longest_ms) {
+    if (longest_ms > RT_CL_TARGET_MS && tile / 2 >= tile_min(s)) return tile / 2;
+    if (longest_ms < RT_CL_TARGET_MS / 4 && tile < RT_CL_TILE_MAX) return tile * 2;
+    return tile < tile_min(s) ? tile_min(s) : tile;
 }
 
 static rt_status prepare(rt_scene *scene, const rt_prepared *prep, const char *device,
@@ -434,6 +564,154 @@ static rt_status prepare(rt_scene *scene, const rt_prepared *prep, const char *d
         stats->exact = (*out)->dev.exact;
     }
     (void)scene;
+    return st;
+}
+
+/* One tile through rt_shade_hit's stack inside rt_k_shade: camera, closest
+ * hit and shading (or an AOV), back to back on the in-order queue with one
+ * wait at the end. *longest gets the longest launch (ms). */
+static rt_status direct_tile(cl_state *s, cl_uint f, cl_uint n, rt_render_stats *stats,
+                             double *longest, char *msg, size_t size) {
+    cl_kernel kc = s->k_camera, kt = s->k_trace, ks = s->k_shade;
+    rt_status st = set_arg(kc, 1, sizeof f, &f, msg, size);
+    if (st == RT_OK) st = set_arg(kc, 2, sizeof n, &n, msg, size);
+    if (st == RT_OK) st = set_arg(kt, 10, sizeof n, &n, msg, size);
+    if (st == RT_OK) st = set_arg(ks, 10, sizeof f, &f, msg, size);
+    if (st == RT_OK) st = set_arg(ks, 11, sizeof n, &n, msg, size);
+    cl_event ev[3];
+    int queued = 0;
+    if (st == RT_OK) st = enqueue(s, kc, n, "rt_k_camera", &ev[queued], msg, size);
+    if (st == RT_OK) st = enqueue(s, kt, n, "rt_k_trace", &ev[++queued], msg, size);
+    if (st == RT_OK) st = enqueue(s, ks, n, "rt_k_shade", &ev[++queued], msg, size);
+    if (st == RT_OK) queued++;
+    *longest = 0.0;
+    if (queued == 3) {
+        st = finish_launches(s, ev, 3, stats->kernel_ms, longest, msg, size);
+    } else {
+        clFinish(s->queue);
+        for (int i = 0; i < queued; i++) clReleaseEvent(ev[i]);
+    }
+    if (st == RT_OK) stats->launches += 3;
+    return st;
+}
+
+/* Launches k over count items, waits, adds the time to *ms and raises
+ * *longest. */
+static rt_status timed(cl_state *s, cl_kernel k, uint32_t count, const char *name, double *ms,
+                       double *longest, char *msg, size_t size) {
+    double t = 0.0;
+    rt_status st = launch(s, k, count, name, &t, msg, size);
+    *ms += t;
+    if (t > *longest) *longest = t;
+    return st;
+}
+
+static rt_status zero_buf(cl_state *s, int b, size_t bytes, char *msg, size_t size) {
+    cl_uint zero = 0;
+    cl_int err =
+        clEnqueueFillBuffer(s->queue, s->buf[b], &zero, sizeof zero, 0, bytes, 0, NULL, NULL);
+    if (err != CL_SUCCESS)
+        return fail(msg, size, RT_ERROR_BACKEND, "clearing buffer '%s' on '%s': %s",
+                    buffer_names[b], s->dev.name, rt_cl_error_name(err));
+    return RT_OK;
+}
+
+/* One tile of an image with secondary rays as wavefront passes (see
+ * kernels/rt_render.cl): the primary rays' queue, then per level a trace and
+ * a shade launch whose secondary rays make the next queue (its length read
+ * back between the launches), until the queue is empty; then the per-pixel
+ * sum in rt_shade_hit's order. *overflow is set (and the tile left
+ * unfinished) when a level queues more than cap rays. */
+static rt_status wave_tile(cl_state *s, cl_uint slots, cl_uint cap, cl_uint f, cl_uint n,
+                           rt_render_stats *stats, double *longest, int *overflow, char *msg,
+                           size_t size) {
+    cl_kernel kc = s->k_wcam, kt = s->k_wtrace, ks = s->k_wshade;
+    *longest = 0.0;
+    *overflow = 0;
+    rt_status st = zero_buf(s, B_COUNTERS, sizeof(rt_counters) * n, msg, size);
+    if (st == RT_OK) st = set_arg(kc, 1, sizeof f, &f, msg, size);
+    if (st == RT_OK) st = set_arg(kc, 2, sizeof n, &n, msg, size);
+    if (st == RT_OK) st = set_arg(kc, 3, sizeof(cl_mem), &s->buf[B_QUEUE_A], msg, size);
+    if (st == RT_OK)
+        st = timed(s, kc, n, "rt_k_wave_camera", &stats->kernel_ms[0], longest, msg, size);
+    if (st == RT_OK) stats->launches++;
+    cl_uint count = n;
+    int in = B_QUEUE_A, out = B_QUEUE_B;
+    while (st == RT_OK && count > 0) {
+        st = set_arg(kt, 10, sizeof count, &count, msg, size);
+        if (st == RT_OK) st = set_arg(kt, 11, sizeof(cl_mem), &s->buf[in], msg, size);
+        if (st == RT_OK) st = set_arg(ks, 10, sizeof count, &count, msg, size);
+        if (st == RT_OK) st = set_arg(ks, 11, sizeof(cl_mem), &s->buf[in], msg, size);
+        if (st == RT_OK) st = set_arg(ks, 16, sizeof(cl_mem), &s->buf[out], msg, size);
+        if (st == RT_OK)
+            st = timed(s, kt, count, "rt_k_wave_trace", &stats->kernel_ms[1], longest, msg, size);
+        if (st == RT_OK) st = zero_buf(s, B_QUEUE_COUNT, sizeof(cl_uint), msg, size);
+        if (st == RT_OK)
+            st = timed(s, ks, count, "rt_k_wave_shade", &stats->kernel_ms[2], longest, msg, size);
+        cl_uint next = 0;
+        if (st == RT_OK) st = read_buf(s, B_QUEUE_COUNT, sizeof next, &next, msg, size);
+        if (st != RT_OK) return st;
+        stats->launches += 2;
+        if (next > cap) {
+            *overflow = 1;
+            return RT_OK;
+        }
+        count = next;
+        int t = in;
+        in = out;
+        out = t;
+    }
+    cl_kernel ksum = s->k_wsum;
+    if (st == RT_OK) st = set_arg(ksum, 0, sizeof f, &f, msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 1, sizeof n, &n, msg, size);
+    if (st == RT_OK)
+        st = timed(s, ksum, n, "rt_k_wave_sum", &stats->kernel_ms[2], longest, msg, size);
+    if (st == RT_OK) stats->launches++;
+    return st;
+}
+
+/* The wavefront's largest tile: a power of two whose records fit in
+ * RT_CL_WAVE_RECORD_BYTES and the device's largest allocation. */
+static uint32_t wave_tile_max(const cl_state *s, uint32_t slots) {
+    uint64_t budget = RT_CL_WAVE_RECORD_BYTES;
+    if (s->dev.max_alloc && s->dev.max_alloc < budget) budget = s->dev.max_alloc;
+    uint64_t fit = budget / ((uint64_t)slots * sizeof(rt_wave_record));
+    uint32_t t = RT_CL_TILE_MAX;
+    while (t > 64 && t > fit) t /= 2;
+    return t;
+}
+
+/* Buffers and fixed arguments of the wavefront kernels. */
+static rt_status wave_setup(cl_state *s, cl_uint slots, uint32_t tile_max, cl_uint cap,
+                            cl_int channels, char *msg, size_t size) {
+    /* A queue holds a tile's primary rays or up to cap secondary rays. */
+    size_t entries = cap > tile_max ? cap : tile_max;
+    int remade;
+    rt_status st = ensure(s, B_QUEUE_A, sizeof(rt_wave_entry) * entries, &remade, msg, size);
+    if (st == RT_OK) st = ensure(s, B_QUEUE_B, sizeof(rt_wave_entry) * entries, &remade, msg, size);
+    if (st == RT_OK) st = ensure(s, B_WAVE_HITS, sizeof(rt_hit_d) * entries, &remade, msg, size);
+    if (st == RT_OK)
+        st = ensure(s, B_RECORDS, sizeof(rt_wave_record) * (size_t)slots * tile_max, &remade, msg,
+                    size);
+    if (st == RT_OK) st = ensure(s, B_QUEUE_COUNT, sizeof(cl_uint), &remade, msg, size);
+    if (st == RT_OK) st = set_view(s, s->k_wtrace, msg, size);
+    if (st == RT_OK) st = set_view(s, s->k_wshade, msg, size);
+    cl_kernel kc = s->k_wcam, kt = s->k_wtrace, ks = s->k_wshade, ksum = s->k_wsum;
+    if (st == RT_OK) st = set_arg(kc, 0, sizeof(cl_mem), &s->buf[B_HDR], msg, size);
+    if (st == RT_OK) st = set_arg(kt, 12, sizeof(cl_mem), &s->buf[B_WAVE_HITS], msg, size);
+    if (st == RT_OK) st = set_arg(kt, 13, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, size);
+    if (st == RT_OK) st = set_arg(ks, 12, sizeof(cl_mem), &s->buf[B_WAVE_HITS], msg, size);
+    if (st == RT_OK) st = set_arg(ks, 13, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, size);
+    if (st == RT_OK) st = set_arg(ks, 14, sizeof(cl_mem), &s->buf[B_RECORDS], msg, size);
+    cl_uint stride = tile_max; /* records are slot-major */
+    if (st == RT_OK) st = set_arg(ks, 15, sizeof stride, &stride, msg, size);
+    if (st == RT_OK) st = set_arg(ks, 17, sizeof(cl_mem), &s->buf[B_QUEUE_COUNT], msg, size);
+    if (st == RT_OK) st = set_arg(ks, 18, sizeof cap, &cap, msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 2, sizeof(cl_mem), &s->buf[B_HDR], msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 3, sizeof(cl_mem), &s->buf[B_RECORDS], msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 4, sizeof stride, &stride, msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 5, sizeof channels, &channels, msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 6, sizeof(cl_mem), &s->buf[B_FB], msg, size);
     return st;
 }
 
@@ -468,6 +746,23 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
     if (st == RT_OK) st = set_arg(ks, 15, sizeof(cl_mem), &s->buf[B_HITS], msg, sizeof msg);
     if (st == RT_OK) st = set_arg(ks, 16, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, sizeof msg);
     if (st == RT_OK) st = set_arg(ks, 17, sizeof(cl_mem), &s->buf[B_FB], msg, sizeof msg);
+
+    /* Images with reflection or refraction go through the wavefront; AOVs
+     * (primary-ray values, or every ray's tests of a pixel) and scenes
+     * without secondary rays through rt_k_shade. */
+    int wave = aov == RT_AOV_NONE && (h->flags & RT_SCENE_SECONDARY) && !s->no_wave;
+    cl_uint slots = (2u << h->max_depth) - 1u, cap = 0;
+    uint32_t tmax = RT_CL_TILE_MAX;
+    if (st == RT_OK && wave) {
+        tmax = wave_tile_max(s, slots);
+        cap = 2u * tmax;
+        /* Tests shrink the queues to force the overflow path. */
+        const char *cap_env = getenv("RTCL_OPENCL_WAVE_CAP");
+        if (cap_env && atoi(cap_env) > 0 && (cl_uint)atoi(cap_env) < cap)
+            cap = (cl_uint)atoi(cap_env);
+        st = wave_setup(s, slots, tmax, cap, channels, msg, sizeof msg);
+        if (s->tile > tmax) s->tile = tmax;
+    }
     if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
 
     rt_counters *counts = NULL;
@@ -478,19 +773,18 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
     double t_render = rt_now_ms();
     for (uint32_t first = 0; first < pixels && st == RT_OK;) {
         cl_uint n = pixels - first < s->tile ? pixels - first : s->tile;
-        cl_uint f = first;
-        double before = stats->kernel_ms[0] + stats->kernel_ms[1] + stats->kernel_ms[2];
-        st = set_arg(kc, 1, sizeof f, &f, msg, sizeof msg);
-        if (st == RT_OK) st = set_arg(kc, 2, sizeof n, &n, msg, sizeof msg);
-        if (st == RT_OK) st = set_arg(kt, 10, sizeof n, &n, msg, sizeof msg);
-        if (st == RT_OK) st = set_arg(ks, 10, sizeof f, &f, msg, sizeof msg);
-        if (st == RT_OK) st = set_arg(ks, 11, sizeof n, &n, msg, sizeof msg);
-        if (st == RT_OK)
-            st = launch(s, kc, n, "rt_k_camera", &stats->kernel_ms[0], msg, sizeof msg);
-        if (st == RT_OK) st = launch(s, kt, n, "rt_k_trace", &stats->kernel_ms[1], msg, sizeof msg);
-        if (st == RT_OK) st = launch(s, ks, n, "rt_k_shade", &stats->kernel_ms[2], msg, sizeof msg);
+        double longest = 0.0;
+        int overflow = 1;
+        if (wave) {
+            st = wave_tile(s, slots, cap, first, n, stats, &longest, &overflow, msg, sizeof msg);
+            stats->wave_tiles++;
+            if (overflow) stats->wave_fallbacks++;
+        }
+        /* A level that queued more rays than the queues hold: the tile again
+         * with the stack in the kernel (the same bits). */
+        if (st == RT_OK && overflow)
+            st = direct_tile(s, first, n, stats, &longest, msg, sizeof msg);
         if (st != RT_OK) break;
-        stats->launches += 3;
         if (n > stats->tile_pixels) stats->tile_pixels = n;
         if (counts) {
             double t0 = rt_now_ms();
@@ -502,9 +796,10 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
                 stats->tri_tests += counts[i].tri_tests;
             }
         }
-        double tile_ms = stats->kernel_ms[0] + stats->kernel_ms[1] + stats->kernel_ms[2] - before;
         first += n;
-        s->tile = next_tile(s->tile, tile_ms);
+        /* Only a full tile says how long a tile takes. */
+        if (n == s->tile) s->tile = next_tile(s, s->tile, longest);
+        if (wave && s->tile > tmax) s->tile = tmax;
         if (opt->progress) opt->progress(opt->progress_user, (double)first / pixels);
     }
     free(counts);
@@ -552,7 +847,7 @@ static rt_status cl_trace(rt_scene *scene, const rt_prepared *prep, const char *
                           rt_cl_error_name(err));
         }
         first += n;
-        s->tile = next_tile(s->tile, ms);
+        if (n == s->tile) s->tile = next_tile(s, s->tile, ms);
     }
     if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
     return RT_OK;

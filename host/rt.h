@@ -181,6 +181,8 @@ typedef struct rt_render_stats {
     double kernel_ms[3];      /* summed OpenCL profiling times: camera, trace, shade */
     uint32_t launches;        /* kernel launches (tiles x kernels) */
     uint32_t tile_pixels;     /* the largest tile launched */
+    uint32_t wave_tiles;      /* tiles shaded as wavefront passes (secondary rays) */
+    uint32_t wave_fallbacks;  /* of those, redone with rt_k_shade (a queue overflowed) */
 } rt_render_stats;
 
 /* Ray/triangle tests (rt_render_options.tri_test). Watertight is the default;

@@ -25,7 +25,7 @@
         __global const rt_material_d *materials, __global const rt_light_d *lights
 
 #define RT_VIEW_INIT                                                                               \
-    {hdr, nodes, tris, tri_ids, tri_normals, tri_mats, instances, inst_ids, materials, lights}
+    { hdr, nodes, tris, tri_ids, tri_normals, tri_mats, instances, inst_ids, materials, lights }
 
 /* AOV codes (rt_aov in rt.h). */
 #define AOV_NONE      0
@@ -95,4 +95,117 @@ __kernel void rt_k_shade(RT_VIEW_ARGS, uint first, uint count, int aov, int chan
             out[0] = (float)(aov == AOV_BOX_TESTS ? c.box_tests : c.tri_tests);
     }
     counters[i] = c;
+}
+
+/* ---- reflection and refraction as wavefront passes -------------------------
+ *
+ * For images of scenes with secondary rays, a tile is shaded level by level:
+ * rt_k_wave_camera queues the primary rays, then per level rt_k_wave_trace
+ * finds the queued rays' hits and rt_k_wave_shade shades them with
+ * rt_shade_step, appending the secondary rays to the next queue (an atomic
+ * counter), until the queue is empty. Float addition is not associative, so
+ * a node does not add its term to the pixel: it stores it in the pixel's
+ * record slot, the node's pre-order index in the full binary tree of depth
+ * max_depth (the child popped first by rt_shade_hit at slot + 1, the other at
+ * slot + 2^(max_depth - depth)), and rt_k_wave_sum adds the terms in
+ * rt_shade_hit's order by walking the records depth-first. Only slots of
+ * nodes that exist are read, so the records need no clearing. The records are
+ * slot-major (record of pixel p, slot k at k * stride + p, stride = the
+ * largest tile): the slots near the root, which most pixels have, are then
+ * contiguous across the tile instead of a kilobyte apart. */
+
+__kernel void rt_k_wave_camera(__global const rt_scene_header *hdr, uint first, uint count,
+                               __global rt_wave_entry *queue) {
+    uint i = (uint)get_global_id(0);
+    if (i >= count) return;
+    uint pixel = first + i;
+    rt_wave_entry q;
+    rt_camera_ray(hdr, (rt_i32)(pixel % (uint)hdr->width), (rt_i32)(pixel / (uint)hdr->width),
+                  &q.e.ray);
+    q.e.w[0] = q.e.w[1] = q.e.w[2] = 1.0f;
+    q.e.depth = 0;
+    q.pixel = i;
+    q.slot = 0;
+    queue[i] = q;
+}
+
+/* Adds c to the pixel's counters (several rays of a pixel may be in one pass:
+ * integer sums, so the order does not matter). */
+static void add_counters(__global uint *counters, uint pixel, const rt_counters *c) {
+    if (c->box_tests) atomic_add(&counters[3 * pixel + 0], c->box_tests);
+    if (c->tri_tests) atomic_add(&counters[3 * pixel + 1], c->tri_tests);
+    if (c->rays) atomic_add(&counters[3 * pixel + 2], c->rays);
+}
+
+__kernel void rt_k_wave_trace(RT_VIEW_ARGS, uint count, __global const rt_wave_entry *queue,
+                              __global rt_hit_d *hits, __global uint *counters) {
+    uint i = (uint)get_global_id(0);
+    if (i >= count) return;
+    rt_scene_view s = RT_VIEW_INIT;
+    rt_ray_d r = queue[i].e.ray;
+    rt_hit_d h;
+    rt_counters c = {0, 0, 0};
+    rt_trace(&s, &r, 0, &h, &c);
+    hits[i] = h;
+    add_counters(counters, queue[i].pixel, &c);
+}
+
+__kernel void rt_k_wave_shade(RT_VIEW_ARGS, uint count, __global const rt_wave_entry *queue,
+                              __global const rt_hit_d *hits, __global uint *counters,
+                              __global rt_wave_record *records, uint stride,
+                              __global rt_wave_entry *next, __global uint *next_count,
+                              uint next_cap) {
+    uint i = (uint)get_global_id(0);
+    if (i >= count) return;
+    rt_scene_view s = RT_VIEW_INIT;
+    rt_wave_entry q = queue[i];
+    rt_hit_d h = hits[i];
+    rt_counters c = {0, 0, 0};
+    rt_wave_record rec;
+    rt_shade_entry child[2];
+    int has_term, children;
+    rt_shade_step(&s, &q.e, &h, &c, rec.term, &has_term, child, &children);
+    rec.flags = (has_term ? 1u : 0u) | ((uint)children << 1);
+    records[(size_t)q.slot * stride + q.pixel] = rec;
+    add_counters(counters, q.pixel, &c);
+    for (int j = 0; j < children; j++) {
+        rt_wave_entry n;
+        n.e = child[j];
+        n.pixel = q.pixel;
+        /* rt_shade_hit pops the last pushed child first. */
+        n.slot = j == children - 1 ? q.slot + 1u : q.slot + (1u << (hdr->max_depth - q.e.depth));
+        uint at = atomic_inc(next_count);
+        if (at < next_cap) next[at] = n; /* the host sees the overflow and redoes the tile */
+    }
+}
+
+__kernel void rt_k_wave_sum(uint first, uint count, __global const rt_scene_header *hdr,
+                            __global const rt_wave_record *records, uint stride, int channels,
+                            __global float *fb) {
+    uint i = (uint)get_global_id(0);
+    if (i >= count) return;
+    uint stack_slot[RT_SHADE_STACK], stack_depth[RT_SHADE_STACK];
+    int sp = 0;
+    float rgb[3] = {0.0f, 0.0f, 0.0f};
+    stack_slot[0] = 0;
+    stack_depth[0] = 0;
+    sp = 1;
+    while (sp > 0) {
+        sp--;
+        uint slot = stack_slot[sp], depth = stack_depth[sp];
+        rt_wave_record r = records[(size_t)slot * stride + i];
+        if (r.flags & 1u)
+            for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + r.term[k];
+        uint children = (r.flags >> 1) & 3u;
+        if (children == 2u) {
+            stack_slot[sp] = slot + (1u << (hdr->max_depth - depth));
+            stack_depth[sp++] = depth + 1u;
+        }
+        if (children >= 1u) {
+            stack_slot[sp] = slot + 1u;
+            stack_depth[sp++] = depth + 1u;
+        }
+    }
+    __global float *out = fb + (size_t)(first + i) * (size_t)channels;
+    for (int k = 0; k < 3; k++) out[k] = rgb[k];
 }

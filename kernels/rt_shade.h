@@ -119,11 +119,81 @@ RT_FN int rt_weight_counts(const float *w, float min_weight) {
     return w[0] >= min_weight || w[1] >= min_weight || w[2] >= min_weight;
 }
 
+/* One node of the shading tree: the ray of entry e and its closest hit h.
+ * term gets what the node adds to the pixel (has_term says whether it adds
+ * anything: a miss adds the weighted background, a hit its weighted Phong
+ * term when the material keeps local weight), child[0 .. *children - 1] the
+ * secondary rays in the order they are pushed: refraction, then reflection
+ * (so reflection is popped, and its subtree added, first). Shared by
+ * rt_shade_hit (depth-first with a stack) and the OpenCL wavefront, which
+ * keeps each node's term and adds them in rt_shade_hit's order at the end. */
+RT_FN void rt_shade_step(const rt_scene_view *s, const rt_shade_entry *e, const rt_hit_d *h,
+                         rt_counters *c, float *term, int *has_term, rt_shade_entry *child,
+                         int *children) {
+    *has_term = 0;
+    *children = 0;
+    term[0] = term[1] = term[2] = 0.0f; /* defined even when not added */
+    if (h->prim == RT_NO_HIT) {
+        for (int k = 0; k < 3; k++) term[k] = e->w[k] * s->hdr->background[k];
+        *has_term = 1;
+        return;
+    }
+    rt_surface sf;
+    rt_surface_at(s, &e->ray, h, &sf);
+    RT_GLOBAL const rt_material_d *m = &s->materials[sf.material];
+    float dn[3] = {e->ray.dir[0], e->ray.dir[1], e->ray.dir[2]};
+    rt_normalize3(dn);
+    float lw = (1.0f - m->reflectivity) - m->transparency;
+    if (lw > 0.0f) {
+        float lit[3];
+        rt_phong(s, &sf, dn, c, lit);
+        for (int k = 0; k < 3; k++) term[k] = (e->w[k] * lw) * lit[k];
+        *has_term = 1;
+    }
+    if (!(RT_SCENE_FLAGS(s) & RT_SCENE_SECONDARY) || e->depth >= s->hdr->max_depth) return;
+    float refl = m->reflectivity;
+    float cosi = -rt_dot3(dn, sf.ns);
+    if (m->transparency > 0.0f) {
+        float eta = sf.front ? 1.0f / m->ior : m->ior;
+        float k2 = 1.0f - (eta * eta) * (1.0f - cosi * cosi);
+        if (k2 < 0.0f) {
+            refl = refl + m->transparency; /* total internal reflection */
+        } else {
+            rt_shade_entry t;
+            float a = eta * cosi - RT_SQRT(k2);
+            for (int k = 0; k < 3; k++) {
+                t.ray.dir[k] = eta * dn[k] + a * sf.ns[k];
+                t.w[k] = e->w[k] * m->transparency;
+            }
+            rt_offset_point(sf.p, sf.ng, -1.0f, t.ray.org);
+            t.ray.tmin = 0.0f;
+            t.ray.tmax = RT_INF;
+            t.depth = e->depth + 1;
+            if (rt_weight_counts(t.w, s->hdr->min_weight)) child[(*children)++] = t;
+        }
+    }
+    if (refl > 0.0f) {
+        rt_shade_entry t;
+        for (int k = 0; k < 3; k++) {
+            t.ray.dir[k] = dn[k] + (2.0f * cosi) * sf.ns[k];
+            t.w[k] = e->w[k] * refl;
+        }
+        rt_offset_point(sf.p, sf.ng, 1.0f, t.ray.org);
+        t.ray.tmin = 0.0f;
+        t.ray.tmax = RT_INF;
+        t.depth = e->depth + 1;
+        if (rt_weight_counts(t.w, s->hdr->min_weight)) child[(*children)++] = t;
+    }
+}
+
 /* The colour seen along a primary ray whose closest hit is already known:
  * depth-first over reflection and refraction rays with an explicit stack,
  * up to hdr->max_depth bounces and while a ray's weight reaches
  * hdr->min_weight. Every contribution is added in the same order on every
- * backend. */
+ * backend: a node's own term, then its reflection subtree, then its
+ * refraction subtree. The stack never overflows (max_depth + 2 entries
+ * suffice, RT_MAX_DEPTH + 2 <= RT_SHADE_STACK), so the wavefront needs no
+ * equivalent of the sp check. */
 RT_FN void rt_shade_hit(const rt_scene_view *s, const rt_ray_d *primary,
                         const rt_hit_d *primary_hit, rt_counters *c, float *rgb) {
     rt_shade_entry stack[RT_SHADE_STACK];
@@ -142,57 +212,29 @@ RT_FN void rt_shade_hit(const rt_scene_view *s, const rt_ray_d *primary,
         } else {
             rt_trace(s, &e.ray, 0, &h, c);
         }
-        if (h.prim == RT_NO_HIT) {
-            for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + e.w[k] * s->hdr->background[k];
-            continue;
-        }
-        rt_surface sf;
-        rt_surface_at(s, &e.ray, &h, &sf);
-        RT_GLOBAL const rt_material_d *m = &s->materials[sf.material];
-        float dn[3] = {e.ray.dir[0], e.ray.dir[1], e.ray.dir[2]};
-        rt_normalize3(dn);
-        float lw = (1.0f - m->reflectivity) - m->transparency;
-        if (lw > 0.0f) {
-            float lit[3];
-            rt_phong(s, &sf, dn, c, lit);
-            for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + (e.w[k] * lw) * lit[k];
-        }
-        if (!(RT_SCENE_FLAGS(s) & RT_SCENE_SECONDARY) || e.depth >= s->hdr->max_depth) continue;
-        float refl = m->reflectivity;
-        float cosi = -rt_dot3(dn, sf.ns);
-        if (m->transparency > 0.0f) {
-            float eta = sf.front ? 1.0f / m->ior : m->ior;
-            float k2 = 1.0f - (eta * eta) * (1.0f - cosi * cosi);
-            if (k2 < 0.0f) {
-                refl = refl + m->transparency; /* total internal reflection */
-            } else {
-                rt_shade_entry t;
-                float a = eta * cosi - RT_SQRT(k2);
-                for (int k = 0; k < 3; k++) {
-                    t.ray.dir[k] = eta * dn[k] + a * sf.ns[k];
-                    t.w[k] = e.w[k] * m->transparency;
-                }
-                rt_offset_point(sf.p, sf.ng, -1.0f, t.ray.org);
-                t.ray.tmin = 0.0f;
-                t.ray.tmax = RT_INF;
-                t.depth = e.depth + 1;
-                if (rt_weight_counts(t.w, s->hdr->min_weight) && sp < RT_SHADE_STACK)
-                    stack[sp++] = t;
-            }
-        }
-        if (refl > 0.0f) {
-            rt_shade_entry t;
-            for (int k = 0; k < 3; k++) {
-                t.ray.dir[k] = dn[k] + (2.0f * cosi) * sf.ns[k];
-                t.w[k] = e.w[k] * refl;
-            }
-            rt_offset_point(sf.p, sf.ng, 1.0f, t.ray.org);
-            t.ray.tmin = 0.0f;
-            t.ray.tmax = RT_INF;
-            t.depth = e.depth + 1;
-            if (rt_weight_counts(t.w, s->hdr->min_weight) && sp < RT_SHADE_STACK) stack[sp++] = t;
-        }
+        float term[3];
+        rt_shade_entry child[2];
+        int has_term, children;
+        rt_shade_step(s, &e, &h, c, term, &has_term, child, &children);
+        if (has_term)
+            for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + term[k];
+        for (int i = 0; i < children; i++)
+            if (sp < RT_SHADE_STACK) stack[sp++] = child[i];
     }
 }
+
+/* The OpenCL wavefront's queue entry and per-node record (see
+ * kernels/rt_render.cl); here so the host sizes their buffers with the
+ * device's layout (4-byte fields only, so no padding differs). */
+typedef struct rt_wave_entry {
+    rt_shade_entry e;
+    rt_u32 pixel; /* within the tile */
+    rt_u32 slot;  /* the node's place in the pixel's tree (pre-order) */
+} rt_wave_entry;
+
+typedef struct rt_wave_record {
+    float term[3];
+    rt_u32 flags; /* bit 0: term is added; bits 1-2: number of children */
+} rt_wave_record;
 
 #endif /* RT_SHADE_H */

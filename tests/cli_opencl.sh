@@ -25,6 +25,18 @@ for scene in builtin:cornell builtin:keyframes; do
     checks=$((checks + 1))
     cmp -s "$tmp/cpu.png" "$tmp/cl.png" || { echo "FAIL: $scene: opencl PNG differs"; fails=$((fails + 1)); }
 done
+# Reflection and refraction as wavefront passes (cornell has a mirror and a
+# glass sphere), and with one-entry queues every tile redone in one kernel:
+# the same PNG both ways.
+expect 0 'wavefront +[1-9][0-9]* tiles \(0 redone' -- "$RTCL" render builtin:cornell --width 160 \
+    --height 90 --backend opencl --stats -o "$tmp/wave.png"
+RTCL_OPENCL_WAVE_CAP=1 expect 0 'wavefront +([0-9]+) tiles \(\1 redone' -- "$RTCL" render \
+    builtin:cornell --width 160 --height 90 --backend opencl --stats -o "$tmp/wave1.png"
+expect 0 'wrote' -- "$RTCL" render builtin:cornell --width 160 --height 90 -o "$tmp/cpu.png"
+for f in wave wave1; do
+    checks=$((checks + 1))
+    cmp -s "$tmp/cpu.png" "$tmp/$f.png" || { echo "FAIL: cornell: opencl $f PNG differs"; fails=$((fails + 1)); }
+done
 expect 2 'no OpenCL device 99' -- "$RTCL" render builtin:cornell --backend opencl --device 99 -o "$tmp/x.png"
 expect 2 '--device applies to --backend opencl or auto' -- "$RTCL" render builtin:cornell --device 0 -o "$tmp/x.png"
 

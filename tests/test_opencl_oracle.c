@@ -4,7 +4,10 @@
  * the image and of every AOV, and the 8-bit PNG) are identical. The first
  * difference is reported with both values. Also: uploads on later frames are
  * only what changed, and a bad --device is an error. Skips only when there is
- * no OpenCL device (or the build has no OpenCL). */
+ * no OpenCL device (or the build has no OpenCL). The wavefront (reflection
+ * and refraction as passes over ray queues) is checked on cornell, also with
+ * queues too small so every tile takes the fallback. */
+#define _POSIX_C_SOURCE 200809L /* setenv */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -104,6 +107,35 @@ static void check_images(const char *name, rt_scene *s) {
     }
 }
 
+/* The image of a scene with reflection and refraction goes through the
+ * wavefront passes (ray queues between launches): the same float pixels and
+ * ray/test counts as the oracle; with queues of one entry every tile
+ * overflows and is redone with the stack kernel, still the same bits. */
+static void check_wavefront(rt_scene *s) {
+    rt_framebuffer cpu, cl;
+    rt_render_stats cs, st;
+    CHECK(render(s, "cpu", RT_AOV_NONE, &cpu, &cs) == RT_OK);
+    for (int forced = 0; forced < 2; forced++) {
+        if (forced) setenv("RTCL_OPENCL_WAVE_CAP", "1", 1);
+        rt_status status = render(s, "opencl", RT_AOV_NONE, &cl, &st);
+        unsetenv("RTCL_OPENCL_WAVE_CAP");
+        CHECK_MSG(status == RT_OK, "wavefront: %s", rt_scene_error(s));
+        if (status != RT_OK) continue;
+        CHECK_MSG(st.wave_tiles > 0, "cornell: the image did not use the wavefront");
+        if (forced)
+            CHECK_EQ_INT((long long)st.wave_fallbacks, (long long)st.wave_tiles);
+        else
+            CHECK_EQ_INT((long long)st.wave_fallbacks, 0);
+        CHECK_EQ_INT((long long)st.rays, (long long)cs.rays);
+        CHECK_EQ_INT((long long)st.box_tests, (long long)cs.box_tests);
+        CHECK_EQ_INT((long long)st.tri_tests, (long long)cs.tri_tests);
+        same_pixels("cornell", forced ? "image (queues overflowing)" : "image (wavefront)", &cpu,
+                    &cl);
+        rt_framebuffer_free(&cl);
+    }
+    rt_framebuffer_free(&cpu);
+}
+
 static void check_hits(const char *name, rt_scene *s) {
     rt_prepared prep;
     CHECK(rt_render_prepare(s, 0, &prep) == RT_OK);
@@ -201,6 +233,7 @@ int main(void) {
         cam.height = 108;
         CHECK(rt_camera_set(s, &cam) == RT_OK);
         check_images(name, s);
+        if (strcmp(name, "cornell") == 0) check_wavefront(s);
         check_hits(name, s);
         rt_scene_destroy(s);
     }

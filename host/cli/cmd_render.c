@@ -115,6 +115,9 @@ static void print_stats(const rt_render_stats *s, int width, int height) {
         printf("kernels          camera %.2f ms, trace %.2f ms, shade %.2f ms (%u launches, "
                "tiles up to %u pixels)\n",
                s->kernel_ms[0], s->kernel_ms[1], s->kernel_ms[2], s->launches, s->tile_pixels);
+        if (s->wave_tiles)
+            printf("wavefront        %u tiles (%u redone in one kernel after a queue overflow)\n",
+                   s->wave_tiles, s->wave_fallbacks);
         printf("download         %.2f ms\n", s->download_ms);
     }
     printf("build            %.2f ms\n", s->build_ms);
