@@ -5,6 +5,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "rt.h"
+#include "scene_builtin.h"
+
 int test_failures = 0;
 int test_checks = 0;
 
@@ -48,4 +51,17 @@ const char *test_write_temp(const char *name, const char *text) {
     fputs(text, f);
     fclose(f);
     return path;
+}
+
+rt_scene *test_builtin_scene(const char *name, int width, int height) {
+    rt_scene *s = NULL;
+    rt_error err;
+    CHECK_MSG(rt_scene_builtin(name, &s, &err) == RT_OK, "%s", err.message);
+    if (!s) return NULL;
+    rt_camera cam;
+    rt_camera_get(s, &cam);
+    cam.width = width;
+    cam.height = height;
+    CHECK_MSG(rt_camera_set(s, &cam) == RT_OK, "%s", rt_scene_error(s));
+    return s;
 }

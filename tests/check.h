@@ -61,4 +61,8 @@ const char *test_shared_scene(const char *rel);
  * path (static buffer, valid until the next call). */
 const char *test_write_temp(const char *name, const char *text);
 
+/* The built-in scene 'name' with its camera set to width x height; NULL (and
+ * a failed check) when it cannot be built. */
+struct rt_scene *test_builtin_scene(const char *name, int width, int height);
+
 #endif /* RT_CHECK_H */

@@ -46,15 +46,8 @@ int main(void) {
     const char *update = getenv("RT_GOLDEN_UPDATE");
     for (int i = 0; rt_builtin_scene_names[i]; i++) {
         const char *name = rt_builtin_scene_names[i];
-        rt_scene *s;
-        rt_error err;
-        CHECK(rt_scene_builtin(name, &s, &err) == RT_OK);
+        rt_scene *s = test_builtin_scene(name, 512, 288);
         if (!s) continue;
-        rt_camera cam;
-        rt_camera_get(s, &cam);
-        cam.width = 512;
-        cam.height = 288;
-        rt_camera_set(s, &cam);
         rt_render_options o = rt_render_options_default();
         rt_framebuffer fb;
         CHECK(rt_render(s, &o, &fb) == RT_OK);

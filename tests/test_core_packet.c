@@ -32,15 +32,9 @@ int main(void) {
     const rt_aov aovs[] = {RT_AOV_NONE, RT_AOV_DEPTH, RT_AOV_PRIMID, RT_AOV_INSTID, RT_AOV_NORMAL};
     for (int i = 0; rt_builtin_scene_names[i]; i++) {
         const char *name = rt_builtin_scene_names[i];
-        rt_scene *s;
-        rt_error err;
-        CHECK(rt_scene_builtin(name, &s, &err) == RT_OK);
+        rt_scene *s = test_builtin_scene(
+            name, 193, 109); /* odd sizes: packets at the right and bottom edges */
         if (!s) continue;
-        rt_camera cam;
-        rt_camera_get(s, &cam);
-        cam.width = 193; /* odd sizes: packets at the right and bottom edges */
-        cam.height = 109;
-        rt_camera_set(s, &cam);
         for (size_t a = 0; a < sizeof aovs / sizeof aovs[0]; a++) {
             rt_framebuffer c, p;
             rt_render_stats sc, sp;
