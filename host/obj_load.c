@@ -155,6 +155,21 @@ static rt_status parse_normal(obj_parser *o) {
  * count (negative indices count back from the newest element). */
 static inline rt_status read_index(obj_parser *o, const char *kind, const char *plural,
                                    size_t count, const char *corner_start, uint32_t *out) {
+    /* Fast path for the usual positive index of at most 9 digits that is in
+     * range: no sign, no 64-bit parse, no column bookkeeping. Anything else
+     * (signs, zero, long or out-of-range numbers, malformed text) takes the
+     * general path below, which also produces the errors. */
+    const char *s = o->c.p;
+    if (s < o->c.end && rt_is_digit(*s)) {
+        const char *limit = o->c.end - s > 9 ? s + 9 : o->c.end;
+        uint32_t v = 0;
+        while (s < limit && rt_is_digit(*s)) v = v * 10u + (uint32_t)(*s++ - '0');
+        if (v != 0 && v <= count && !(s < o->c.end && rt_is_digit(*s))) {
+            o->c.p = s;
+            *out = v - 1;
+            return RT_OK;
+        }
+    }
     int64_t value;
     const char *next;
     const char *start = o->c.p;
