@@ -12,19 +12,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "clock.h"
 #include "bvh.h"
 #include "bvh_internal.h"
 #include "rt.h"
 #include "scene.h"
 #include "thread_pool.h"
-
-static double now_ms(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
-}
 
 static int cmp_double(const void *a, const void *b) {
     double x = *(const double *)a, y = *(const double *)b;
@@ -100,9 +94,9 @@ int main(int argc, char **argv) {
     for (int i = 0; i < reps && times; i++) {
         rt_bvh bvh;
         char msg[160] = "";
-        double t0 = now_ms();
+        double t0 = rt_now_ms();
         rt_status st = rt_bvh_build_fast(boxes, count, &o, pool, neon, &bvh, msg, sizeof msg);
-        times[i] = now_ms() - t0;
+        times[i] = rt_now_ms() - t0;
         if (st != RT_OK) {
             fprintf(stderr, "bench_bvh_fast: %s\n", msg);
             return 1;

@@ -11,15 +11,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "clock.h"
 #include "rt.h"
-
-static double now_ms(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
 
 static int cmp_double(const void *a, const void *b) {
     double x = *(const double *)a, y = *(const double *)b;
@@ -108,9 +102,9 @@ int main(int argc, char **argv) {
     for (int r = 0; r < runs; r++)
         for (int m = 0; m < 4; m++) {
             opt.tri_test = (rt_triangle_test)m;
-            double t0 = now_ms();
+            double t0 = rt_now_ms();
             rt_trace_rays_with(scene, rays, n, hits, 0, &opt);
-            ms[m][r] = now_ms() - t0;
+            ms[m][r] = rt_now_ms() - t0;
             if (r == 0)
                 for (size_t i = 0; i < n; i++) hit_count[m] += hits[i].hit != 0;
         }

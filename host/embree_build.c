@@ -2,10 +2,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include <embree3/rtcore.h>
 
+#include "clock.h"
 #include "embree_peer.h"
 
 struct rt_embree {
@@ -29,12 +29,6 @@ typedef struct em_leaf {
     uint32_t count;
     uint32_t prims[]; /* primitive ids */
 } em_leaf;
-
-static double now_ms(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
-}
 
 static rt_status fail(char *msg, size_t msg_size, rt_status st, const char *what,
                       RTCDevice device) {
@@ -224,9 +218,9 @@ rt_status rt_embree_build_bvh(rt_embree *em, const rt_aabb *boxes, uint32_t coun
     args.setNodeChildren = set_children;
     args.setNodeBounds = set_bounds;
     args.createLeaf = create_leaf;
-    double t0 = now_ms();
+    double t0 = rt_now_ms();
     const em_node *root = rtcBuildBVH(&args);
-    *ms = now_ms() - t0;
+    *ms = rt_now_ms() - t0;
     free(prims);
     if (!root) return fail(msg, msg_size, RT_ERROR_BACKEND, "rtcBuildBVH failed", em->device);
 
@@ -272,9 +266,9 @@ rt_status rt_embree_commit_ms(rt_embree *em, const float *positions, uint32_t ve
         memcpy(ix, indices, sizeof(unsigned) * 3 * triangle_count);
         rtcCommitGeometry(geom);
         rtcAttachGeometry(scene, geom);
-        double t0 = now_ms();
+        double t0 = rt_now_ms();
         rtcCommitScene(scene);
-        *ms = now_ms() - t0;
+        *ms = rt_now_ms() - t0;
         if (rtcGetDeviceError(em->device) != RTC_ERROR_NONE)
             st = fail(msg, msg_size, RT_ERROR_BACKEND, "rtcCommitScene failed", em->device);
     }

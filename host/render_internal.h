@@ -3,6 +3,7 @@
 #ifndef RT_RENDER_INTERNAL_H
 #define RT_RENDER_INTERNAL_H
 
+#include "clock.h"
 #include "flatten.h"
 #include "scene.h"
 #include "thread_pool.h"
@@ -59,8 +60,5 @@ rt_status rt_trace_backend(rt_scene *scene, const char *backend, int *packet,
  * arrays stay shared); an unknown test is an invalid argument. */
 rt_status rt_flat_with_tri_test(rt_scene *scene, const rt_flat *flat, rt_triangle_test test,
                                 rt_flat *out);
-
-/* Milliseconds on a monotonic clock. */
-double rt_now_ms(void);
 
 #endif /* RT_RENDER_INTERNAL_H */

@@ -9,7 +9,7 @@
 #include "rt_shared.h"
 
 static uint32_t oracle_rng = 12345;
-static float oracle_rnd(void) { /* xorshift, uniform in [0, 1) */
+static inline float oracle_rnd(void) { /* xorshift, uniform in [0, 1) */
     oracle_rng ^= oracle_rng << 13;
     oracle_rng ^= oracle_rng >> 17;
     oracle_rng ^= oracle_rng << 5;
@@ -18,8 +18,8 @@ static float oracle_rnd(void) { /* xorshift, uniform in [0, 1) */
 
 /* The closest (or any) hit over every triangle of every instance, with the
  * same ray transform and triangle test as the traversal. */
-static void oracle_brute_force(const rt_scene_view *s, const rt_ray_d *r, int any_hit,
-                               rt_hit_d *best) {
+static inline void oracle_brute_force(const rt_scene_view *s, const rt_ray_d *r, int any_hit,
+                                      rt_hit_d *best) {
     rt_counters c = {0, 0, 0};
     rt_hit_init(best, r);
     for (rt_u32 i = 0; i < s->hdr->instance_count; i++) {
@@ -33,7 +33,7 @@ static void oracle_brute_force(const rt_scene_view *s, const rt_ray_d *r, int an
     }
 }
 
-static int oracle_same_hit(const rt_hit_d *a, const rt_hit_d *b) {
+static inline int oracle_same_hit(const rt_hit_d *a, const rt_hit_d *b) {
     return memcmp(&a->t, &b->t, sizeof(float)) == 0 && a->prim == b->prim && a->inst == b->inst &&
            (a->prim == RT_NO_HIT ||
             (memcmp(&a->u, &b->u, sizeof(float)) == 0 && memcmp(&a->v, &b->v, sizeof(float)) == 0));
@@ -41,8 +41,8 @@ static int oracle_same_hit(const rt_hit_d *a, const rt_hit_d *b) {
 
 /* Even i: a camera ray through a random pixel; odd i: from a random point of
  * the (grown) bounds towards another, sometimes with a short t range. */
-static void oracle_ray(const rt_scene_header *h, const float lo[3], const float hi[3], int i,
-                       rt_ray_d *r) {
+static inline void oracle_ray(const rt_scene_header *h, const float lo[3], const float hi[3], int i,
+                              rt_ray_d *r) {
     if (i % 2 == 0) {
         int px = (int)(oracle_rnd() * (float)h->width), py = (int)(oracle_rnd() * (float)h->height);
         rt_camera_ray(h, px, py, r);

@@ -13,15 +13,8 @@
 #include "rt_shared.h"
 #include "scene.h"
 #include "scene_builtin.h"
+#include "oracle_util.h"
 #include "test_bvh_simple.h"
-
-static uint32_t rng_state = 12345;
-static float rnd(void) { /* xorshift, uniform in [0, 1) */
-    rng_state ^= rng_state << 13;
-    rng_state ^= rng_state >> 17;
-    rng_state ^= rng_state << 5;
-    return (float)(rng_state >> 8) / 16777216.0f;
-}
 
 /* Builds every mesh BVH and the object BVH with the test builder. */
 static int build_flat(const rt_scene *scene, int leaf_size, uint32_t method, rt_flat *flat) {
@@ -53,36 +46,16 @@ static int build_flat(const rt_scene *scene, int leaf_size, uint32_t method, rt_
     return st == RT_OK;
 }
 
-static void brute_force(const rt_scene_view *s, const rt_ray_d *r, int any_hit, rt_hit_d *best) {
-    rt_counters c = {0, 0, 0};
-    rt_hit_init(best, r);
-    for (rt_u32 i = 0; i < s->hdr->instance_count; i++) {
-        const rt_instance *in = &s->instances[i];
-        rt_ray_d o = *r;
-        rt_ray_pre p;
-        if (!(in->flags & RT_INST_IDENTITY)) rt_ray_to_object(in, r, &o);
-        rt_ray_prepare(&o, &p);
-        if (rt_leaf_test(s, in->tri_first, in->tri_count, i, &o, &p, any_hit, best, &c) && any_hit)
-            return;
-    }
-}
-
-static int same_hit(const rt_hit_d *a, const rt_hit_d *b) {
-    return memcmp(&a->t, &b->t, sizeof(float)) == 0 && a->prim == b->prim && a->inst == b->inst &&
-           (a->prim == RT_NO_HIT ||
-            (memcmp(&a->u, &b->u, sizeof(float)) == 0 && memcmp(&a->v, &b->v, sizeof(float)) == 0));
-}
-
 /* A random ray: from inside the scene's (grown) bounds towards a random point
  * of them, sometimes with a limited t range. */
 static void random_ray(const float lo[3], const float hi[3], rt_ray_d *r) {
     for (int k = 0; k < 3; k++) {
         float ext = hi[k] - lo[k];
-        r->org[k] = lo[k] - 0.25f * ext + 1.5f * ext * rnd();
-        r->dir[k] = (lo[k] + ext * rnd()) - r->org[k];
+        r->org[k] = lo[k] - 0.25f * ext + 1.5f * ext * oracle_rnd();
+        r->dir[k] = (lo[k] + ext * oracle_rnd()) - r->org[k];
     }
-    r->tmin = rnd() < 0.2f ? 0.5f * rnd() : 0.0f;
-    r->tmax = rnd() < 0.2f ? 0.3f + rnd() : INFINITY;
+    r->tmin = oracle_rnd() < 0.2f ? 0.5f * oracle_rnd() : 0.0f;
+    r->tmax = oracle_rnd() < 0.2f ? 0.3f + oracle_rnd() : INFINITY;
 }
 
 /* Traces rays through the scene's flattened layout and compares with brute
@@ -101,17 +74,17 @@ static int compare_scene(const char *name, const rt_scene *scene, int leaf_size,
         if (i % 2) {
             random_ray(lo, hi, &r);
         } else { /* camera rays: coherent, many grazing and edge cases */
-            int px = (int)(rnd() * (float)flat.hdr.width),
-                py = (int)(rnd() * (float)flat.hdr.height);
+            int px = (int)(oracle_rnd() * (float)flat.hdr.width),
+                py = (int)(oracle_rnd() * (float)flat.hdr.height);
             rt_camera_ray(&flat.hdr, px, py, &r);
         }
         rt_hit_d a, b, c, d, e;
         rt_counters cnt = {0, 0, 0};
         rt_trace(&v, &r, 0, &a, &cnt);
         rt_trace(&v2, &r, 0, &c, &cnt);
-        brute_force(&v, &r, 0, &b);
+        oracle_brute_force(&v, &r, 0, &b);
         hits += a.prim != RT_NO_HIT;
-        if (!same_hit(&a, &b) || !same_hit(&a, &c)) {
+        if (!oracle_same_hit(&a, &b) || !oracle_same_hit(&a, &c)) {
             if (bad < 5)
                 fprintf(stderr,
                         "%s (leaf %d, method %u) ray %d: bvh t=%.9g prim %u inst %u, other tree "
@@ -121,7 +94,7 @@ static int compare_scene(const char *name, const rt_scene *scene, int leaf_size,
             bad++;
         }
         int occluded = rt_trace(&v, &r, 1, &d, &cnt);
-        brute_force(&v, &r, 1, &e);
+        oracle_brute_force(&v, &r, 1, &e);
         if (occluded != (e.prim != RT_NO_HIT) || occluded != (a.prim != RT_NO_HIT)) bad++;
     }
     CHECK_MSG(hits > rays / 10, "%s: only %d of %d rays hit", name, hits, rays);

@@ -23,12 +23,6 @@
 #include "oracle_util.h"
 #include "render_internal.h"
 
-/* oracle_util.h's other helpers are for the brute-force tests. */
-static void unused_helpers(void) {
-    (void)oracle_same_hit;
-    (void)oracle_brute_force;
-}
-
 static const char *const aov_names[] = {"image",  "depth",    "primid",  "instid",
                                         "normal", "boxtests", "tritests"};
 
@@ -216,7 +210,6 @@ int main(void) {
 #ifndef RT_HAVE_OPENCL
     test_skip("this build has no OpenCL backend (RT_OPENCL=OFF or no ICD loader)");
 #else
-    unused_helpers();
     rt_cl_device_info *devs;
     int count;
     char msg[512];

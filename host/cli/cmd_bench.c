@@ -10,9 +10,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
+#include "clock.h"
 #include "bvh.h"
 #include "commands.h"
 #include "rt.h"
@@ -36,12 +36,6 @@ typedef struct row {
 typedef struct bench_args {
     int json, reps, threads, progress;
 } bench_args;
-
-static double now_ms(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
-}
 
 static int cmp_double(const void *a, const void *b) {
     double x = *(const double *)a, y = *(const double *)b;
@@ -144,10 +138,10 @@ static void bench_ours(const bench_args *a, const tri_input *in, rt_builder buil
     for (int i = -1; i < a->reps; i++) {
         rt_bvh bvh;
         char msg[160] = "";
-        double t0 = now_ms();
+        double t0 = rt_now_ms();
         rt_status st =
             rt_bvh_build(in->boxes, in->count, &o, single ? NULL : pool, &bvh, msg, sizeof msg);
-        double t = now_ms() - t0;
+        double t = rt_now_ms() - t0;
         if (st != RT_OK) {
             snprintf(r->error, sizeof r->error, "%s", msg[0] ? msg : rt_status_string(st));
             free(times);

@@ -1,0 +1,9 @@
+/* clock.h - the one monotonic clock that timings in the library, rtcl and
+ * the benchmark programs read (defined in render.c). */
+#ifndef RT_CLOCK_H
+#define RT_CLOCK_H
+
+/* Milliseconds on a monotonic clock. */
+double rt_now_ms(void);
+
+#endif /* RT_CLOCK_H */
