@@ -88,6 +88,7 @@ typedef struct cl_state {
     size_t mesh_sig_len;
     int uploaded;
     uint32_t uploaded_version;
+    rt_scene_header uploaded_hdr; /* render options (direct_only) change it alone */
     uint32_t tile;
     int no_wave; /* RTCL_OPENCL_NO_WAVE set: rt_k_shade for every image (tests) */
 } cl_state;
@@ -322,7 +323,8 @@ static rt_status upload_scene(cl_state *s, const rt_prepared *prep, uint64_t *by
     if (!sig) return fail(msg, size, RT_ERROR_OUT_OF_MEMORY, "out of memory");
     int mesh_same = s->uploaded && s->mesh_sig && s->mesh_sig_len == sig_len &&
                     memcmp(s->mesh_sig, sig, sig_len * sizeof *sig) == 0;
-    if (mesh_same && s->uploaded_version == prep->flat_version) {
+    if (mesh_same && s->uploaded_version == prep->flat_version &&
+        memcmp(&s->uploaded_hdr, &f->hdr, sizeof f->hdr) == 0) {
         free(sig);
         return RT_OK;
     }
@@ -377,6 +379,7 @@ static rt_status upload_scene(cl_state *s, const rt_prepared *prep, uint64_t *by
     s->mesh_sig_len = sig_len;
     s->uploaded = 1;
     s->uploaded_version = prep->flat_version;
+    s->uploaded_hdr = f->hdr;
     *ms += rt_now_ms() - t0;
     return RT_OK;
 }

@@ -258,6 +258,7 @@ rt_status rt_render(rt_scene *scene, const rt_render_options *options, rt_frameb
     rt_flat flat;
     st = rt_flat_with_tri_test(scene, prep.flat, opt.tri_test, &flat);
     if (st != RT_OK) return st;
+    if (opt.direct_only) flat.hdr.flags &= ~(uint32_t)RT_SCENE_SECONDARY;
     const rt_scene_header *h = &flat.hdr;
     int channels = (opt.aov == RT_AOV_NONE || opt.aov == RT_AOV_NORMAL) ? 3 : 1;
     memset(fb, 0, sizeof *fb);

@@ -206,6 +206,14 @@ typedef struct rt_render_options {
     void (*progress)(void *user, double done);
     void *progress_user;
     rt_triangle_test tri_test; /* RT_TRI_TEST_WATERTIGHT (0) unless set */
+    /* 1: primary and shadow rays only, no reflection or refraction rays (the
+     * thesis's benchmark set-up: one light, Phong, shadows). 0: Whitted. */
+    int direct_only;
+    /* Extra OpenCL C compiler options for the speed-versus-error study
+     * (e.g. "-cl-mad-enable", "-cl-fast-relaxed-math", "-DRT_NATIVE_MATH").
+     * They may change results: with any set, stats->exact is 0. NULL or "":
+     * none (the exact build). Ignored by the CPU backends. */
+    const char *device_options;
 } rt_render_options;
 
 rt_render_options rt_render_options_default(void);

@@ -11,7 +11,8 @@
 
 static const char usage[] =
     "usage: rtcl render SCENE [-o FILE] [--backend B] [--device D] [--width W] [--height H]\n"
-    "                   [--aov AOV] [--threads N] [--stats] [--help]\n"
+    "                   [--aov AOV] [--threads N] [--frames N] [--direct]\n"
+    "                   [--cl-options OPTS] [--stats] [--help]\n"
     "\n"
     "Renders SCENE (a .json scene, a bare .obj, or builtin:NAME) with Whitted-style\n"
     "shading (Phong, shadow rays, reflection, refraction). Options may come before or\n"
@@ -32,6 +33,12 @@ static const char usage[] =
     "  --threads N    worker threads, 0 = one per core [0]\n"
     "  --frames N     render N frames in one process and print the first frame's\n"
     "                 time and the min and median of the others (a benchmark) [1]\n"
+    "  --direct       primary and shadow rays only, no reflection or refraction\n"
+    "                 (the thesis's benchmark set-up)\n"
+    "  --cl-options OPTS\n"
+    "                 extra OpenCL compiler options, e.g. -cl-mad-enable,\n"
+    "                 -cl-fast-relaxed-math, -DRT_NATIVE_MATH; results may then differ\n"
+    "                 from the CPU oracle (the speed-versus-error study)\n"
     "  --stats        print BVH cost, box and triangle tests per ray and render time;\n"
     "                 for opencl also the device, kernel specialisation, compile,\n"
     "                 upload (bytes), per-kernel and download times\n";
@@ -169,6 +176,10 @@ int cmd_render(int argc, char **argv) {
                 return 2;
         } else if (!strcmp(a, "--stats")) {
             stats = 1;
+        } else if (!strcmp(a, "--direct")) {
+            opt.direct_only = 1;
+        } else if (!strcmp(a, "--cl-options")) {
+            if (!(opt.device_options = cli_value(argc, argv, &i, "render"))) return 2;
         } else if (a[0] == '-' && a[1]) {
             cli_error("render", "unknown option '%s'\n%s", a, usage);
             return 2;
