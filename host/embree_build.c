@@ -60,6 +60,10 @@ rt_status rt_embree_create(int threads, rt_embree **out, char *msg, size_t msg_s
     return RT_OK;
 }
 
+void *rt_embree_device(rt_embree *em) {
+    return em->device;
+}
+
 void rt_embree_destroy(rt_embree *em) {
     if (!em) return;
     rtcReleaseBVH(em->bvh);

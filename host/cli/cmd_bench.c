@@ -1,4 +1,5 @@
-/* cmd_bench.c - 'rtcl bench': BVH build times and tree quality per scene,
+/* cmd_bench.c - 'rtcl bench': BVH build times and tree quality per scene (and
+ * the render part, cmd_bench_render.c),
  * every builder side by side (and Embree's, when this build has it).
  *
  * Per scene, one BVH is built over the boxes of all triangles of all meshes
@@ -7,13 +8,15 @@
  * The timed part is rt_bvh_build (for Embree: rtcBuildBVH alone); computing
  * the triangle boxes is shared input and not timed.
  */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
-#include "clock.h"
+#include "bench_render.h"
 #include "bvh.h"
+#include "clock.h"
 #include "commands.h"
 #include "rt.h"
 #include "scene.h"
@@ -34,7 +37,7 @@ typedef struct row {
 } row;
 
 typedef struct bench_args {
-    int json, reps, threads, progress;
+    int json, reps, threads, progress, render, width, height;
 } bench_args;
 
 static int cmp_double(const void *a, const void *b) {
@@ -50,16 +53,28 @@ static void summarize(row *r, double *times, int n) {
 
 static void usage(FILE *f) {
     fprintf(f, "usage: rtcl bench SCENE... [--json] [--reps N] [--threads N] [--no-render]\n"
+               "                 [--width W] [--height H]\n"
                "\n"
-               "Builds one BVH over all triangles of each scene with every builder\n"
-               "(thesis-scalar, thesis-neon, thesis-mt, fast, and embree when available)\n"
-               "and reports min and median build time over N repetitions (default 5, after\n"
-               "one warm-up run that is not counted), SAH cost and node count. Embree's\n"
-               "rtcCommitScene at low and medium quality is shown for reference.\n"
-               "  --json       one JSON object per scene per line\n"
-               "  --reps N     timed repetitions (default 5)\n"
-               "  --threads N  threads for the threaded builders and Embree (default: all cores)\n"
-               "  --no-render  build only (rendering benchmarks are not part of this build yet)\n");
+               "Build: one BVH over all triangles of each scene with every builder\n"
+               "(thesis-scalar, thesis-neon, thesis-mt, fast, and embree when available):\n"
+               "min and median build time over N repetitions (after one warm-up run that\n"
+               "is not counted), SAH cost and node count. Embree's rtcCommitScene at low\n"
+               "and medium quality is shown for reference.\n"
+               "Render: the thesis's set-up (one point light, primary plus shadow rays,\n"
+               "Phong) on the backends cpu, packet and opencl, and Embree tracing the same\n"
+               "rays (rtcIntersect1, packets of 4, 8 and 16 where native, rtcOccluded for\n"
+               "shadow rays) with the same thread count: min and median frame time over N\n"
+               "frames after one warm-up frame, Mrays/s, box and triangle tests per ray,\n"
+               "pixels that differ from the cpu oracle's image, and each rate against\n"
+               "Embree's fastest packet width.\n"
+               "  --json       one JSON object per scene per line (\"build\", \"reference\",\n"
+               "               \"render\" arrays)\n"
+               "  --reps N     timed repetitions and frames (default 5)\n"
+               "  --threads N  threads for the threaded builders, the renderers and Embree\n"
+               "               (default: all cores; PoCL uses its own pool of all cores)\n"
+               "  --no-render  build only\n"
+               "  --width W, --height H\n"
+               "               render resolution [1024x576, the thesis's]\n");
 }
 
 /* The triangles of every mesh: boxes, and positions/indices for Embree. */
@@ -263,7 +278,79 @@ static void print_json(const char *path, const tri_input *in, const bench_args *
         if (i > n_build) printf(", ");
         print_json_row(&rows[i]);
     }
-    printf("]}\n");
+    printf("]");
+}
+
+static void print_json_number(const char *key, double v) {
+    if (isfinite(v))
+        printf(", \"%s\": %.4f", key, v);
+    else
+        printf(", \"%s\": null", key);
+}
+
+static void print_json_render(const bench_args *a, const render_row *rows, int n) {
+    printf(", \"render_width\": %d, \"render_height\": %d, \"render\": [", a->width, a->height);
+    for (int i = 0; i < n; i++) {
+        const render_row *r = &rows[i];
+        printf("%s{\"backend\": ", i ? ", " : "");
+        json_string(r->backend);
+        printf(", \"threads\": %d", r->threads);
+        if (r->lanes) printf(", \"lanes\": %d", r->lanes);
+        if (r->error[0]) {
+            printf(", \"ms_min\": null, \"ms_median\": null, \"error\": ");
+            json_string(r->error);
+            putchar('}');
+            continue;
+        }
+        printf(", \"ms_min\": %.4f, \"ms_median\": %.4f, \"mrays\": %.4f, \"rays\": %llu",
+               r->ms_min, r->ms_median, r->mrays, (unsigned long long)r->rays);
+        print_json_number("box_tests", r->box_tests >= 0 ? r->box_tests : NAN);
+        print_json_number("tri_tests", r->tri_tests >= 0 ? r->tri_tests : NAN);
+        if (i > 0)
+            printf(", \"pixels_differ_from_cpu\": %ld, \"pixels_visibly_differ_from_cpu\": %ld, "
+                   "\"max_diff_from_cpu\": %.6g",
+                   r->pixels_differ, r->pixels_visible, r->max_diff);
+        putchar('}');
+    }
+    putchar(']');
+}
+
+/* Frame times side by side; "rate/embree" is Embree's fastest median frame
+ * time over this row's (above 1: faster than Embree). */
+static void print_text_render(const bench_args *a, const render_row *rows, int n) {
+    const render_row *peer = NULL;
+    for (int i = 0; i < n; i++)
+        if (!strcmp(rows[i].backend, "embree") && !rows[i].error[0]) peer = &rows[i];
+    printf("  render %dx%d, one light, primary + shadow rays, Phong; %d timed frames after 1 "
+           "warm-up frame\n",
+           a->width, a->height, a->reps);
+    printf("  %-12s %7s %10s %10s %8s %9s %9s %19s", "backend", "threads", "min ms", "median ms",
+           "Mrays/s", "box/ray", "tri/ray", "px != cpu (visibly)");
+    if (peer) printf(" %12s", "rate/embree");
+    putchar('\n');
+    for (int i = 0; i < n; i++) {
+        const render_row *r = &rows[i];
+        printf("  %-12s %7d ", r->backend, r->threads);
+        if (r->error[0]) {
+            printf("unavailable: %s\n", r->error);
+            continue;
+        }
+        printf("%10.2f %10.2f %8.2f ", r->ms_min, r->ms_median, r->mrays);
+        if (r->box_tests >= 0)
+            printf("%9.2f %9.2f ", r->box_tests, r->tri_tests);
+        else
+            printf("%9s %9s ", "-", "-");
+        if (i > 0)
+            printf("%8ld (%8ld)", r->pixels_differ, r->pixels_visible);
+        else
+            printf("%19s", "(oracle)");
+        if (peer) printf(" %12.3f", peer->ms_median / r->ms_median);
+        putchar('\n');
+    }
+}
+
+static void render_progress(const char *scene, const char *what) {
+    fprintf(stderr, "\r\033[K%s: %s", scene, what);
 }
 
 static void print_text(const char *path, const tri_input *in, const bench_args *a, const row *rows,
@@ -330,13 +417,29 @@ static int bench_scene(const char *path, const bench_args *a, rt_pool *pool) {
         n_rows = n + 3;
     }
 #endif
-    if (a->progress) fprintf(stderr, "\r\033[K");
-    if (a->json)
-        print_json(path, &in, a, rows, n_build, n_rows);
-    else
-        print_text(path, &in, a, rows, n_rows);
-    fflush(stdout);
     free_input(&in);
+    render_row rrows[BENCH_RENDER_MAX_ROWS];
+    int n_render = 0;
+    char why[300] = "";
+    if (a->render) {
+        bench_render_setup su = {a->reps, a->threads, a->width, a->height,
+                                 a->progress ? render_progress : NULL};
+        n_render = bench_render(path, &su, rrows, why, sizeof why);
+    }
+    if (a->progress) fprintf(stderr, "\r\033[K");
+    if (a->json) {
+        print_json(path, &in, a, rows, n_build, n_rows);
+        if (n_render) print_json_render(a, rrows, n_render);
+        printf("}\n");
+    } else {
+        print_text(path, &in, a, rows, n_rows);
+        if (n_render) print_text_render(a, rrows, n_render);
+    }
+    fflush(stdout);
+    if (a->render && !n_render) {
+        fprintf(stderr, "rtcl bench: %s\n", why);
+        return 0;
+    }
     return 1;
 }
 
@@ -349,7 +452,7 @@ static int parse_int(const char *s, int lo, int hi, int *out) {
 }
 
 int cmd_bench(int argc, char **argv) {
-    bench_args a = {0, 5, 0, isatty(2)};
+    bench_args a = {0, 5, 0, isatty(2), 1, 1024, 576};
     const char **scenes = calloc((size_t)argc, sizeof *scenes);
     int n_scenes = 0;
     if (!scenes) return 2;
@@ -362,11 +465,16 @@ int cmd_bench(int argc, char **argv) {
         } else if (!strcmp(s, "--json")) {
             a.json = 1;
         } else if (!strcmp(s, "--no-render")) {
-            /* building is all this command measures for now */
-        } else if (!strcmp(s, "--reps") || !strcmp(s, "--threads")) {
-            int *dst = s[2] == 'r' ? &a.reps : &a.threads;
-            if (i + 1 >= argc || !parse_int(argv[i + 1], 1, 1000, dst)) {
-                fprintf(stderr, "rtcl bench: %s needs a number from 1 to 1000\n", s);
+            a.render = 0;
+        } else if (!strcmp(s, "--reps") || !strcmp(s, "--threads") || !strcmp(s, "--width") ||
+                   !strcmp(s, "--height")) {
+            int *dst = s[2] == 'r'   ? &a.reps
+                       : s[2] == 't' ? &a.threads
+                       : s[2] == 'w' ? &a.width
+                                     : &a.height;
+            int hi = s[2] == 'w' || s[2] == 'h' ? 32768 : 1000;
+            if (i + 1 >= argc || !parse_int(argv[i + 1], 1, hi, dst)) {
+                fprintf(stderr, "rtcl bench: %s needs a number from 1 to %d\n", s, hi);
                 free(scenes);
                 return 2;
             }
