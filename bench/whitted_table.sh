@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
-# render_table.sh RTCL SHARED_SCENES [FRAMES] - frame times of every backend on
+# whitted_table.sh RTCL SHARED_SCENES [FRAMES] - frame times of every backend on
 # the shipped and shared scenes at 1024x576 (one light, Whitted shading), as
 # the markdown table of docs/BENCHMARKS.md. Each cell: min / median ms of the
 # frames after the first (the first, which builds the BVHs and, for OpenCL,
 # uploads the scene, is excluded), and Mrays/s of the median (all rays:
 # primary, shadow and secondary).
 set -euo pipefail
-rtcl=${1:?usage: render_table.sh RTCL SHARED_SCENES [FRAMES]}
-shared=${2:?usage: render_table.sh RTCL SHARED_SCENES [FRAMES]}
+rtcl=${1:?usage: whitted_table.sh RTCL SHARED_SCENES [FRAMES]}
+shared=${2:?usage: whitted_table.sh RTCL SHARED_SCENES [FRAMES]}
 frames=${3:-5}
 here=$(cd "$(dirname "$0")" && pwd)
 backends="cpu packet"

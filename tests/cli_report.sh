@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# cli_report.sh - the single command that regenerates docs/BENCHMARKS.md
+# (bench/report.sh) runs end to end in its quick mode and prints every section:
+# the build, thesis, render and Whitted tables with real rows, the targets
+# judged, and one section with a PNG plot per speed-against-error study.
+set -u
+[ -d "${RT_SHARED_SCENES:-}" ] || { echo "skipped: no shared scenes at '${RT_SHARED_SCENES:-}'"; exit 77; }
+command -v python3 >/dev/null || { echo "skipped: python3 is needed"; exit 77; }
+if [ -n "${LSAN_OPTIONS:-}" ]; then
+    echo "skipped: the report measures speed; in the sanitizer build it only runs slower (the Release build's ctest runs it)"
+    exit 77
+fi
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+REPORT_OUT=$out bash "$RT_SOURCE_DIR/bench/report.sh" "$RT_BINARY_DIR" "$RT_SHARED_SCENES" --quick \
+    >"$out/log" 2>&1 || { echo "report.sh failed:"; tail -30 "$out/log"; exit 1; }
+md=$out/BENCHMARKS.md
+fails=0
+need() {
+    grep -q -E -- "$1" "$md" || { echo "FAIL: BENCHMARKS.md lacks /$1/"; fails=$((fails + 1)); }
+}
+need '^## OBJ parsing'
+need '^robot_walk_00.obj +3237 '
+need '^## BVH build'
+need '^\| robot_walk_anim/robot_walk_00.obj \| 3,237 \| [0-9.]+ / [0-9.]+ \|'
+need '^\| Sponza \| 66,450 \| 113.7 \|'
+need '^## Rendering, the thesis'
+need '^\| scenes/cornell.json \| [0-9,]+ \| [0-9.]+ / [0-9.]+ \| [0-9.]+ / [0-9.]+ \|'
+need '^- packet rate / Embree'
+need '^- OpenCL \(PoCL\) rate'
+need '^## Rendering, Whitted'
+need '^\| cornell.json \| [0-9]+ \| [0-9.]+ / [0-9.]+ \|'
+for script in "$RT_SOURCE_DIR"/bench/study_*.sh; do
+    [ -f "$script" ] || continue
+    name=$(basename "$script" .sh)
+    name=${name#study_}
+    need "^## Speed against error"
+    need "\(plots/$name.png\)"
+    head -c 8 "$out/plots/$name.png" 2>/dev/null | od -An -tx1 | grep -q "89 50 4e 47" ||
+        { echo "FAIL: plots/$name.png is missing or not a PNG"; fails=$((fails + 1)); }
+done
+[ $fails = 0 ] || { echo "--- report:"; head -c 6000 "$md"; exit 1; }
+echo "cli_report: ok"
