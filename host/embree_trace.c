@@ -254,10 +254,10 @@ typedef struct frame_job {
 } frame_job;
 
 /* One block: primary rays, then per light the shadow rays of the lanes that
- * face it, traced as one packet, then the Phong terms. The shading mirrors
- * rt_phong in kernels/rt_shade.h (surface, offset origin, shadow ray to the
- * light with t = 1 at the light, diffuse and integer-power specular) so that
- * Embree does the same work and its image can be compared with ours. */
+ * face it, traced as one packet, then the Phong terms. The shading is
+ * rt_phong's own steps (kernels/rt_shade.h: rt_phong_ambient, rt_phong_light,
+ * rt_phong_add), so that Embree does the same work and its image can be
+ * compared with ours. */
 static void shade_block(frame_job *job, int bx, int by, RTCIntersectContext *coherent,
                         RTCIntersectContext *incoherent) {
     const rt_embree_scene *es = job->es;
@@ -291,55 +291,26 @@ static void shade_block(frame_job *job, int bx, int by, RTCIntersectContext *coh
         mat[i] = &s->materials[sf[i].material];
         for (int k = 0; k < 3; k++) dn[i][k] = b.ray[i].dir[k];
         rt_normalize3(dn[i]);
-        for (int k = 0; k < 3; k++)
-            out[i][k] = (mat[i]->ambient * mat[i]->color[k]) * h->ambient[k];
+        rt_phong_ambient(s, &sf[i], out[i]);
         lit[i] = ((1.0f - mat[i]->reflectivity) - mat[i]->transparency) > 0.0f;
         if (!lit[i])
             for (int k = 0; k < 3; k++) out[i][k] = 0.0f;
     }
     for (rt_u32 li = 0; li < h->light_count; li++) {
-        const rt_light_d *light = &s->lights[li];
         float Ln[MAX_LANES][3], ndl[MAX_LANES];
         int any = 0;
         for (int i = 0; i < b.count; i++) {
-            b.valid[i] = 0;
-            if (!lit[i]) continue;
-            float L[3];
-            for (int k = 0; k < 3; k++) L[k] = light->position[k] - sf[i].p[k];
-            float dist = RT_SQRT(rt_dot3(L, L));
-            if (!(dist > 0.0f)) continue;
-            for (int k = 0; k < 3; k++) Ln[i][k] = L[k] / dist;
-            ndl[i] = rt_dot3(sf[i].ns, Ln[i]);
-            if (!(ndl[i] > 0.0f)) continue;
-            rt_ray_d *sr = &b.ray[i];
-            rt_offset_point(sf[i].p, sf[i].ng, rt_dot3(sf[i].ng, L) >= 0.0f ? 1.0f : -1.0f,
-                            sr->org);
-            for (int k = 0; k < 3; k++) sr->dir[k] = light->position[k] - sr->org[k];
-            sr->tmin = 0.0f;
-            sr->tmax = RT_SHADOW_TMAX;
-            b.valid[i] = -1;
+            b.valid[i] =
+                lit[i] && rt_phong_light(s, &sf[i], li, &b.ray[i], Ln[i], &ndl[i]) ? -1 : 0;
+            if (!b.valid[i]) continue;
             any = 1;
             rays++;
         }
         if (!any) continue;
         occluded(es, incoherent, &b);
-        for (int i = 0; i < b.count; i++) {
-            if (!b.valid[i] || b.occluded[i]) continue;
-            const rt_material_d *m = mat[i];
-            for (int k = 0; k < 3; k++)
-                out[i][k] = out[i][k] + ((m->diffuse * m->color[k]) * light->color[k]) * ndl[i];
-            if (m->specular > 0.0f) {
-                float R[3];
-                for (int k = 0; k < 3; k++) R[k] = (2.0f * ndl[i]) * sf[i].ns[k] - Ln[i][k];
-                float rv = -rt_dot3(R, dn[i]);
-                if (rv > 0.0f) {
-                    float pw = 1.0f;
-                    for (rt_i32 e = 0; e < m->shininess; e++) pw = pw * rv;
-                    for (int k = 0; k < 3; k++)
-                        out[i][k] = out[i][k] + (m->specular * light->color[k]) * pw;
-                }
-            }
-        }
+        for (int i = 0; i < b.count; i++)
+            if (b.valid[i] && !b.occluded[i])
+                rt_phong_add(s, &sf[i], li, Ln[i], ndl[i], dn[i], out[i]);
     }
     for (int i = 0; i < b.count; i++) {
         if (px[i] >= h->width || py[i] >= h->height) continue;

@@ -70,42 +70,71 @@ RT_FN void rt_surface_at(const rt_scene_view *s, const rt_ray_d *r, const rt_hit
         sf->material = s->tri_mats[h->entry];
 }
 
-/* Phong at a surface seen along unit direction dn: ambient, then per light
- * that is in front of the shading normal and not occluded, diffuse and
- * specular (integer shininess by repeated multiplication). */
-RT_FN void rt_phong(const rt_scene_view *s, const rt_surface *sf, const float *dn, rt_counters *c,
-                    float out[3]) {
+/* Phong, in three steps so that a packet tracer (and the Embree peer) can
+ * trace the shadow rays of many pixels together and still add exactly
+ * rt_phong's terms in rt_phong's order: the ambient term, then per light
+ * rt_phong_light (is the light in front of the shading normal? its shadow
+ * ray) and, when the shadow ray finds no occluder, rt_phong_add (diffuse and
+ * specular, integer shininess by repeated multiplication). */
+RT_FN void rt_phong_ambient(const rt_scene_view *s, const rt_surface *sf, float out[3]) {
     RT_GLOBAL const rt_material_d *m = &s->materials[sf->material];
     for (int k = 0; k < 3; k++) out[k] = (m->ambient * m->color[k]) * s->hdr->ambient[k];
+}
+
+/* Light li seen from the surface: 0 when it cannot contribute (it is at the
+ * point or behind the shading normal); else 1 with the unit direction Ln to
+ * it, ndl = ns . Ln and the shadow ray from the offset point to the light
+ * (t = 1 at the light, excluded). */
+RT_FN int rt_phong_light(const rt_scene_view *s, const rt_surface *sf, rt_u32 li, rt_ray_d *sr,
+                         float Ln[3], float *ndl) {
+    RT_GLOBAL const rt_light_d *light = &s->lights[li];
+    float L[3];
+    for (int k = 0; k < 3; k++) L[k] = light->position[k] - sf->p[k];
+    float dist = RT_SQRT(rt_dot3(L, L));
+    if (!(dist > 0.0f)) return 0;
+    for (int k = 0; k < 3; k++) Ln[k] = RT_DIV(L[k], dist);
+    *ndl = rt_dot3(sf->ns, Ln);
+    if (!(*ndl > 0.0f)) return 0;
+    rt_offset_point(sf->p, sf->ng, rt_dot3(sf->ng, L) >= 0.0f ? 1.0f : -1.0f, sr->org);
+    for (int k = 0; k < 3; k++) sr->dir[k] = light->position[k] - sr->org[k];
+    sr->tmin = 0.0f;
+    sr->tmax = RT_SHADOW_TMAX;
+    return 1;
+}
+
+/* Adds light li's diffuse and specular terms for a surface seen along unit
+ * direction dn (the light's shadow ray found no occluder). */
+RT_FN void rt_phong_add(const rt_scene_view *s, const rt_surface *sf, rt_u32 li, const float Ln[3],
+                        float ndl, const float *dn, float out[3]) {
+    RT_GLOBAL const rt_material_d *m = &s->materials[sf->material];
+    RT_GLOBAL const rt_light_d *light = &s->lights[li];
+    for (int k = 0; k < 3; k++)
+        out[k] = out[k] + ((m->diffuse * m->color[k]) * light->color[k]) * ndl;
+    if (m->specular > 0.0f) {
+        float R[3];
+        for (int k = 0; k < 3; k++) R[k] = (2.0f * ndl) * sf->ns[k] - Ln[k];
+        float rv = -rt_dot3(R, dn); /* R . V with V = -dn */
+        if (rv > 0.0f) {
+            float pw = 1.0f;
+            for (rt_i32 i = 0; i < m->shininess; i++) pw = pw * rv;
+            for (int k = 0; k < 3; k++) out[k] = out[k] + (m->specular * light->color[k]) * pw;
+        }
+    }
+}
+
+/* Phong at a surface seen along unit direction dn: ambient, then per light
+ * that is in front of the shading normal and not occluded, diffuse and
+ * specular. */
+RT_FN void rt_phong(const rt_scene_view *s, const rt_surface *sf, const float *dn, rt_counters *c,
+                    float out[3]) {
+    rt_phong_ambient(s, sf, out);
     for (rt_u32 li = 0; li < s->hdr->light_count; li++) {
-        RT_GLOBAL const rt_light_d *light = &s->lights[li];
-        float L[3], Ln[3];
-        for (int k = 0; k < 3; k++) L[k] = light->position[k] - sf->p[k];
-        float dist = RT_SQRT(rt_dot3(L, L));
-        if (!(dist > 0.0f)) continue;
-        for (int k = 0; k < 3; k++) Ln[k] = L[k] / dist;
-        float ndl = rt_dot3(sf->ns, Ln);
-        if (!(ndl > 0.0f)) continue;
-        /* Shadow ray from the offset point to the light (t = 1 at the light). */
         rt_ray_d sr;
         rt_hit_d sh;
-        rt_offset_point(sf->p, sf->ng, rt_dot3(sf->ng, L) >= 0.0f ? 1.0f : -1.0f, sr.org);
-        for (int k = 0; k < 3; k++) sr.dir[k] = light->position[k] - sr.org[k];
-        sr.tmin = 0.0f;
-        sr.tmax = RT_SHADOW_TMAX;
+        float Ln[3], ndl;
+        if (!rt_phong_light(s, sf, li, &sr, Ln, &ndl)) continue;
         if (rt_trace(s, &sr, 1, &sh, c)) continue;
-        for (int k = 0; k < 3; k++)
-            out[k] = out[k] + ((m->diffuse * m->color[k]) * light->color[k]) * ndl;
-        if (m->specular > 0.0f) {
-            float R[3];
-            for (int k = 0; k < 3; k++) R[k] = (2.0f * ndl) * sf->ns[k] - Ln[k];
-            float rv = -rt_dot3(R, dn); /* R . V with V = -dn */
-            if (rv > 0.0f) {
-                float pw = 1.0f;
-                for (rt_i32 i = 0; i < m->shininess; i++) pw = pw * rv;
-                for (int k = 0; k < 3; k++) out[k] = out[k] + (m->specular * light->color[k]) * pw;
-            }
-        }
+        rt_phong_add(s, sf, li, Ln, ndl, dn, out);
     }
 }
 
@@ -154,7 +183,7 @@ RT_FN void rt_shade_step(const rt_scene_view *s, const rt_shade_entry *e, const 
     float refl = m->reflectivity;
     float cosi = -rt_dot3(dn, sf.ns);
     if (m->transparency > 0.0f) {
-        float eta = sf.front ? 1.0f / m->ior : m->ior;
+        float eta = sf.front ? RT_DIV(1.0f, m->ior) : m->ior;
         float k2 = 1.0f - (eta * eta) * (1.0f - cosi * cosi);
         if (k2 < 0.0f) {
             refl = refl + m->transparency; /* total internal reflection */

@@ -5,7 +5,9 @@
  * Valid C99 and valid OpenCL C. The CPU oracle (cpu_ref/), the packet path and
  * the OpenCL kernels include it, so they evaluate the same operations in the
  * same order and get the same bits. Rules that keep it so:
- * - only + - * /, sqrt, comparisons, fabs; minimum and maximum written as
+ * - only + - * /, sqrt, comparisons, fabs (division as RT_DIV and square
+ *   root as RT_SQRT, which are exact everywhere but in the OpenCL study build
+ *   with -DRT_NATIVE_MATH); minimum and maximum written as
  *   comparisons (so NaN handling is spelled out); integer powers by repeated
  *   multiplication; no vector operators; no recursion, no function pointers,
  *   no allocation;
@@ -28,7 +30,16 @@
 #ifdef RT_OPENCL
 #define RT_GLOBAL __global
 #define RT_FN
-#define RT_SQRT(x)     sqrt(x)
+#ifdef RT_NATIVE_MATH
+/* Only for the speed-versus-error study (bench/study_opencl_options.sh): the
+ * device's own, faster division and square root, whose error the
+ * implementation defines. Never in a build that claims the oracle's bits. */
+#define RT_DIV(a, b) native_divide((a), (b))
+#define RT_SQRT(x)   native_sqrt(x)
+#else
+#define RT_DIV(a, b) ((a) / (b))
+#define RT_SQRT(x)   sqrt(x)
+#endif
 #define RT_FABS(x)     fabs(x)
 #define RT_AS_INT(x)   as_int(x)
 #define RT_AS_FLOAT(x) as_float(x)
@@ -46,6 +57,7 @@
 #include <string.h>
 #define RT_GLOBAL
 #define RT_FN          static inline
+#define RT_DIV(a, b)   ((a) / (b))
 #define RT_SQRT(x)     sqrtf(x)
 #define RT_FABS(x)     fabsf(x)
 #define RT_AS_INT(x)   rt_as_int_(x)
@@ -167,9 +179,9 @@ RT_FN void rt_cross3(const float *a, const float *b, float *out) {
 RT_FN void rt_normalize3(float *v) {
     float len = RT_SQRT(rt_dot3(v, v));
     if (len > 0.0f) {
-        v[0] = v[0] / len;
-        v[1] = v[1] / len;
-        v[2] = v[2] / len;
+        v[0] = RT_DIV(v[0], len);
+        v[1] = RT_DIV(v[1], len);
+        v[2] = RT_DIV(v[2], len);
     }
 }
 
@@ -177,7 +189,7 @@ RT_FN void rt_normalize3(float *v) {
 
 RT_FN void rt_ray_prepare(const rt_ray_d *r, rt_ray_pre *p) {
     for (int i = 0; i < 3; i++) {
-        p->inv[i] = 1.0f / r->dir[i];
+        p->inv[i] = RT_DIV(1.0f, r->dir[i]);
         p->sign[i] = p->inv[i] < 0.0f;
     }
     /* Watertight test: kz is the axis where |dir| is largest. */
@@ -195,15 +207,15 @@ RT_FN void rt_ray_prepare(const rt_ray_d *r, rt_ray_pre *p) {
     p->kx = kx;
     p->ky = ky;
     p->kz = kz;
-    p->sx = r->dir[kx] / r->dir[kz];
-    p->sy = r->dir[ky] / r->dir[kz];
-    p->sz = 1.0f / r->dir[kz];
+    p->sx = RT_DIV(r->dir[kx], r->dir[kz]);
+    p->sy = RT_DIV(r->dir[ky], r->dir[kz]);
+    p->sz = RT_DIV(1.0f, r->dir[kz]);
 }
 
 /* The primary ray through the centre of pixel (px, py); see rt_layout.h. */
 RT_FN void rt_camera_ray(RT_GLOBAL const rt_scene_header *h, rt_i32 px, rt_i32 py, rt_ray_d *r) {
-    float sx = (2.0f * ((float)px + 0.5f)) / (float)h->width - 1.0f;
-    float sy = 1.0f - (2.0f * ((float)py + 0.5f)) / (float)h->height;
+    float sx = RT_DIV(2.0f * ((float)px + 0.5f), (float)h->width) - 1.0f;
+    float sy = 1.0f - RT_DIV(2.0f * ((float)py + 0.5f), (float)h->height);
     for (int i = 0; i < 3; i++) {
         r->org[i] = h->cam_pos[i];
         r->dir[i] = (h->cam_forward[i] + sx * h->cam_right[i]) + sy * h->cam_up[i];
@@ -289,11 +301,11 @@ RT_FN int rt_tri_watertight(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, cons
     if (det == 0.0f) return 0;
     float Az = p->sz * A[kz], Bz = p->sz * B[kz], Cz = p->sz * C[kz];
     float T = (U * Az + V * Bz) + W * Cz;
-    float tt = T / det;
+    float tt = RT_DIV(T, det);
     if (!(tt >= tmin && tt <= tmax)) return 0;
     *t = tt;
-    *u = V / det;
-    *v = W / det;
+    *u = RT_DIV(V, det);
+    *v = RT_DIV(W, det);
     return 1;
 }
 
@@ -309,7 +321,7 @@ RT_FN int rt_tri_moller(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, float tm
     rt_cross3(r->dir, e2, pv);
     float det = rt_dot3(e1, pv);
     if (det == 0.0f) return 0;
-    float inv = 1.0f / det;
+    float inv = RT_DIV(1.0f, det);
     float uu = rt_dot3(s, pv) * inv;
     if (!(uu >= 0.0f && uu <= 1.0f)) return 0;
     rt_cross3(s, e1, q);
@@ -340,11 +352,11 @@ RT_FN int rt_tri_pluecker(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, float 
     if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) return 0;
     float det = (U + V) + W;
     if (det == 0.0f) return 0;
-    float tt = rt_dot3(a, bc) / det;
+    float tt = RT_DIV(rt_dot3(a, bc), det);
     if (!(tt >= tmin && tt <= tmax)) return 0;
     *t = tt;
-    *u = V / det;
-    *v = W / det;
+    *u = RT_DIV(V, det);
+    *v = RT_DIV(W, det);
     return 1;
 }
 
@@ -361,7 +373,7 @@ RT_FN int rt_tri_badouel(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, float t
     rt_cross3(e1, e2, n);
     float nd = rt_dot3(n, r->dir);
     if (nd == 0.0f) return 0;
-    float tt = rt_dot3(n, a) / nd;
+    float tt = RT_DIV(rt_dot3(n, a), nd);
     if (!(tt >= tmin && tt <= tmax)) return 0;
     float nx = RT_FABS(n[0]), ny = RT_FABS(n[1]), nz = RT_FABS(n[2]);
     rt_i32 k = 0;
@@ -371,8 +383,8 @@ RT_FN int rt_tri_badouel(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, float t
     float p1 = (r->org[i1] + tt * r->dir[i1]) - tri->v0[i1];
     float p2 = (r->org[i2] + tt * r->dir[i2]) - tri->v0[i2];
     float det = e1[i1] * e2[i2] - e1[i2] * e2[i1];
-    float uu = (p1 * e2[i2] - p2 * e2[i1]) / det;
-    float vv = (e1[i1] * p2 - e1[i2] * p1) / det;
+    float uu = RT_DIV(p1 * e2[i2] - p2 * e2[i1], det);
+    float vv = RT_DIV(e1[i1] * p2 - e1[i2] * p1, det);
     if (!(uu >= 0.0f && vv >= 0.0f && uu + vv <= 1.0f)) return 0;
     *t = tt;
     *u = uu;
