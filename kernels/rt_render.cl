@@ -14,27 +14,7 @@
  */
 #pragma OPENCL FP_CONTRACT OFF
 
-#include "rt_shade.h"
-
-/* The view arguments every tracing kernel takes, in this order. */
-#define RT_VIEW_ARGS                                                                               \
-    __global const rt_scene_header *hdr, __global const rt_node *nodes,                            \
-        __global const rt_tri *tris, __global const uint *tri_ids,                                 \
-        __global const float *tri_normals, __global const uint *tri_mats,                          \
-        __global const rt_instance *instances, __global const uint *inst_ids,                      \
-        __global const rt_material_d *materials, __global const rt_light_d *lights
-
-#define RT_VIEW_INIT                                                                               \
-    { hdr, nodes, tris, tri_ids, tri_normals, tri_mats, instances, inst_ids, materials, lights }
-
-/* AOV codes (rt_aov in rt.h). */
-#define AOV_NONE      0
-#define AOV_DEPTH     1
-#define AOV_PRIMID    2
-#define AOV_INSTID    3
-#define AOV_NORMAL    4
-#define AOV_BOX_TESTS 5
-#define AOV_TRI_TESTS 6
+#include "rt_kernel_args.h" /* rt_shade.h, the view arguments, the AOV codes */
 
 __kernel void rt_k_camera(__global const rt_scene_header *hdr, uint first, uint count,
                           __global rt_ray_d *rays) {
