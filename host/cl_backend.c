@@ -15,7 +15,9 @@
 #include "cl_device.h"
 #include "rt_shade.h" /* rt_wave_entry, rt_wave_record: the wavefront's buffers */
 
-extern const char rt_cl_source_rt_render[]; /* generated from kernels/ at build time */
+/* Generated from kernels/ at build time. */
+extern const char rt_cl_source_rt_render[];
+extern const char rt_cl_source_rt_packet[];
 
 /* Tile sizes in pixels: adapted per frame so that one launch stays near
  * RT_CL_TARGET_MS (a GPU watchdog fires after a few seconds; we keep far from
@@ -81,6 +83,8 @@ typedef struct cl_state {
     char defines[192]; /* the specialisation part of options */
     cl_kernel k_camera, k_trace, k_shade;
     cl_kernel k_wcam, k_wtrace, k_wshade, k_wsum; /* the wavefront */
+    cl_kernel k_packet; /* CPU devices: rt_k_packet (kernels/rt_packet.cl) */
+    int lanes;          /* the program's packet lanes (RT_PK_LANES); 0: no packet kernel */
     cl_mem buf[B_COUNT];
     size_t cap[B_COUNT];
     /* What the device holds: the mesh part (signature) and the scene version. */
@@ -94,8 +98,8 @@ typedef struct cl_state {
 } cl_state;
 
 static void release_wave_kernels(cl_state *s) {
-    cl_kernel *k[4] = {&s->k_wcam, &s->k_wtrace, &s->k_wshade, &s->k_wsum};
-    for (int i = 0; i < 4; i++) {
+    cl_kernel *k[5] = {&s->k_wcam, &s->k_wtrace, &s->k_wshade, &s->k_wsum, &s->k_packet};
+    for (int i = 0; i < 5; i++) {
         if (*k[i]) clReleaseKernel(*k[i]);
         *k[i] = NULL;
     }
@@ -189,13 +193,27 @@ static void scene_defines(const rt_flat *f, char *out, size_t size) {
 
 static rt_status warm_up(cl_state *s, int wave, char *msg, size_t size);
 
+/* The packet kernel's lanes for this device: 16 (4x4 blocks) on CPU devices,
+ * 0 (one ray per work-item) elsewhere. Read at every frame, for tests and
+ * comparisons: RTCL_OPENCL_NO_PACKET=1 runs the one-ray kernels on a CPU device
+ * too; RTCL_OPENCL_PACKET_LANES=4|8|16 picks another block (2x2, 4x2). */
+static int packet_lanes(const cl_state *s) {
+    if (!s->dev.cpu || getenv("RTCL_OPENCL_NO_PACKET")) return 0;
+    const char *e = getenv("RTCL_OPENCL_PACKET_LANES");
+    int n = e ? atoi(e) : 16;
+    return n == 4 || n == 8 ? n : 16;
+}
+
 static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms, char *msg,
                                size_t size) {
     char defines[192], options[512];
     scene_defines(f, defines, sizeof defines);
+    int lanes = packet_lanes(s);
     /* No -cl-mad-enable, no -cl-fast-relaxed-math: they change results. */
-    snprintf(options, sizeof options, "%s%s",
-             s->dev.cr_div_sqrt ? "-cl-fp32-correctly-rounded-divide-sqrt " : "", defines);
+    char packet[32] = "";
+    if (lanes) snprintf(packet, sizeof packet, " -DRT_PK_LANES=%d", lanes);
+    snprintf(options, sizeof options, "%s%s%s",
+             s->dev.cr_div_sqrt ? "-cl-fp32-correctly-rounded-divide-sqrt " : "", defines, packet);
     if (s->program && strcmp(options, s->options) == 0) return RT_OK;
     if (s->k_camera) clReleaseKernel(s->k_camera);
     if (s->k_trace) clReleaseKernel(s->k_trace);
@@ -205,9 +223,10 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
     s->k_camera = s->k_trace = s->k_shade = NULL;
     s->program = NULL;
     double t0 = rt_now_ms();
-    const char *src = rt_cl_source_rt_render;
+    /* CPU devices get the packet kernel in the same program. */
+    const char *src[2] = {rt_cl_source_rt_render, rt_cl_source_rt_packet};
     cl_int err;
-    s->program = clCreateProgramWithSource(s->ctx, 1, &src, NULL, &err);
+    s->program = clCreateProgramWithSource(s->ctx, lanes ? 2 : 1, src, NULL, &err);
     if (!s->program)
         return fail(msg, size, RT_ERROR_BACKEND, "OpenCL program: %s", rt_cl_error_name(err));
     cl_device_id d = s->dev.device_id;
@@ -232,8 +251,10 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
     if (s->k_wcam) s->k_wtrace = clCreateKernel(s->program, "rt_k_wave_trace", &err);
     if (s->k_wtrace) s->k_wshade = clCreateKernel(s->program, "rt_k_wave_shade", &err);
     if (s->k_wshade) s->k_wsum = clCreateKernel(s->program, "rt_k_wave_sum", &err);
-    if (!s->k_wsum)
+    if (s->k_wsum && lanes) s->k_packet = clCreateKernel(s->program, "rt_k_packet", &err);
+    if (!s->k_wsum || (lanes && !s->k_packet))
         return fail(msg, size, RT_ERROR_BACKEND, "OpenCL kernels: %s", rt_cl_error_name(err));
+    s->lanes = lanes;
     snprintf(s->options, sizeof s->options, "%s", options);
     snprintf(s->defines, sizeof s->defines, "%s", defines);
     rt_status st = warm_up(s, (f->hdr.flags & RT_SCENE_SECONDARY) != 0, msg, size);
@@ -489,9 +510,16 @@ static rt_status warm_up(cl_state *s, int wave, char *msg, size_t size) {
     const char *names[7] = {"rt_k_camera",      "rt_k_trace",      "rt_k_shade",
                             "rt_k_wave_camera", "rt_k_wave_trace", "rt_k_wave_shade",
                             "rt_k_wave_sum"};
+    int nk = wave ? 7 : 3; /* the wavefront kernels only where the scene has secondary rays */
+    if (s->lanes) {
+        /* Frames run rt_k_packet alone; ray queries rt_k_trace. */
+        ks[0] = s->k_packet;
+        nargs[0] = 16;
+        names[0] = "rt_k_packet";
+        nk = 2;
+    }
     rt_status st = RT_OK;
-    /* The wavefront kernels only where the scene has secondary rays. */
-    for (int k = 0; k < (wave ? 7 : 3) && st == RT_OK; k++) {
+    for (int k = 0; k < nk && st == RT_OK; k++) {
         for (cl_uint a = 0; a < nargs[k]; a++) {
             /* Scalars are uint/int (4 bytes), the rest buffers. */
             cl_int err = clSetKernelArg(ks[k], a, sizeof(cl_mem), &stub);
@@ -595,6 +623,21 @@ static rt_status direct_tile(cl_state *s, cl_uint f, cl_uint n, rt_render_stats 
         for (int i = 0; i < queued; i++) clReleaseEvent(ev[i]);
     }
     if (st == RT_OK) stats->launches += 3;
+    return st;
+}
+
+/* Blocks f .. f + n - 1 through rt_k_packet (camera, trace, shading and
+ * shadow rays in one launch); its time counts as trace. */
+static rt_status packet_tile(cl_state *s, cl_uint f, cl_uint n, rt_render_stats *stats,
+                             double *longest, char *msg, size_t size) {
+    cl_kernel k = s->k_packet;
+    rt_status st = set_arg(k, 10, sizeof f, &f, msg, size);
+    if (st == RT_OK) st = set_arg(k, 11, sizeof n, &n, msg, size);
+    double t = 0.0;
+    if (st == RT_OK) st = launch(s, k, n, "rt_k_packet", &t, msg, size);
+    stats->kernel_ms[1] += t;
+    *longest = t;
+    if (st == RT_OK) stats->launches++;
     return st;
 }
 
@@ -753,7 +796,7 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
     /* Images with reflection or refraction go through the wavefront; AOVs
      * (primary-ray values, or every ray's tests of a pixel) and scenes
      * without secondary rays through rt_k_shade. */
-    int wave = aov == RT_AOV_NONE && (h->flags & RT_SCENE_SECONDARY) && !s->no_wave;
+    int wave = aov == RT_AOV_NONE && (h->flags & RT_SCENE_SECONDARY) && !s->no_wave && !s->lanes;
     cl_uint slots = (2u << h->max_depth) - 1u, cap = 0;
     uint32_t tmax = RT_CL_TILE_MAX;
     if (st == RT_OK && wave) {
@@ -768,32 +811,59 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
     }
     if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
 
+    /* CPU devices: rt_k_packet over blocks of lanes pixels (tiles are then
+     * ranges of blocks); elsewhere rt_k_camera/trace/shade or the wavefront
+     * over ranges of pixels. */
+    const uint32_t lanes = (uint32_t)s->lanes, bw = lanes == 4 ? 2u : 4u,
+                   bh = lanes ? lanes / bw : 1u;
+    const uint32_t units =
+        lanes ? (((uint32_t)h->width + bw - 1u) / bw) * (((uint32_t)h->height + bh - 1u) / bh)
+              : pixels;
+    if (lanes) {
+        snprintf(stats->kernels, sizeof stats->kernels, "packet %ux%u (rt_k_packet)", bw, bh);
+        cl_kernel kp = s->k_packet;
+        if (st == RT_OK) st = set_view(s, kp, msg, sizeof msg);
+        if (st == RT_OK) st = set_arg(kp, 12, sizeof aov, &aov, msg, sizeof msg);
+        if (st == RT_OK) st = set_arg(kp, 13, sizeof channels, &channels, msg, sizeof msg);
+        if (st == RT_OK) st = set_arg(kp, 14, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, sizeof msg);
+        if (st == RT_OK) st = set_arg(kp, 15, sizeof(cl_mem), &s->buf[B_FB], msg, sizeof msg);
+        if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
+    } else {
+        snprintf(stats->kernels, sizeof stats->kernels, "one ray per work-item%s",
+                 wave ? " (wavefront)" : "");
+    }
+
     rt_counters *counts = NULL;
     if (opt->stats) {
         counts = malloc(sizeof(rt_counters) * RT_CL_TILE_MAX);
         if (!counts) return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory");
     }
     double t_render = rt_now_ms();
-    for (uint32_t first = 0; first < pixels && st == RT_OK;) {
-        cl_uint n = pixels - first < s->tile ? pixels - first : s->tile;
+    for (uint32_t first = 0; first < units && st == RT_OK;) {
+        /* The tile in units (pixels, or blocks), and in pixels (counters). */
+        uint32_t per = lanes ? (s->tile / lanes ? s->tile / lanes : 1u) : s->tile;
+        cl_uint n = units - first < per ? units - first : per;
+        cl_uint entries = lanes ? n * lanes : n;
         double longest = 0.0;
-        int overflow = 1;
-        if (wave) {
+        int overflow = 0;
+        if (lanes) {
+            st = packet_tile(s, first, n, stats, &longest, msg, sizeof msg);
+        } else if (wave) {
             st = wave_tile(s, slots, cap, first, n, stats, &longest, &overflow, msg, sizeof msg);
             stats->wave_tiles++;
             if (overflow) stats->wave_fallbacks++;
         }
         /* A level that queued more rays than the queues hold: the tile again
          * with the stack in the kernel (the same bits). */
-        if (st == RT_OK && overflow)
+        if (st == RT_OK && (overflow || (!lanes && !wave)))
             st = direct_tile(s, first, n, stats, &longest, msg, sizeof msg);
         if (st != RT_OK) break;
-        if (n > stats->tile_pixels) stats->tile_pixels = n;
+        if (entries > stats->tile_pixels) stats->tile_pixels = entries;
         if (counts) {
             double t0 = rt_now_ms();
-            st = read_buf(s, B_COUNTERS, sizeof(rt_counters) * n, counts, msg, sizeof msg);
+            st = read_buf(s, B_COUNTERS, sizeof(rt_counters) * entries, counts, msg, sizeof msg);
             stats->download_ms += rt_now_ms() - t0;
-            for (cl_uint i = 0; i < n && st == RT_OK; i++) {
+            for (cl_uint i = 0; i < entries && st == RT_OK; i++) {
                 stats->rays += counts[i].rays;
                 stats->box_tests += counts[i].box_tests;
                 stats->tri_tests += counts[i].tri_tests;
@@ -801,9 +871,9 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
         }
         first += n;
         /* Only a full tile says how long a tile takes. */
-        if (n == s->tile) s->tile = next_tile(s, s->tile, longest);
+        if (n == per) s->tile = next_tile(s, s->tile, longest);
         if (wave && s->tile > tmax) s->tile = tmax;
-        if (opt->progress) opt->progress(opt->progress_user, (double)first / pixels);
+        if (opt->progress) opt->progress(opt->progress_user, (double)first / units);
     }
     free(counts);
     if (st == RT_OK) {

@@ -67,10 +67,13 @@ static void describe(cl_platform_id p, cl_device_id d, rt_cl_device_info *info) 
     cl_uint cu = 0;
     cl_ulong mem = 0, alloc = 0;
     cl_device_fp_config fp = 0, dp = 0;
+    cl_device_type type = 0;
     clGetDeviceInfo(d, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof cu, &cu, NULL);
     clGetDeviceInfo(d, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof mem, &mem, NULL);
     clGetDeviceInfo(d, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof alloc, &alloc, NULL);
     clGetDeviceInfo(d, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp, &fp, NULL);
+    if (clGetDeviceInfo(d, CL_DEVICE_TYPE, sizeof type, &type, NULL) != CL_SUCCESS) type = 0;
+    info->cpu = (type & CL_DEVICE_TYPE_CPU) != 0;
     if (clGetDeviceInfo(d, CL_DEVICE_DOUBLE_FP_CONFIG, sizeof dp, &dp, NULL) != CL_SUCCESS) dp = 0;
     info->compute_units = cu;
     info->global_mem = mem;
@@ -192,4 +195,12 @@ const char *rt_cl_exactness_note(const rt_cl_device_info *d) {
         return "exactness NOT promised: float divide/sqrt are not correctly rounded";
     return "exactness NOT promised: no cl_khr_fp64, so zero edge functions of the watertight "
            "test are not re-checked in double (rare sliver-triangle hits may differ)";
+}
+
+const char *rt_cl_kernels_note(const rt_cl_device_info *d) {
+    if (d->cpu)
+        return "packet: a CPU device, so each work-item traces a 4x4 block of rays as float16 "
+               "vectors (kernels/rt_packet.cl)";
+    return "one ray per work-item (kernels/rt_render.cl; wavefront passes for reflection and "
+           "refraction)";
 }

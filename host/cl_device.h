@@ -25,6 +25,7 @@ typedef struct rt_cl_device_info {
     int fma;             /* CL_FP_FMA for float (hardware FMA; kernels do not contract) */
     int fp64;            /* cl_khr_fp64: the watertight test's exact re-check */
     int exact;           /* the oracle's bits are promised: cr_div_sqrt && fp64 */
+    int cpu;             /* CL_DEVICE_TYPE_CPU: the backend runs the packet kernel there */
     void *platform_id;   /* cl_platform_id */
     void *device_id;     /* cl_device_id */
 } rt_cl_device_info;
@@ -42,6 +43,10 @@ int rt_cl_select(const rt_cl_device_info *devs, int count, const char *selector,
 
 /* Why a device does or does not promise the oracle's bits, one line. */
 const char *rt_cl_exactness_note(const rt_cl_device_info *d);
+
+/* Which kernels the backend runs on the device, one line: the packet kernel
+ * (kernels/rt_packet.cl) on CPU devices, one ray per work-item elsewhere. */
+const char *rt_cl_kernels_note(const rt_cl_device_info *d);
 
 /* A name for an OpenCL error code ("CL_OUT_OF_RESOURCES"). */
 const char *rt_cl_error_name(int code);

@@ -183,6 +183,9 @@ typedef struct rt_render_stats {
     uint32_t tile_pixels;     /* the largest tile launched */
     uint32_t wave_tiles;      /* tiles shaded as wavefront passes (secondary rays) */
     uint32_t wave_fallbacks;  /* of those, redone with rt_k_shade (a queue overflowed) */
+    /* Which kernels rendered: "packet 4x4" (CPU devices: a block of rays per
+     * work-item, kernels/rt_packet.cl) or "one ray per work-item". */
+    char kernels[48];
 } rt_render_stats;
 
 /* Ray/triangle tests (rt_render_options.tri_test). Watertight is the default;

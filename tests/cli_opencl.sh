@@ -14,6 +14,9 @@ if ! "$RTCL" devices >"$tmp/devices.txt" 2>&1; then
 fi
 expect 0 'device 0: .*' -- "$RTCL" devices
 expect 0 'exact +(yes|no): ' -- "$RTCL" devices --device 0
+expect 0 'kernels +(packet|one ray per work-item)' -- "$RTCL" devices --device 0
+# The packet kernel runs on CPU devices (the 'kernel path' line of --stats).
+if "$RTCL" devices --device 0 | grep -q 'kernels  *packet'; then path=packet; else path='one ray'; fi
 expect 2 'no OpenCL device 99' -- "$RTCL" devices --device 99
 expect 2 "no OpenCL device named like 'no-such-gpu'" -- "$RTCL" devices --device no-such-gpu
 
@@ -25,13 +28,28 @@ for scene in builtin:cornell builtin:keyframes; do
     checks=$((checks + 1))
     cmp -s "$tmp/cpu.png" "$tmp/cl.png" || { echo "FAIL: $scene: opencl PNG differs"; fails=$((fails + 1)); }
 done
+# Odd sizes (partial packet blocks), Whitted and direct, the packet kernel
+# where the device is a CPU and the one-ray kernels forced: the same PNG.
+for direct in "" --direct; do
+    expect 0 'wrote' -- "$RTCL" render builtin:cornell --width 61 --height 37 $direct -o "$tmp/cpu.png"
+    expect 0 "kernel path +$path" -- "$RTCL" render builtin:cornell --width 61 --height 37 $direct \
+        --backend opencl --stats -o "$tmp/cl.png"
+    RTCL_OPENCL_NO_PACKET=1 expect 0 'kernel path +one ray per work-item' -- "$RTCL" render \
+        builtin:cornell --width 61 --height 37 $direct --backend opencl --stats -o "$tmp/cl1.png"
+    for f in cl cl1; do
+        checks=$((checks + 1))
+        cmp -s "$tmp/cpu.png" "$tmp/$f.png" || { echo "FAIL: cornell $direct 61x37: opencl $f PNG differs"; fails=$((fails + 1)); }
+    done
+done
 # Reflection and refraction as wavefront passes (cornell has a mirror and a
-# glass sphere), and with one-entry queues every tile redone in one kernel:
-# the same PNG both ways.
+# glass sphere; the one-ray kernels, as on a GPU), and with one-entry queues
+# every tile redone in one kernel: the same PNG both ways.
+export RTCL_OPENCL_NO_PACKET=1
 expect 0 'wavefront +[1-9][0-9]* tiles \(0 redone' -- "$RTCL" render builtin:cornell --width 160 \
     --height 90 --backend opencl --stats -o "$tmp/wave.png"
 RTCL_OPENCL_WAVE_CAP=1 expect 0 'wavefront +([0-9]+) tiles \(\1 redone' -- "$RTCL" render \
     builtin:cornell --width 160 --height 90 --backend opencl --stats -o "$tmp/wave1.png"
+unset RTCL_OPENCL_NO_PACKET
 expect 0 'wrote' -- "$RTCL" render builtin:cornell --width 160 --height 90 -o "$tmp/cpu.png"
 for f in wave wave1; do
     checks=$((checks + 1))

@@ -6,7 +6,14 @@
  * only what changed, and a bad --device is an error. Skips only when there is
  * no OpenCL device (or the build has no OpenCL). The wavefront (reflection
  * and refraction as passes over ray queues) is checked on cornell, also with
- * queues too small so every tile takes the fallback. */
+ * queues too small so every tile takes the fallback.
+ *
+ * On a CPU device frames run the packet kernel (kernels/rt_packet.cl): its
+ * images and AOVs are checked in Whitted and direct mode, at an odd size
+ * (partial blocks), with every triangle test and every block size; its test
+ * counters count per lane (they differ from the oracle's), so they are
+ * checked for consistency instead, and exactly with RTCL_OPENCL_NO_PACKET=1
+ * (the one-ray kernels, which must stay exact too). */
 #define _POSIX_C_SOURCE 200809L /* setenv */
 #include <math.h>
 #include <stdint.h>
@@ -25,15 +32,48 @@
 
 static const char *const aov_names[] = {"image",  "depth",    "primid",  "instid",
                                         "normal", "boxtests", "tritests"};
+static const char *const tri_names[] = {"watertight", "moller", "pluecker", "badouel"};
+
+/* How a frame is rendered: Whitted or direct only, and the triangle test. */
+typedef struct mode {
+    int direct;
+    rt_triangle_test tri;
+} mode;
+static const mode whitted = {0, RT_TRI_TEST_WATERTIGHT};
 
 /* Renders with a backend at a small size; returns the status. */
-static rt_status render(rt_scene *s, const char *backend, rt_aov aov, rt_framebuffer *fb,
-                        rt_render_stats *stats) {
+static rt_status render_mode(rt_scene *s, const char *backend, rt_aov aov, mode m,
+                             rt_framebuffer *fb, rt_render_stats *stats) {
     rt_render_options o = rt_render_options_default();
     o.backend = backend;
     o.aov = aov;
     o.stats = stats;
+    o.direct_only = m.direct;
+    o.tri_test = m.tri;
     return rt_render(s, &o, fb);
+}
+
+static rt_status render(rt_scene *s, const char *backend, rt_aov aov, rt_framebuffer *fb,
+                        rt_render_stats *stats) {
+    return render_mode(s, backend, aov, whitted, fb, stats);
+}
+
+/* The kernels this process renders with on the default device: the packet
+ * kernel on a CPU device unless RTCL_OPENCL_NO_PACKET is set. */
+static int expect_packet(void) {
+    static int cpu = -1;
+    if (cpu < 0) {
+        rt_cl_device_info *devs;
+        int count;
+        char msg[256];
+        cpu = 0;
+        if (rt_cl_devices(&devs, &count, msg, sizeof msg) == RT_OK) {
+            int pick = rt_cl_select(devs, count, NULL, msg, sizeof msg);
+            cpu = pick >= 0 && devs[pick].cpu;
+            free(devs);
+        }
+    }
+    return cpu && !getenv("RTCL_OPENCL_NO_PACKET");
 }
 
 /* Bitwise comparison of two framebuffers; reports the first difference. */
@@ -68,20 +108,55 @@ static int same_file(const char *a, const char *b) {
     return same;
 }
 
-static void check_images(const char *name, rt_scene *s) {
+/* The packet kernel's counter AOV: one value per pixel, a whole number, at
+ * least one box test per pixel (the primary ray's root), and the pixels add
+ * up to the frame's count in the statistics (counted per lane). */
+static void check_counter_aov(const char *name, const char *what, const rt_framebuffer *fb,
+                              uint64_t total, int boxes) {
+    size_t n = (size_t)fb->width * fb->height;
+    double sum = 0.0;
+    size_t bad = n;
+    for (size_t i = 0; i < n && bad == n; i++) {
+        float v = fb->pixels[i];
+        if (!(v >= (boxes ? 1.0f : 0.0f)) || v != floorf(v)) bad = i;
+        sum += (double)v;
+    }
+    CHECK_MSG(fb->channels == 1 && bad == n, "%s %s: pixel %zu is %g", name, what, bad,
+              bad < n ? (double)fb->pixels[bad] : 0.0);
+    CHECK_MSG(sum == (double)total, "%s %s: pixels add up to %.0f, the statistics say %llu", name,
+              what, sum, (unsigned long long)total);
+}
+
+/* Every AOV and the image (with its 8-bit PNG) in mode m against the
+ * oracle; with the packet kernel the counter AOVs are checked for
+ * consistency (see check_counter_aov) and the rays traced exactly. */
+static void check_images_mode(const char *name, rt_scene *s, mode m) {
+    int packet = expect_packet();
+    char label[160];
     for (int aov = RT_AOV_NONE; aov <= RT_AOV_TRI_TESTS; aov++) {
         rt_framebuffer cpu, cl;
-        rt_render_stats st;
-        CHECK(render(s, "cpu", (rt_aov)aov, &cpu, NULL) == RT_OK);
-        rt_status status = render(s, "opencl", (rt_aov)aov, &cl, &st);
+        rt_render_stats st, cs;
+        CHECK(render_mode(s, "cpu", (rt_aov)aov, m, &cpu, &cs) == RT_OK);
+        rt_status status = render_mode(s, "opencl", (rt_aov)aov, m, &cl, &st);
         CHECK_MSG(status == RT_OK, "%s: %s", name, rt_scene_error(s));
         if (status != RT_OK) {
             rt_framebuffer_free(&cpu);
             continue;
         }
+        snprintf(label, sizeof label, "%s (%s%s, %dx%d, %s)", aov_names[aov],
+                 m.direct ? "direct" : "Whitted", packet ? ", packet" : "", cpu.width, cpu.height,
+                 tri_names[m.tri]);
         CHECK(strcmp(st.backend, "opencl") == 0 && st.device[0] && st.exact);
         CHECK(st.primary_rays == (uint64_t)cpu.width * (uint64_t)cpu.height);
-        same_pixels(name, aov_names[aov], &cpu, &cl);
+        CHECK_MSG((strncmp(st.kernels, "packet", 6) == 0) == packet, "%s %s: kernels '%s'", name,
+                  label, st.kernels);
+        CHECK_EQ_INT((long long)st.rays, (long long)cs.rays);
+        if (packet && (aov == RT_AOV_BOX_TESTS || aov == RT_AOV_TRI_TESTS))
+            check_counter_aov(name, label, &cl,
+                              aov == RT_AOV_BOX_TESTS ? st.box_tests : st.tri_tests,
+                              aov == RT_AOV_BOX_TESTS);
+        else
+            same_pixels(name, label, &cpu, &cl);
         if (aov == RT_AOV_NONE) { /* the 8-bit image too */
             char pa[64], pb[64];
             snprintf(pa, sizeof pa, "%s_cpu.png", name);
@@ -101,6 +176,64 @@ static void check_images(const char *name, rt_scene *s) {
     }
 }
 
+static void check_images(const char *name, rt_scene *s) {
+    check_images_mode(name, s, whitted);
+}
+
+/* The image alone (Whitted and direct) and the depth AOV in mode m. */
+static void check_image_mode(const char *name, rt_scene *s, mode m) {
+    for (int aov = RT_AOV_NONE; aov <= RT_AOV_DEPTH; aov++) {
+        rt_framebuffer cpu, cl;
+        CHECK(render_mode(s, "cpu", (rt_aov)aov, m, &cpu, NULL) == RT_OK);
+        rt_status status = render_mode(s, "opencl", (rt_aov)aov, m, &cl, NULL);
+        CHECK_MSG(status == RT_OK, "%s: %s", name, rt_scene_error(s));
+        if (status == RT_OK) {
+            char label[160];
+            snprintf(label, sizeof label, "%s (%s, %dx%d, %s, RTCL_OPENCL_PACKET_LANES=%s)",
+                     aov_names[aov], m.direct ? "direct" : "Whitted", cpu.width, cpu.height,
+                     tri_names[m.tri],
+                     getenv("RTCL_OPENCL_PACKET_LANES") ? getenv("RTCL_OPENCL_PACKET_LANES")
+                                                        : "default");
+            same_pixels(name, label, &cpu, &cl);
+            rt_framebuffer_free(&cl);
+        }
+        rt_framebuffer_free(&cpu);
+    }
+}
+
+/* The packet kernel in every configuration at an odd size (97x61: blocks cut
+ * at the right and bottom edges): every AOV in direct mode; image and depth
+ * with every triangle test, both modes; every block size (4, 8, 16 lanes).
+ * Then the one-ray kernels (RTCL_OPENCL_NO_PACKET=1): every AOV including
+ * the counters exactly, both modes. */
+static void check_packet(const char *name, rt_scene *s) {
+    rt_camera cam, odd;
+    rt_camera_get(s, &cam);
+    odd = cam;
+    odd.width = 97;
+    odd.height = 61;
+    CHECK(rt_camera_set(s, &odd) == RT_OK);
+    mode direct = {1, RT_TRI_TEST_WATERTIGHT};
+    check_images_mode(name, s, direct);
+    check_images_mode(name, s, whitted);
+    for (int t = RT_TRI_TEST_MOLLER; t <= RT_TRI_TEST_BADOUEL; t++)
+        for (int d = 0; d < 2; d++) check_image_mode(name, s, (mode){d, (rt_triangle_test)t});
+    static const char *const lanes[] = {"4", "8"};
+    for (int i = 0; i < 2; i++) {
+        setenv("RTCL_OPENCL_PACKET_LANES", lanes[i], 1);
+        check_image_mode(name, s, direct);
+        check_image_mode(name, s, whitted);
+        unsetenv("RTCL_OPENCL_PACKET_LANES");
+    }
+    if (expect_packet()) {
+        setenv("RTCL_OPENCL_NO_PACKET", "1", 1);
+        check_images_mode(name, s, direct);
+        check_images_mode(name, s, whitted);
+        unsetenv("RTCL_OPENCL_NO_PACKET");
+    }
+    CHECK(rt_camera_set(s, &cam) == RT_OK);
+}
+
 /* The image of a scene with reflection and refraction goes through the
  * wavefront passes (ray queues between launches): the same float pixels and
  * ray/test counts as the oracle; with queues of one entry every tile
@@ -108,6 +241,8 @@ static void check_images(const char *name, rt_scene *s) {
 static void check_wavefront(rt_scene *s) {
     rt_framebuffer cpu, cl;
     rt_render_stats cs, st;
+    /* A CPU device runs the packet kernel, not the wavefront: force it. */
+    setenv("RTCL_OPENCL_NO_PACKET", "1", 1);
     CHECK(render(s, "cpu", RT_AOV_NONE, &cpu, &cs) == RT_OK);
     for (int forced = 0; forced < 2; forced++) {
         if (forced) setenv("RTCL_OPENCL_WAVE_CAP", "1", 1);
@@ -128,6 +263,7 @@ static void check_wavefront(rt_scene *s) {
         rt_framebuffer_free(&cl);
     }
     rt_framebuffer_free(&cpu);
+    unsetenv("RTCL_OPENCL_NO_PACKET");
 }
 
 static void check_hits(const char *name, rt_scene *s) {
@@ -226,6 +362,7 @@ int main(void) {
         cam.height = 108;
         CHECK(rt_camera_set(s, &cam) == RT_OK);
         check_images(name, s);
+        check_packet(name, s);
         if (strcmp(name, "cornell") == 0) check_wavefront(s);
         check_hits(name, s);
         rt_scene_destroy(s);

@@ -20,6 +20,9 @@ static const char usage[] =
     "sqrt (the kernels are built with -cl-fp32-correctly-rounded-divide-sqrt) and\n"
     "cl_khr_fp64 (the watertight triangle test re-checks zero edge functions in\n"
     "double). FMA support is shown for information: the kernels never contract.\n"
+    "'kernels' says which kernels render there: on a CPU device a packet kernel\n"
+    "(a 4x4 block of rays per work-item, as vectors), elsewhere one ray per\n"
+    "work-item; both give the oracle's bits.\n"
     "\n"
     "  --device N|NAME  show only that device (an index or a part of its name)\n";
 
@@ -73,6 +76,7 @@ int cmd_devices(int argc, char **argv) {
         printf("    float fma         %s\n", d->fma ? "yes" : "no");
         printf("    fp64              %s\n", d->fp64 ? "yes (cl_khr_fp64)" : "no");
         printf("    exact             %s: %s\n", d->exact ? "yes" : "no", rt_cl_exactness_note(d));
+        printf("    kernels           %s\n", rt_cl_kernels_note(d));
     }
     free(devs);
     return 0;

@@ -119,9 +119,14 @@ static void print_stats(const rt_render_stats *s, int width, int height) {
         printf("kernel compile   %.2f ms\n", s->compile_ms);
         printf("upload           %.2f ms, %llu bytes\n", s->upload_ms,
                (unsigned long long)s->upload_bytes);
-        printf("kernels          camera %.2f ms, trace %.2f ms, shade %.2f ms (%u launches, "
-               "tiles up to %u pixels)\n",
-               s->kernel_ms[0], s->kernel_ms[1], s->kernel_ms[2], s->launches, s->tile_pixels);
+        if (s->kernels[0]) printf("kernel path      %s\n", s->kernels);
+        if (!strncmp(s->kernels, "packet", 6))
+            printf("kernels          packet %.2f ms (%u launches, tiles up to %u pixels)\n",
+                   s->kernel_ms[1], s->launches, s->tile_pixels);
+        else
+            printf("kernels          camera %.2f ms, trace %.2f ms, shade %.2f ms (%u launches, "
+                   "tiles up to %u pixels)\n",
+                   s->kernel_ms[0], s->kernel_ms[1], s->kernel_ms[2], s->launches, s->tile_pixels);
         if (s->wave_tiles)
             printf("wavefront        %u tiles (%u redone in one kernel after a queue overflow)\n",
                    s->wave_tiles, s->wave_fallbacks);

@@ -1,0 +1,661 @@
+/* rt_packet.cl - the packet kernel for OpenCL CPU devices (issue 7).
+ *
+ * rt_render.cl runs the shared scalar maths one ray per work-item; a CPU
+ * device's compiler (PoCL's LLVM) cannot vectorise the divergent traversal
+ * across work-items. Here one work-item traces a block of RT_PK_LANES pixels
+ * (4x4 by default) as OpenCL vectors (float16: one AVX-512 register), through
+ * the same two-level BVH: a node is visited when any active lane's box test
+ * passes. Then the block is shaded per lane with the shared functions, its
+ * shadow rays traced as a packet too (any hit; a lane retires when occluded).
+ *
+ * Exactness (the oracle's bits). Every pk_* function below mirrors one
+ * function of rt_shared.h or rt_shade.h (named at each): per lane it performs
+ * the same IEEE operations in the same order (no contraction: the pragma; no
+ * -cl-mad-enable; correctly rounded division and sqrt), choosing between
+ * values with select() where the scalar code branches or indexes (the
+ * watertight test's per-ray axes kx, ky, kz), so each lane computes its own
+ * scalar values. Closest hit has a total order (rt_hit_before) and box tests
+ * are conservative, so a lane that visits a superset of the nodes its scalar
+ * traversal visits, testing every candidate triangle with the scalar test's
+ * arithmetic and accepting by the same order, ends with the identical hit;
+ * an any-hit lane finds an occluder exactly when the scalar traversal does.
+ * Camera rays, surfaces, Phong and Whitted shading are the shared functions,
+ * called per lane. Only the test counters differ from the scalar kernels:
+ * each lane counts the box and triangle tests performed while it was active
+ * (docs/OPENCL.md).
+ *
+ * Built together with rt_render.cl (one program) on CPU devices only.
+ */
+#pragma OPENCL FP_CONTRACT OFF
+
+#include "rt_kernel_args.h"
+
+#ifndef RT_PK_LANES
+#define RT_PK_LANES 16
+#endif
+
+#if RT_PK_LANES == 16
+typedef float16 pk_f;
+typedef int16 pk_i;
+typedef uint16 pk_u;
+#define PK_W      4 /* block width in pixels (lanes l: x = l % PK_W, y = l / PK_W) */
+#define pk_vload  vload16
+#define pk_vstore vstore16
+#if RT_HAVE_DOUBLE
+typedef double16 pk_d;
+#define pk_to_d convert_double16
+#define pk_to_f convert_float16
+#endif
+#elif RT_PK_LANES == 8
+typedef float8 pk_f;
+typedef int8 pk_i;
+typedef uint8 pk_u;
+#define PK_W      4
+#define pk_vload  vload8
+#define pk_vstore vstore8
+#if RT_HAVE_DOUBLE
+typedef double8 pk_d;
+#define pk_to_d convert_double8
+#define pk_to_f convert_float8
+#endif
+#elif RT_PK_LANES == 4
+typedef float4 pk_f;
+typedef int4 pk_i;
+typedef uint4 pk_u;
+#define PK_W      2
+#define pk_vload  vload4
+#define pk_vstore vstore4
+#if RT_HAVE_DOUBLE
+typedef double4 pk_d;
+#define pk_to_d convert_double4
+#define pk_to_f convert_float4
+#endif
+#else
+#error "RT_PK_LANES must be 4, 8 or 16"
+#endif
+#define PK_H (RT_PK_LANES / PK_W)
+
+/* A packet of rays: rt_ray_d and rt_ray_pre per lane, as vectors. Masks are
+ * integer vectors, -1 in a lane where true (OpenCL's vector comparisons). */
+typedef struct pk_ray {
+    pk_f org[3], dir[3];
+    pk_f tmin, tmax;
+    pk_f inv[3];
+    pk_i neg[3]; /* rt_ray_pre.sign: inv < 0 */
+    pk_i kx, ky, kz;
+    pk_f sx, sy, sz;
+    pk_f box_lo; /* rt_box_lo(tmin) */
+} pk_ray;
+
+/* rt_hit_d per lane, and the lanes' test counters (rt_counters). */
+typedef struct pk_state {
+    pk_f t, u, v;
+    pk_u prim, inst, entry;
+    pk_i boxes, tris, rays;
+    pk_i done; /* any hit: lanes that found an occluder */
+    int any_hit;
+} pk_state;
+
+/* c ? b : a per lane (a select on a -1/0 mask). */
+#define PK_PICK(a0, a1, a2, k) select(select((a0), (a1), (k) == 1), (a2), (k) == 2)
+
+/* ---- rays ----------------------------------------------------------------- */
+
+/* Mirrors rt_ray_prepare, and rt_box_lo(tmin). */
+static void pk_prepare(pk_ray *p) {
+    for (int i = 0; i < 3; i++) {
+        p->inv[i] = RT_DIV(1.0f, p->dir[i]);
+        p->neg[i] = p->inv[i] < 0.0f;
+    }
+    pk_f ax = RT_FABS(p->dir[0]), ay = RT_FABS(p->dir[1]), az = RT_FABS(p->dir[2]);
+    pk_i kz = select((pk_i)0, (pk_i)1, ay > ax);
+    kz = select(kz, (pk_i)2, az > select(ax, ay, kz == 1));
+    pk_i kx = select(kz + 1, (pk_i)0, kz + 1 == 3);
+    pk_i ky = select(kx + 1, (pk_i)0, kx + 1 == 3);
+    pk_f dkz = PK_PICK(p->dir[0], p->dir[1], p->dir[2], kz);
+    pk_i swap = dkz < 0.0f; /* keep the winding */
+    pk_i tmp = kx;
+    kx = select(kx, ky, swap);
+    ky = select(ky, tmp, swap);
+    p->kx = kx;
+    p->ky = ky;
+    p->kz = kz;
+    p->sx = RT_DIV(PK_PICK(p->dir[0], p->dir[1], p->dir[2], kx), dkz);
+    p->sy = RT_DIV(PK_PICK(p->dir[0], p->dir[1], p->dir[2], ky), dkz);
+    p->sz = RT_DIV(1.0f, dkz);
+    p->box_lo = p->tmin - RT_FABS(p->tmin) * RT_BOX_T_MARGIN;
+}
+
+/* The packet of the lanes' rays r[0 .. RT_PK_LANES - 1] (each lane's own
+ * rt_ray_d, e.g. from rt_camera_ray or rt_phong_light). */
+static void pk_load(const rt_ray_d *r, pk_ray *p) {
+    float a[8][RT_PK_LANES];
+    for (int l = 0; l < RT_PK_LANES; l++) {
+        for (int k = 0; k < 3; k++) {
+            a[k][l] = r[l].org[k];
+            a[3 + k][l] = r[l].dir[k];
+        }
+        a[6][l] = r[l].tmin;
+        a[7][l] = r[l].tmax;
+    }
+    for (int k = 0; k < 3; k++) {
+        p->org[k] = pk_vload(0, a[k]);
+        p->dir[k] = pk_vload(0, a[3 + k]);
+    }
+    p->tmin = pk_vload(0, a[6]);
+    p->tmax = pk_vload(0, a[7]);
+    pk_prepare(p);
+}
+
+/* Mirrors rt_ray_to_object (and rt_ray_prepare on the result). */
+static void pk_to_object(RT_GLOBAL const rt_instance *in, const pk_ray *r, pk_ray *o) {
+    RT_GLOBAL const float *m = in->world_to_object;
+    for (int i = 0; i < 3; i++) {
+        o->org[i] = ((m[4 * i] * r->org[0] + m[4 * i + 1] * r->org[1]) + m[4 * i + 2] * r->org[2]) +
+                    m[4 * i + 3];
+        o->dir[i] = (m[4 * i] * r->dir[0] + m[4 * i + 1] * r->dir[1]) + m[4 * i + 2] * r->dir[2];
+    }
+    o->tmin = r->tmin;
+    o->tmax = r->tmax;
+    pk_prepare(o);
+}
+
+/* ---- ray/box -------------------------------------------------------------- */
+
+/* Mirrors rt_box_test: lo is rt_box_lo(tmin), tmax is rt_box_hi(best t). */
+static pk_i pk_box(RT_GLOBAL const rt_node *n, const pk_ray *p, pk_f lo, pk_f tmax, pk_f *tnear) {
+    pk_f hi = (pk_f)RT_INF;
+    for (int i = 0; i < 3; i++) {
+        pk_f bmin = (pk_f)n->bmin[i], bmax = (pk_f)n->bmax[i];
+        pk_f a = select(bmin, bmax, p->neg[i]);
+        pk_f b = select(bmax, bmin, p->neg[i]);
+        pk_f t0 = (a - p->org[i]) * p->inv[i];
+        pk_f t1 = (b - p->org[i]) * p->inv[i];
+        lo = select(lo, t0, t0 > lo);
+        hi = select(hi, t1, t1 < hi);
+    }
+    hi = hi * select((pk_f)RT_BOX_FAR_SCALE, (pk_f)RT_BOX_FAR_SCALE_NEG, hi < 0.0f);
+    hi = select(hi, tmax, tmax < hi);
+    *tnear = lo;
+    return lo <= hi;
+}
+
+/* ---- ray/triangle: each returns the lanes of act that hit, with t, u, v ---- */
+
+/* Mirrors rt_dot3 and rt_cross3 on vectors. */
+static pk_f pk_dot3(const pk_f *a, const pk_f *b) {
+    return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2];
+}
+static void pk_cross3(const pk_f *a, const pk_f *b, pk_f *out) {
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* Mirrors rt_tri_watertight; the exact double re-check of zero edge
+ * functions is done for the lanes that have one (rare). */
+static pk_i pk_tri_watertight(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f tmin, pk_f tmax,
+                              pk_i act, pk_f *t, pk_f *u, pk_f *v) {
+    pk_f A[3], B[3], C[3];
+    for (int i = 0; i < 3; i++) {
+        A[i] = tri->v0[i] - p->org[i];
+        B[i] = tri->v1[i] - p->org[i];
+        C[i] = tri->v2[i] - p->org[i];
+    }
+    pk_f Akz = PK_PICK(A[0], A[1], A[2], p->kz), Bkz = PK_PICK(B[0], B[1], B[2], p->kz),
+         Ckz = PK_PICK(C[0], C[1], C[2], p->kz);
+    pk_f Ax = PK_PICK(A[0], A[1], A[2], p->kx) - p->sx * Akz;
+    pk_f Ay = PK_PICK(A[0], A[1], A[2], p->ky) - p->sy * Akz;
+    pk_f Bx = PK_PICK(B[0], B[1], B[2], p->kx) - p->sx * Bkz;
+    pk_f By = PK_PICK(B[0], B[1], B[2], p->ky) - p->sy * Bkz;
+    pk_f Cx = PK_PICK(C[0], C[1], C[2], p->kx) - p->sx * Ckz;
+    pk_f Cy = PK_PICK(C[0], C[1], C[2], p->ky) - p->sy * Ckz;
+    pk_f U = Cx * By - Cy * Bx;
+    pk_f V = Ax * Cy - Ay * Cx;
+    pk_f W = Bx * Ay - By * Ax;
+#if RT_HAVE_DOUBLE
+    pk_i zero = (U == 0.0f) | (V == 0.0f) | (W == 0.0f);
+    if (any(zero & act)) {
+        pk_f Ud = pk_to_f(pk_to_d(Cx) * pk_to_d(By) - pk_to_d(Cy) * pk_to_d(Bx));
+        pk_f Vd = pk_to_f(pk_to_d(Ax) * pk_to_d(Cy) - pk_to_d(Ay) * pk_to_d(Cx));
+        pk_f Wd = pk_to_f(pk_to_d(Bx) * pk_to_d(Ay) - pk_to_d(By) * pk_to_d(Ax));
+        U = select(U, Ud, zero);
+        V = select(V, Vd, zero);
+        W = select(W, Wd, zero);
+    }
+#endif
+    pk_i ok =
+        act & ~(((U < 0.0f) | (V < 0.0f) | (W < 0.0f)) & ((U > 0.0f) | (V > 0.0f) | (W > 0.0f)));
+    if (!any(ok)) return ok;
+    pk_f det = (U + V) + W;
+    ok &= det != 0.0f;
+    if (!any(ok)) return ok;
+    pk_f Az = p->sz * Akz, Bz = p->sz * Bkz, Cz = p->sz * Ckz;
+    pk_f T = (U * Az + V * Bz) + W * Cz;
+    pk_f tt = RT_DIV(T, det);
+    ok &= (tt >= tmin) & (tt <= tmax);
+    if (!any(ok)) return ok;
+    *t = tt;
+    *u = RT_DIV(V, det);
+    *v = RT_DIV(W, det);
+    return ok;
+}
+
+/* Mirrors rt_tri_moller. */
+static pk_i pk_tri_moller(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f tmin, pk_f tmax,
+                          pk_i act, pk_f *t, pk_f *u, pk_f *v) {
+    pk_f e1[3], e2[3], s[3], pv[3], q[3];
+    for (int i = 0; i < 3; i++) {
+        e1[i] = (pk_f)(tri->v1[i] - tri->v0[i]);
+        e2[i] = (pk_f)(tri->v2[i] - tri->v0[i]);
+        s[i] = p->org[i] - tri->v0[i];
+    }
+    pk_cross3(p->dir, e2, pv);
+    pk_f det = pk_dot3(e1, pv);
+    pk_i ok = act & (det != 0.0f);
+    if (!any(ok)) return ok;
+    pk_f inv = RT_DIV(1.0f, det);
+    pk_f uu = pk_dot3(s, pv) * inv;
+    ok &= (uu >= 0.0f) & (uu <= 1.0f);
+    if (!any(ok)) return ok;
+    pk_cross3(s, e1, q);
+    pk_f vv = pk_dot3(p->dir, q) * inv;
+    ok &= (vv >= 0.0f) & (uu + vv <= 1.0f);
+    if (!any(ok)) return ok;
+    pk_f tt = pk_dot3(e2, q) * inv;
+    ok &= (tt >= tmin) & (tt <= tmax);
+    *t = tt;
+    *u = uu;
+    *v = vv;
+    return ok;
+}
+
+/* Mirrors rt_tri_pluecker. */
+static pk_i pk_tri_pluecker(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f tmin, pk_f tmax,
+                            pk_i act, pk_f *t, pk_f *u, pk_f *v) {
+    pk_f a[3], b[3], c[3], bc[3], ca[3], ab[3];
+    for (int i = 0; i < 3; i++) {
+        a[i] = tri->v0[i] - p->org[i];
+        b[i] = tri->v1[i] - p->org[i];
+        c[i] = tri->v2[i] - p->org[i];
+    }
+    pk_cross3(b, c, bc);
+    pk_cross3(c, a, ca);
+    pk_cross3(a, b, ab);
+    pk_f U = pk_dot3(p->dir, bc), V = pk_dot3(p->dir, ca), W = pk_dot3(p->dir, ab);
+    pk_i ok =
+        act & ~(((U < 0.0f) | (V < 0.0f) | (W < 0.0f)) & ((U > 0.0f) | (V > 0.0f) | (W > 0.0f)));
+    if (!any(ok)) return ok;
+    pk_f det = (U + V) + W;
+    ok &= det != 0.0f;
+    if (!any(ok)) return ok;
+    pk_f tt = RT_DIV(pk_dot3(a, bc), det);
+    ok &= (tt >= tmin) & (tt <= tmax);
+    if (!any(ok)) return ok;
+    *t = tt;
+    *u = RT_DIV(V, det);
+    *v = RT_DIV(W, det);
+    return ok;
+}
+
+/* Mirrors rt_tri_badouel: the plane and its projection axis are the
+ * triangle's (the same for every lane), the hit point each lane's. */
+static pk_i pk_tri_badouel(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f tmin, pk_f tmax,
+                           pk_i act, pk_f *t, pk_f *u, pk_f *v) {
+    float e1[3], e2[3], n[3];
+    pk_f a[3], nv[3];
+    for (int i = 0; i < 3; i++) {
+        e1[i] = tri->v1[i] - tri->v0[i];
+        e2[i] = tri->v2[i] - tri->v0[i];
+        a[i] = tri->v0[i] - p->org[i];
+    }
+    rt_cross3(e1, e2, n);
+    for (int i = 0; i < 3; i++) nv[i] = (pk_f)n[i];
+    pk_f nd = pk_dot3(nv, p->dir);
+    pk_i ok = act & (nd != 0.0f);
+    if (!any(ok)) return ok;
+    pk_f tt = RT_DIV(pk_dot3(nv, a), nd);
+    ok &= (tt >= tmin) & (tt <= tmax);
+    if (!any(ok)) return ok;
+    float nx = RT_FABS(n[0]), ny = RT_FABS(n[1]), nz = RT_FABS(n[2]);
+    rt_i32 k = 0;
+    if (ny > nx) k = 1;
+    if (nz > (k == 1 ? ny : nx)) k = 2;
+    rt_i32 i1 = k == 0 ? 1 : 0, i2 = k == 2 ? 1 : 2;
+    pk_f p1 = (p->org[i1] + tt * p->dir[i1]) - tri->v0[i1];
+    pk_f p2 = (p->org[i2] + tt * p->dir[i2]) - tri->v0[i2];
+    float det = e1[i1] * e2[i2] - e1[i2] * e2[i1];
+    pk_f uu = RT_DIV(p1 * e2[i2] - p2 * e2[i1], (pk_f)det);
+    pk_f vv = RT_DIV(e1[i1] * p2 - e1[i2] * p1, (pk_f)det);
+    ok &= (uu >= 0.0f) & (vv >= 0.0f) & (uu + vv <= 1.0f);
+    *t = tt;
+    *u = uu;
+    *v = vv;
+    return ok;
+}
+
+/* Mirrors rt_tri_test (a compile-time method in a specialised build). */
+static pk_i pk_tri(rt_u32 method, RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f tmin,
+                   pk_f tmax, pk_i act, pk_f *t, pk_f *u, pk_f *v) {
+    if (method == RT_TRI_MOLLER) return pk_tri_moller(tri, p, tmin, tmax, act, t, u, v);
+    if (method == RT_TRI_PLUECKER) return pk_tri_pluecker(tri, p, tmin, tmax, act, t, u, v);
+    if (method == RT_TRI_BADOUEL) return pk_tri_badouel(tri, p, tmin, tmax, act, t, u, v);
+    return pk_tri_watertight(tri, p, tmin, tmax, act, t, u, v);
+}
+
+/* ---- traversal ------------------------------------------------------------ */
+
+/* Mirrors rt_hit_before per lane: is (t, inst, prim) before the lane's best? */
+static pk_i pk_before(pk_f t, rt_u32 inst, rt_u32 prim, const pk_state *st) {
+    return select(select(prim < st->prim, inst < st->inst, inst != st->inst), t < st->t,
+                  t != st->t);
+}
+
+/* Mirrors rt_leaf_test for the lanes in mask: each lane tests every
+ * triangle of the leaf against its own range [tmin, best t]. */
+static void pk_leaf(const rt_scene_view *s, rt_u32 first, rt_u32 count, rt_u32 inst,
+                    const pk_ray *p, pk_i mask, pk_state *st) {
+    rt_u32 method = RT_TRI_METHOD(s);
+    for (rt_u32 e = first; e < first + count; e++) {
+        pk_i act = mask & ~st->done;
+        if (!any(act)) return;
+        pk_f t, u, v;
+        st->tris -= act; /* c->tri_tests++ in the active lanes */
+        pk_i hit = pk_tri(method, &s->tris[e], p, p->tmin, st->t, act, &t, &u, &v);
+        if (!any(hit)) continue;
+        rt_u32 prim = s->tri_ids[e];
+        pk_i take = st->any_hit ? hit : hit & pk_before(t, inst, prim, st);
+        st->t = select(st->t, t, take);
+        st->u = select(st->u, u, take);
+        st->v = select(st->v, v, take);
+        st->prim = select(st->prim, (pk_u)prim, take);
+        st->inst = select(st->inst, (pk_u)inst, take);
+        st->entry = select(st->entry, (pk_u)e, take);
+        if (st->any_hit) st->done |= take;
+    }
+}
+
+/* Pushes or continues with the nearer child: the order is a heuristic only
+ * (the hit does not depend on it), judged by the lanes that hit both. */
+static int pk_right_first(pk_i both, pk_f t0, pk_f t1) {
+    return any(both & (t1 < t0));
+}
+
+/* A traversal's stack: node index and lane mask per entry. */
+typedef struct pk_stack {
+    rt_u32 node[RT_STACK_SIZE];
+    pk_i mask[RT_STACK_SIZE];
+    int sp;
+} pk_stack;
+
+/* Starts a traversal of the BVH at root for the lanes in active: mirrors the
+ * root box test of rt_trace_mesh and rt_trace (counted per lane). */
+static pk_i pk_start(const rt_scene_view *s, rt_u32 root, const pk_ray *p, pk_i active,
+                     pk_state *st, pk_stack *k) {
+    pk_f tn;
+    k->sp = 0;
+    active &= ~st->done;
+    if (!any(active)) return active;
+    st->boxes -= active;
+    pk_f hi = st->t + RT_FABS(st->t) * RT_BOX_T_MARGIN; /* rt_box_hi(best t) */
+    return pk_box(&s->nodes[root], p, p->box_lo, hi, &tn) & active;
+}
+
+/* Goes from (node, mask) to the next leaf that some lane reaches: mirrors
+ * rt_descend per lane (a lane tests a node's children when its test of the
+ * node passed, against its own range [tmin, best t]) and the pops of
+ * rt_trace_mesh and rt_trace. Returns 0 when the stack is empty. */
+static int pk_next_leaf(const rt_scene_view *s, const pk_ray *p, pk_state *st, pk_stack *k,
+                        rt_u32 *node, pk_i *mask) {
+    for (;;) {
+        while (!any(*mask)) {
+            if (k->sp == 0) return 0;
+            --k->sp;
+            *node = k->node[k->sp];
+            *mask = k->mask[k->sp] & ~st->done;
+        }
+        RT_GLOBAL const rt_node *n = &s->nodes[*node];
+        if (n->b & RT_NODE_LEAF_FLAG) return 1;
+        pk_f tn0, tn1, hi = st->t + RT_FABS(st->t) * RT_BOX_T_MARGIN;
+        st->boxes -= *mask;
+        st->boxes -= *mask;
+        pk_i m0 = pk_box(&s->nodes[n->a], p, p->box_lo, hi, &tn0) & *mask;
+        pk_i m1 = pk_box(&s->nodes[n->b], p, p->box_lo, hi, &tn1) & *mask;
+        int h0 = any(m0), h1 = any(m1);
+        if (h0 && h1) {
+            int right_first = pk_right_first(m0 & m1, tn0, tn1);
+            k->node[k->sp] = right_first ? n->a : n->b;
+            k->mask[k->sp++] = right_first ? m0 : m1;
+            *node = right_first ? n->b : n->a;
+            *mask = right_first ? m1 : m0;
+        } else {
+            *node = h0 ? n->a : n->b;
+            *mask = h0 ? m0 : m1;
+        }
+    }
+}
+
+/* Mirrors rt_trace_mesh: the mesh BVH at root, the rays in its space. */
+static void pk_mesh(const rt_scene_view *s, rt_u32 root, rt_u32 inst, const pk_ray *p, pk_i active,
+                    pk_state *st) {
+    pk_stack k;
+    rt_u32 node = root;
+    pk_i mask = pk_start(s, root, p, active, st, &k);
+    while (pk_next_leaf(s, p, st, &k, &node, &mask)) {
+        RT_GLOBAL const rt_node *n = &s->nodes[node];
+        pk_leaf(s, n->a, n->b & RT_NODE_COUNT_MASK, inst, p, mask, st);
+        mask = (pk_i)0;
+    }
+}
+
+/* Mirrors rt_trace_instance. */
+static void pk_instance(const rt_scene_view *s, rt_u32 inst, const pk_ray *p, pk_i active,
+                        pk_state *st) {
+    RT_GLOBAL const rt_instance *in = &s->instances[inst];
+    if (RT_INST_FLAGS(in) & RT_INST_IDENTITY) {
+        pk_mesh(s, in->root, inst, p, active, st);
+        return;
+    }
+    pk_ray o;
+    pk_to_object(in, p, &o);
+    pk_mesh(s, in->root, inst, &o, active, st);
+}
+
+/* Mirrors the object-BVH loop of rt_trace: each reached leaf's instances
+ * for the lanes that reached it. */
+static void pk_top(const rt_scene_view *s, const pk_ray *p, pk_i active, pk_state *st) {
+    pk_stack k;
+    rt_u32 node = s->hdr->top_root;
+    pk_i mask = pk_start(s, node, p, active, st, &k);
+    while (pk_next_leaf(s, p, st, &k, &node, &mask)) {
+        RT_GLOBAL const rt_node *n = &s->nodes[node];
+        for (rt_u32 e = n->a; e < n->a + (n->b & RT_NODE_COUNT_MASK); e++)
+            pk_instance(s, s->inst_ids[e], p, mask, st);
+        mask = (pk_i)0;
+    }
+}
+
+/* Mirrors rt_trace (with rt_hit_init) for the lanes in active; the hits are
+ * in st (prim RT_NO_HIT on a miss), the tests added to st's counters. */
+static void pk_trace(const rt_scene_view *s, const pk_ray *p, pk_i active, int any_hit,
+                     pk_state *st) {
+    st->t = p->tmax;
+    st->u = st->v = (pk_f)0.0f;
+    st->prim = st->inst = st->entry = (pk_u)RT_NO_HIT;
+    st->done = (pk_i)0;
+    st->any_hit = any_hit;
+    st->rays -= active;
+    if (s->hdr->instance_count == 0) return;
+    if (RT_SCENE_FLAGS(s) & RT_SCENE_SINGLE) {
+        pk_instance(s, 0, p, active, st);
+        return;
+    }
+    pk_top(s, p, active, st);
+}
+
+/* ---- the kernel ------------------------------------------------------------ */
+
+/* Blocks first .. first + count - 1 of the image (PK_W x PK_H pixels each,
+ * row-major over the image, partial at the right and bottom edges): primary
+ * rays, closest hits, then the image (shadow rays as packets; with secondary
+ * rays, rt_shade_hit per lane) or an AOV into fb (channels floats per pixel,
+ * the whole frame), as rt_k_camera + rt_k_trace + rt_k_shade would.
+ * counters[RT_PK_LANES * i + l] gets lane l's rays and tests (zero outside
+ * the image). */
+__kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int channels,
+                          __global rt_counters *counters, __global float *fb) {
+    uint i = (uint)get_global_id(0);
+    if (i >= count) return;
+    rt_scene_view s = RT_VIEW_INIT;
+    const int w = hdr->width, h = hdr->height;
+    const uint bw = ((uint)w + PK_W - 1u) / PK_W, block = first + i;
+    const int x0 = (int)(block % bw) * PK_W, y0 = (int)(block / bw) * PK_H;
+
+    rt_ray_d ray[RT_PK_LANES];
+    int in_image[RT_PK_LANES];
+    for (int l = 0; l < RT_PK_LANES; l++) {
+        int x = x0 + l % PK_W, y = y0 + l / PK_W;
+        in_image[l] = x < w && y < h;
+        /* Lanes outside the image trace a copy of an inside pixel's ray,
+         * inactive. */
+        rt_camera_ray(hdr, x < w ? x : w - 1, y < h ? y : h - 1, &ray[l]);
+    }
+    pk_i active = pk_vload(0, in_image) != 0;
+    pk_ray p;
+    pk_load(ray, &p);
+    pk_state st;
+    st.boxes = st.tris = st.rays = (pk_i)0;
+    pk_trace(&s, &p, active, 0, &st);
+
+    /* The lanes' hits and counters as scalars. */
+    float ht[RT_PK_LANES], hu[RT_PK_LANES], hv[RT_PK_LANES];
+    uint hprim[RT_PK_LANES], hinst[RT_PK_LANES], hentry[RT_PK_LANES];
+    int cbox[RT_PK_LANES], ctri[RT_PK_LANES], crays[RT_PK_LANES];
+    pk_vstore(st.t, 0, ht);
+    pk_vstore(st.u, 0, hu);
+    pk_vstore(st.v, 0, hv);
+    pk_vstore(st.prim, 0, hprim);
+    pk_vstore(st.inst, 0, hinst);
+    pk_vstore(st.entry, 0, hentry);
+    pk_vstore(st.boxes, 0, cbox);
+    pk_vstore(st.tris, 0, ctri);
+    pk_vstore(st.rays, 0, crays);
+    rt_hit_d hit[RT_PK_LANES];
+    rt_counters c[RT_PK_LANES];
+    for (int l = 0; l < RT_PK_LANES; l++) {
+        hit[l].t = ht[l];
+        hit[l].u = hu[l];
+        hit[l].v = hv[l];
+        hit[l].prim = hprim[l];
+        hit[l].inst = hinst[l];
+        hit[l].entry = hentry[l];
+        c[l].box_tests = (rt_u32)cbox[l];
+        c[l].tri_tests = (rt_u32)ctri[l];
+        c[l].rays = (rt_u32)crays[l];
+    }
+
+    if (aov == AOV_DEPTH || aov == AOV_PRIMID || aov == AOV_INSTID || aov == AOV_NORMAL) {
+        /* As rt_k_shade (rt_cpu_finish_pixel). */
+        for (int l = 0; l < RT_PK_LANES; l++) {
+            if (!in_image[l]) continue;
+            __global float *out =
+                fb + ((size_t)(y0 + l / PK_W) * (size_t)w + (size_t)(x0 + l % PK_W)) * channels;
+            int hit_any = hit[l].prim != RT_NO_HIT;
+            if (aov == AOV_DEPTH) {
+                out[0] = hit_any ? hit[l].t : INFINITY;
+            } else if (aov == AOV_PRIMID) {
+                out[0] = hit_any ? (float)hit[l].prim : -1.0f;
+            } else if (aov == AOV_INSTID) {
+                out[0] = hit_any ? (float)hit[l].inst : -1.0f;
+            } else {
+                out[0] = out[1] = out[2] = 0.0f;
+                if (hit_any) {
+                    rt_surface sf;
+                    rt_surface_at(&s, &ray[l], &hit[l], &sf);
+                    for (int k = 0; k < 3; k++) out[k] = sf.ns[k];
+                }
+            }
+        }
+    } else {
+        float rgb[RT_PK_LANES][3];
+        if (RT_SCENE_FLAGS(&s) & RT_SCENE_SECONDARY) {
+            /* Whitted: the shared depth-first shading per lane (its shadow,
+             * reflection and refraction rays one by one). */
+            for (int l = 0; l < RT_PK_LANES; l++)
+                if (in_image[l]) rt_shade_hit(&s, &ray[l], &hit[l], &c[l], rgb[l]);
+        } else {
+            /* rt_shade_hit of a tree with one node: rt_shade_step (weight 1,
+             * no children) with rt_phong in its three steps, the shadow rays
+             * of the lanes traced together per light. */
+            rt_surface sf[RT_PK_LANES];
+            float dn[RT_PK_LANES][3], lw[RT_PK_LANES], lit[RT_PK_LANES][3];
+            int lighting[RT_PK_LANES];
+            const float one[3] = {1.0f, 1.0f, 1.0f}; /* the primary ray's weight */
+            for (int l = 0; l < RT_PK_LANES; l++) {
+                lighting[l] = 0;
+                rgb[l][0] = rgb[l][1] = rgb[l][2] = 0.0f;
+                if (!in_image[l]) continue;
+                if (hit[l].prim == RT_NO_HIT) {
+                    for (int k = 0; k < 3; k++) rgb[l][k] = rgb[l][k] + one[k] * hdr->background[k];
+                    continue;
+                }
+                rt_surface_at(&s, &ray[l], &hit[l], &sf[l]);
+                RT_GLOBAL const rt_material_d *m = &s.materials[sf[l].material];
+                for (int k = 0; k < 3; k++) dn[l][k] = ray[l].dir[k];
+                rt_normalize3(dn[l]);
+                lw[l] = (1.0f - m->reflectivity) - m->transparency;
+                if (lw[l] > 0.0f) {
+                    rt_phong_ambient(&s, &sf[l], lit[l]);
+                    lighting[l] = 1;
+                }
+            }
+            for (rt_u32 li = 0; li < hdr->light_count; li++) {
+                rt_ray_d sr[RT_PK_LANES];
+                float Ln[RT_PK_LANES][3], ndl[RT_PK_LANES];
+                int shadow[RT_PK_LANES];
+                for (int l = 0; l < RT_PK_LANES; l++) {
+                    shadow[l] =
+                        lighting[l] && rt_phong_light(&s, &sf[l], li, &sr[l], Ln[l], &ndl[l]);
+                    if (!shadow[l]) sr[l] = ray[l]; /* inactive: any defined ray */
+                }
+                pk_i sact = pk_vload(0, shadow) != 0;
+                if (!any(sact)) continue;
+                pk_ray sp;
+                pk_load(sr, &sp);
+                pk_state ss;
+                ss.boxes = ss.tris = ss.rays = (pk_i)0;
+                pk_trace(&s, &sp, sact, 1, &ss);
+                uint occ[RT_PK_LANES];
+                int sb[RT_PK_LANES], stt[RT_PK_LANES], srays[RT_PK_LANES];
+                pk_vstore(ss.prim, 0, occ);
+                pk_vstore(ss.boxes, 0, sb);
+                pk_vstore(ss.tris, 0, stt);
+                pk_vstore(ss.rays, 0, srays);
+                for (int l = 0; l < RT_PK_LANES; l++) {
+                    c[l].box_tests += (rt_u32)sb[l];
+                    c[l].tri_tests += (rt_u32)stt[l];
+                    c[l].rays += (rt_u32)srays[l];
+                    if (shadow[l] && occ[l] == RT_NO_HIT)
+                        rt_phong_add(&s, &sf[l], li, Ln[l], ndl[l], dn[l], lit[l]);
+                }
+            }
+            for (int l = 0; l < RT_PK_LANES; l++) {
+                if (!lighting[l]) continue;
+                for (int k = 0; k < 3; k++) rgb[l][k] = rgb[l][k] + (one[k] * lw[l]) * lit[l][k];
+            }
+        }
+        for (int l = 0; l < RT_PK_LANES; l++) {
+            if (!in_image[l]) continue;
+            __global float *out =
+                fb + ((size_t)(y0 + l / PK_W) * (size_t)w + (size_t)(x0 + l % PK_W)) * channels;
+            if (aov == AOV_NONE)
+                for (int k = 0; k < 3; k++) out[k] = rgb[l][k];
+            else
+                out[0] = (float)(aov == AOV_BOX_TESTS ? c[l].box_tests : c[l].tri_tests);
+        }
+    }
+    for (int l = 0; l < RT_PK_LANES; l++) {
+        rt_counters z = {0, 0, 0};
+        counters[(size_t)i * RT_PK_LANES + l] = in_image[l] ? c[l] : z;
+    }
+}
