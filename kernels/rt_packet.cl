@@ -96,6 +96,22 @@ typedef struct pk_state {
     int any_hit;
 } pk_state;
 
+/* Whether some lane of a -1/0 mask is set: OpenCL's any(), which on PoCL
+ * tests each lane's sign bit in turn (a chain of branches); an OR of halves
+ * compiles to a few vector instructions (vpor, vptest). */
+static int pk_any(pk_i m) {
+#if RT_PK_LANES == 16
+    int8 a = m.lo | m.hi;
+    int4 b = a.lo | a.hi;
+#elif RT_PK_LANES == 8
+    int4 b = m.lo | m.hi;
+#else
+    int4 b = m;
+#endif
+    int2 c = b.lo | b.hi;
+    return (c.x | c.y) != 0;
+}
+
 /* c ? b : a per lane (a select on a -1/0 mask). */
 #define PK_PICK(a0, a1, a2, k) select(select((a0), (a1), (k) == 1), (a2), (k) == 2)
 
@@ -215,7 +231,7 @@ static pk_i pk_tri_watertight(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f
     pk_f W = Bx * Ay - By * Ax;
 #if RT_HAVE_DOUBLE
     pk_i zero = (U == 0.0f) | (V == 0.0f) | (W == 0.0f);
-    if (any(zero & act)) {
+    if (pk_any(zero & act)) {
         pk_f Ud = pk_to_f(pk_to_d(Cx) * pk_to_d(By) - pk_to_d(Cy) * pk_to_d(Bx));
         pk_f Vd = pk_to_f(pk_to_d(Ax) * pk_to_d(Cy) - pk_to_d(Ay) * pk_to_d(Cx));
         pk_f Wd = pk_to_f(pk_to_d(Bx) * pk_to_d(Ay) - pk_to_d(By) * pk_to_d(Ax));
@@ -226,15 +242,15 @@ static pk_i pk_tri_watertight(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f
 #endif
     pk_i ok =
         act & ~(((U < 0.0f) | (V < 0.0f) | (W < 0.0f)) & ((U > 0.0f) | (V > 0.0f) | (W > 0.0f)));
-    if (!any(ok)) return ok;
+    if (!pk_any(ok)) return ok;
     pk_f det = (U + V) + W;
     ok &= det != 0.0f;
-    if (!any(ok)) return ok;
+    if (!pk_any(ok)) return ok;
     pk_f Az = p->sz * Akz, Bz = p->sz * Bkz, Cz = p->sz * Ckz;
     pk_f T = (U * Az + V * Bz) + W * Cz;
     pk_f tt = RT_DIV(T, det);
     ok &= (tt >= tmin) & (tt <= tmax);
-    if (!any(ok)) return ok;
+    if (!pk_any(ok)) return ok;
     *t = tt;
     *u = RT_DIV(V, det);
     *v = RT_DIV(W, det);
@@ -253,15 +269,15 @@ static pk_i pk_tri_moller(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f tmi
     pk_cross3(p->dir, e2, pv);
     pk_f det = pk_dot3(e1, pv);
     pk_i ok = act & (det != 0.0f);
-    if (!any(ok)) return ok;
+    if (!pk_any(ok)) return ok;
     pk_f inv = RT_DIV(1.0f, det);
     pk_f uu = pk_dot3(s, pv) * inv;
     ok &= (uu >= 0.0f) & (uu <= 1.0f);
-    if (!any(ok)) return ok;
+    if (!pk_any(ok)) return ok;
     pk_cross3(s, e1, q);
     pk_f vv = pk_dot3(p->dir, q) * inv;
     ok &= (vv >= 0.0f) & (uu + vv <= 1.0f);
-    if (!any(ok)) return ok;
+    if (!pk_any(ok)) return ok;
     pk_f tt = pk_dot3(e2, q) * inv;
     ok &= (tt >= tmin) & (tt <= tmax);
     *t = tt;
@@ -285,13 +301,13 @@ static pk_i pk_tri_pluecker(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f t
     pk_f U = pk_dot3(p->dir, bc), V = pk_dot3(p->dir, ca), W = pk_dot3(p->dir, ab);
     pk_i ok =
         act & ~(((U < 0.0f) | (V < 0.0f) | (W < 0.0f)) & ((U > 0.0f) | (V > 0.0f) | (W > 0.0f)));
-    if (!any(ok)) return ok;
+    if (!pk_any(ok)) return ok;
     pk_f det = (U + V) + W;
     ok &= det != 0.0f;
-    if (!any(ok)) return ok;
+    if (!pk_any(ok)) return ok;
     pk_f tt = RT_DIV(pk_dot3(a, bc), det);
     ok &= (tt >= tmin) & (tt <= tmax);
-    if (!any(ok)) return ok;
+    if (!pk_any(ok)) return ok;
     *t = tt;
     *u = RT_DIV(V, det);
     *v = RT_DIV(W, det);
@@ -313,10 +329,10 @@ static pk_i pk_tri_badouel(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f tm
     for (int i = 0; i < 3; i++) nv[i] = (pk_f)n[i];
     pk_f nd = pk_dot3(nv, p->dir);
     pk_i ok = act & (nd != 0.0f);
-    if (!any(ok)) return ok;
+    if (!pk_any(ok)) return ok;
     pk_f tt = RT_DIV(pk_dot3(nv, a), nd);
     ok &= (tt >= tmin) & (tt <= tmax);
-    if (!any(ok)) return ok;
+    if (!pk_any(ok)) return ok;
     float nx = RT_FABS(n[0]), ny = RT_FABS(n[1]), nz = RT_FABS(n[2]);
     rt_i32 k = 0;
     if (ny > nx) k = 1;
@@ -358,11 +374,11 @@ static void pk_leaf(const rt_scene_view *s, rt_u32 first, rt_u32 count, rt_u32 i
     rt_u32 method = RT_TRI_METHOD(s);
     for (rt_u32 e = first; e < first + count; e++) {
         pk_i act = mask & ~st->done;
-        if (!any(act)) return;
+        if (!pk_any(act)) return;
         pk_f t, u, v;
         st->tris -= act; /* c->tri_tests++ in the active lanes */
         pk_i hit = pk_tri(method, &s->tris[e], p, p->tmin, st->t, act, &t, &u, &v);
-        if (!any(hit)) continue;
+        if (!pk_any(hit)) continue;
         rt_u32 prim = s->tri_ids[e];
         pk_i take = st->any_hit ? hit : hit & pk_before(t, inst, prim, st);
         st->t = select(st->t, t, take);
@@ -378,7 +394,7 @@ static void pk_leaf(const rt_scene_view *s, rt_u32 first, rt_u32 count, rt_u32 i
 /* Pushes or continues with the nearer child: the order is a heuristic only
  * (the hit does not depend on it), judged by the lanes that hit both. */
 static int pk_right_first(pk_i both, pk_f t0, pk_f t1) {
-    return any(both & (t1 < t0));
+    return pk_any(both & (t1 < t0));
 }
 
 /* A traversal's stack: node index and lane mask per entry. */
@@ -395,7 +411,7 @@ static pk_i pk_start(const rt_scene_view *s, rt_u32 root, const pk_ray *p, pk_i 
     pk_f tn;
     k->sp = 0;
     active &= ~st->done;
-    if (!any(active)) return active;
+    if (!pk_any(active)) return active;
     st->boxes -= active;
     pk_f hi = st->t + RT_FABS(st->t) * RT_BOX_T_MARGIN; /* rt_box_hi(best t) */
     return pk_box(&s->nodes[root], p, p->box_lo, hi, &tn) & active;
@@ -408,7 +424,7 @@ static pk_i pk_start(const rt_scene_view *s, rt_u32 root, const pk_ray *p, pk_i 
 static int pk_next_leaf(const rt_scene_view *s, const pk_ray *p, pk_state *st, pk_stack *k,
                         rt_u32 *node, pk_i *mask) {
     for (;;) {
-        while (!any(*mask)) {
+        while (!pk_any(*mask)) {
             if (k->sp == 0) return 0;
             --k->sp;
             *node = k->node[k->sp];
@@ -421,7 +437,7 @@ static int pk_next_leaf(const rt_scene_view *s, const pk_ray *p, pk_state *st, p
         st->boxes -= *mask;
         pk_i m0 = pk_box(&s->nodes[n->a], p, p->box_lo, hi, &tn0) & *mask;
         pk_i m1 = pk_box(&s->nodes[n->b], p, p->box_lo, hi, &tn1) & *mask;
-        int h0 = any(m0), h1 = any(m1);
+        int h0 = pk_any(m0), h1 = pk_any(m1);
         if (h0 && h1) {
             int right_first = pk_right_first(m0 & m1, tn0, tn1);
             k->node[k->sp] = right_first ? n->a : n->b;
@@ -619,7 +635,7 @@ __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int cha
                     if (!shadow[l]) sr[l] = ray[l]; /* inactive: any defined ray */
                 }
                 pk_i sact = pk_vload(0, shadow) != 0;
-                if (!any(sact)) continue;
+                if (!pk_any(sact)) continue;
                 pk_ray sp;
                 pk_load(sr, &sp);
                 pk_state ss;
