@@ -593,16 +593,13 @@ __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int cha
             }
         }
     } else {
+        /* Mirrors rt_shade_hit per lane: its root node is rt_shade_step
+         * (weight 1, depth 0) with rt_phong in its three steps, the lanes'
+         * shadow rays traced together per light; then, with secondary rays,
+         * each lane's subtrees one ray at a time (rt_shade_children,
+         * rt_shade_subtrees). */
         float rgb[RT_PK_LANES][3];
-        if (RT_SCENE_FLAGS(&s) & RT_SCENE_SECONDARY) {
-            /* Whitted: the shared depth-first shading per lane (its shadow,
-             * reflection and refraction rays one by one). */
-            for (int l = 0; l < RT_PK_LANES; l++)
-                if (in_image[l]) rt_shade_hit(&s, &ray[l], &hit[l], &c[l], rgb[l]);
-        } else {
-            /* rt_shade_hit of a tree with one node: rt_shade_step (weight 1,
-             * no children) with rt_phong in its three steps, the shadow rays
-             * of the lanes traced together per light. */
+        {
             rt_surface sf[RT_PK_LANES];
             float dn[RT_PK_LANES][3], lw[RT_PK_LANES], lit[RT_PK_LANES][3];
             int lighting[RT_PK_LANES];
@@ -658,6 +655,19 @@ __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int cha
             for (int l = 0; l < RT_PK_LANES; l++) {
                 if (!lighting[l]) continue;
                 for (int k = 0; k < 3; k++) rgb[l][k] = rgb[l][k] + (one[k] * lw[l]) * lit[l][k];
+            }
+            if (RT_SCENE_FLAGS(&s) & RT_SCENE_SECONDARY) {
+                for (int l = 0; l < RT_PK_LANES; l++) {
+                    if (!in_image[l] || hit[l].prim == RT_NO_HIT) continue;
+                    rt_shade_entry root, stack[RT_SHADE_STACK];
+                    root.ray = ray[l];
+                    root.w[0] = root.w[1] = root.w[2] = 1.0f;
+                    root.depth = 0;
+                    int children;
+                    rt_shade_children(&s, &root, &sf[l], &s.materials[sf[l].material], dn[l], stack,
+                                      &children);
+                    rt_shade_subtrees(&s, stack, children, &c[l], rgb[l]);
+                }
             }
         }
         for (int l = 0; l < RT_PK_LANES; l++) {

@@ -148,6 +148,52 @@ RT_FN int rt_weight_counts(const float *w, float min_weight) {
     return w[0] >= min_weight || w[1] >= min_weight || w[2] >= min_weight;
 }
 
+/* The secondary rays of a node whose ray (entry e, seen along unit
+ * direction dn) hit surface sf of material m: child[0 .. *children - 1] in
+ * the order they are pushed, refraction then reflection (so reflection is
+ * popped, and its subtree added, first). None without secondary rays in the
+ * scene or at the depth limit. Part of rt_shade_step; the OpenCL packet
+ * kernel calls it after shading its lanes' primary hits together. */
+RT_FN void rt_shade_children(const rt_scene_view *s, const rt_shade_entry *e, const rt_surface *sf,
+                             RT_GLOBAL const rt_material_d *m, const float *dn,
+                             rt_shade_entry *child, int *children) {
+    *children = 0;
+    if (!(RT_SCENE_FLAGS(s) & RT_SCENE_SECONDARY) || e->depth >= s->hdr->max_depth) return;
+    float refl = m->reflectivity;
+    float cosi = -rt_dot3(dn, sf->ns);
+    if (m->transparency > 0.0f) {
+        float eta = sf->front ? RT_DIV(1.0f, m->ior) : m->ior;
+        float k2 = 1.0f - (eta * eta) * (1.0f - cosi * cosi);
+        if (k2 < 0.0f) {
+            refl = refl + m->transparency; /* total internal reflection */
+        } else {
+            rt_shade_entry t;
+            float a = eta * cosi - RT_SQRT(k2);
+            for (int k = 0; k < 3; k++) {
+                t.ray.dir[k] = eta * dn[k] + a * sf->ns[k];
+                t.w[k] = e->w[k] * m->transparency;
+            }
+            rt_offset_point(sf->p, sf->ng, -1.0f, t.ray.org);
+            t.ray.tmin = 0.0f;
+            t.ray.tmax = RT_INF;
+            t.depth = e->depth + 1;
+            if (rt_weight_counts(t.w, s->hdr->min_weight)) child[(*children)++] = t;
+        }
+    }
+    if (refl > 0.0f) {
+        rt_shade_entry t;
+        for (int k = 0; k < 3; k++) {
+            t.ray.dir[k] = dn[k] + (2.0f * cosi) * sf->ns[k];
+            t.w[k] = e->w[k] * refl;
+        }
+        rt_offset_point(sf->p, sf->ng, 1.0f, t.ray.org);
+        t.ray.tmin = 0.0f;
+        t.ray.tmax = RT_INF;
+        t.depth = e->depth + 1;
+        if (rt_weight_counts(t.w, s->hdr->min_weight)) child[(*children)++] = t;
+    }
+}
+
 /* One node of the shading tree: the ray of entry e and its closest hit h.
  * term gets what the node adds to the pixel (has_term says whether it adds
  * anything: a miss adds the weighted background, a hit its weighted Phong
@@ -179,39 +225,26 @@ RT_FN void rt_shade_step(const rt_scene_view *s, const rt_shade_entry *e, const 
         for (int k = 0; k < 3; k++) term[k] = (e->w[k] * lw) * lit[k];
         *has_term = 1;
     }
-    if (!(RT_SCENE_FLAGS(s) & RT_SCENE_SECONDARY) || e->depth >= s->hdr->max_depth) return;
-    float refl = m->reflectivity;
-    float cosi = -rt_dot3(dn, sf.ns);
-    if (m->transparency > 0.0f) {
-        float eta = sf.front ? RT_DIV(1.0f, m->ior) : m->ior;
-        float k2 = 1.0f - (eta * eta) * (1.0f - cosi * cosi);
-        if (k2 < 0.0f) {
-            refl = refl + m->transparency; /* total internal reflection */
-        } else {
-            rt_shade_entry t;
-            float a = eta * cosi - RT_SQRT(k2);
-            for (int k = 0; k < 3; k++) {
-                t.ray.dir[k] = eta * dn[k] + a * sf.ns[k];
-                t.w[k] = e->w[k] * m->transparency;
-            }
-            rt_offset_point(sf.p, sf.ng, -1.0f, t.ray.org);
-            t.ray.tmin = 0.0f;
-            t.ray.tmax = RT_INF;
-            t.depth = e->depth + 1;
-            if (rt_weight_counts(t.w, s->hdr->min_weight)) child[(*children)++] = t;
-        }
-    }
-    if (refl > 0.0f) {
-        rt_shade_entry t;
-        for (int k = 0; k < 3; k++) {
-            t.ray.dir[k] = dn[k] + (2.0f * cosi) * sf.ns[k];
-            t.w[k] = e->w[k] * refl;
-        }
-        rt_offset_point(sf.p, sf.ng, 1.0f, t.ray.org);
-        t.ray.tmin = 0.0f;
-        t.ray.tmax = RT_INF;
-        t.depth = e->depth + 1;
-        if (rt_weight_counts(t.w, s->hdr->min_weight)) child[(*children)++] = t;
+    rt_shade_children(s, e, &sf, m, dn, child, children);
+}
+
+/* The rest of rt_shade_hit's walk after the root: stack[0 .. sp - 1] holds
+ * the root's secondary rays as pushed; each popped ray is traced and shaded,
+ * its term added to rgb, its own secondary rays pushed. */
+RT_FN void rt_shade_subtrees(const rt_scene_view *s, rt_shade_entry *stack, int sp, rt_counters *c,
+                             float *rgb) {
+    while (sp > 0) {
+        rt_shade_entry e = stack[--sp];
+        rt_hit_d h;
+        rt_trace(s, &e.ray, 0, &h, c);
+        float term[3];
+        rt_shade_entry child[2];
+        int has_term, children;
+        rt_shade_step(s, &e, &h, c, term, &has_term, child, &children);
+        if (has_term)
+            for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + term[k];
+        for (int i = 0; i < children; i++)
+            if (sp < RT_SHADE_STACK) stack[sp++] = child[i];
     }
 }
 
@@ -225,31 +258,17 @@ RT_FN void rt_shade_step(const rt_scene_view *s, const rt_shade_entry *e, const 
  * equivalent of the sp check. */
 RT_FN void rt_shade_hit(const rt_scene_view *s, const rt_ray_d *primary,
                         const rt_hit_d *primary_hit, rt_counters *c, float *rgb) {
-    rt_shade_entry stack[RT_SHADE_STACK];
-    int sp = 0, first = 1;
-    stack[sp].ray = *primary;
-    stack[sp].w[0] = stack[sp].w[1] = stack[sp].w[2] = 1.0f;
-    stack[sp].depth = 0;
-    sp++;
+    rt_shade_entry stack[RT_SHADE_STACK], root;
+    root.ray = *primary;
+    root.w[0] = root.w[1] = root.w[2] = 1.0f;
+    root.depth = 0;
     rgb[0] = rgb[1] = rgb[2] = 0.0f;
-    while (sp > 0) {
-        rt_shade_entry e = stack[--sp];
-        rt_hit_d h;
-        if (first) {
-            h = *primary_hit;
-            first = 0;
-        } else {
-            rt_trace(s, &e.ray, 0, &h, c);
-        }
-        float term[3];
-        rt_shade_entry child[2];
-        int has_term, children;
-        rt_shade_step(s, &e, &h, c, term, &has_term, child, &children);
-        if (has_term)
-            for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + term[k];
-        for (int i = 0; i < children; i++)
-            if (sp < RT_SHADE_STACK) stack[sp++] = child[i];
-    }
+    float term[3];
+    int has_term, children;
+    rt_shade_step(s, &root, primary_hit, c, term, &has_term, stack, &children);
+    if (has_term)
+        for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + term[k];
+    rt_shade_subtrees(s, stack, children, c, rgb);
 }
 
 /* The OpenCL wavefront's queue entry and per-node record (see
