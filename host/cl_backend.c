@@ -83,8 +83,8 @@ typedef struct cl_state {
     char defines[192]; /* the specialisation part of options */
     cl_kernel k_camera, k_trace, k_shade;
     cl_kernel k_wcam, k_wtrace, k_wshade, k_wsum; /* the wavefront */
-    cl_kernel k_packet; /* CPU devices: rt_k_packet (kernels/rt_packet.cl) */
-    int lanes;          /* the program's packet lanes (RT_PK_LANES); 0: no packet kernel */
+    cl_kernel k_packet, k_ptrace;                 /* CPU devices: rt_k_packet, rt_k_packet_trace */
+    int lanes; /* the program's packet lanes (RT_PK_LANES); 0: no packet kernel */
     cl_mem buf[B_COUNT];
     size_t cap[B_COUNT];
     /* What the device holds: the mesh part (signature) and the scene version. */
@@ -98,8 +98,9 @@ typedef struct cl_state {
 } cl_state;
 
 static void release_wave_kernels(cl_state *s) {
-    cl_kernel *k[5] = {&s->k_wcam, &s->k_wtrace, &s->k_wshade, &s->k_wsum, &s->k_packet};
-    for (int i = 0; i < 5; i++) {
+    cl_kernel *k[6] = {&s->k_wcam, &s->k_wtrace, &s->k_wshade,
+                       &s->k_wsum, &s->k_packet, &s->k_ptrace};
+    for (int i = 0; i < 6; i++) {
         if (*k[i]) clReleaseKernel(*k[i]);
         *k[i] = NULL;
     }
@@ -252,7 +253,8 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
     if (s->k_wtrace) s->k_wshade = clCreateKernel(s->program, "rt_k_wave_shade", &err);
     if (s->k_wshade) s->k_wsum = clCreateKernel(s->program, "rt_k_wave_sum", &err);
     if (s->k_wsum && lanes) s->k_packet = clCreateKernel(s->program, "rt_k_packet", &err);
-    if (!s->k_wsum || (lanes && !s->k_packet))
+    if (s->k_packet) s->k_ptrace = clCreateKernel(s->program, "rt_k_packet_trace", &err);
+    if (!s->k_wsum || (lanes && !s->k_ptrace))
         return fail(msg, size, RT_ERROR_BACKEND, "OpenCL kernels: %s", rt_cl_error_name(err));
     s->lanes = lanes;
     snprintf(s->options, sizeof s->options, "%s", options);
@@ -512,11 +514,15 @@ static rt_status warm_up(cl_state *s, int wave, char *msg, size_t size) {
                             "rt_k_wave_sum"};
     int nk = wave ? 7 : 3; /* the wavefront kernels only where the scene has secondary rays */
     if (s->lanes) {
-        /* Frames run rt_k_packet alone; ray queries rt_k_trace. */
+        /* Frames run rt_k_packet alone; ray queries rt_k_packet_trace
+         * (closest hit) and rt_k_trace (any hit). */
         ks[0] = s->k_packet;
         nargs[0] = 16;
         names[0] = "rt_k_packet";
-        nk = 2;
+        ks[2] = s->k_ptrace;
+        nargs[2] = 14;
+        names[2] = "rt_k_packet_trace";
+        nk = 3;
     }
     rt_status st = RT_OK;
     for (int k = 0; k < nk && st == RT_OK; k++) {
@@ -898,20 +904,27 @@ static rt_status cl_trace(rt_scene *scene, const rt_prepared *prep, const char *
     cl_state *s = NULL;
     rt_status st = prepare(scene, prep, device, &s, &stats, msg, sizeof msg);
     if (st == RT_OK) st = ensure_ray_buffers(s, RT_CL_TILE_MAX, msg, sizeof msg);
-    cl_kernel k = s ? s->k_trace : NULL;
+    /* Closest hits on a CPU device: packets of consecutive rays
+     * (rt_k_packet_trace, the same hits); any hit: rt_k_trace, so that the
+     * hit reported is the oracle's first one, not only some hit. */
+    int packet = st == RT_OK && s->lanes && !any_hit;
+    cl_kernel k = s ? (packet ? s->k_ptrace : s->k_trace) : NULL;
+    cl_uint a = packet ? 11 : 12; /* the rays argument */
     cl_int any = any_hit ? 1 : 0;
     if (st == RT_OK) st = set_view(s, k, msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(k, 11, sizeof any, &any, msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(k, 12, sizeof(cl_mem), &s->buf[B_RAYS], msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(k, 13, sizeof(cl_mem), &s->buf[B_HITS], msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(k, 14, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, sizeof msg);
+    if (st == RT_OK && !packet) st = set_arg(k, 11, sizeof any, &any, msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(k, a, sizeof(cl_mem), &s->buf[B_RAYS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(k, a + 1, sizeof(cl_mem), &s->buf[B_HITS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(k, a + 2, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, sizeof msg);
     for (size_t first = 0; first < count && st == RT_OK;) {
         cl_uint n = (cl_uint)(count - first < s->tile ? count - first : s->tile);
         uint64_t ignored = 0;
         double ms = 0.0;
         st = write_buf(s, B_RAYS, 0, rays + first, sizeof(rt_ray_d) * n, &ignored, msg, sizeof msg);
         if (st == RT_OK) st = set_arg(k, 10, sizeof n, &n, msg, sizeof msg);
-        if (st == RT_OK) st = launch(s, k, n, "rt_k_trace", &ms, msg, sizeof msg);
+        if (st == RT_OK)
+            st = launch(s, k, packet ? (n + (cl_uint)s->lanes - 1) / (cl_uint)s->lanes : n,
+                        packet ? "rt_k_packet_trace" : "rt_k_trace", &ms, msg, sizeof msg);
         if (st == RT_OK) {
             cl_int err = clEnqueueReadBuffer(s->queue, s->buf[B_HITS], CL_TRUE, 0,
                                              sizeof(rt_hit_d) * n, hits + first, 0, NULL, NULL);

@@ -509,7 +509,34 @@ static void pk_trace(const rt_scene_view *s, const pk_ray *p, pk_i active, int a
     pk_top(s, p, active, st);
 }
 
-/* ---- the kernel ------------------------------------------------------------ */
+/* The lanes' hits and counters as scalars (rt_hit_d, rt_counters). */
+static void pk_unpack(const pk_state *st, rt_hit_d *hit, rt_counters *c) {
+    float ht[RT_PK_LANES], hu[RT_PK_LANES], hv[RT_PK_LANES];
+    uint hprim[RT_PK_LANES], hinst[RT_PK_LANES], hentry[RT_PK_LANES];
+    int cbox[RT_PK_LANES], ctri[RT_PK_LANES], crays[RT_PK_LANES];
+    pk_vstore(st->t, 0, ht);
+    pk_vstore(st->u, 0, hu);
+    pk_vstore(st->v, 0, hv);
+    pk_vstore(st->prim, 0, hprim);
+    pk_vstore(st->inst, 0, hinst);
+    pk_vstore(st->entry, 0, hentry);
+    pk_vstore(st->boxes, 0, cbox);
+    pk_vstore(st->tris, 0, ctri);
+    pk_vstore(st->rays, 0, crays);
+    for (int l = 0; l < RT_PK_LANES; l++) {
+        hit[l].t = ht[l];
+        hit[l].u = hu[l];
+        hit[l].v = hv[l];
+        hit[l].prim = hprim[l];
+        hit[l].inst = hinst[l];
+        hit[l].entry = hentry[l];
+        c[l].box_tests = (rt_u32)cbox[l];
+        c[l].tri_tests = (rt_u32)ctri[l];
+        c[l].rays = (rt_u32)crays[l];
+    }
+}
+
+/* ---- the kernels ----------------------------------------------------------- */
 
 /* Blocks first .. first + count - 1 of the image (PK_W x PK_H pixels each,
  * row-major over the image, partial at the right and bottom edges): primary
@@ -543,32 +570,9 @@ __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int cha
     st.boxes = st.tris = st.rays = (pk_i)0;
     pk_trace(&s, &p, active, 0, &st);
 
-    /* The lanes' hits and counters as scalars. */
-    float ht[RT_PK_LANES], hu[RT_PK_LANES], hv[RT_PK_LANES];
-    uint hprim[RT_PK_LANES], hinst[RT_PK_LANES], hentry[RT_PK_LANES];
-    int cbox[RT_PK_LANES], ctri[RT_PK_LANES], crays[RT_PK_LANES];
-    pk_vstore(st.t, 0, ht);
-    pk_vstore(st.u, 0, hu);
-    pk_vstore(st.v, 0, hv);
-    pk_vstore(st.prim, 0, hprim);
-    pk_vstore(st.inst, 0, hinst);
-    pk_vstore(st.entry, 0, hentry);
-    pk_vstore(st.boxes, 0, cbox);
-    pk_vstore(st.tris, 0, ctri);
-    pk_vstore(st.rays, 0, crays);
     rt_hit_d hit[RT_PK_LANES];
     rt_counters c[RT_PK_LANES];
-    for (int l = 0; l < RT_PK_LANES; l++) {
-        hit[l].t = ht[l];
-        hit[l].u = hu[l];
-        hit[l].v = hv[l];
-        hit[l].prim = hprim[l];
-        hit[l].inst = hinst[l];
-        hit[l].entry = hentry[l];
-        c[l].box_tests = (rt_u32)cbox[l];
-        c[l].tri_tests = (rt_u32)ctri[l];
-        c[l].rays = (rt_u32)crays[l];
-    }
+    pk_unpack(&st, hit, c);
 
     if (aov == AOV_DEPTH || aov == AOV_PRIMID || aov == AOV_INSTID || aov == AOV_NORMAL) {
         /* As rt_k_shade (rt_cpu_finish_pixel). */
@@ -683,5 +687,35 @@ __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int cha
     for (int l = 0; l < RT_PK_LANES; l++) {
         rt_counters z = {0, 0, 0};
         counters[(size_t)i * RT_PK_LANES + l] = in_image[l] ? c[l] : z;
+    }
+}
+
+/* Ray queries, closest hit: rays RT_PK_LANES * i .. + RT_PK_LANES - 1 of
+ * count as one packet (the last one partial), as rt_k_trace would answer
+ * each; counters[j] gets ray j's tests (counted per lane). */
+__kernel void rt_k_packet_trace(RT_VIEW_ARGS, uint count, __global const rt_ray_d *rays,
+                                __global rt_hit_d *hits, __global rt_counters *counters) {
+    uint i = (uint)get_global_id(0);
+    uint first = i * RT_PK_LANES;
+    if (first >= count) return;
+    rt_scene_view s = RT_VIEW_INIT;
+    rt_ray_d r[RT_PK_LANES];
+    int inside[RT_PK_LANES];
+    for (int l = 0; l < RT_PK_LANES; l++) {
+        inside[l] = first + (uint)l < count;
+        r[l] = rays[inside[l] ? first + (uint)l : first]; /* outside: a copy, inactive */
+    }
+    pk_ray p;
+    pk_load(r, &p);
+    pk_state st;
+    st.boxes = st.tris = st.rays = (pk_i)0;
+    pk_trace(&s, &p, pk_vload(0, inside) != 0, 0, &st);
+    rt_hit_d hit[RT_PK_LANES];
+    rt_counters c[RT_PK_LANES];
+    pk_unpack(&st, hit, c);
+    for (int l = 0; l < RT_PK_LANES; l++) {
+        if (!inside[l]) continue;
+        hits[first + l] = hit[l];
+        counters[first + l] = c[l];
     }
 }

@@ -8,7 +8,8 @@
  * and refraction as passes over ray queues) is checked on cornell, also with
  * queues too small so every tile takes the fallback.
  *
- * On a CPU device frames run the packet kernel (kernels/rt_packet.cl): its
+ * On a CPU device frames and closest-hit ray queries run the packet kernels
+ * (kernels/rt_packet.cl; the hit buffers above check rt_k_packet_trace): its
  * images and AOVs are checked in Whitted and direct mode, at an odd size
  * (partial blocks), with every triangle test and every block size; its test
  * counters count per lane (they differ from the oracle's), so they are
