@@ -41,6 +41,21 @@ for backend in $BACKENDS; do
     done
 done
 
+# Every backend is bit-exact with the oracle: the same closest-hit files as
+# cpu's (any-hit queries may report another hit in range; the check above
+# holds them to the expectations).
+for backend in $BACKENDS; do
+    [ "$backend" = cpu ] || [ ! -d "$tmp/$backend-watertight" ] || [ ! -d "$tmp/cpu-watertight" ] && continue
+    for tri in $TRI_TESTS; do
+        while read -r name flags; do
+            case " $flags " in *" --any-hit "*) continue ;; esac
+            checks=$((checks + 1))
+            cmp -s "$tmp/cpu-$tri/$name.hits" "$tmp/$backend-$tri/$name.hits" ||
+                { echo "FAIL: $backend/$tri $name: hits differ from cpu's"; fails=$((fails + 1)); }
+        done <<< "$names"
+    done
+done
+
 # NaN and Inf in the input are refused at load, with the file and line.
 printf '0 0 5 0 0 -1 0 inf\n' > "$tmp/one.rays"
 for bad in 'v 1 inf 0' 'v -Infinity 0 0' 'v 0 0 1e39' 'v nan 0 0'; do
