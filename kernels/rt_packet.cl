@@ -1,12 +1,17 @@
-/* rt_packet.cl - the packet kernel for OpenCL CPU devices (issue 7).
+/* rt_packet.cl - the packet kernels for OpenCL CPU devices (issue 7).
  *
  * rt_render.cl runs the shared scalar maths one ray per work-item; a CPU
  * device's compiler (PoCL's LLVM) cannot vectorise the divergent traversal
  * across work-items. Here one work-item traces a block of RT_PK_LANES pixels
- * (4x4 by default) as OpenCL vectors (float16: one AVX-512 register), through
- * the same two-level BVH: a node is visited when any active lane's box test
- * passes. Then the block is shaded per lane with the shared functions, its
- * shadow rays traced as a packet too (any hit; a lane retires when occluded).
+ * (4x4 by default) as OpenCL vectors (float16: one AVX-512 register on
+ * PoCL's skylake-avx512 target), through the same two-level BVH: a node is
+ * visited when any active lane's box test passes, and each lane carries its
+ * own mask, so a lane goes into a node's children only where its own test of
+ * the node passed. Then the block is shaded per lane with the shared
+ * functions, its shadow rays traced as a packet too (any hit; a lane retires
+ * when occluded). rt_k_packet does a whole direct frame's block (camera,
+ * trace, shading, shadows) in one launch; rt_k_packet_trace answers
+ * closest-hit ray queries in packets of consecutive rays.
  *
  * Exactness (the oracle's bits). Every pk_* function below mirrors one
  * function of rt_shared.h or rt_shade.h (named at each): per lane it performs
@@ -14,14 +19,21 @@
  * -cl-mad-enable; correctly rounded division and sqrt), choosing between
  * values with select() where the scalar code branches or indexes (the
  * watertight test's per-ray axes kx, ky, kz), so each lane computes its own
- * scalar values. Closest hit has a total order (rt_hit_before) and box tests
- * are conservative, so a lane that visits a superset of the nodes its scalar
- * traversal visits, testing every candidate triangle with the scalar test's
- * arithmetic and accepting by the same order, ends with the identical hit;
- * an any-hit lane finds an occluder exactly when the scalar traversal does.
- * Camera rays, surfaces, Phong and Whitted shading are the shared functions,
- * called per lane. Only the test counters differ from the scalar kernels:
- * each lane counts the box and triangle tests performed while it was active
+ * scalar values; the watertight test's double re-check of zero edge
+ * functions is done for the lanes that have one. Per lane the traversal is
+ * then the scalar traversal in another order, each node tested against the
+ * lane's own current range [tmin, best t]. Closest hit has a total order
+ * (rt_hit_before) and box tests are conservative: the best t only shrinks
+ * and never below the closest hit's t, so every node holding the closest
+ * hit passes, its triangle is tested with the scalar arithmetic and accepted
+ * by the same order, and nothing replaces it; the hit is the oracle's,
+ * whatever the order (the property that already makes the oracle's hit
+ * independent of layout and threads). An any-hit lane's range stays
+ * [tmin, tmax] until it finds a hit, so the leaves it can reach are the
+ * scalar traversal's and it is occluded exactly when that is. Camera rays,
+ * surfaces, Phong and Whitted shading are the shared functions, called per
+ * lane. Only the test counters differ from the scalar kernels: each lane
+ * counts the box and triangle tests performed while it was active
  * (docs/OPENCL.md).
  *
  * Built together with rt_render.cl (one program) on CPU devices only.
@@ -540,8 +552,9 @@ static void pk_unpack(const pk_state *st, rt_hit_d *hit, rt_counters *c) {
 
 /* Blocks first .. first + count - 1 of the image (PK_W x PK_H pixels each,
  * row-major over the image, partial at the right and bottom edges): primary
- * rays, closest hits, then the image (shadow rays as packets; with secondary
- * rays, rt_shade_hit per lane) or an AOV into fb (channels floats per pixel,
+ * rays, closest hits, then the image (the primary hits' shadow rays as
+ * packets; with secondary rays, each lane's reflection and refraction
+ * subtrees one ray at a time) or an AOV into fb (channels floats per pixel,
  * the whole frame), as rt_k_camera + rt_k_trace + rt_k_shade would.
  * counters[RT_PK_LANES * i + l] gets lane l's rays and tests (zero outside
  * the image). */
