@@ -846,10 +846,11 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
     }
     double t_render = rt_now_ms();
     for (uint32_t first = 0; first < units && st == RT_OK;) {
-        /* The tile in units (pixels, or blocks), and in pixels (counters). */
+        /* The tile in units (pixels, or blocks of lanes pixels); one entry
+         * of counters per unit. */
         uint32_t per = lanes ? (s->tile / lanes ? s->tile / lanes : 1u) : s->tile;
         cl_uint n = units - first < per ? units - first : per;
-        cl_uint entries = lanes ? n * lanes : n;
+        cl_uint tile_px = lanes ? n * lanes : n;
         double longest = 0.0;
         int overflow = 0;
         if (lanes) {
@@ -864,12 +865,12 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
         if (st == RT_OK && (overflow || (!lanes && !wave)))
             st = direct_tile(s, first, n, stats, &longest, msg, sizeof msg);
         if (st != RT_OK) break;
-        if (entries > stats->tile_pixels) stats->tile_pixels = entries;
+        if (tile_px > stats->tile_pixels) stats->tile_pixels = tile_px;
         if (counts) {
             double t0 = rt_now_ms();
-            st = read_buf(s, B_COUNTERS, sizeof(rt_counters) * entries, counts, msg, sizeof msg);
+            st = read_buf(s, B_COUNTERS, sizeof(rt_counters) * n, counts, msg, sizeof msg);
             stats->download_ms += rt_now_ms() - t0;
-            for (cl_uint i = 0; i < entries && st == RT_OK; i++) {
+            for (cl_uint i = 0; i < n && st == RT_OK; i++) {
                 stats->rays += counts[i].rays;
                 stats->box_tests += counts[i].box_tests;
                 stats->tri_tests += counts[i].tri_tests;

@@ -556,8 +556,8 @@ static void pk_unpack(const pk_state *st, rt_hit_d *hit, rt_counters *c) {
  * packets; with secondary rays, each lane's reflection and refraction
  * subtrees one ray at a time) or an AOV into fb (channels floats per pixel,
  * the whole frame), as rt_k_camera + rt_k_trace + rt_k_shade would.
- * counters[RT_PK_LANES * i + l] gets lane l's rays and tests (zero outside
- * the image). */
+ * counters[i] gets the block's rays and tests (the host only adds them up:
+ * a block's sum is 1/16 of the bytes to read back). */
 __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int channels,
                           __global rt_counters *counters, __global float *fb) {
     uint i = (uint)get_global_id(0);
@@ -697,10 +697,14 @@ __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int cha
                 out[0] = (float)(aov == AOV_BOX_TESTS ? c[l].box_tests : c[l].tri_tests);
         }
     }
+    rt_counters sum = {0, 0, 0};
     for (int l = 0; l < RT_PK_LANES; l++) {
-        rt_counters z = {0, 0, 0};
-        counters[(size_t)i * RT_PK_LANES + l] = in_image[l] ? c[l] : z;
+        if (!in_image[l]) continue;
+        sum.box_tests += c[l].box_tests;
+        sum.tri_tests += c[l].tri_tests;
+        sum.rays += c[l].rays;
     }
+    counters[i] = sum;
 }
 
 /* Ray queries, closest hit: rays RT_PK_LANES * i .. + RT_PK_LANES - 1 of
