@@ -29,4 +29,23 @@ for std in CL1.2 CL2.0; do
         echo "FAIL: the shared headers are not valid OpenCL C ($std)"; exit 1
     fi
 done
-echo "cli_kernels_opencl.sh: shared headers compile as OpenCL C 1.2 and 2.0"
+# The kernel files as the backend builds them (rt_render.cl, plus rt_packet.cl
+# on CPU devices, in one program): every block size, triangle test, and the
+# specialisations of a one-object scene and of a two-level one with normals
+# and secondary rays.
+printf '#include "rt_render.cl"\n#include "rt_packet.cl"\n' > "$tmp/both.cl"
+for lanes in 4 8 16; do
+    for tri in 0 1 2 3; do
+        for spec in "2u 1u 1u" "13u 0u 3u"; do
+            set -- $spec
+            if ! clang -x cl -cl-std=CL1.2 -Werror -fsyntax-only -I"$RT_SOURCE_DIR/kernels" \
+                -DRT_PK_LANES=$lanes -DRT_STATIC_TRI_METHOD=${tri}u -DRT_STATIC_FLAGS=$1 \
+                -DRT_STATIC_INST_SET=$2 -DRT_STATIC_INST_MASK=$3 "$tmp/both.cl"; then
+                echo "FAIL: rt_render.cl + rt_packet.cl (lanes $lanes, triangle test $tri, flags $1)"
+                exit 1
+            fi
+        done
+    done
+done
+echo "cli_kernels_opencl.sh: shared headers compile as OpenCL C 1.2 and 2.0; the kernel files too"
+
