@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "cpu_render.h"
 #include "rt.h"
 #include "scene_builtin.h"
 
@@ -42,7 +43,9 @@ int main(void) {
             if (render(s, "packet", aovs[a], 3, &p, &sp)) {
                 CHECK_MSG(same(&c, &p), "%s: packet differs from cpu (aov %d)", name, (int)aovs[a]);
                 if (aovs[a] == RT_AOV_NONE) {
-                    CHECK(sp.packets == (uint64_t)((193 + 1) / 2) * ((109 + 1) / 2));
+                    CHECK(sp.packets ==
+                          (uint64_t)((193 + RT_PACKET_TILE_W - 1) / RT_PACKET_TILE_W) *
+                              ((109 + RT_PACKET_TILE_H - 1) / RT_PACKET_TILE_H));
                     CHECK(sp.packet_box_tests > 0 && sp.rays == sc.rays);
                     CHECK(sc.primary_rays == 193u * 109u && sp.primary_rays == sc.primary_rays);
                 }

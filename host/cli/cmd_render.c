@@ -109,7 +109,7 @@ static void print_stats(const rt_render_stats *s, int width, int height) {
     printf("box tests/ray    %.2f\n", (double)s->box_tests / rays);
     printf("tri tests/ray    %.2f\n", (double)s->tri_tests / rays);
     if (s->packets)
-        printf("box tests/packet %.2f (2x2 packets: %llu)\n",
+        printf("box tests/packet %.2f (group tests of 4 rays; packets of 16: %llu)\n",
                (double)s->packet_box_tests / (double)s->packets, (unsigned long long)s->packets);
     if (s->device[0]) {
         printf("device           %s (%s)\n", s->device,
