@@ -7,6 +7,7 @@
 #include <stdint.h>
 
 #include "flatten.h"
+#include "packet_wide.h"
 #include "rt.h"
 #include "rt_shade.h"
 #include "thread_pool.h"
@@ -18,6 +19,7 @@ typedef struct rt_cpu_counts {
 
 typedef struct rt_cpu_frame {
     const rt_flat *flat;
+    const rt_pk_wide *wide; /* the packet backend's wide BVHs of flat */
     rt_aov aov;
     float *pixels; /* width * height * channels */
     int channels;  /* 3 for the image and normals, else 1 */
@@ -42,7 +44,7 @@ void rt_cpu_finish_pixel(const rt_cpu_frame *frame, const rt_scene_view *view, i
  * (consecutive rays together); misses get prim = RT_NO_HIT. */
 void rt_cpu_trace_rays(const rt_flat *flat, const rt_ray_d *rays, size_t n, rt_hit_d *hits,
                        int any_hit, rt_counters *c);
-void rt_packet_trace_rays(const rt_flat *flat, const rt_ray_d *rays, size_t n, rt_hit_d *hits,
-                          int any_hit, rt_counters *c);
+void rt_packet_trace_rays(const rt_flat *flat, const rt_pk_wide *wide, const rt_ray_d *rays,
+                          size_t n, rt_hit_d *hits, int any_hit, rt_counters *c);
 
 #endif /* RT_CPU_RENDER_H */

@@ -29,11 +29,9 @@ static void lane_pixel(int x0, int y0, int l, int *x, int *y) {
 
 static void add_counts(rt_cpu_counts *total, const rt_pk_counts *pc) {
     total->packet_box_tests += pc->group_box_tests;
-    for (int l = 0; l < RT_PK_LANES; l++) {
-        total->rays += pc->c[l].rays;
-        total->box_tests += pc->c[l].box_tests;
-        total->tri_tests += pc->c[l].tri_tests;
-    }
+    total->rays += pc->rays;
+    total->box_tests += pc->box_tests;
+    total->tri_tests += pc->tri_tests;
 }
 
 /* The shading of a tile's hits (the image, or the test-count AOVs, which
@@ -62,7 +60,7 @@ static void shade_tile(const rt_cpu_frame *f, const rt_scene_view *v, const rt_p
                 shadow.valid |= 1u << l;
         }
         if (!shadow.valid) continue;
-        rt_pk_trace(v, &shadow, 1, occluder, pc);
+        rt_pk_trace(v, f->wide, &shadow, 1, occluder, pc);
         for (uint32_t m = shadow.valid; m; m &= m - 1) {
             int l = __builtin_ctz(m);
             if (occluder[l].prim == RT_NO_HIT)
@@ -78,13 +76,17 @@ static void shade_tile(const rt_cpu_frame *f, const rt_scene_view *v, const rt_p
         rt_shade_end(v, &e[l], &hit[l], &nd[l], term, &has_term, child, &children);
         if (has_term)
             for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + term[k];
-        rt_shade_children(v, child, children, &pc->c[l], rgb);
+        rt_counters sec = {0, 0, 0}; /* the secondary rays' */
+        rt_shade_children(v, child, children, &sec, rgb);
+        pc->rays += sec.rays;
+        pc->box_tests += sec.box_tests;
+        pc->tri_tests += sec.tri_tests;
         size_t i = (size_t)py[l] * (size_t)w + (size_t)px[l];
         if (f->aov == RT_AOV_NONE)
             memcpy(f->pixels + 3 * i, rgb, sizeof rgb);
         else
-            f->pixels[i] =
-                (float)(f->aov == RT_AOV_BOX_TESTS ? pc->c[l].box_tests : pc->c[l].tri_tests);
+            f->pixels[i] = (float)(f->aov == RT_AOV_BOX_TESTS ? pc->c[l].box_tests + sec.box_tests
+                                                              : pc->c[l].tri_tests + sec.tri_tests);
     }
 }
 
@@ -96,6 +98,7 @@ static void render_tile(const rt_cpu_frame *f, const rt_scene_view *v, int x0, i
     rt_pk_counts pc;
     int px[RT_PK_LANES], py[RT_PK_LANES];
     memset(&pc, 0, sizeof pc);
+    pc.per_lane = f->aov == RT_AOV_BOX_TESTS || f->aov == RT_AOV_TRI_TESTS;
     primary.valid = 0;
     for (int l = 0; l < RT_PK_LANES; l++) {
         lane_pixel(x0, y0, l, &px[l], &py[l]);
@@ -103,7 +106,7 @@ static void render_tile(const rt_cpu_frame *f, const rt_scene_view *v, int x0, i
         primary.valid |= 1u << l;
         rt_camera_ray(h, px[l], py[l], &primary.ray[l]);
     }
-    rt_pk_trace(v, &primary, 0, hit, &pc);
+    rt_pk_trace(v, f->wide, &primary, 0, hit, &pc);
     if (f->aov == RT_AOV_NONE || f->aov == RT_AOV_BOX_TESTS || f->aov == RT_AOV_TRI_TESTS) {
         shade_tile(f, v, &primary, hit, &pc, px, py);
     } else {
@@ -163,8 +166,8 @@ void rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *c
     free(job.per_worker);
 }
 
-void rt_packet_trace_rays(const rt_flat *flat, const rt_ray_d *rays, size_t n, rt_hit_d *hits,
-                          int any_hit, rt_counters *c) {
+void rt_packet_trace_rays(const rt_flat *flat, const rt_pk_wide *wide, const rt_ray_d *rays,
+                          size_t n, rt_hit_d *hits, int any_hit, rt_counters *c) {
     rt_scene_view v = rt_flat_view(flat);
     for (size_t i = 0; i < n; i += RT_PK_LANES) {
         rt_pk_rays p;
@@ -174,12 +177,10 @@ void rt_packet_trace_rays(const rt_flat *flat, const rt_ray_d *rays, size_t n, r
         size_t count = n - i < RT_PK_LANES ? n - i : RT_PK_LANES;
         p.valid = count == RT_PK_LANES ? 0xffffu : (1u << count) - 1u;
         memcpy(p.ray, rays + i, count * sizeof *rays);
-        rt_pk_trace(&v, &p, any_hit, h, &pc);
+        rt_pk_trace(&v, wide, &p, any_hit, h, &pc);
         memcpy(hits + i, h, count * sizeof *h);
-        for (size_t l = 0; l < count; l++) {
-            c->rays += pc.c[l].rays;
-            c->box_tests += pc.c[l].box_tests;
-            c->tri_tests += pc.c[l].tri_tests;
-        }
+        c->rays += (rt_u32)pc.rays;
+        c->box_tests += (rt_u32)pc.box_tests;
+        c->tri_tests += (rt_u32)pc.tri_tests;
     }
 }

@@ -1,131 +1,202 @@
 /* packet_trace.c - RT_PK_LANES rays through the two-level BVH together
- * (packet_trace.h), four lanes per NEON vector.
+ * (packet_trace.h), in G groups of RT_VN lanes, one native vector each
+ * (host/simd_wide.h: 4 groups of 4 lanes with NEON or SSE2, 2 of 8 with
+ * AVX2, 1 of 16 with AVX-512).
+ *
+ * A node is entered when some lane's box test passes, found by testing the
+ * groups in order from the first group still inside the parent ("first
+ * active group", Wald, Boulos and Shirley 2007), with an interval test over
+ * the whole packet after the first group misses; at a leaf every group is
+ * box-tested and only the lanes that pass test the triangles.
  *
  * Every vector operation below is the scalar oracle's operation on each lane
  * (kernels/rt_shared.h, named at each function), in the same order, so each
- * lane's values are the oracle's bits. Comparisons select with vbslq rather
- * than vminq/vmaxq: that is the oracle's 'a < b ? a : b' with its NaN
- * behaviour, and SIMDe on x86 turns NEON min/max into NaN-checking loops. */
-#include "packet_trace.h"
-
+ * lane's values are the oracle's bits. Minimum and maximum are the oracle's
+ * 'a < b ? a : b', NaN behaviour included (rt_vmin_of, rt_vmax_of).
+ *
+ * This file is compiled once per instruction set (RT_PK_ISA names the
+ * variant; cpu_ref/packet_dispatch.c picks one at run time); the variants
+ * differ in register width only, never in results. */
 #include <string.h>
 
-#include "simd_neon.h"
+#include "packet_trace.h"
+#include "packet_wide.h"
+#include "simd_wide.h"
 
-enum { L = RT_PK_LANES, G = RT_PK_GROUPS };
+#ifndef RT_PK_ISA
+#define RT_PK_ISA generic
+#endif
+#define RT_PK_CAT_(a, b) a##_##b
+#define RT_PK_CAT(a, b)  RT_PK_CAT_(a, b)
+#define RT_PK_TRACE      RT_PK_CAT(rt_pk_trace, RT_PK_ISA)
+
+enum { L = RT_PK_LANES, N = RT_VN, G = RT_PK_LANES / RT_VN };
+/* The interval test pays where a packet is many vectors (measured: SSE2 and
+ * NEON's four groups), not at two groups or one. */
+enum { USE_IA = G > 2 };
+_Static_assert(RT_PK_LANES % RT_VN == 0, "a packet is whole vectors");
 
 /* The packet's rays in one space: the world, or an instance's object space. */
 typedef struct pk_geom {
-    float32x4_t org[3][G], inv[3][G];
-    uint32x4_t neg[3][G]; /* all ones where the lane's inv < 0 */
-    float32x4_t lo[G];    /* rt_box_lo(tmin) */
-    float32x4_t tmin[G];
-    float32x4_t sx[G], sy[G], sz[G];
-    int perm[G][3];  /* the watertight axes kx, ky, kz when the group's lanes
-                        agree on them, else perm[g][0] = -1 */
+    rt_vf org[3][G], inv[3][G];
+    rt_vi neg[3][G]; /* inv < 0 */
+    rt_vf lo[G];     /* rt_box_lo(tmin) */
+    rt_vf tmin[G];
+    rt_vf sx[G], sy[G], sz[G]; /* the watertight shear ... */
+    rt_vi kx0[G], kx1[G];      /* ... and its axes per lane: kx == 0, kx == 1 */
+    rt_vi ky0[G], ky1[G], kz0[G], kz1[G];
+    int perm[G][3];  /* kx, ky, kz when the group's lanes agree on them, else
+                        perm[g][0] = -1 */
     int uniform;     /* all lanes share the sign of inv on every axis ... */
     int neg_axis[3]; /* ... and these are the signs */
     /* The packet's bounds for the interval test (pk_ia_miss): the range of
      * every lane's org and inv per axis and the least rt_box_lo(tmin); only
-     * when 'uniform' and every inv is finite (ia). */
+     * when 'uniform' and all of them are finite (ia). */
     int ia;
     float org_min[3], org_max[3], inv_min[3], inv_max[3], lo_min;
-    rt_ray_d ray[L];
-    rt_ray_pre pre[L];
+    const rt_ray_d *ray; /* the rays, lane l at ray[lane[l]] (for scalar tests) */
+    uint8_t lane[L];
 } pk_geom;
 
 typedef struct pk_state {
     const rt_scene_view *s;
-    _Alignas(16) float t[L];  /* the best hit's t (the ray's tmax at first) */
-    _Alignas(16) float hi[L]; /* rt_box_hi(t) */
-    rt_hit_d *hit;
+    const rt_pk_wide *w;
+    rt_vf t[G];  /* the best hit's t (the ray's tmax at first) */
+    rt_vf hi[G]; /* rt_box_hi(t) */
+    /* The best hit's edge functions (u = V / det, v = W / det once the
+     * traversal is done, as the oracle divides) and its names. */
+    rt_vf V[G], W[G], det[G];
+    rt_vi prim[G], inst[G], entry[G];
+    rt_vi box[G], tri[G]; /* tests per lane, when counts->per_lane */
+    float hi_max;         /* the greatest of hi (the interval test's) */
     rt_pk_counts *counts;
-    _Alignas(16) uint32_t box[L], tri[L]; /* tests per lane */
-    uint32_t alive[G];                    /* lanes of each group still tracing */
-    uint32_t alive_groups;                /* groups with a lane alive */
-    float hi_max;                         /* the greatest of hi */
+    uint32_t alive[G];     /* lanes of each group still tracing */
+    uint32_t alive_groups; /* groups with a lane alive */
     int any_hit;
     rt_u32 method;
 } pk_state;
-
-/* ones[m]: 1 in the lanes whose bit is set in m. */
-static const uint32_t ones[16][4] = {{0, 0, 0, 0}, {1, 0, 0, 0}, {0, 1, 0, 0}, {1, 1, 0, 0},
-                                     {0, 0, 1, 0}, {1, 0, 1, 0}, {0, 1, 1, 0}, {1, 1, 1, 0},
-                                     {0, 0, 0, 1}, {1, 0, 0, 1}, {0, 1, 0, 1}, {1, 1, 0, 1},
-                                     {0, 0, 1, 1}, {1, 0, 1, 1}, {0, 1, 1, 1}, {1, 1, 1, 1}};
-
-static inline void count(uint32_t *per_lane, int g, uint32_t m) {
-    vst1q_u32(per_lane + 4 * g, vaddq_u32(vld1q_u32(per_lane + 4 * g), vld1q_u32(ones[m])));
-}
 
 static inline int lowest_bit(uint32_t m) {
     return __builtin_ctz(m);
 }
 
+/* rt_box_hi per lane. */
+static inline rt_vf box_hi(rt_vf t) {
+    return t + rt_vabs(t) * rt_vsplat(RT_BOX_T_MARGIN);
+}
+
+/* The number of lanes in m (baseline x86-64 has no popcount instruction). */
+static inline uint32_t lanes_in(uint32_t m) {
+#if defined(__POPCNT__) || defined(__aarch64__)
+    return (uint32_t)__builtin_popcount(m);
+#else
+    static const uint8_t n[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+    uint32_t c = 0;
+    for (int i = 0; i < N; i += 4) c += n[(m >> i) & 15u];
+    return c;
+#endif
+}
+
+/* Counts one test for each lane of m in group g. */
+static inline void count(const pk_state *st, uint64_t *total, rt_vi *per_lane, int g, uint32_t m) {
+    *total += lanes_in(m);
+    if (st->counts->per_lane) per_lane[g] -= rt_vmask(m);
+}
+
 /* ---- set-up --------------------------------------------------------------- */
 
-/* Per lane rt_ray_prepare, then the vectors; invalid lanes hold a copy of a
- * valid lane's ray, so that every lane computes on real numbers. */
+/* rt_ray_prepare on every lane of group g, from its direction. */
+static void pk_prepare(pk_geom *p, int g, const rt_vf *dir) {
+    const rt_vf zero = rt_vsplat(0.0f), one = rt_vsplat(1.0f);
+    for (int k = 0; k < 3; k++) {
+        p->inv[k][g] = one / dir[k];
+        p->neg[k][g] = p->inv[k][g] < zero;
+    }
+    /* kz: the axis of the largest |dir| (ties broken as rt_ray_prepare
+     * breaks them); kx, ky the next two, swapped where dir[kz] < 0. */
+    rt_vf ax = rt_vabs(dir[0]), ay = rt_vabs(dir[1]), az = rt_vabs(dir[2]);
+    rt_vi m1 = ay > ax;
+    rt_vi z2 = az > rt_vsel(m1, ay, ax);
+    rt_vi z1 = m1 & ~z2, z0 = ~m1 & ~z2;
+    rt_vf dz = rt_vsel(z2, dir[2], rt_vsel(z1, dir[1], dir[0]));
+    /* Unswapped, kx = kz + 1 and ky = kz + 2 (mod 3). */
+    rt_vi ux0 = z2, ux1 = z0, uy0 = z1, uy1 = z2;
+    rt_vf dx = rt_vsel(ux0, dir[0], rt_vsel(ux1, dir[1], dir[2]));
+    rt_vf dy = rt_vsel(uy0, dir[0], rt_vsel(uy1, dir[1], dir[2]));
+    rt_vi swap = dz < zero;
+    p->kx0[g] = (swap & uy0) | (~swap & ux0);
+    p->kx1[g] = (swap & uy1) | (~swap & ux1);
+    p->ky0[g] = (swap & ux0) | (~swap & uy0);
+    p->ky1[g] = (swap & ux1) | (~swap & uy1);
+    p->kz0[g] = z0;
+    p->kz1[g] = z1;
+    p->sx[g] = rt_vsel(swap, dy, dx) / dz;
+    p->sy[g] = rt_vsel(swap, dx, dy) / dz;
+    p->sz[g] = one / dz;
+    /* One permutation for the whole group? */
+    const uint32_t all = (1u << N) - 1u;
+    uint32_t b[6] = {rt_vbits(p->kx0[g]), rt_vbits(p->kx1[g]), rt_vbits(p->ky0[g]),
+                     rt_vbits(p->ky1[g]), rt_vbits(p->kz0[g]), rt_vbits(p->kz1[g])};
+    int same = 1;
+    for (int i = 0; i < 6; i++) same &= b[i] == 0 || b[i] == all;
+    p->perm[g][0] = !same ? -1 : b[0] ? 0 : b[1] ? 1 : 2;
+    p->perm[g][1] = b[2] ? 0 : b[3] ? 1 : 2;
+    p->perm[g][2] = b[4] ? 0 : b[5] ? 1 : 2;
+}
+
+/* The packet's vectors; invalid lanes hold a copy of a valid lane's ray, so
+ * that every lane computes on real numbers. */
 static void pk_geom_setup(pk_geom *p, const rt_ray_d *ray, uint32_t valid) {
     int src = valid ? lowest_bit(valid) : 0;
-    for (int l = 0; l < L; l++) {
-        p->ray[l] = ray[(valid >> l) & 1u ? l : src];
-        rt_ray_prepare(&p->ray[l], &p->pre[l]);
-    }
-    for (int k = 0; k < 3; k++) p->neg_axis[k] = p->pre[0].sign[k];
-    p->uniform = 1;
+    p->ray = ray;
+    for (int l = 0; l < L; l++) p->lane[l] = (uint8_t)((valid >> l) & 1u ? l : src);
+    uint32_t neg_bits[3] = {0, 0, 0};
     for (int g = 0; g < G; g++) {
-        const rt_ray_d *r = &p->ray[4 * g];
-        const rt_ray_pre *q = &p->pre[4 * g];
-        float tmp[4];
-        uint32_t neg[4];
-        for (int k = 0; k < 3; k++) {
-            for (int i = 0; i < 4; i++) tmp[i] = r[i].org[k];
-            p->org[k][g] = vld1q_f32(tmp);
-            for (int i = 0; i < 4; i++) tmp[i] = q[i].inv[k];
-            p->inv[k][g] = vld1q_f32(tmp);
-            for (int i = 0; i < 4; i++) {
-                neg[i] = q[i].sign[k] ? 0xffffffffu : 0u;
-                if (q[i].sign[k] != p->neg_axis[k]) p->uniform = 0;
+        float o[3][N], d[3][N], tmin[N];
+        for (int i = 0; i < N; i++) {
+            const rt_ray_d *r = &ray[p->lane[N * g + i]];
+            for (int k = 0; k < 3; k++) {
+                o[k][i] = r->org[k];
+                d[k][i] = r->dir[k];
             }
-            p->neg[k][g] = vld1q_u32(neg);
+            tmin[i] = r->tmin;
         }
-        for (int i = 0; i < 4; i++) tmp[i] = rt_box_lo(r[i].tmin);
-        p->lo[g] = vld1q_f32(tmp);
-        for (int i = 0; i < 4; i++) tmp[i] = r[i].tmin;
-        p->tmin[g] = vld1q_f32(tmp);
-        for (int i = 0; i < 4; i++) tmp[i] = q[i].sx;
-        p->sx[g] = vld1q_f32(tmp);
-        for (int i = 0; i < 4; i++) tmp[i] = q[i].sy;
-        p->sy[g] = vld1q_f32(tmp);
-        for (int i = 0; i < 4; i++) tmp[i] = q[i].sz;
-        p->sz[g] = vld1q_f32(tmp);
-        int same = 1;
-        for (int i = 1; i < 4; i++)
-            same &= q[i].kx == q[0].kx && q[i].ky == q[0].ky && q[i].kz == q[0].kz;
-        p->perm[g][0] = same ? q[0].kx : -1;
-        p->perm[g][1] = q[0].ky;
-        p->perm[g][2] = q[0].kz;
+        rt_vf dir[3];
+        for (int k = 0; k < 3; k++) {
+            memcpy(&p->org[k][g], o[k], sizeof(rt_vf));
+            memcpy(&dir[k], d[k], sizeof(rt_vf));
+        }
+        memcpy(&p->tmin[g], tmin, sizeof(rt_vf));
+        p->lo[g] = p->tmin[g] - rt_vabs(p->tmin[g]) * rt_vsplat(RT_BOX_T_MARGIN);
+        pk_prepare(p, g, dir);
+        for (int k = 0; k < 3; k++) neg_bits[k] |= rt_vbits(p->neg[k][g]) << (N * g);
     }
-    p->ia = p->uniform;
+    p->uniform = 1;
+    for (int k = 0; k < 3; k++) {
+        p->neg_axis[k] = neg_bits[k] != 0;
+        if (neg_bits[k] != 0 && neg_bits[k] != (1u << L) - 1u) p->uniform = 0;
+    }
+    p->ia = USE_IA && p->uniform;
+    if (!p->ia) return;
     p->lo_min = RT_INF;
     for (int k = 0; k < 3; k++) {
         p->org_min[k] = p->inv_min[k] = RT_INF;
         p->org_max[k] = p->inv_max[k] = -RT_INF;
     }
-    for (int l = 0; l < L; l++) {
-        for (int k = 0; k < 3; k++) {
-            float o = p->ray[l].org[k], iv = p->pre[l].inv[k];
-            if (!(RT_FABS(iv) < RT_INF) || !(RT_FABS(o) < RT_INF)) p->ia = 0;
-            p->org_min[k] = o < p->org_min[k] ? o : p->org_min[k];
-            p->org_max[k] = o > p->org_max[k] ? o : p->org_max[k];
-            p->inv_min[k] = iv < p->inv_min[k] ? iv : p->inv_min[k];
-            p->inv_max[k] = iv > p->inv_max[k] ? iv : p->inv_max[k];
+    for (int g = 0; g < G; g++)
+        for (int i = 0; i < N; i++) {
+            for (int k = 0; k < 3; k++) {
+                float o = p->org[k][g][i], iv = p->inv[k][g][i];
+                if (!(RT_FABS(iv) < RT_INF) || !(RT_FABS(o) < RT_INF)) p->ia = 0;
+                p->org_min[k] = o < p->org_min[k] ? o : p->org_min[k];
+                p->org_max[k] = o > p->org_max[k] ? o : p->org_max[k];
+                p->inv_min[k] = iv < p->inv_min[k] ? iv : p->inv_min[k];
+                p->inv_max[k] = iv > p->inv_max[k] ? iv : p->inv_max[k];
+            }
+            float lo = p->lo[g][i];
+            if (!(lo == lo)) p->ia = 0;
+            p->lo_min = lo < p->lo_min ? lo : p->lo_min;
         }
-        float lo = rt_box_lo(p->ray[l].tmin);
-        if (!(lo == lo)) p->ia = 0;
-        p->lo_min = lo < p->lo_min ? lo : p->lo_min;
-    }
 }
 
 /* The least and the greatest of fl(x * y) over x in [x0, x1], y in [y0, y1]:
@@ -145,11 +216,11 @@ static inline void corner_products(float x0, float x1, float y0, float y1, float
  * the greatest; its entry (the greatest t0, and its rt_box_lo(tmin)) is then
  * at least 'enter' below and its exit (the least t1, scaled as rt_box_test
  * scales it, and its rt_box_hi(t)) at most 'leave'. */
-static inline int pk_ia_miss(const rt_node *n, const pk_geom *p, float hi_max) {
+static inline int pk_ia_miss(const rt_pk_node *n, int c, const pk_geom *p, float hi_max) {
     float enter = p->lo_min, leave = RT_INF;
     for (int k = 0; k < 3; k++) {
-        float a = p->neg_axis[k] ? n->bmax[k] : n->bmin[k];
-        float b = p->neg_axis[k] ? n->bmin[k] : n->bmax[k];
+        float a = p->neg_axis[k] ? n->bmax[k][c] : n->bmin[k][c];
+        float b = p->neg_axis[k] ? n->bmin[k][c] : n->bmax[k][c];
         float t0lo, t0hi, t1lo, t1hi;
         corner_products(a - p->org_max[k], a - p->org_min[k], p->inv_min[k], p->inv_max[k], &t0lo,
                         &t0hi);
@@ -163,48 +234,46 @@ static inline int pk_ia_miss(const rt_node *n, const pk_geom *p, float hi_max) {
     return enter > leave;
 }
 
-/* ---- box test: rt_box_test on the four lanes of group g -------------------- */
+/* ---- box test: rt_box_test on the lanes of group g ------------------------ */
 
-static inline uint32_t pk_box(const rt_node *n, const pk_geom *p, const pk_state *st, int g,
-                              float32x4_t *tnear) {
-    float32x4_t lo = p->lo[g], hi = vdupq_n_f32(RT_INF);
+static inline uint32_t pk_box(const rt_pk_node *n, int c, const pk_geom *p, const pk_state *st,
+                              int g, rt_vf *tnear) {
+    rt_vf lo = p->lo[g], hi = rt_vsplat(RT_INF);
     for (int k = 0; k < 3; k++) {
-        float32x4_t a, b;
+        rt_vf a, b;
         if (p->uniform) {
-            a = vdupq_n_f32(p->neg_axis[k] ? n->bmax[k] : n->bmin[k]);
-            b = vdupq_n_f32(p->neg_axis[k] ? n->bmin[k] : n->bmax[k]);
+            a = rt_vsplat(p->neg_axis[k] ? n->bmax[k][c] : n->bmin[k][c]);
+            b = rt_vsplat(p->neg_axis[k] ? n->bmin[k][c] : n->bmax[k][c]);
         } else {
-            float32x4_t bmin = vdupq_n_f32(n->bmin[k]), bmax = vdupq_n_f32(n->bmax[k]);
-            a = vbslq_f32(p->neg[k][g], bmax, bmin);
-            b = vbslq_f32(p->neg[k][g], bmin, bmax);
+            rt_vf bmin = rt_vsplat(n->bmin[k][c]), bmax = rt_vsplat(n->bmax[k][c]);
+            a = rt_vsel(p->neg[k][g], bmax, bmin);
+            b = rt_vsel(p->neg[k][g], bmin, bmax);
         }
-        float32x4_t t0 = vmulq_f32(vsubq_f32(a, p->org[k][g]), p->inv[k][g]);
-        float32x4_t t1 = vmulq_f32(vsubq_f32(b, p->org[k][g]), p->inv[k][g]);
-        lo = vbslq_f32(vcgtq_f32(t0, lo), t0, lo);
-        hi = vbslq_f32(vcltq_f32(t1, hi), t1, hi);
+        rt_vf t0 = (a - p->org[k][g]) * p->inv[k][g];
+        rt_vf t1 = (b - p->org[k][g]) * p->inv[k][g];
+        lo = rt_vmax_of(t0, lo);
+        hi = rt_vmin_of(t1, hi);
     }
-    float32x4_t scale = vbslq_f32(vcltq_f32(hi, vdupq_n_f32(0.0f)),
-                                  vdupq_n_f32(RT_BOX_FAR_SCALE_NEG), vdupq_n_f32(RT_BOX_FAR_SCALE));
-    hi = vmulq_f32(hi, scale);
-    float32x4_t ht = vld1q_f32(st->hi + 4 * g);
-    hi = vbslq_f32(vcltq_f32(ht, hi), ht, hi);
+    hi = hi * rt_vsel(hi < rt_vsplat(0.0f), rt_vsplat(RT_BOX_FAR_SCALE_NEG),
+                      rt_vsplat(RT_BOX_FAR_SCALE));
+    hi = rt_vmin_of(st->hi[g], hi);
     *tnear = lo;
-    return rt_lane_bits(vcleq_f32(lo, hi)) & st->alive[g];
+    return rt_vbits(lo <= hi) & st->alive[g];
 }
 
-/* The first group from 'first' on with a lane that enters node n, or -1;
- * *mask gets that group's entering lanes, *tnear their entry distances. */
-static inline int pk_enter(const rt_node *n, const pk_geom *p, pk_state *st, int first,
-                           uint32_t *mask, float32x4_t *tnear) {
+/* The first group from 'first' on with a lane that enters child c of n, or
+ * -1; *mask gets that group's entering lanes, *tnear their entry distances. */
+static inline int pk_enter(const rt_pk_node *n, int c, const pk_geom *p, pk_state *st, int first,
+                           uint32_t *mask, rt_vf *tnear) {
     int tested = 0;
     for (int g = first; g < G; g++) {
         uint32_t alive = st->alive[g];
         if (!alive) continue;
         /* After one group missed, one interval test may cull the rest. */
-        if (tested++ == 1 && p->ia && pk_ia_miss(n, p, st->hi_max)) return -1;
+        if (USE_IA && tested++ == 1 && p->ia && pk_ia_miss(n, c, p, st->hi_max)) return -1;
         st->counts->group_box_tests++;
-        count(st->box, g, alive);
-        uint32_t m = pk_box(n, p, st, g, tnear);
+        count(st, &st->counts->box_tests, st->box, g, alive);
+        uint32_t m = pk_box(n, c, p, st, g, tnear);
         if (m) {
             *mask = m;
             return g;
@@ -215,121 +284,173 @@ static inline int pk_enter(const rt_node *n, const pk_geom *p, pk_state *st, int
 
 /* ---- triangles -------------------------------------------------------------- */
 
-/* Records lane l's hit on entry e at t, as rt_leaf_test accepts it. */
-static void pk_accept(pk_state *st, int l, rt_u32 e, rt_u32 inst, float t, float u, float v) {
-    rt_hit_d *h = &st->hit[l];
-    h->t = t;
-    h->u = u;
-    h->v = v;
-    h->prim = st->s->tri_ids[e];
-    h->inst = inst;
-    h->entry = e;
-    if (st->any_hit) {
-        st->alive[l >> 2] &= ~(1u << (l & 3));
-        if (!st->alive[l >> 2]) st->alive_groups &= ~(1u << (l >> 2));
-        return;
-    }
-    st->t[l] = t;
-    st->hi[l] = rt_box_hi(t);
-    float m = st->hi[0];
-    for (int i = 1; i < L; i++) m = st->hi[i] > m ? st->hi[i] : m;
+/* The greatest of hi, after hits shortened some ranges. */
+static void update_hi_max(pk_state *st) {
+    if (!USE_IA) return;
+    float m = -RT_INF;
+    for (int j = 0; j < G; j++)
+        for (int k = 0; k < N; k++) m = st->hi[j][k] > m ? st->hi[j][k] : m;
     st->hi_max = m;
 }
 
+/* Retires the any-hit lanes of m in group g (they found an occluder). */
+static inline void retire(pk_state *st, int g, uint32_t m, rt_u32 prim) {
+    st->prim[g] = rt_vsel_i(rt_vmask(m), rt_vsplat_i((int32_t)prim), st->prim[g]);
+    st->alive[g] &= ~m;
+    if (!st->alive[g]) st->alive_groups &= ~(1u << g);
+}
+
+/* rt_hit_before for lane i of group g: is (t, inst, prim) before its best
+ * hit, whose t is t (a tie)? */
+static inline int tie_before(const pk_state *st, int g, int i, rt_u32 inst, rt_u32 prim) {
+    rt_u32 best_inst = (rt_u32)st->inst[g][i], best_prim = (rt_u32)st->prim[g][i];
+    if (inst != best_inst) return inst < best_inst;
+    return prim < best_prim;
+}
+
+/* Records lane i of group g's hit on entry e at t with edge functions V, W
+ * and det (u = V / det, v = W / det), as rt_leaf_test accepts it. */
+static void accept_lane(pk_state *st, int g, int i, rt_u32 e, rt_u32 inst, float t, float V,
+                        float W, float det) {
+    st->t[g][i] = t;
+    st->hi[g][i] = rt_box_hi(t);
+    st->V[g][i] = V;
+    st->W[g][i] = W;
+    st->det[g][i] = det;
+    st->prim[g][i] = (int32_t)st->s->tri_ids[e];
+    st->inst[g][i] = (int32_t)inst;
+    st->entry[g][i] = (int32_t)e;
+    update_hi_max(st);
+}
+
 /* The lanes of m in group g through the shared scalar test (rt_leaf_test's
- * body): other triangle tests, groups whose lanes disagree on the watertight
- * axes, and lanes that need the watertight test's exact re-check. */
+ * body): the other triangle tests, and lanes that need the watertight test's
+ * exact re-check of a zero edge function. */
 static void pk_tri_lanes(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u32 e, rt_u32 inst) {
     const rt_tri *tri = &st->s->tris[e];
+    const rt_u32 prim = st->s->tri_ids[e];
     for (; m; m &= m - 1) {
-        int l = 4 * g + lowest_bit(m);
+        const int i = lowest_bit(m);
+        const rt_ray_d *r = &p->ray[p->lane[N * g + i]];
+        rt_ray_pre pre; /* only the watertight test reads it */
         float t, u, v;
-        if (!rt_tri_test(st->method, tri, &p->ray[l], &p->pre[l], p->ray[l].tmin, st->t[l], &t, &u,
-                         &v))
-            continue;
-        if (st->any_hit || rt_hit_before(t, inst, st->s->tri_ids[e], &st->hit[l]))
-            pk_accept(st, l, e, inst, t, u, v);
+        if (st->method == RT_TRI_WATERTIGHT)
+            rt_ray_prepare(r, &pre);
+        else
+            memset(&pre, 0, sizeof pre);
+        if (!rt_tri_test(st->method, tri, r, &pre, r->tmin, st->t[g][i], &t, &u, &v)) continue;
+        if (st->any_hit)
+            retire(st, g, 1u << i, prim);
+        else if (t < st->t[g][i] || tie_before(st, g, i, inst, prim))
+            accept_lane(st, g, i, e, inst, t, u, v, 1.0f); /* u / 1 and v / 1 are u and v */
     }
+}
+
+/* v[k] per lane, k given by the masks k0 (k == 0) and k1 (k == 1). */
+static inline rt_vf pick(rt_vi k0, rt_vi k1, const rt_vf *v) {
+    return rt_vsel(k0, v[0], rt_vsel(k1, v[1], v[2]));
 }
 
 /* rt_tri_watertight on the lanes of m in group g against entry e. */
 static void pk_tri(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u32 e, rt_u32 inst) {
     st->counts->group_tri_tests++;
-    count(st->tri, g, m);
-    const int kx = p->perm[g][0], ky = p->perm[g][1], kz = p->perm[g][2];
-    if (st->method != RT_TRI_WATERTIGHT || kx < 0) {
+    count(st, &st->counts->tri_tests, st->tri, g, m);
+    if (st->method != RT_TRI_WATERTIGHT) {
         pk_tri_lanes(st, p, g, m, e, inst);
         return;
     }
     const rt_tri *tri = &st->s->tris[e];
-    const float32x4_t ox = p->org[kx][g], oy = p->org[ky][g], oz = p->org[kz][g];
-    const float32x4_t sx = p->sx[g], sy = p->sy[g];
-    float32x4_t Az = vsubq_f32(vdupq_n_f32(tri->v0[kz]), oz);
-    float32x4_t Bz = vsubq_f32(vdupq_n_f32(tri->v1[kz]), oz);
-    float32x4_t Cz = vsubq_f32(vdupq_n_f32(tri->v2[kz]), oz);
-    float32x4_t Ax = vsubq_f32(vsubq_f32(vdupq_n_f32(tri->v0[kx]), ox), vmulq_f32(sx, Az));
-    float32x4_t Ay = vsubq_f32(vsubq_f32(vdupq_n_f32(tri->v0[ky]), oy), vmulq_f32(sy, Az));
-    float32x4_t Bx = vsubq_f32(vsubq_f32(vdupq_n_f32(tri->v1[kx]), ox), vmulq_f32(sx, Bz));
-    float32x4_t By = vsubq_f32(vsubq_f32(vdupq_n_f32(tri->v1[ky]), oy), vmulq_f32(sy, Bz));
-    float32x4_t Cx = vsubq_f32(vsubq_f32(vdupq_n_f32(tri->v2[kx]), ox), vmulq_f32(sx, Cz));
-    float32x4_t Cy = vsubq_f32(vsubq_f32(vdupq_n_f32(tri->v2[ky]), oy), vmulq_f32(sy, Cz));
-    float32x4_t U = vsubq_f32(vmulq_f32(Cx, By), vmulq_f32(Cy, Bx));
-    float32x4_t V = vsubq_f32(vmulq_f32(Ax, Cy), vmulq_f32(Ay, Cx));
-    float32x4_t W = vsubq_f32(vmulq_f32(Bx, Ay), vmulq_f32(By, Ax));
-    const float32x4_t zero = vdupq_n_f32(0.0f);
+    /* The oracle's A[i] = v0[i] - org[i], taken at kx, ky and kz (A[kz] is
+     * named Az here), ... */
+    rt_vf Ax, Ay, Az, Bx, By, Bz, Cx, Cy, Cz;
+    const int kx = p->perm[g][0], ky = p->perm[g][1], kz = p->perm[g][2];
+    if (kx >= 0) {
+        const rt_vf ox = p->org[kx][g], oy = p->org[ky][g], oz = p->org[kz][g];
+        Ax = rt_vsplat(tri->v0[kx]) - ox, Ay = rt_vsplat(tri->v0[ky]) - oy;
+        Az = rt_vsplat(tri->v0[kz]) - oz;
+        Bx = rt_vsplat(tri->v1[kx]) - ox, By = rt_vsplat(tri->v1[ky]) - oy;
+        Bz = rt_vsplat(tri->v1[kz]) - oz;
+        Cx = rt_vsplat(tri->v2[kx]) - ox, Cy = rt_vsplat(tri->v2[ky]) - oy;
+        Cz = rt_vsplat(tri->v2[kz]) - oz;
+    } else { /* lanes disagree on the axes: each picks its own */
+        rt_vf A[3], B[3], C[3];
+        for (int k = 0; k < 3; k++) {
+            A[k] = rt_vsplat(tri->v0[k]) - p->org[k][g];
+            B[k] = rt_vsplat(tri->v1[k]) - p->org[k][g];
+            C[k] = rt_vsplat(tri->v2[k]) - p->org[k][g];
+        }
+        const rt_vi x0 = p->kx0[g], x1 = p->kx1[g], y0 = p->ky0[g], y1 = p->ky1[g];
+        const rt_vi z0 = p->kz0[g], z1 = p->kz1[g];
+        Ax = pick(x0, x1, A), Ay = pick(y0, y1, A), Az = pick(z0, z1, A);
+        Bx = pick(x0, x1, B), By = pick(y0, y1, B), Bz = pick(z0, z1, B);
+        Cx = pick(x0, x1, C), Cy = pick(y0, y1, C), Cz = pick(z0, z1, C);
+    }
+    /* ... A[kx] - sx A[kz], A[ky] - sy A[kz], ... */
+    const rt_vf sx = p->sx[g], sy = p->sy[g];
+    Ax = Ax - sx * Az, Ay = Ay - sy * Az;
+    Bx = Bx - sx * Bz, By = By - sy * Bz;
+    Cx = Cx - sx * Cz, Cy = Cy - sy * Cz;
+    rt_vf U = Cx * By - Cy * Bx;
+    rt_vf V = Ax * Cy - Ay * Cx;
+    rt_vf W = Bx * Ay - By * Ax;
+    const rt_vf zero = rt_vsplat(0.0f);
     /* An edge function of exactly zero takes the oracle's exact re-check. */
-    uint32x4_t z = vorrq_u32(vorrq_u32(vceqq_f32(U, zero), vceqq_f32(V, zero)), vceqq_f32(W, zero));
-    uint32_t zl = rt_lane_bits(z) & m;
-    if (zl) {
-        pk_tri_lanes(st, p, g, zl, e, inst);
-        m &= ~zl;
+    uint32_t z = rt_vbits((U == zero) | (V == zero) | (W == zero)) & m;
+    if (z) {
+        pk_tri_lanes(st, p, g, z, e, inst);
+        m &= ~z;
     }
-    uint32x4_t below =
-        vorrq_u32(vorrq_u32(vcltq_f32(U, zero), vcltq_f32(V, zero)), vcltq_f32(W, zero));
-    uint32x4_t above =
-        vorrq_u32(vorrq_u32(vcgtq_f32(U, zero), vcgtq_f32(V, zero)), vcgtq_f32(W, zero));
-    float32x4_t det = vaddq_f32(vaddq_f32(U, V), W);
-    uint32x4_t out = vorrq_u32(vandq_u32(below, above), vceqq_f32(det, zero));
-    uint32_t inside = ~rt_lane_bits(out) & m;
+    rt_vf det = (U + V) + W;
+    rt_vi out = (((U < zero) | (V < zero) | (W < zero)) & ((U > zero) | (V > zero) | (W > zero))) |
+                (det == zero);
+    uint32_t inside = ~rt_vbits(out) & m;
     if (!inside) return;
-    /* The oracle's Az = sz * A[kz], its T and its t. */
-    const float32x4_t sz = p->sz[g];
-    float32x4_t T =
-        vaddq_f32(vaddq_f32(vmulq_f32(U, vmulq_f32(sz, Az)), vmulq_f32(V, vmulq_f32(sz, Bz))),
-                  vmulq_f32(W, vmulq_f32(sz, Cz)));
-    float32x4_t t = rt_div_f32(T, det);
-    uint32x4_t in_range =
-        vandq_u32(vcgeq_f32(t, p->tmin[g]), vcleq_f32(t, vld1q_f32(st->t + 4 * g)));
-    uint32_t hit = rt_lane_bits(in_range) & inside;
+    /* The oracle's Az = sz A[kz], its T and its t. */
+    const rt_vf sz = p->sz[g];
+    rt_vf T = (U * (sz * Az) + V * (sz * Bz)) + W * (sz * Cz);
+    rt_vf t = T / det;
+    uint32_t hit = rt_vbits((t >= p->tmin[g]) & (t <= st->t[g])) & inside;
     if (!hit) return;
-    float tl[4], vl[4], wl[4], dl[4];
-    vst1q_f32(tl, t);
-    vst1q_f32(vl, V);
-    vst1q_f32(wl, W);
-    vst1q_f32(dl, det);
-    rt_u32 prim = st->s->tri_ids[e];
-    for (; hit; hit &= hit - 1) {
-        int i = lowest_bit(hit), l = 4 * g + i;
-        if (st->any_hit || rt_hit_before(tl[i], inst, prim, &st->hit[l]))
-            pk_accept(st, l, e, inst, tl[i], RT_DIV(vl[i], dl[i]), RT_DIV(wl[i], dl[i]));
+    const rt_u32 prim = st->s->tri_ids[e];
+    if (st->any_hit) {
+        retire(st, g, hit, prim);
+        return;
     }
+    /* rt_hit_before: a smaller t wins at once; an equal t goes by the names. */
+    uint32_t closer = rt_vbits(t < st->t[g]) & hit;
+    for (uint32_t tie = hit & ~closer; tie; tie &= tie - 1) {
+        int i = lowest_bit(tie);
+        if (tie_before(st, g, i, inst, prim)) closer |= 1u << i;
+    }
+    if (!closer) return;
+    const rt_vi take = rt_vmask(closer);
+    st->t[g] = rt_vsel(take, t, st->t[g]);
+    st->hi[g] = rt_vsel(take, box_hi(t), st->hi[g]);
+    st->V[g] = rt_vsel(take, V, st->V[g]);
+    st->W[g] = rt_vsel(take, W, st->W[g]);
+    st->det[g] = rt_vsel(take, det, st->det[g]);
+    st->prim[g] = rt_vsel_i(take, rt_vsplat_i((int32_t)prim), st->prim[g]);
+    st->inst[g] = rt_vsel_i(take, rt_vsplat_i((int32_t)inst), st->inst[g]);
+    st->entry[g] = rt_vsel_i(take, rt_vsplat_i((int32_t)e), st->entry[g]);
+    update_hi_max(st);
 }
 
-/* A leaf of a mesh BVH: every group from 'first' on whose lanes enter its
- * box tests its triangles (group 'first' entered with first_mask). */
-static void pk_leaf(pk_state *st, const pk_geom *p, const rt_node *n, rt_u32 inst, int first,
-                    uint32_t first_mask) {
-    const rt_u32 begin = n->a, end = n->a + (n->b & RT_NODE_COUNT_MASK);
+/* Leaf child c of n of a mesh BVH: every group from 'first' on whose lanes
+ * enter its box tests its triangles (group 'first' entered with
+ * first_mask). */
+static void pk_leaf(pk_state *st, const pk_geom *p, const rt_pk_node *n, int c, rt_u32 inst,
+                    int first, uint32_t first_mask) {
+    const rt_u32 begin = n->ref[c], end = begin + (n->count[c] & RT_NODE_COUNT_MASK);
     for (int g = first; g < G; g++) {
         uint32_t m;
         if (g == first) {
             m = first_mask & st->alive[g];
         } else {
             if (!st->alive[g]) continue;
-            float32x4_t tn;
+            rt_vf tn;
             st->counts->group_box_tests++;
-            count(st->box, g, st->alive[g]);
-            m = pk_box(n, p, st, g, &tn);
+            count(st, &st->counts->box_tests, st->box, g, st->alive[g]);
+            m = pk_box(n, c, p, st, g, &tn);
         }
         for (rt_u32 e = begin; e < end && m; e++) {
             pk_tri(st, p, g, m, e, inst);
@@ -342,75 +463,69 @@ static void pk_leaf(pk_state *st, const pk_geom *p, const rt_node *n, rt_u32 ins
 
 static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, int first);
 
-/* Is child 1 nearer than child 0 for the packet? Judged by the entry
- * distances of the first lane that enters both (or child 0), as the 2x2
- * packets of Langr 2016 do; the order changes speed, never the hits. */
-static inline int second_nearer(int f0, int f1, uint32_t m0, uint32_t m1, float32x4_t t0,
-                                float32x4_t t1) {
-    if (f0 != f1) return f1 < f0;
-    float a[4], b[4];
-    vst1q_f32(a, t0);
-    vst1q_f32(b, t1);
-    int i = lowest_bit((m0 & m1) ? (m0 & m1) : m0);
-    return b[i] < a[i];
-}
-
-/* One BVH from 'root': a mesh's (inst is its instance) or the object BVH
- * (inst == RT_NO_HIT), whose leaves hand their instances to pk_instance.
- * rt_trace_mesh's and rt_trace's loops, for the packet. */
-static void pk_bvh(pk_state *st, const pk_geom *p, rt_u32 root, rt_u32 inst, int first) {
-    const rt_node *nodes = st->s->nodes;
-    struct {
+/* One BVH from its entry node: a mesh's (inst is its instance) or the
+ * object BVH (inst == RT_NO_HIT), whose leaves hand their instances to
+ * pk_instance. rt_trace_mesh's and rt_trace's loops for the packet over the
+ * wide nodes: a child is entered by the groups from the parent's first on
+ * whose lanes pass its box test, nearest first (by the entry distance of its
+ * first entering lane; the order changes speed, never the hits), the others
+ * are pushed. */
+static void pk_bvh(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, int first) {
+    typedef struct {
         rt_u32 node;
-        int first;
+        int slot, first;
         uint32_t mask;
-    } stack[RT_STACK_SIZE];
+    } item;
+    const rt_pk_node *nodes = st->w->nodes;
+    item stack[3 * RT_STACK_SIZE + 1];
     int sp = 0;
-    uint32_t mask = 0;
-    float32x4_t tn;
-    first = pk_enter(&nodes[root], p, st, first, &mask, &tn);
-    if (first < 0) return;
-    rt_u32 node = root;
+    rt_vf tn;
+    item cur = {entry, 0, 0, 0};
+    cur.first = pk_enter(&nodes[entry], 0, p, st, first, &cur.mask, &tn);
+    if (cur.first < 0) return;
     for (;;) {
-        const rt_node *n = &nodes[node];
-        if (n->b & RT_NODE_LEAF_FLAG) {
+        const rt_pk_node *n = &nodes[cur.node];
+        const int c = cur.slot;
+        if (n->count[c] & RT_NODE_LEAF_FLAG) {
             if (inst == RT_NO_HIT) {
-                for (rt_u32 e = n->a; e < n->a + (n->b & RT_NODE_COUNT_MASK); e++) {
-                    pk_instance(st, p, st->s->inst_ids[e], first);
-                    if (!st->alive_groups) return;
-                }
+                const rt_u32 end = n->ref[c] + (n->count[c] & RT_NODE_COUNT_MASK);
+                for (rt_u32 e = n->ref[c]; e < end && st->alive_groups; e++)
+                    pk_instance(st, p, st->s->inst_ids[e], cur.first);
             } else {
-                pk_leaf(st, p, n, inst, first, mask);
-                if (!st->alive_groups) return;
+                pk_leaf(st, p, n, c, inst, cur.first, cur.mask);
             }
+            if (!st->alive_groups) return;
         } else {
-            uint32_t m0 = 0, m1 = 0;
-            float32x4_t t0, t1;
-            int f0 = pk_enter(&nodes[n->a], p, st, first, &m0, &t0);
-            int f1 = pk_enter(&nodes[n->b], p, st, first, &m1, &t1);
-            if (f0 >= 0 && f1 >= 0) {
-                int swap = second_nearer(f0, f1, m0, m1, t0, t1);
-                stack[sp].node = swap ? n->a : n->b;
-                stack[sp].first = swap ? f0 : f1;
-                stack[sp].mask = swap ? m0 : m1;
-                sp++;
-                node = swap ? n->b : n->a;
-                first = swap ? f1 : f0;
-                mask = swap ? m1 : m0;
-                continue;
+            const rt_u32 child = n->ref[c];
+            const rt_pk_node *ch = &nodes[child];
+            item hit[4];
+            float key[4];
+            int hits = 0;
+            for (int s = 0; s < 4 && ch->ref[s] != RT_PK_NO_CHILD; s++) {
+                uint32_t m = 0;
+                rt_vf t;
+                int f = pk_enter(ch, s, p, st, cur.first, &m, &t);
+                if (f < 0) continue;
+                /* Insertion by (first group, entry distance of its first lane). */
+                float k = t[lowest_bit(m)];
+                int i = hits++;
+                while (i > 0 &&
+                       (hit[i - 1].first > f || (hit[i - 1].first == f && key[i - 1] > k))) {
+                    hit[i] = hit[i - 1];
+                    key[i] = key[i - 1];
+                    i--;
+                }
+                hit[i] = (item){child, s, f, m};
+                key[i] = k;
             }
-            if (f0 >= 0 || f1 >= 0) {
-                node = f0 >= 0 ? n->a : n->b;
-                first = f0 >= 0 ? f0 : f1;
-                mask = f0 >= 0 ? m0 : m1;
+            if (hits) {
+                for (int i = hits - 1; i > 0; i--) stack[sp++] = hit[i];
+                cur = hit[0];
                 continue;
             }
         }
         if (sp == 0) return;
-        --sp;
-        node = stack[sp].node;
-        first = stack[sp].first;
-        mask = stack[sp].mask;
+        cur = stack[--sp];
     }
 }
 
@@ -419,54 +534,67 @@ static void pk_bvh(pk_state *st, const pk_geom *p, rt_u32 root, rt_u32 inst, int
  * moves it. */
 static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, int first) {
     const rt_instance *in = &st->s->instances[inst];
+    const rt_u32 entry = st->w->inst_root[inst];
     if (in->flags & RT_INST_IDENTITY) {
-        pk_bvh(st, world, in->root, inst, first);
+        pk_bvh(st, world, entry, inst, first);
         return;
     }
     pk_geom obj;
     rt_ray_d ray[L];
-    for (int l = 0; l < L; l++) rt_ray_to_object(in, &world->ray[l], &ray[l]);
+    for (int l = 0; l < L; l++) rt_ray_to_object(in, &world->ray[world->lane[l]], &ray[l]);
     pk_geom_setup(&obj, ray, (1u << L) - 1u);
-    pk_bvh(st, &obj, in->root, inst, first);
+    pk_bvh(st, &obj, entry, inst, first);
 }
 
-void rt_pk_trace(const rt_scene_view *s, const rt_pk_rays *rays, int any_hit, rt_hit_d *hits,
-                 rt_pk_counts *counts) {
+void RT_PK_TRACE(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *rays, int any_hit,
+                 rt_hit_d *hits, rt_pk_counts *counts) {
     pk_state st;
     st.s = s;
-    st.hit = hits;
+    st.w = w;
     st.counts = counts;
     st.any_hit = any_hit;
     st.method = s->hdr->tri_method;
     st.alive_groups = 0;
-    for (int l = 0; l < L; l++) {
-        st.box[l] = st.tri[l] = 0;
-        if ((rays->valid >> l) & 1u) {
-            rt_hit_init(&hits[l], &rays->ray[l]);
-            counts->c[l].rays++;
-        } else { /* a miss, with no ray to take tmax from */
-            memset(&hits[l], 0, sizeof hits[l]);
-            hits[l].t = RT_INF;
-            hits[l].prim = hits[l].inst = hits[l].entry = RT_NO_HIT;
-        }
-        st.t[l] = hits[l].t;
-        st.hi[l] = rt_box_hi(st.t[l]);
-    }
-    st.hi_max = st.hi[0];
-    for (int l = 1; l < L; l++) st.hi_max = st.hi[l] > st.hi_max ? st.hi[l] : st.hi_max;
+    st.hi_max = -RT_INF;
+    const rt_vi none = rt_vsplat_i((int32_t)RT_NO_HIT);
     for (int g = 0; g < G; g++) {
-        st.alive[g] = (rays->valid >> (4 * g)) & 15u;
+        st.box[g] = st.tri[g] = rt_vsplat_i(0);
+        st.alive[g] = (rays->valid >> (N * g)) & ((1u << N) - 1u);
         if (st.alive[g]) st.alive_groups |= 1u << g;
+        st.prim[g] = st.inst[g] = st.entry[g] = none;
+        st.V[g] = st.W[g] = rt_vsplat(0.0f);
+        st.det[g] = rt_vsplat(1.0f);
+        for (int i = 0; i < N; i++) /* rt_hit_init's t; no ray: a miss at infinity */
+            st.t[g][i] = (st.alive[g] >> i) & 1u ? rays->ray[N * g + i].tmax : RT_INF;
+        st.hi[g] = box_hi(st.t[g]);
+        for (int i = 0; i < N; i++) st.hi_max = st.hi[g][i] > st.hi_max ? st.hi[g][i] : st.hi_max;
+        counts->rays += lanes_in(st.alive[g]);
     }
-    if (!rays->valid || s->hdr->instance_count == 0) return;
-    pk_geom world;
-    pk_geom_setup(&world, rays->ray, rays->valid);
-    if (s->hdr->flags & RT_SCENE_SINGLE)
-        pk_instance(&st, &world, 0, 0);
-    else
-        pk_bvh(&st, &world, s->hdr->top_root, RT_NO_HIT, 0);
-    for (int l = 0; l < L; l++) {
-        counts->c[l].box_tests += st.box[l];
-        counts->c[l].tri_tests += st.tri[l];
+    const uint32_t valid = rays->valid & ((1u << L) - 1u);
+    if (st.alive_groups && s->hdr->instance_count != 0) {
+        pk_geom world;
+        pk_geom_setup(&world, rays->ray, valid);
+        if (s->hdr->flags & RT_SCENE_SINGLE)
+            pk_instance(&st, &world, 0, 0);
+        else
+            pk_bvh(&st, &world, w->top, RT_NO_HIT, 0);
     }
+    for (int g = 0; g < G; g++) {
+        const rt_vf u = st.V[g] / st.det[g], v = st.W[g] / st.det[g];
+        for (int i = 0; i < N; i++) {
+            rt_hit_d *h = &hits[N * g + i];
+            h->t = st.t[g][i];
+            h->prim = (rt_u32)st.prim[g][i];
+            h->inst = (rt_u32)st.inst[g][i];
+            h->entry = (rt_u32)st.entry[g][i];
+            h->u = h->prim == RT_NO_HIT ? 0.0f : u[i];
+            h->v = h->prim == RT_NO_HIT ? 0.0f : v[i];
+        }
+    }
+    if (counts->per_lane)
+        for (int l = 0; l < L; l++) {
+            counts->c[l].rays += (valid >> l) & 1u;
+            counts->c[l].box_tests += (rt_u32)st.box[l / N][l % N];
+            counts->c[l].tri_tests += (rt_u32)st.tri[l / N][l % N];
+        }
 }

@@ -1,11 +1,9 @@
-/* packet_trace.h - ray packets through the two-level BVH with NEON.
+/* packet_trace.h - ray packets through the two-level BVH, sixteen rays at once.
  *
- * A packet is RT_PK_LANES rays in RT_PK_GROUPS groups of four (one NEON
- * vector each). It traverses the tree together: a node is entered when some
- * ray's box test passes, found by testing the groups in order from the first
- * group still inside the parent ("first active group", as in Wald, Boulos and
- * Shirley 2007); at a leaf every group is box-tested and only the lanes that
- * pass test the triangles, four rays per triangle test.
+ * A packet is RT_PK_LANES rays, one lane each of sixteen-lane vectors
+ * (host/simd_wide.h). It traverses the tree together: a node is entered by
+ * the lanes whose box test passes, and at a leaf those lanes test its
+ * triangles, all lanes in one vector test.
  *
  * Each lane performs exactly the scalar oracle's box and triangle arithmetic
  * (kernels/rt_shared.h: the same operations in the same order, no FMA), so a
@@ -19,30 +17,45 @@
 
 #include <stdint.h>
 
+#include "packet_wide.h"
 #include "rt_shared.h"
 
-enum { RT_PK_LANES = 16, RT_PK_GROUPS = RT_PK_LANES / 4 };
+enum { RT_PK_LANES = 16 };
 
 /* The rays of a packet; lanes outside 'valid' (bit l = lane l) are ignored
- * and need not hold a ray. Lanes 4g .. 4g + 3 form group g: the closer
- * their rays, the fewer nodes the packet visits. */
+ * and need not hold a ray. The closer the rays, the fewer nodes the packet
+ * visits. */
 typedef struct rt_pk_rays {
     rt_ray_d ray[RT_PK_LANES];
     uint32_t valid;
 } rt_pk_rays;
 
-/* The tests a packet performed: per lane (as the oracle counts them, for the
- * lanes a test was performed for) and per group of four. */
+/* What packets traced: rays and the tests performed for them, as the oracle
+ * counts them (one per lane a test was performed for), in all and, when
+ * per_lane is set, per lane; and the tests of whole packets (one vector test
+ * each, however many lanes it served). */
 typedef struct rt_pk_counts {
+    int per_lane;
     rt_counters c[RT_PK_LANES];
+    uint64_t rays, box_tests, tri_tests;
     uint64_t group_box_tests, group_tri_tests;
 } rt_pk_counts;
 
-/* Traces the valid lanes (closest hit, or any hit when any_hit is set) into
- * hits[0 .. RT_PK_LANES - 1] (prim == RT_NO_HIT on a miss; for any_hit only
- * whether prim != RT_NO_HIT is defined); invalid lanes get a miss. The tests
- * are added to *counts. */
-void rt_pk_trace(const rt_scene_view *s, const rt_pk_rays *rays, int any_hit, rt_hit_d *hits,
-                 rt_pk_counts *counts);
+/* Traces the valid lanes (closest hit, or any hit when any_hit is set)
+ * through the layout s with its wide BVHs w (rt_pk_wide_build of the same
+ * layout) into hits[0 .. RT_PK_LANES - 1] (prim == RT_NO_HIT on a miss; for
+ * any_hit only whether prim != RT_NO_HIT is defined); invalid lanes get a
+ * miss. The tests are added to *counts. */
+void rt_pk_trace(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *rays, int any_hit,
+                 rt_hit_d *hits, rt_pk_counts *counts);
+
+/* The packet tracer is built for several instruction sets where the target
+ * has them (cpu_ref/packet_dispatch.c): rt_pk_isa names the one in use (the
+ * widest the CPU supports, or RTCL_PACKET_ISA's), rt_pk_isa_name(i) the
+ * build's i-th one (NULL past the last), and rt_pk_select switches to one by
+ * name (0 when this build or CPU lacks it). */
+const char *rt_pk_isa(void);
+const char *rt_pk_isa_name(int i);
+int rt_pk_select(const char *name);
 
 #endif /* RT_PACKET_TRACE_H */

@@ -1,0 +1,161 @@
+/* simd_wide.h - the widest native vectors of the build, for the packet
+ * tracer.
+ *
+ * The packet tracer (cpu_ref/packet_trace.c) is written once over these
+ * types, GCC's and Clang's vector extensions: + - * / and comparisons act on
+ * every lane in IEEE single precision (-ffp-contract=off keeps them unfused),
+ * one instruction per operation at the register width the build targets:
+ * NEON (4 lanes) on ARM, SSE2 (4) on baseline x86-64, AVX2 (8), AVX-512 (16).
+ * The packet tracer is compiled for each x86 width and the widest the CPU
+ * has runs (cpu_ref/packet_dispatch.c). The one thing the extensions lack, a
+ * comparison's lanes as a bit mask, is here per instruction set.
+ */
+#ifndef RT_SIMD_WIDE_H
+#define RT_SIMD_WIDE_H
+
+#include <stdint.h>
+
+#if defined(__AVX512F__)
+#include <immintrin.h>
+#define RT_VN 16
+#elif defined(__AVX2__)
+#include <immintrin.h>
+#define RT_VN 8
+#elif defined(__SSE2__)
+#include <emmintrin.h>
+#define RT_VN 4
+#elif defined(__aarch64__)
+#include <arm_neon.h>
+#define RT_VN 4
+#else
+#define RT_VN 4
+#endif
+
+/* RT_VN lanes of float and of int32 (a comparison's result: -1 or 0). */
+typedef float rt_vf __attribute__((vector_size(4 * RT_VN)));
+typedef int32_t rt_vi __attribute__((vector_size(4 * RT_VN)));
+
+/* x in every lane, m ? a : b per lane (m a comparison result), and the
+ * lanes of a bit mask as a comparison result: one instruction where the
+ * instruction set has one (the extensions' generic forms compile to lane by
+ * lane code for wide vectors). */
+#if defined(__AVX512F__)
+static inline rt_vf rt_vsplat(float x) {
+    return (rt_vf)_mm512_set1_ps(x);
+}
+static inline rt_vi rt_vsplat_i(int32_t x) {
+    return (rt_vi)_mm512_set1_epi32(x);
+}
+static inline rt_vf rt_vsel(rt_vi m, rt_vf a, rt_vf b) {
+    return (rt_vf)_mm512_ternarylogic_epi32((__m512i)m, (__m512i)a, (__m512i)b, 0xca);
+}
+static inline rt_vi rt_vmask(uint32_t bits) {
+    return (rt_vi)_mm512_maskz_set1_epi32((__mmask16)bits, -1);
+}
+#elif defined(__AVX2__)
+static inline rt_vf rt_vsplat(float x) {
+    return (rt_vf)_mm256_set1_ps(x);
+}
+static inline rt_vi rt_vsplat_i(int32_t x) {
+    return (rt_vi)_mm256_set1_epi32(x);
+}
+static inline rt_vf rt_vsel(rt_vi m, rt_vf a, rt_vf b) {
+    return (rt_vf)_mm256_blendv_ps((__m256)b, (__m256)a, (__m256)m);
+}
+#elif defined(__SSE2__)
+static inline rt_vf rt_vsplat(float x) {
+    return (rt_vf)_mm_set1_ps(x);
+}
+static inline rt_vi rt_vsplat_i(int32_t x) {
+    return (rt_vi)_mm_set1_epi32(x);
+}
+#elif defined(__aarch64__)
+static inline rt_vf rt_vsplat(float x) {
+    return (rt_vf)vdupq_n_f32(x);
+}
+static inline rt_vi rt_vsplat_i(int32_t x) {
+    return (rt_vi)vdupq_n_s32(x);
+}
+static inline rt_vf rt_vsel(rt_vi m, rt_vf a, rt_vf b) {
+    return (rt_vf)vbslq_f32((uint32x4_t)m, (float32x4_t)a, (float32x4_t)b);
+}
+#else
+static inline rt_vf rt_vsplat(float x) {
+    rt_vf v;
+    for (int i = 0; i < RT_VN; i++) v[i] = x;
+    return v;
+}
+static inline rt_vi rt_vsplat_i(int32_t x) {
+    rt_vi v;
+    for (int i = 0; i < RT_VN; i++) v[i] = x;
+    return v;
+}
+#endif
+#if defined(__SSE2__) && !defined(__AVX2__) || !defined(__SSE2__) && !defined(__aarch64__)
+static inline rt_vf rt_vsel(rt_vi m, rt_vf a, rt_vf b) {
+    return (rt_vf)((m & (rt_vi)a) | (~m & (rt_vi)b));
+}
+#endif
+#if !defined(__AVX512F__)
+static inline rt_vi rt_vmask(uint32_t bits) {
+    rt_vi lane_bit;
+    for (int i = 0; i < RT_VN; i++) lane_bit[i] = 1 << i;
+    return (rt_vsplat_i((int32_t)bits) & lane_bit) == lane_bit;
+}
+#endif
+
+static inline rt_vi rt_vsel_i(rt_vi m, rt_vi a, rt_vi b) {
+    return (rt_vi)rt_vsel(m, (rt_vf)a, (rt_vf)b);
+}
+
+/* The oracle's 'a > b ? a : b' and 'a < b ? a : b' per lane (b where they
+ * are equal or either is NaN): exactly what x86's max and min instructions
+ * compute. */
+static inline rt_vf rt_vmax_of(rt_vf a, rt_vf b) {
+#if defined(__AVX512F__)
+    return (rt_vf)_mm512_max_ps((__m512)a, (__m512)b);
+#elif defined(__AVX2__)
+    return (rt_vf)_mm256_max_ps((__m256)a, (__m256)b);
+#elif defined(__SSE2__)
+    return (rt_vf)_mm_max_ps((__m128)a, (__m128)b);
+#else
+    return rt_vsel(a > b, a, b);
+#endif
+}
+
+static inline rt_vf rt_vmin_of(rt_vf a, rt_vf b) {
+#if defined(__AVX512F__)
+    return (rt_vf)_mm512_min_ps((__m512)a, (__m512)b);
+#elif defined(__AVX2__)
+    return (rt_vf)_mm256_min_ps((__m256)a, (__m256)b);
+#elif defined(__SSE2__)
+    return (rt_vf)_mm_min_ps((__m128)a, (__m128)b);
+#else
+    return rt_vsel(a < b, a, b);
+#endif
+}
+
+/* fabsf per lane: the sign bit cleared. */
+static inline rt_vf rt_vabs(rt_vf a) {
+    return (rt_vf)((rt_vi)a & rt_vsplat_i(0x7fffffff));
+}
+
+/* Bit l set where lane l of m (a comparison result) is. */
+static inline uint32_t rt_vbits(rt_vi m) {
+#if defined(__AVX512F__)
+    return (uint32_t)_mm512_cmplt_epi32_mask((__m512i)m, _mm512_setzero_si512());
+#elif defined(__AVX2__)
+    return (uint32_t)_mm256_movemask_ps((__m256)m);
+#elif defined(__SSE2__)
+    return (uint32_t)_mm_movemask_ps((__m128)m);
+#elif defined(__aarch64__)
+    static const uint32_t bit[4] = {1, 2, 4, 8};
+    return vaddvq_u32(vandq_u32((uint32x4_t)m, vld1q_u32(bit)));
+#else
+    uint32_t bits = 0;
+    for (int i = 0; i < RT_VN; i++) bits |= (uint32_t)(m[i] & 1) << i;
+    return bits;
+#endif
+}
+
+#endif /* RT_SIMD_WIDE_H */
