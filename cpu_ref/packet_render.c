@@ -1,7 +1,7 @@
 /* packet_render.c - the packet path (Langr 2016, section 3.2.6, with larger
  * packets): tiles of TILE_W x TILE_H pixels, one ray packet per tile
- * (cpu_ref/packet_trace.c), their shadow rays traced as packets too, tile
- * rows taken by the pool's workers in turn.
+ * (cpu_ref/packet_trace.c), their shadow rays traced as packets too, blocks
+ * of tiles taken by the pool's workers in turn.
  *
  * Bit-identical to the scalar oracle: the packet tracer gives each lane the
  * oracle's hit, and shading is the shared code (kernels/rt_shade.h) split
@@ -122,24 +122,34 @@ static void render_tile(const rt_cpu_frame *f, const rt_scene_view *v, int x0, i
 
 /* ---- the frame ---------------------------------------------------------------- */
 
+/* Tiles are taken in blocks of BLOCK x BLOCK tiles, in rows of blocks: the
+ * tiles traced one after another then lie close together and find their
+ * BVH nodes still in cache (a row of tiles would come back to its
+ * neighbours below a whole image width later). */
+enum { BLOCK = 8 };
+
 typedef struct packet_job {
     const rt_cpu_frame *frame;
     rt_cpu_counts *per_worker;
-    atomic_int next_row; /* the next row of tiles to take */
+    atomic_int next_block;
 } packet_job;
 
-static void packet_rows(void *ctx, int worker, int workers) {
+static void packet_blocks(void *ctx, int worker, int workers) {
     (void)workers;
     packet_job *job = ctx;
     const rt_cpu_frame *f = job->frame;
     rt_scene_view v = rt_flat_view(f->flat);
-    const int w = v.hdr->width, rows = (v.hdr->height + TILE_H - 1) / TILE_H;
+    const int w = v.hdr->width, h = v.hdr->height;
+    const int bw = BLOCK * TILE_W, bh = BLOCK * TILE_H;
+    const int across = (w + bw - 1) / bw, blocks = across * ((h + bh - 1) / bh);
     for (;;) {
-        int row = atomic_fetch_add_explicit(&job->next_row, 1, memory_order_relaxed);
-        if (row >= rows) break;
-        for (int x0 = 0; x0 < w; x0 += TILE_W)
-            render_tile(f, &v, x0, row * TILE_H, &job->per_worker[worker]);
-        if (worker == 0 && f->progress) f->progress(f->progress_user, (double)(row + 1) / rows);
+        int b = atomic_fetch_add_explicit(&job->next_block, 1, memory_order_relaxed);
+        if (b >= blocks) break;
+        const int bx = (b % across) * bw, by = (b / across) * bh;
+        for (int y0 = by; y0 < by + bh && y0 < h; y0 += TILE_H)
+            for (int x0 = bx; x0 < bx + bw && x0 < w; x0 += TILE_W)
+                render_tile(f, &v, x0, y0, &job->per_worker[worker]);
+        if (worker == 0 && f->progress) f->progress(f->progress_user, (double)(b + 1) / blocks);
     }
 }
 
@@ -148,13 +158,13 @@ void rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *c
     packet_job job;
     job.frame = frame;
     job.per_worker = calloc((size_t)workers, sizeof(rt_cpu_counts));
-    atomic_init(&job.next_row, 0);
+    atomic_init(&job.next_block, 0);
     memset(counts, 0, sizeof *counts);
     if (!job.per_worker) return;
     if (pool)
-        rt_pool_run(pool, packet_rows, &job);
+        rt_pool_run(pool, packet_blocks, &job);
     else
-        packet_rows(&job, 0, 1);
+        packet_blocks(&job, 0, 1);
     for (int i = 0; i < workers; i++) {
         counts->rays += job.per_worker[i].rays;
         counts->primary_rays += job.per_worker[i].primary_rays;

@@ -67,7 +67,8 @@ typedef struct pk_state {
      * traversal is done, as the oracle divides) and its names. */
     rt_vf V[G], W[G], det[G];
     rt_vi prim[G], inst[G], entry[G];
-    rt_vi box[G], tri[G]; /* tests per lane, when counts->per_lane */
+    rt_vi box[G], tri[G]; /* tests per lane, when per_lane */
+    int per_lane;         /* counts->per_lane */
     float hi_max;         /* the greatest of hi (the interval test's) */
     rt_pk_counts *counts;
     uint32_t alive[G];     /* lanes of each group still tracing */
@@ -100,7 +101,7 @@ static inline uint32_t lanes_in(uint32_t m) {
 /* Counts one test for each lane of m in group g. */
 static inline void count(const pk_state *st, uint64_t *total, rt_vi *per_lane, int g, uint32_t m) {
     *total += lanes_in(m);
-    if (st->counts->per_lane) per_lane[g] -= rt_vmask(m);
+    if (st->per_lane) per_lane[g] -= rt_vmask(m);
 }
 
 /* ---- set-up --------------------------------------------------------------- */
@@ -477,7 +478,7 @@ static void pk_bvh(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, in
         uint32_t mask;
     } item;
     const rt_pk_node *nodes = st->w->nodes;
-    item stack[3 * RT_STACK_SIZE + 1];
+    item stack[(RT_PK_WIDTH - 1) * RT_STACK_SIZE + 1];
     int sp = 0;
     rt_vf tn;
     item cur = {entry, 0, 0, 0};
@@ -498,16 +499,45 @@ static void pk_bvh(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, in
         } else {
             const rt_u32 child = n->ref[c];
             const rt_pk_node *ch = &nodes[child];
-            item hit[4];
-            float key[4];
+            item hit[RT_PK_WIDTH];
+            float key[RT_PK_WIDTH];
             int hits = 0;
-            for (int s = 0; s < 4 && ch->ref[s] != RT_PK_NO_CHILD; s++) {
-                uint32_t m = 0;
-                rt_vf t;
-                int f = pk_enter(ch, s, p, st, cur.first, &m, &t);
-                if (f < 0) continue;
+            /* The children each group from 'first' on enters: with one
+             * vector for the whole packet, every slot is tested without a
+             * branch (an empty slot's inverted box is missed by every lane)
+             * by the lanes that entered this node; with several, from the
+             * first group on (pk_enter). */
+            uint32_t ms[RT_PK_WIDTH], entered = 0;
+            int fs[RT_PK_WIDTH];
+            rt_vf ts[RT_PK_WIDTH];
+            if (G == 1) {
+                const uint32_t lanes = cur.mask & st->alive[0];
+                int kids = 0;
+                for (int s = 0; s < RT_PK_WIDTH; s++) {
+                    kids += ch->ref[s] != RT_PK_NO_CHILD;
+                    ms[s] = pk_box(ch, s, p, st, 0, &ts[s]) & lanes;
+                    fs[s] = 0;
+                    entered |= (uint32_t)(ms[s] != 0) << s;
+                }
+                st->counts->group_box_tests += (uint64_t)kids;
+                st->counts->box_tests += (uint64_t)kids * lanes_in(lanes);
+                if (st->per_lane) st->box[0] -= rt_vmask(lanes) * kids;
+            } else {
+                for (int s = 0; s < RT_PK_WIDTH && ch->ref[s] != RT_PK_NO_CHILD; s++) {
+                    ms[s] = 0;
+                    fs[s] = pk_enter(ch, s, p, st, cur.first, &ms[s], &ts[s]);
+                    entered |= (uint32_t)(fs[s] >= 0) << s;
+                }
+            }
+            for (; entered; entered &= entered - 1) {
+                const int s = lowest_bit(entered), f = fs[s];
+                /* The child's node is read next (the nearest) or later. */
+                if (!(ch->count[s] & RT_NODE_LEAF_FLAG)) {
+                    __builtin_prefetch(&nodes[ch->ref[s]]);
+                    __builtin_prefetch((const char *)&nodes[ch->ref[s]] + 64);
+                }
                 /* Insertion by (first group, entry distance of its first lane). */
-                float k = t[lowest_bit(m)];
+                float k = ts[s][lowest_bit(ms[s])];
                 int i = hits++;
                 while (i > 0 &&
                        (hit[i - 1].first > f || (hit[i - 1].first == f && key[i - 1] > k))) {
@@ -515,7 +545,7 @@ static void pk_bvh(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, in
                     key[i] = key[i - 1];
                     i--;
                 }
-                hit[i] = (item){child, s, f, m};
+                hit[i] = (item){child, s, f, ms[s]};
                 key[i] = k;
             }
             if (hits) {
@@ -552,6 +582,7 @@ void RT_PK_TRACE(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *
     st.s = s;
     st.w = w;
     st.counts = counts;
+    st.per_lane = counts->per_lane;
     st.any_hit = any_hit;
     st.method = s->hdr->tri_method;
     st.alive_groups = 0;

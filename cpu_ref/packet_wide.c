@@ -27,14 +27,17 @@ enum { LEAF_MERGE = RT_PK_LEAF_MERGE };
 /* A new node with no children; UINT32_MAX when out of memory. */
 static uint32_t new_node(builder *b) {
     if (b->count == b->cap) {
+        /* Aligned to cache lines: a node is then exactly two of them. */
         uint32_t cap = b->cap ? 2 * b->cap : 64;
-        rt_pk_node *n = realloc(b->nodes, sizeof(rt_pk_node) * cap);
+        rt_pk_node *n = aligned_alloc(64, sizeof(rt_pk_node) * cap);
         if (!n) return UINT32_MAX;
+        if (b->count) memcpy(n, b->nodes, sizeof(rt_pk_node) * b->count);
+        free(b->nodes);
         b->nodes = n;
         b->cap = cap;
     }
     rt_pk_node *n = &b->nodes[b->count];
-    for (int c = 0; c < 4; c++) {
+    for (int c = 0; c < RT_PK_WIDTH; c++) {
         for (int k = 0; k < 3; k++) {
             n->bmin[k][c] = RT_INF;
             n->bmax[k][c] = -RT_INF;
@@ -121,9 +124,9 @@ static uint32_t build_tree(builder *b, uint32_t root, work *stack) {
     if (entry == UINT32_MAX || !set_child(b, entry, 0, root, stack, &sp)) return UINT32_MAX;
     while (sp > 0) {
         work w = stack[--sp];
-        uint32_t kids[4] = {b->bin[w.bin].a, b->bin[w.bin].b};
+        uint32_t kids[RT_PK_WIDTH] = {b->bin[w.bin].a, b->bin[w.bin].b};
         int n = 2;
-        while (n < 4) {
+        while (n < RT_PK_WIDTH) {
             int open = -1;
             float best = -1.0f;
             for (int i = 0; i < n; i++) {

@@ -19,6 +19,11 @@
 
 #define RT_PK_NO_CHILD 0xffffffffu
 
+/* Children per wide node. */
+#ifndef RT_PK_WIDTH
+#define RT_PK_WIDTH 4
+#endif
+
 /* Subtrees of at most this many primitives (one run of entries) become one
  * leaf of the wide tree. */
 #ifndef RT_PK_LEAF_MERGE
@@ -30,11 +35,11 @@
  * count has RT_NODE_LEAF_FLAG: ref and count are then the layout leaf's a and
  * b (first entry, count | flag); else ref is the child's node index. */
 typedef struct rt_pk_node {
-    float bmin[3][4];
-    float bmax[3][4];
-    uint32_t ref[4];
-    uint32_t count[4];
-} rt_pk_node;
+    float bmin[3][RT_PK_WIDTH];
+    float bmax[3][RT_PK_WIDTH];
+    uint32_t ref[RT_PK_WIDTH];
+    uint32_t count[RT_PK_WIDTH];
+} rt_pk_node; /* 32 bytes a child, allocated on 64-byte lines */
 
 /* Every BVH of a layout. Each tree starts at an entry node whose one child
  * is the binary root (its box is the root's box, tested first, as the oracle
