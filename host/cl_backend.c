@@ -204,8 +204,8 @@ static rt_status build_program(cl_state *s, const rt_flat *f, const char *extra,
         return fail(msg, size, RT_ERROR_INVALID_ARGUMENT,
                     "extra kernel build options (device_options) longer than %d characters",
                     RT_CL_EXTRA_MAX);
-    /* The exact build has no -cl-mad-enable, no fast-relaxed maths (they change
-     * results); study variants append theirs as device options, after ours. */
+    /* The exact build: no mad or fast-relaxed maths (they change results).
+     * Study variants append their options (device_options) after ours. */
     snprintf(options, sizeof options, "%s%s%s%s",
              s->dev.cr_div_sqrt ? "-cl-fp32-correctly-rounded-divide-sqrt " : "", defines,
              extra[0] ? " " : "", extra);

@@ -37,9 +37,9 @@ static const char usage[] =
     "                 (the thesis's benchmark set-up)\n"
     "  --cl-options OPTS\n"
     "                 extra OpenCL compiler options, e.g. -cl-mad-enable,\n"
-    "                 -cl-fast-relaxed-math, -DRT_NATIVE_MATH, appended to the kernels'\n"
-    "                 build options; results may then differ from the CPU oracle and\n"
-    "                 --stats says so (the speed-versus-error study)\n"
+    "                 -cl-fast-relaxed-math, -DRT_NATIVE_MATH (options appended to\n"
+    "                 the kernels' build); results may then differ from the CPU\n"
+    "                 oracle, and --stats says so (the speed-versus-error study)\n"
     "  --stats        print BVH cost, box and triangle tests per ray and render time;\n"
     "                 for opencl also the device, kernel specialisation, compile,\n"
     "                 upload (bytes), per-kernel and download times\n";
