@@ -157,7 +157,8 @@ def axis_range(v, log, below, above, zero=False):
     return (0.0 if zero and lo >= 0 else lo - below * span), hi + above * span
 
 
-def panel(data_dir, key, pts, front, xlabel, ylabel, title, logx=False, logy=False, ymin0=False):
+def panel(data_dir, key, pts, front, xlabel, ylabel, title, logx=False, logy=False, ymin0=False,
+          label_all=False):
     """gnuplot commands for one panel: every point (grey), the Pareto front
     (red, connected in x order, larger) and the labels of the front and of the
     other points that have room (spaced_labels)."""
@@ -169,7 +170,7 @@ def panel(data_dir, key, pts, front, xlabel, ylabel, title, logx=False, logy=Fal
     # Labels above their points, except every second one of the front (in x
     # order), which goes below: neighbours on the front do not overwrite each
     # other.
-    labels = spaced_labels(pts, front, logx, logy)
+    labels = pts if label_all else spaced_labels(pts, front, logx, logy)
     front_x = sorted(p for p, f in zip(pts, front) if f)
     below = set(front_x[1::2])
     write_points(label_path, [p for p in labels if p not in below])
@@ -409,7 +410,7 @@ def tri_tests(args):
         fr = pareto(trows, [(lambda s: s['mrays_med'], 'max'), (lambda s, k=key: s[k], 'min')])
         panels.append(panel(data, key, pts, fr, 'Mrays/s (median time, all scenes)', ylabel,
                             'Mrays/s against %s' % ylabel.split(' (')[0], logy=logy,
-                            ymin0=not logy))
+                            ymin0=not logy, label_all=True))
     draw(os.path.join(args.out, 'plots', 'tri_tests.png'), data,
          'Triangle tests: speed against error (%d threads, cpu oracle)' % args.threads, panels, 3,
          1650, 520)
@@ -675,13 +676,13 @@ def opencl_options(args):
         panels.append(panel(data, 'max%d' % i, pts, pareto(vs, obj[:2]), 'frame ms (median)',
                             'max abs difference from the oracle',
                             '%s: max difference against frame time' % short_scene(name),
-                            ymin0=True))
+                            ymin0=True, label_all=True))
         pts = [(float(r['median_ms']), 100.0 * r['differ'] / r['pixels'], short[r['name']])
                for r in vs]
         panels.append(panel(data, 'px%d' % i, pts, pareto(vs, [obj[0], obj[2]]),
                             'frame ms (median)', 'pixels differing from the oracle (%, float)',
                             '%s: differing pixels against frame time' % short_scene(name),
-                            ymin0=True))
+                            ymin0=True, label_all=True))
         same = [r['options'] for r in vs if r['differ'] == 0 and r is not exact]
         diff = [r for r in vs if r['differ'] > 0]
         noise = spread(vs, 'min_ms', 'median_ms') if args.runs >= 3 else 0.0
