@@ -154,7 +154,37 @@ def axis_range(v, log, below, above, zero=False):
         return 10 ** (lo - below * span), 10 ** (hi + above * span)
     lo, hi = min(v), max(v)
     span = hi - lo if hi > lo else (abs(hi) or 1.0) * 0.2
-    return (0.0 if zero and lo >= 0 else lo - below * span), hi + above * span
+    # zero: the axis starts just below 0 (room for labels under points at 0).
+    return (-0.1 * span if zero and lo >= 0 else lo - below * span), hi + above * span
+
+
+# Vertical label offsets (character heights) of the levels label_levels
+# assigns: above the point, below it, further above, further below.
+LABEL_OFFSETS = (0.5, -0.8, 1.6, -1.9)
+
+
+def label_levels(pts, logx, logy, gap_x=0.22, gap_y=0.06):
+    """A level (LABEL_OFFSETS) per label so that labels whose points are close
+    (axes scaled to [0, 1]; labels run to the right) do not print over each
+    other: in x order, each takes the first level no close labelled point
+    before it holds."""
+    if not pts:
+        return []
+    def coords(p):
+        return (math.log10(p[0]) if logx and p[0] > 0 else p[0],
+                math.log10(p[1]) if logy and p[1] > 0 else p[1])
+    cs = [coords(p) for p in pts]
+    lo = [min(c[k] for c in cs) for k in (0, 1)]
+    span = [max(c[k] for c in cs) - lo[k] or 1.0 for k in (0, 1)]
+    norm = [((c[0] - lo[0]) / span[0], (c[1] - lo[1]) / span[1]) for c in cs]
+    levels = [0] * len(pts)
+    done = []
+    for i in sorted(range(len(pts)), key=lambda i: norm[i][0]):
+        taken = {levels[j] for j in done
+                 if abs(norm[i][0] - norm[j][0]) < gap_x and abs(norm[i][1] - norm[j][1]) < gap_y}
+        levels[i] = next((lv for lv in range(len(LABEL_OFFSETS)) if lv not in taken), 0)
+        done.append(i)
+    return levels
 
 
 def panel(data_dir, key, pts, front, xlabel, ylabel, title, logx=False, logy=False, ymin0=False,
@@ -167,14 +197,10 @@ def panel(data_dir, key, pts, front, xlabel, ylabel, title, logx=False, logy=Fal
     label_path = os.path.join(data_dir, 'plot_%s_labels.dat' % key)
     write_points(all_path, pts)
     write_points(front_path, sorted((p for p, f in zip(pts, front) if f), key=lambda p: p[0]))
-    # Labels above their points, except every second one of the front (in x
-    # order), which goes below: neighbours on the front do not overwrite each
-    # other.
     labels = pts if label_all else spaced_labels(pts, front, logx, logy)
-    front_x = sorted(p for p, f in zip(pts, front) if f)
-    below = set(front_x[1::2])
-    write_points(label_path, [p for p in labels if p not in below])
-    write_points(label_path + '.below', [p for p in labels if p in below])
+    levels = label_levels(labels, logx, logy)
+    for lv in range(len(LABEL_OFFSETS)):
+        write_points('%s.%d' % (label_path, lv), [p for p, l in zip(labels, levels) if l == lv])
     cmds = ['unset logscale', 'set title %s' % gp_str(title), 'set xlabel %s' % gp_str(xlabel),
             'set ylabel %s' % gp_str(ylabel), 'set grid', 'unset key',
             'set format x "%g"', 'set format y "%g"',
@@ -188,10 +214,10 @@ def panel(data_dir, key, pts, front, xlabel, ylabel, title, logx=False, logy=Fal
     cmds.append(
         'plot %s using 1:2 with points pt 7 ps 1.1 lc rgb "#7f7f7f" title "measured", '
         '%s using 1:2 with linespoints pt 7 ps 1.8 lw 2 lc rgb "#d62728" title "Pareto front", '
-        '%s using 1:2:3 with labels left offset 0.7,0.5 font ",9" notitle, '
-        '%s using 1:2:3 with labels left offset 0.7,-0.8 font ",9" notitle'
-        % (gp_str(all_path), gp_str(front_path), gp_str(label_path),
-           gp_str(label_path + '.below')))
+        '%s' % (gp_str(all_path), gp_str(front_path),
+                ', '.join('%s using 1:2:3 with labels left offset 0.7,%.1f font ",9" notitle'
+                          % (gp_str('%s.%d' % (label_path, lv)), dy)
+                          for lv, dy in enumerate(LABEL_OFFSETS))))
     return cmds
 
 
