@@ -541,16 +541,20 @@ def builders(args):
         md.append(md_table(head, rows, right={1, 2, 3, 4, 5, 6, 7}))
         md.append('')
         # Panels: SAH against build ms; trace ms against build ms.
+        # Build times on a log axis where they span more than a factor of 8.
+        bt = [float(r['build_min']) for r in tsv]
+        logx = min(bt) > 0 and max(bt) / min(bt) > 8
+        xlabel = 'build ms (min%s)' % (', log scale' if logx else '')
         pts = [(float(r['build_min']), float(r['sah']), setup_short(r)) for r in tsv]
         fr = pareto(tsv, obj[:2])
-        panels.append(panel(data, 'sah%d' % len(panels), pts, fr, 'build ms (min, log scale)',
+        panels.append(panel(data, 'sah%d' % len(panels), pts, fr, xlabel,
                             'SAH cost (Ct = 1, Ci = 2)', '%s: SAH against build time'
-                            % short_scene(name), logx=True))
+                            % short_scene(name), logx=logx))
         pts = [(float(r['build_min']), float(r['trace_min']), setup_short(r)) for r in tsv]
         fr = pareto(tsv, [obj[0], obj[2]])
-        panels.append(panel(data, 'trace%d' % len(panels), pts, fr, 'build ms (min, log scale)',
+        panels.append(panel(data, 'trace%d' % len(panels), pts, fr, xlabel,
                             'trace ms (min, one frame)', '%s: trace time against build time'
-                            % short_scene(name), logx=True))
+                            % short_scene(name), logx=logx))
         # Reading.
         d = {setup_short(r): r for r in tsv}
         best_sah = min(tsv, key=lambda r: float(r['sah']))
