@@ -331,7 +331,7 @@ static rt_scene *soup_scene(uint32_t tris, uint32_t seed) {
 /* The traversal over trees of the fast builder at bins 64 and leaf sizes 1
  * and 16 (and bins 4) finds the hits brute force finds, bit for bit. */
 static void test_ranges_traverse(void) {
-    rt_scene *s = soup_scene(6000, 9);
+    rt_scene *s = soup_scene(4000, 9);
     CHECK(s != NULL);
     if (!s) return;
     const rt_mesh_data *md = &s->meshes[0];
@@ -355,7 +355,7 @@ static void test_ranges_traverse(void) {
         float lo[3], hi[3];
         rt_scene_bounds(s, lo, hi);
         int bad = 0, hits = 0;
-        for (int i = 0; i < 3000; i++) {
+        for (int i = 0; i < 2000; i++) {
             rt_ray_d r;
             oracle_ray(&flat.hdr, lo, hi, i, &r);
             rt_hit_d a, b;
@@ -369,7 +369,7 @@ static void test_ranges_traverse(void) {
         }
         CHECK_MSG(bad == 0, "bins %d leaf %d: %d rays differ from brute force", settings[k][0],
                   settings[k][1], bad);
-        CHECK_MSG(hits > 300, "bins %d leaf %d: only %d hits: a weak test", settings[k][0],
+        CHECK_MSG(hits > 200, "bins %d leaf %d: only %d hits: a weak test", settings[k][0],
                   settings[k][1], hits);
         rt_flat_free(&flat);
     }
