@@ -557,6 +557,18 @@ def builders(args):
                             % short_scene(name), logx=logx))
         # Reading.
         d = {setup_short(r): r for r in tsv}
+        # Setups that built the very same trees (equal hashes of their bytes)
+        # trace the same rays through the same nodes: their spread is noise.
+        same = {}
+        for r in tsv:
+            same.setdefault(r['tree'], []).append(r)
+        twins = max(same.values(), key=len)
+        tw = [float(r['trace_min']) for r in twins]
+        twin_noise = pct(max(tw), min(tw)) if len(twins) > 1 else None
+
+        def within(a, b):
+            return ' (within the noise of identical trees, below)' if twin_noise is not None and \
+                abs(pct(a, b)) <= twin_noise else ''
         best_sah = min(tsv, key=lambda r: float(r['sah']))
         best_build = min(tsv, key=lambda r: float(r['build_min']))
         best_trace = min(tsv, key=lambda r: float(r['trace_min']))
@@ -568,27 +580,18 @@ def builders(args):
                  setup_short(best_build), ms(float(best_build['build_min'])),
                  setup_short(best_trace), ms(float(best_trace['trace_min'])))]
         if 'fast 16/10' in d and 'thesis-scalar' in d:
+            a, b = float(d['thesis-scalar']['trace_min']), float(d['fast 16/10']['trace_min'])
             s.append('The thesis\'s leaf rule (every node of at most 10 triangles is a leaf) gives '
                      'an SAH %.0f%% above the fast builder\'s default (which keeps splitting while '
-                     'the SAH says so) and a frame %.0f%% %s.' % (
+                     'the SAH says so) and a frame %.0f%% %s%s.' % (
                          pct(float(d['thesis-scalar']['sah']), float(d['fast 16/10']['sah'])),
-                         abs(pct(float(d['thesis-scalar']['trace_min']),
-                                 float(d['fast 16/10']['trace_min']))),
-                         'slower' if float(d['thesis-scalar']['trace_min']) >
-                         float(d['fast 16/10']['trace_min']) else 'faster'))
+                         abs(pct(a, b)), 'slower' if a > b else 'faster', within(a, b)))
         if 'embree' in d and 'fast 16/10' in d:
             s.append('Embree\'s tree has an SAH %+.1f%% against the default\'s, built in %s ms '
                      'against %s ms.' % (
                          pct(float(d['embree']['sah']), float(d['fast 16/10']['sah'])),
                          ms(float(d['embree']['build_min'])),
                          ms(float(d['fast 16/10']['build_min']))))
-        # Setups that built the very same trees (equal hashes of their bytes)
-        # trace the same rays through the same nodes: their spread is noise.
-        same = {}
-        for r in tsv:
-            same.setdefault(r['tree'], []).append(r)
-        twins = max(same.values(), key=len)
-        tw = [float(r['trace_min']) for r in twins]
         s.append('The rank correlation of SAH and frame time over the setups is %.2f (Spearman). '
                  '%s%s.' % (
                      rho, 'Frame medians were up to %.1f%% above their minimum' % noise
@@ -746,9 +749,24 @@ def opencl_options(args):
             s.append('No variant\'s min frame time was below the exact build\'s (the nearest: '
                      '%s, %+.1f%%)' % (short[fastest['name']], gain))
         s[-1] += ('; frame medians were up to %.1f%% above their minimum (other work on the '
-                  'shared machine), so %s. Pareto-optimal (frame time, max difference, differing '
-                  'pixels): %s.' % (noise, noise_note(args, noise, gain, 'that difference'),
-                                    names(short[r['name']] for r, f in zip(vs, front) if f)))
+                  'shared machine), so %s.' % (noise, noise_note(args, noise, gain,
+                                                                'that difference')))
+        if same:
+            twins = [r for r in vs if r['differ'] == 0 and r is not exact]
+            diffs = [pct(float(r['min_ms']), float(exact['min_ms'])) for r in twins]
+            if args.runs < 3:
+                verdict = 'too few runs to tell noise from a real difference'
+            elif max(abs(x) for x in diffs) <= noise:
+                verdict = 'within the runs\' spread, so no speed-up is shown'
+            else:
+                verdict = ('more than the runs\' spread for some: the compiler may emit other, '
+                           'faster code for the same arithmetic, or the noise was larger than '
+                           'its measure')
+            s.append('%s gave the exact build\'s bits; their min frame times differ from its by '
+                     '%s (%s).' % (names('`%s`' % r['options'] for r in twins),
+                                   names('%+.1f%%' % x for x in diffs), verdict))
+        s.append('Pareto-optimal (frame time, max difference, differing pixels): %s.' % names(
+            short[r['name']] for r, f in zip(vs, front) if f))
         read.append(' '.join(s))
     md.append('![OpenCL build options: image error against frame time per scene, Pareto fronts '
               'marked](plots/opencl_options.png)')
