@@ -564,11 +564,14 @@ def builders(args):
             same.setdefault(r['tree'], []).append(r)
         twins = max(same.values(), key=len)
         tw = [float(r['trace_min']) for r in twins]
-        twin_noise = pct(max(tw), min(tw)) if len(twins) > 1 else None
+        groups = [[float(r['trace_min']) for r in g] for g in same.values() if len(g) > 1]
+        twin_noise = max((pct(max(g), min(g)) for g in groups), default=None)
 
         def within(a, b):
-            return ' (within the noise of identical trees, below)' if twin_noise is not None and \
-                abs(pct(a, b)) <= twin_noise else ''
+            if twin_noise is None:
+                return ''
+            return ' (%s the %.1f%% by which identical trees differed in this run)' % (
+                'within' if abs(pct(a, b)) <= twin_noise else 'more than', twin_noise)
         best_sah = min(tsv, key=lambda r: float(r['sah']))
         best_build = min(tsv, key=lambda r: float(r['build_min']))
         best_trace = min(tsv, key=lambda r: float(r['trace_min']))
@@ -736,9 +739,10 @@ def opencl_options(args):
             s.append('%s changed no bit here: the image is the oracle\'s.' % names(
                 '`%s`' % x for x in same))
         if diff:
-            s.append(names('`%s` changed %d pixels (%d visible in 8 bits; max %s, PSNR %.1f dB)'
-                           % (r['options'], r['differ'], r['differ8'], sci(r['max']), r['psnr'])
-                           for r in diff) + '.')
+            s.append(names('`%s` changed %d pixels (%d visible in 8 bits; max %s, PSNR %.1f dB; '
+                           'min frame time %+.1f%% against the exact build)'
+                           % (r['options'], r['differ'], r['differ8'], sci(r['max']), r['psnr'],
+                              pct(float(r['min_ms']), float(exact['min_ms']))) for r in diff) + '.')
         others = [r for r in vs if r is not exact]
         fastest = min(others, key=lambda r: float(r['min_ms']))
         gain = pct(float(fastest['min_ms']), float(exact['min_ms']))
