@@ -35,8 +35,10 @@ typedef struct rt_backend_ops {
      * selects a device (NULL: the default). */
     rt_status (*render)(rt_scene *scene, const rt_prepared *prep, const char *device,
                         const rt_render_options *opt, rt_framebuffer *fb, rt_render_stats *stats);
+    /* device_options: extra compiler options (rt_render_options), may be NULL. */
     rt_status (*trace)(rt_scene *scene, const rt_prepared *prep, const char *device,
-                       const rt_ray_d *rays, size_t count, rt_hit_d *hits, int any_hit);
+                       const char *device_options, const rt_ray_d *rays, size_t count,
+                       rt_hit_d *hits, int any_hit);
     /* 1 when some device exists; else 0 and a reason in msg. */
     int (*available)(char *msg, size_t msg_size);
     void (*state_free)(void *state);

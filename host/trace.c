@@ -87,7 +87,8 @@ rt_status rt_trace_rays_with(rt_scene *scene, const rt_ray *rays, size_t count, 
         /* The device compiles the triangle test in from the header it is given. */
         rt_prepared with_test = prep;
         with_test.flat = &flat;
-        st = device_ops->trace(scene, &with_test, device, in, count, out, any_hit);
+        st = device_ops->trace(scene, &with_test, device, opt.device_options, in, count, out,
+                               any_hit);
         if (st != RT_OK) {
             free(in);
             free(out);
