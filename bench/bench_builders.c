@@ -169,7 +169,7 @@ static int trace_frame(bench *b, double *ms, uint64_t *rays, char *msg, size_t m
     rt_bvh_free(&top);
     if (st != RT_OK) return 0;
     flat.hdr.flags &= ~(uint32_t)RT_SCENE_SECONDARY; /* direct_only */
-    rt_cpu_frame frame = {&flat, RT_AOV_NONE, b->image, 3, NULL, NULL};
+    rt_cpu_frame frame = {&flat, NULL, RT_AOV_NONE, b->image, 3, NULL, NULL};
     rt_cpu_counts counts;
     double t0 = rt_now_ms();
     rt_cpu_render(&frame, b->pool, &counts);
