@@ -31,9 +31,6 @@
 #define RT_PK_TRACE      RT_PK_CAT(rt_pk_trace, RT_PK_ISA)
 
 enum { L = RT_PK_LANES, N = RT_VN, G = RT_PK_LANES / RT_VN };
-/* The interval test pays where a packet is many vectors (measured: SSE2 and
- * NEON's four groups), not at two groups or one. */
-enum { USE_IA = G > 2 };
 _Static_assert(RT_PK_LANES % RT_VN == 0, "a packet is whole vectors");
 
 /* The packet's rays in one space: the world, or an instance's object space. */
@@ -49,10 +46,11 @@ typedef struct pk_geom {
                         perm[g][0] = -1 */
     int uniform;     /* all lanes share the sign of inv on every axis ... */
     int neg_axis[3]; /* ... and these are the signs */
-    /* The packet's bounds for the interval test (pk_ia_miss): the range of
-     * every lane's org and inv per axis and the least rt_box_lo(tmin); only
-     * when 'uniform' and all of them are finite (ia). */
-    int ia;
+    /* The packet's bounds for the interval test (pk_ia_children): the range
+     * of every lane's org and inv per axis and the least rt_box_lo(tmin);
+     * only when 'uniform' and all of them are finite (ia). One origin for
+     * every lane (primary rays) makes the test cheaper and tighter. */
+    int ia, one_origin;
     float org_min[3], org_max[3], inv_min[3], inv_max[3], lo_min;
     const rt_ray_d *ray; /* the rays, lane l at ray[lane[l]] (for scalar tests) */
     uint8_t lane[L];
@@ -69,7 +67,7 @@ typedef struct pk_state {
     rt_vi prim[G], inst[G], entry[G];
     rt_vi box[G], tri[G]; /* tests per lane, when per_lane */
     int per_lane;         /* counts->per_lane */
-    float hi_max;         /* the greatest of hi (the interval test's) */
+    float hi_max;         /* the greatest of hi (for the interval test) */
     rt_pk_counts *counts;
     uint32_t alive[G];     /* lanes of each group still tracing */
     uint32_t alive_groups; /* groups with a lane alive */
@@ -177,62 +175,80 @@ static void pk_geom_setup(pk_geom *p, const rt_ray_d *ray, uint32_t valid) {
         p->neg_axis[k] = neg_bits[k] != 0;
         if (neg_bits[k] != 0 && neg_bits[k] != (1u << L) - 1u) p->uniform = 0;
     }
-    p->ia = USE_IA && p->uniform;
+    p->ia = p->uniform;
     if (!p->ia) return;
-    p->lo_min = RT_INF;
-    for (int k = 0; k < 3; k++) {
-        p->org_min[k] = p->inv_min[k] = RT_INF;
-        p->org_max[k] = p->inv_max[k] = -RT_INF;
-    }
-    for (int g = 0; g < G; g++)
-        for (int i = 0; i < N; i++) {
-            for (int k = 0; k < 3; k++) {
-                float o = p->org[k][g][i], iv = p->inv[k][g][i];
-                if (!(RT_FABS(iv) < RT_INF) || !(RT_FABS(o) < RT_INF)) p->ia = 0;
-                p->org_min[k] = o < p->org_min[k] ? o : p->org_min[k];
-                p->org_max[k] = o > p->org_max[k] ? o : p->org_max[k];
-                p->inv_min[k] = iv < p->inv_min[k] ? iv : p->inv_min[k];
-                p->inv_max[k] = iv > p->inv_max[k] ? iv : p->inv_max[k];
-            }
-            float lo = p->lo[g][i];
-            if (!(lo == lo)) p->ia = 0;
-            p->lo_min = lo < p->lo_min ? lo : p->lo_min;
+    /* The ranges, lane by lane of the vectors' minima and maxima. */
+    rt_vf lo = p->lo[0], fin = rt_vsplat(0.0f);
+    rt_vf omin[3], omax[3], imin[3], imax[3];
+    for (int k = 0; k < 3; k++) omin[k] = omax[k] = p->org[k][0], imin[k] = imax[k] = p->inv[k][0];
+    for (int g = 0; g < G; g++) {
+        lo = rt_vmin_of(p->lo[g], lo);
+        fin = fin + p->lo[g] * rt_vsplat(0.0f); /* NaN where lo is not finite */
+        for (int k = 0; k < 3; k++) {
+            omin[k] = rt_vmin_of(p->org[k][g], omin[k]),
+            omax[k] = rt_vmax_of(p->org[k][g], omax[k]);
+            imin[k] = rt_vmin_of(p->inv[k][g], imin[k]),
+            imax[k] = rt_vmax_of(p->inv[k][g], imax[k]);
+            fin = fin + (p->org[k][g] + p->inv[k][g]) * rt_vsplat(0.0f);
         }
-}
-
-/* The least and the greatest of fl(x * y) over x in [x0, x1], y in [y0, y1]:
- * rounding is monotonic and x * y is bilinear, so both are at corners. */
-static inline void corner_products(float x0, float x1, float y0, float y1, float *lo, float *hi) {
-    float a = x0 * y0, b = x0 * y1, c = x1 * y0, d = x1 * y1;
-    float m0 = a < b ? a : b, m1 = c < d ? c : d;
-    float M0 = a > b ? a : b, M1 = c > d ? c : d;
-    *lo = m0 < m1 ? m0 : m1;
-    *hi = M0 > M1 ? M0 : M1;
-}
-
-/* Interval arithmetic over the whole packet (Wald, Boulos and Shirley 2007):
- * 1 when no lane's rt_box_test can pass for node n. Every lane computes
- * t0 = fl(fl(a - org) * inv) with its org and inv inside the packet's
- * ranges, so its t0 is at least the least corner product and its t1 at most
- * the greatest; its entry (the greatest t0, and its rt_box_lo(tmin)) is then
- * at least 'enter' below and its exit (the least t1, scaled as rt_box_test
- * scales it, and its rt_box_hi(t)) at most 'leave'. */
-static inline int pk_ia_miss(const rt_pk_node *n, int c, const pk_geom *p, float hi_max) {
-    float enter = p->lo_min, leave = RT_INF;
-    for (int k = 0; k < 3; k++) {
-        float a = p->neg_axis[k] ? n->bmax[k][c] : n->bmin[k][c];
-        float b = p->neg_axis[k] ? n->bmin[k][c] : n->bmax[k][c];
-        float t0lo, t0hi, t1lo, t1hi;
-        corner_products(a - p->org_max[k], a - p->org_min[k], p->inv_min[k], p->inv_max[k], &t0lo,
-                        &t0hi);
-        corner_products(b - p->org_max[k], b - p->org_min[k], p->inv_min[k], p->inv_max[k], &t1lo,
-                        &t1hi);
-        enter = t0lo > enter ? t0lo : enter;
-        leave = t1hi < leave ? t1hi : leave;
     }
-    leave = leave * (leave < 0.0f ? RT_BOX_FAR_SCALE_NEG : RT_BOX_FAR_SCALE);
-    leave = hi_max < leave ? hi_max : leave;
-    return enter > leave;
+    p->one_origin = 1;
+    p->lo_min = lo[0];
+    for (int k = 0; k < 3; k++) {
+        p->org_min[k] = omin[k][0], p->org_max[k] = omax[k][0];
+        p->inv_min[k] = imin[k][0], p->inv_max[k] = imax[k][0];
+    }
+    for (int i = 0; i < N; i++) {
+        if (!(fin[i] == 0.0f)) p->ia = 0; /* an infinite or NaN org, inv or lo */
+        p->lo_min = lo[i] < p->lo_min ? lo[i] : p->lo_min;
+        for (int k = 0; k < 3; k++) {
+            p->org_min[k] = omin[k][i] < p->org_min[k] ? omin[k][i] : p->org_min[k];
+            p->org_max[k] = omax[k][i] > p->org_max[k] ? omax[k][i] : p->org_max[k];
+            p->inv_min[k] = imin[k][i] < p->inv_min[k] ? imin[k][i] : p->inv_min[k];
+            p->inv_max[k] = imax[k][i] > p->inv_max[k] ? imax[k][i] : p->inv_max[k];
+        }
+    }
+    for (int k = 0; k < 3; k++) p->one_origin &= p->org_min[k] == p->org_max[k];
+}
+
+/* Interval arithmetic over the whole packet (Wald, Boulos and Shirley 2007),
+ * for the four children of a wide node at once: bit c is set unless no
+ * lane's rt_box_test can pass for child c. Every lane computes t0 =
+ * fl(fl(a - org) * inv) with its org and inv inside the packet's ranges;
+ * rounding is monotonic and the product bilinear, so t0 is at least the
+ * least product at the ranges' corners and its t1 at most the greatest. Its
+ * entry (the greatest t0, and its rt_box_lo(tmin)) is then at least 'enter'
+ * and its exit (the least t1, scaled as rt_box_test scales it, and its
+ * rt_box_hi(t)) at most 'leave'. *enter_out gets 'enter' per child. Empty
+ * slots (inverted boxes) come out infinitely far. */
+static inline uint32_t pk_ia_children(const rt_pk_node *n, const pk_geom *p, float hi_max,
+                                      rt_v4f *enter_out) {
+    rt_v4f enter = rt_v4splat(p->lo_min), leave = rt_v4splat(RT_INF);
+    for (int k = 0; k < 3; k++) {
+        rt_v4f a, b, t0, t1;
+        memcpy(&a, p->neg_axis[k] ? n->bmax[k] : n->bmin[k], sizeof a);
+        memcpy(&b, p->neg_axis[k] ? n->bmin[k] : n->bmax[k], sizeof b);
+        const rt_v4f i0 = rt_v4splat(p->inv_min[k]), i1 = rt_v4splat(p->inv_max[k]);
+        if (p->one_origin) {
+            const rt_v4f o = rt_v4splat(p->org_min[k]);
+            a = a - o, b = b - o;
+            t0 = rt_v4min(a * i0, a * i1);
+            t1 = rt_v4max(b * i0, b * i1);
+        } else {
+            const rt_v4f o0 = rt_v4splat(p->org_max[k]), o1 = rt_v4splat(p->org_min[k]);
+            const rt_v4f a0 = a - o0, a1 = a - o1, b0 = b - o0, b1 = b - o1;
+            t0 = rt_v4min(rt_v4min(a0 * i0, a0 * i1), rt_v4min(a1 * i0, a1 * i1));
+            t1 = rt_v4max(rt_v4max(b0 * i0, b0 * i1), rt_v4max(b1 * i0, b1 * i1));
+        }
+        enter = rt_v4max(enter, t0);
+        leave = rt_v4min(leave, t1);
+    }
+    const rt_v4f zero = rt_v4splat(0.0f);
+    const rt_v4f neg = rt_v4splat(RT_BOX_FAR_SCALE_NEG), pos = rt_v4splat(RT_BOX_FAR_SCALE);
+    leave = leave * (rt_v4f)(((leave < zero) & (rt_v4i)neg) | (~(leave < zero) & (rt_v4i)pos));
+    leave = rt_v4min(leave, rt_v4splat(hi_max));
+    *enter_out = enter;
+    return rt_v4bits(enter <= leave);
 }
 
 /* ---- box test: rt_box_test on the lanes of group g ------------------------ */
@@ -266,12 +282,9 @@ static inline uint32_t pk_box(const rt_pk_node *n, int c, const pk_geom *p, cons
  * -1; *mask gets that group's entering lanes, *tnear their entry distances. */
 static inline int pk_enter(const rt_pk_node *n, int c, const pk_geom *p, pk_state *st, int first,
                            uint32_t *mask, rt_vf *tnear) {
-    int tested = 0;
     for (int g = first; g < G; g++) {
         uint32_t alive = st->alive[g];
         if (!alive) continue;
-        /* After one group missed, one interval test may cull the rest. */
-        if (USE_IA && tested++ == 1 && p->ia && pk_ia_miss(n, c, p, st->hi_max)) return -1;
         st->counts->group_box_tests++;
         count(st, &st->counts->box_tests, st->box, g, alive);
         uint32_t m = pk_box(n, c, p, st, g, tnear);
@@ -287,7 +300,6 @@ static inline int pk_enter(const rt_pk_node *n, int c, const pk_geom *p, pk_stat
 
 /* The greatest of hi, after hits shortened some ranges. */
 static void update_hi_max(pk_state *st) {
-    if (!USE_IA) return;
     float m = -RT_INF;
     for (int j = 0; j < G; j++)
         for (int k = 0; k < N; k++) m = st->hi[j][k] > m ? st->hi[j][k] : m;
@@ -464,6 +476,92 @@ static void pk_leaf(pk_state *st, const pk_geom *p, const rt_pk_node *n, int c, 
 
 static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, int first);
 
+/* Leaf child c of n for every alive lane: each group's lanes that pass its
+ * box test test its triangles (or, in the object BVH, its instances). */
+static void pk_leaf_all(pk_state *st, const pk_geom *p, const rt_pk_node *n, int c, rt_u32 inst) {
+    if (inst == RT_NO_HIT) {
+        const rt_u32 end = n->ref[c] + (n->count[c] & RT_NODE_COUNT_MASK);
+        for (rt_u32 e = n->ref[c]; e < end && st->alive_groups; e++)
+            pk_instance(st, p, st->s->inst_ids[e], 0);
+        return;
+    }
+    for (int g = 0; g < G; g++) {
+        if (!st->alive[g]) continue;
+        rt_vf tn;
+        st->counts->group_box_tests++;
+        count(st, &st->counts->box_tests, st->box, g, st->alive[g]);
+        uint32_t m = pk_box(n, c, p, st, g, &tn);
+        const rt_u32 begin = n->ref[c], end = begin + (n->count[c] & RT_NODE_COUNT_MASK);
+        for (rt_u32 e = begin; e < end && m; e++) {
+            pk_tri(st, p, g, m, e, inst);
+            m &= st->alive[g];
+        }
+    }
+}
+
+/* pk_bvh for a packet whose interval bounds exist (p->ia): inner nodes are
+ * culled by the interval test over all four children at once, which stands
+ * for every lane (it fails only when every lane's box test would); only at
+ * a leaf does each lane test the box, and the lanes that pass test the
+ * triangles. So a lane visits a superset of its own nodes, as pk_bvh's
+ * lanes do, and gets the same hits; the packet decides each inner node with
+ * one test instead of one per lane (Embree's coherent packets do the like
+ * with frusta). Children are taken nearest first by their interval entry,
+ * and a pushed child whose entry lies beyond every lane's range by the time
+ * it is popped is dropped. */
+static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst) {
+    _Static_assert(RT_PK_WIDTH == 4, "one interval lane per child");
+    typedef struct {
+        float enter;
+        rt_u32 node;
+        int slot;
+    } item;
+    const rt_pk_node *nodes = st->w->nodes;
+    item stack[(RT_PK_WIDTH - 1) * RT_STACK_SIZE + 1];
+    int sp = 0;
+    rt_v4f en;
+    st->counts->group_box_tests++;
+    if (!(pk_ia_children(&nodes[entry], p, st->hi_max, &en) & 1u)) return;
+    item cur = {en[0], entry, 0};
+    for (;;) {
+        const rt_pk_node *n = &nodes[cur.node];
+        const int c = cur.slot;
+        if (n->count[c] & RT_NODE_LEAF_FLAG) {
+            pk_leaf_all(st, p, n, c, inst);
+            if (!st->alive_groups) return;
+        } else {
+            const rt_u32 child = n->ref[c];
+            const rt_pk_node *ch = &nodes[child];
+            st->counts->group_box_tests += RT_PK_WIDTH;
+            uint32_t entered = pk_ia_children(ch, p, st->hi_max, &en);
+            item hit[RT_PK_WIDTH];
+            int hits = 0;
+            for (; entered; entered &= entered - 1) {
+                const int s = lowest_bit(entered);
+                if (!(ch->count[s] & RT_NODE_LEAF_FLAG)) {
+                    __builtin_prefetch(&nodes[ch->ref[s]]);
+                    __builtin_prefetch((const char *)&nodes[ch->ref[s]] + 64);
+                }
+                int i = hits++;
+                while (i > 0 && hit[i - 1].enter > en[s]) {
+                    hit[i] = hit[i - 1];
+                    i--;
+                }
+                hit[i] = (item){en[s], child, s};
+            }
+            if (hits) {
+                for (int i = hits - 1; i > 0; i--) stack[sp++] = hit[i];
+                cur = hit[0];
+                continue;
+            }
+        }
+        do {
+            if (sp == 0) return;
+            cur = stack[--sp];
+        } while (cur.enter > st->hi_max);
+    }
+}
+
 /* One BVH from its entry node: a mesh's (inst is its instance) or the
  * object BVH (inst == RT_NO_HIT), whose leaves hand their instances to
  * pk_instance. rt_trace_mesh's and rt_trace's loops for the packet over the
@@ -472,16 +570,21 @@ static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, int fir
  * first entering lane; the order changes speed, never the hits), the others
  * are pushed. */
 static void pk_bvh(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, int first) {
+    if (p->ia) {
+        pk_bvh_ia(st, p, entry, inst);
+        return;
+    }
     typedef struct {
+        rt_vf tnear; /* group first's entry distances */
         rt_u32 node;
         int slot, first;
-        uint32_t mask;
+        uint32_t mask; /* group first's lanes that entered */
     } item;
     const rt_pk_node *nodes = st->w->nodes;
     item stack[(RT_PK_WIDTH - 1) * RT_STACK_SIZE + 1];
     int sp = 0;
     rt_vf tn;
-    item cur = {entry, 0, 0, 0};
+    item cur = {rt_vsplat(0.0f), entry, 0, 0, 0};
     cur.first = pk_enter(&nodes[entry], 0, p, st, first, &cur.mask, &tn);
     if (cur.first < 0) return;
     for (;;) {
@@ -545,7 +648,7 @@ static void pk_bvh(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, in
                     key[i] = key[i - 1];
                     i--;
                 }
-                hit[i] = (item){child, s, f, ms[s]};
+                hit[i] = (item){ts[s], child, s, f, ms[s]};
                 key[i] = k;
             }
             if (hits) {
@@ -554,8 +657,16 @@ static void pk_bvh(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, in
                 continue;
             }
         }
-        if (sp == 0) return;
-        cur = stack[--sp];
+        /* A pushed child goes on with the lanes of its group whose entry
+         * distance is still inside their range, which hits found since may
+         * have shortened: the others would fail its box test now, and the
+         * oracle's culling relies on that losing nothing. With one group
+         * and no lane left, the child is dropped. */
+        do {
+            if (sp == 0) return;
+            cur = stack[--sp];
+            cur.mask &= rt_vbits(cur.tnear <= st->hi[cur.first]);
+        } while (G == 1 && !cur.mask);
     }
 }
 

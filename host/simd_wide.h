@@ -158,4 +158,46 @@ static inline uint32_t rt_vbits(rt_vi m) {
 #endif
 }
 
+/* ---- four lanes, one per child of a wide node --------------------------- */
+
+typedef float rt_v4f __attribute__((vector_size(16)));
+typedef int32_t rt_v4i __attribute__((vector_size(16)));
+
+static inline rt_v4f rt_v4splat(float x) {
+    return (rt_v4f){x, x, x, x};
+}
+
+/* Minimum and maximum of values that are never NaN. */
+static inline rt_v4f rt_v4min(rt_v4f a, rt_v4f b) {
+#if defined(__SSE2__)
+    return (rt_v4f)_mm_min_ps((__m128)a, (__m128)b);
+#elif defined(__aarch64__)
+    return (rt_v4f)vminq_f32((float32x4_t)a, (float32x4_t)b);
+#else
+    return (rt_v4f)(((a < b) & (rt_v4i)a) | (~(a < b) & (rt_v4i)b));
+#endif
+}
+
+static inline rt_v4f rt_v4max(rt_v4f a, rt_v4f b) {
+#if defined(__SSE2__)
+    return (rt_v4f)_mm_max_ps((__m128)a, (__m128)b);
+#elif defined(__aarch64__)
+    return (rt_v4f)vmaxq_f32((float32x4_t)a, (float32x4_t)b);
+#else
+    return (rt_v4f)(((a > b) & (rt_v4i)a) | (~(a > b) & (rt_v4i)b));
+#endif
+}
+
+static inline uint32_t rt_v4bits(rt_v4i m) {
+#if defined(__SSE2__)
+    return (uint32_t)_mm_movemask_ps((__m128)m);
+#elif defined(__aarch64__)
+    static const uint32_t bit[4] = {1, 2, 4, 8};
+    return vaddvq_u32(vandq_u32((uint32x4_t)m, vld1q_u32(bit)));
+#else
+    return (uint32_t)(m[0] & 1) | (uint32_t)(m[1] & 2) | (uint32_t)(m[2] & 4) |
+           (uint32_t)(m[3] & 8);
+#endif
+}
+
 #endif /* RT_SIMD_WIDE_H */
