@@ -14,7 +14,7 @@
 
 typedef struct rt_cpu_counts {
     uint64_t rays, primary_rays, box_tests, tri_tests;
-    uint64_t packets, packet_box_tests; /* packet path only */
+    uint64_t packets, packet_box_tests, packet_tri_tests; /* packet path only */
 } rt_cpu_counts;
 
 typedef struct rt_cpu_frame {
@@ -32,7 +32,7 @@ void rt_cpu_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *coun
 
 /* Renders with packets of RT_PACKET_TILE_W x RT_PACKET_TILE_H pixels (one
  * per tile) on the pool's workers, which take rows of tiles in turn. */
-enum { RT_PACKET_TILE_W = 4, RT_PACKET_TILE_H = 4 };
+enum { RT_PACKET_TILE_W = 8, RT_PACKET_TILE_H = 8 };
 void rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *counts);
 
 /* Finishes one pixel whose primary ray and hit are known: shading (or the

@@ -26,6 +26,7 @@ void rt_pk_trace_avx512(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk
 
 typedef struct pk_variant {
     const char *name;
+    int lanes;
     pk_trace_fn fn;
     int (*supported)(void);
 } pk_variant;
@@ -45,10 +46,10 @@ static int has_avx512(void) {
 /* Widest first. */
 static const pk_variant variants[] = {
 #ifdef RT_PK_X86_VARIANTS
-    {"avx512", rt_pk_trace_avx512, has_avx512},
-    {"avx2", rt_pk_trace_avx2, has_avx2},
+    {"avx512", 16, rt_pk_trace_avx512, has_avx512},
+    {"avx2", 8, rt_pk_trace_avx2, has_avx2},
 #endif
-    {"generic", rt_pk_trace_generic, always},
+    {"generic", 4, rt_pk_trace_generic, always},
 };
 enum { VARIANTS = sizeof variants / sizeof variants[0] };
 
@@ -80,6 +81,10 @@ int rt_pk_select(const char *name) {
 
 const char *rt_pk_isa(void) {
     return current()->name;
+}
+
+int rt_pk_isa_lanes(void) {
+    return current()->lanes;
 }
 
 const char *rt_pk_isa_name(int i) {

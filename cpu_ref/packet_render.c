@@ -16,19 +16,26 @@
 #include "cpu_render.h"
 #include "packet_trace.h"
 
-/* A tile is one packet: its groups of four are 2x2 pixel quads in raster
- * order. */
-enum { TILE_W = 4, TILE_H = 4, QUADS_X = TILE_W / 2 };
+/* A tile is one packet. Its lanes run in Morton order, so that every run
+ * of 4, 8 or 16 lanes (one vector of the packet tracer) is a compact block
+ * of pixels. */
+enum { TILE_W = RT_PACKET_TILE_W, TILE_H = RT_PACKET_TILE_H };
 _Static_assert(TILE_W *TILE_H == RT_PK_LANES, "a tile is one packet");
+_Static_assert(TILE_W == TILE_H || TILE_W == 2 * TILE_H, "a Morton tile");
 
 static void lane_pixel(int x0, int y0, int l, int *x, int *y) {
-    int g = l >> 2, q = l & 3;
-    *x = x0 + 2 * (g % QUADS_X) + (q & 1);
-    *y = y0 + 2 * (g / QUADS_X) + (q >> 1);
+    int dx = 0, dy = 0;
+    for (int b = 0; (1 << (2 * b)) < RT_PK_LANES; b++) {
+        dx |= ((l >> (2 * b)) & 1) << b;
+        dy |= ((l >> (2 * b + 1)) & 1) << b;
+    }
+    *x = x0 + dx;
+    *y = y0 + dy;
 }
 
 static void add_counts(rt_cpu_counts *total, const rt_pk_counts *pc) {
     total->packet_box_tests += pc->group_box_tests;
+    total->packet_tri_tests += pc->group_tri_tests;
     total->rays += pc->rays;
     total->box_tests += pc->box_tests;
     total->tri_tests += pc->tri_tests;
@@ -41,28 +48,28 @@ static void shade_tile(const rt_cpu_frame *f, const rt_scene_view *v, const rt_p
                        const rt_hit_d *hit, rt_pk_counts *pc, const int *px, const int *py) {
     rt_shade_entry e[RT_PK_LANES];
     rt_shade_node nd[RT_PK_LANES];
-    uint32_t lit = 0; /* lanes whose node has a Phong term */
+    rt_pk_mask lit = 0; /* lanes whose node has a Phong term */
     for (int l = 0; l < RT_PK_LANES; l++) {
         if (!((primary->valid >> l) & 1u)) continue;
         e[l].ray = primary->ray[l];
         e[l].w[0] = e[l].w[1] = e[l].w[2] = 1.0f;
         e[l].depth = 0;
-        if (rt_shade_begin(v, &e[l], &hit[l], &nd[l])) lit |= 1u << l;
+        if (rt_shade_begin(v, &e[l], &hit[l], &nd[l])) lit |= (rt_pk_mask)1 << l;
     }
     for (rt_u32 li = 0; li < v->hdr->light_count && lit; li++) {
         rt_pk_rays shadow;
         rt_hit_d occluder[RT_PK_LANES];
         float Ln[RT_PK_LANES][3], ndl[RT_PK_LANES];
         shadow.valid = 0;
-        for (uint32_t m = lit; m; m &= m - 1) {
-            int l = __builtin_ctz(m);
+        for (rt_pk_mask m = lit; m; m &= m - 1) {
+            int l = __builtin_ctzll(m);
             if (rt_phong_light(v, &nd[l].sf, li, &shadow.ray[l], Ln[l], &ndl[l]))
-                shadow.valid |= 1u << l;
+                shadow.valid |= (rt_pk_mask)1 << l;
         }
         if (!shadow.valid) continue;
         rt_pk_trace(v, f->wide, &shadow, 1, occluder, pc);
-        for (uint32_t m = shadow.valid; m; m &= m - 1) {
-            int l = __builtin_ctz(m);
+        for (rt_pk_mask m = shadow.valid; m; m &= m - 1) {
+            int l = __builtin_ctzll(m);
             if (occluder[l].prim == RT_NO_HIT)
                 rt_phong_add(v, &nd[l].sf, li, Ln[l], ndl[l], nd[l].dn, nd[l].lit);
         }
@@ -103,20 +110,20 @@ static void render_tile(const rt_cpu_frame *f, const rt_scene_view *v, int x0, i
     for (int l = 0; l < RT_PK_LANES; l++) {
         lane_pixel(x0, y0, l, &px[l], &py[l]);
         if (px[l] >= h->width || py[l] >= h->height) continue;
-        primary.valid |= 1u << l;
+        primary.valid |= (rt_pk_mask)1 << l;
         rt_camera_ray(h, px[l], py[l], &primary.ray[l]);
     }
     rt_pk_trace(v, f->wide, &primary, 0, hit, &pc);
     if (f->aov == RT_AOV_NONE || f->aov == RT_AOV_BOX_TESTS || f->aov == RT_AOV_TRI_TESTS) {
         shade_tile(f, v, &primary, hit, &pc, px, py);
     } else {
-        for (uint32_t m = primary.valid; m; m &= m - 1) {
-            int l = __builtin_ctz(m);
+        for (rt_pk_mask m = primary.valid; m; m &= m - 1) {
+            int l = __builtin_ctzll(m);
             rt_cpu_finish_pixel(f, v, px[l], py[l], &primary.ray[l], &hit[l], &pc.c[l]);
         }
     }
     total->packets++;
-    total->primary_rays += (uint64_t)__builtin_popcount(primary.valid);
+    total->primary_rays += (uint64_t)__builtin_popcountll(primary.valid);
     add_counts(total, &pc);
 }
 
@@ -126,7 +133,7 @@ static void render_tile(const rt_cpu_frame *f, const rt_scene_view *v, int x0, i
  * tiles traced one after another then lie close together and find their
  * BVH nodes still in cache (a row of tiles would come back to its
  * neighbours below a whole image width later). */
-enum { BLOCK = 8 };
+enum { BLOCK = 4 };
 
 typedef struct packet_job {
     const rt_cpu_frame *frame;
@@ -172,6 +179,7 @@ void rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *c
         counts->tri_tests += job.per_worker[i].tri_tests;
         counts->packets += job.per_worker[i].packets;
         counts->packet_box_tests += job.per_worker[i].packet_box_tests;
+        counts->packet_tri_tests += job.per_worker[i].packet_tri_tests;
     }
     free(job.per_worker);
 }
@@ -185,7 +193,7 @@ void rt_packet_trace_rays(const rt_flat *flat, const rt_pk_wide *wide, const rt_
         rt_pk_counts pc;
         memset(&pc, 0, sizeof pc);
         size_t count = n - i < RT_PK_LANES ? n - i : RT_PK_LANES;
-        p.valid = count == RT_PK_LANES ? 0xffffu : (1u << count) - 1u;
+        p.valid = RT_PK_ALL >> (RT_PK_LANES - count);
         memcpy(p.ray, rays + i, count * sizeof *rays);
         rt_pk_trace(&v, wide, &p, any_hit, h, &pc);
         memcpy(hits + i, h, count * sizeof *h);

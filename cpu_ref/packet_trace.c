@@ -67,7 +67,8 @@ typedef struct pk_state {
     rt_vi prim[G], inst[G], entry[G];
     rt_vi box[G], tri[G]; /* tests per lane, when per_lane */
     int per_lane;         /* counts->per_lane */
-    float hi_max;         /* the greatest of hi (for the interval test) */
+    float hi_max;         /* the greatest of hi (for the interval test) ... */
+    int hi_stale;         /* ... to be recomputed: some hit shortened hi */
     rt_pk_counts *counts;
     uint32_t alive[G];     /* lanes of each group still tracing */
     uint32_t alive_groups; /* groups with a lane alive */
@@ -145,11 +146,11 @@ static void pk_prepare(pk_geom *p, int g, const rt_vf *dir) {
 
 /* The packet's vectors; invalid lanes hold a copy of a valid lane's ray, so
  * that every lane computes on real numbers. */
-static void pk_geom_setup(pk_geom *p, const rt_ray_d *ray, uint32_t valid) {
-    int src = valid ? lowest_bit(valid) : 0;
+static void pk_geom_setup(pk_geom *p, const rt_ray_d *ray, rt_pk_mask valid) {
+    int src = valid ? __builtin_ctzll(valid) : 0;
     p->ray = ray;
     for (int l = 0; l < L; l++) p->lane[l] = (uint8_t)((valid >> l) & 1u ? l : src);
-    uint32_t neg_bits[3] = {0, 0, 0};
+    rt_pk_mask neg_bits[3] = {0, 0, 0};
     for (int g = 0; g < G; g++) {
         float o[3][N], d[3][N], tmin[N];
         for (int i = 0; i < N; i++) {
@@ -168,12 +169,12 @@ static void pk_geom_setup(pk_geom *p, const rt_ray_d *ray, uint32_t valid) {
         memcpy(&p->tmin[g], tmin, sizeof(rt_vf));
         p->lo[g] = p->tmin[g] - rt_vabs(p->tmin[g]) * rt_vsplat(RT_BOX_T_MARGIN);
         pk_prepare(p, g, dir);
-        for (int k = 0; k < 3; k++) neg_bits[k] |= rt_vbits(p->neg[k][g]) << (N * g);
+        for (int k = 0; k < 3; k++) neg_bits[k] |= (rt_pk_mask)rt_vbits(p->neg[k][g]) << (N * g);
     }
     p->uniform = 1;
     for (int k = 0; k < 3; k++) {
         p->neg_axis[k] = neg_bits[k] != 0;
-        if (neg_bits[k] != 0 && neg_bits[k] != (1u << L) - 1u) p->uniform = 0;
+        if (neg_bits[k] != 0 && neg_bits[k] != RT_PK_ALL) p->uniform = 0;
     }
     p->ia = p->uniform;
     if (!p->ia) return;
@@ -298,12 +299,17 @@ static inline int pk_enter(const rt_pk_node *n, int c, const pk_geom *p, pk_stat
 
 /* ---- triangles -------------------------------------------------------------- */
 
-/* The greatest of hi, after hits shortened some ranges. */
-static void update_hi_max(pk_state *st) {
-    float m = -RT_INF;
-    for (int j = 0; j < G; j++)
-        for (int k = 0; k < N; k++) m = st->hi[j][k] > m ? st->hi[j][k] : m;
-    st->hi_max = m;
+/* The greatest of hi (hi only shrinks, so a stale value is merely loose). */
+static inline float hi_max(pk_state *st) {
+    if (st->hi_stale) {
+        rt_vf m = st->hi[0];
+        for (int g = 1; g < G; g++) m = rt_vmax_of(st->hi[g], m);
+        float x = m[0];
+        for (int i = 1; i < N; i++) x = m[i] > x ? m[i] : x;
+        st->hi_max = x;
+        st->hi_stale = 0;
+    }
+    return st->hi_max;
 }
 
 /* Retires the any-hit lanes of m in group g (they found an occluder). */
@@ -333,7 +339,7 @@ static void accept_lane(pk_state *st, int g, int i, rt_u32 e, rt_u32 inst, float
     st->prim[g][i] = (int32_t)st->s->tri_ids[e];
     st->inst[g][i] = (int32_t)inst;
     st->entry[g][i] = (int32_t)e;
-    update_hi_max(st);
+    st->hi_stale = 1;
 }
 
 /* The lanes of m in group g through the shared scalar test (rt_leaf_test's
@@ -445,7 +451,7 @@ static void pk_tri(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u32 e, 
     st->prim[g] = rt_vsel_i(take, rt_vsplat_i((int32_t)prim), st->prim[g]);
     st->inst[g] = rt_vsel_i(take, rt_vsplat_i((int32_t)inst), st->inst[g]);
     st->entry[g] = rt_vsel_i(take, rt_vsplat_i((int32_t)e), st->entry[g]);
-    update_hi_max(st);
+    st->hi_stale = 1;
 }
 
 /* Leaf child c of n of a mesh BVH: every group from 'first' on whose lanes
@@ -521,7 +527,7 @@ static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst)
     int sp = 0;
     rt_v4f en;
     st->counts->group_box_tests++;
-    if (!(pk_ia_children(&nodes[entry], p, st->hi_max, &en) & 1u)) return;
+    if (!(pk_ia_children(&nodes[entry], p, hi_max(st), &en) & 1u)) return;
     item cur = {en[0], entry, 0};
     for (;;) {
         const rt_pk_node *n = &nodes[cur.node];
@@ -533,7 +539,7 @@ static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst)
             const rt_u32 child = n->ref[c];
             const rt_pk_node *ch = &nodes[child];
             st->counts->group_box_tests += RT_PK_WIDTH;
-            uint32_t entered = pk_ia_children(ch, p, st->hi_max, &en);
+            uint32_t entered = pk_ia_children(ch, p, hi_max(st), &en);
             item hit[RT_PK_WIDTH];
             int hits = 0;
             for (; entered; entered &= entered - 1) {
@@ -558,7 +564,7 @@ static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst)
         do {
             if (sp == 0) return;
             cur = stack[--sp];
-        } while (cur.enter > st->hi_max);
+        } while (cur.enter > hi_max(st));
     }
 }
 
@@ -683,7 +689,7 @@ static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, int fir
     pk_geom obj;
     rt_ray_d ray[L];
     for (int l = 0; l < L; l++) rt_ray_to_object(in, &world->ray[world->lane[l]], &ray[l]);
-    pk_geom_setup(&obj, ray, (1u << L) - 1u);
+    pk_geom_setup(&obj, ray, RT_PK_ALL);
     pk_bvh(st, &obj, entry, inst, first);
 }
 
@@ -697,11 +703,11 @@ void RT_PK_TRACE(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *
     st.any_hit = any_hit;
     st.method = s->hdr->tri_method;
     st.alive_groups = 0;
-    st.hi_max = -RT_INF;
+    st.hi_stale = 1;
     const rt_vi none = rt_vsplat_i((int32_t)RT_NO_HIT);
     for (int g = 0; g < G; g++) {
         st.box[g] = st.tri[g] = rt_vsplat_i(0);
-        st.alive[g] = (rays->valid >> (N * g)) & ((1u << N) - 1u);
+        st.alive[g] = (uint32_t)(rays->valid >> (N * g)) & ((1u << N) - 1u);
         if (st.alive[g]) st.alive_groups |= 1u << g;
         st.prim[g] = st.inst[g] = st.entry[g] = none;
         st.V[g] = st.W[g] = rt_vsplat(0.0f);
@@ -709,10 +715,9 @@ void RT_PK_TRACE(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *
         for (int i = 0; i < N; i++) /* rt_hit_init's t; no ray: a miss at infinity */
             st.t[g][i] = (st.alive[g] >> i) & 1u ? rays->ray[N * g + i].tmax : RT_INF;
         st.hi[g] = box_hi(st.t[g]);
-        for (int i = 0; i < N; i++) st.hi_max = st.hi[g][i] > st.hi_max ? st.hi[g][i] : st.hi_max;
         counts->rays += lanes_in(st.alive[g]);
     }
-    const uint32_t valid = rays->valid & ((1u << L) - 1u);
+    const rt_pk_mask valid = rays->valid & RT_PK_ALL;
     if (st.alive_groups && s->hdr->instance_count != 0) {
         pk_geom world;
         pk_geom_setup(&world, rays->ray, valid);
@@ -735,7 +740,7 @@ void RT_PK_TRACE(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *
     }
     if (counts->per_lane)
         for (int l = 0; l < L; l++) {
-            counts->c[l].rays += (valid >> l) & 1u;
+            counts->c[l].rays += (rt_u32)((valid >> l) & 1u);
             counts->c[l].box_tests += (rt_u32)st.box[l / N][l % N];
             counts->c[l].tri_tests += (rt_u32)st.tri[l / N][l % N];
         }

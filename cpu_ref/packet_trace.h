@@ -20,14 +20,18 @@
 #include "packet_wide.h"
 #include "rt_shared.h"
 
-enum { RT_PK_LANES = 16 };
+enum { RT_PK_LANES = 64 };
+
+/* A set of a packet's lanes: bit l is lane l. */
+typedef uint64_t rt_pk_mask;
+#define RT_PK_ALL (~(rt_pk_mask)0 >> (64 - RT_PK_LANES))
 
 /* The rays of a packet; lanes outside 'valid' (bit l = lane l) are ignored
  * and need not hold a ray. The closer the rays, the fewer nodes the packet
  * visits. */
 typedef struct rt_pk_rays {
     rt_ray_d ray[RT_PK_LANES];
-    uint32_t valid;
+    rt_pk_mask valid;
 } rt_pk_rays;
 
 /* What packets traced: rays and the tests performed for them, as the oracle
@@ -55,6 +59,7 @@ void rt_pk_trace(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *
  * build's i-th one (NULL past the last), and rt_pk_select switches to one by
  * name (0 when this build or CPU lacks it). */
 const char *rt_pk_isa(void);
+int rt_pk_isa_lanes(void); /* lanes per vector of that build */
 const char *rt_pk_isa_name(int i);
 int rt_pk_select(const char *name);
 

@@ -7,6 +7,7 @@
 #include <time.h>
 
 #include "cpu_render.h"
+#include "packet_trace.h"
 #include "render_internal.h"
 #include "tlas.h"
 
@@ -331,6 +332,12 @@ rt_status rt_render(rt_scene *scene, const rt_render_options *options, rt_frameb
         s->tri_tests = counts.tri_tests;
         s->packets = counts.packets;
         s->packet_box_tests = counts.packet_box_tests;
+        s->packet_tri_tests = counts.packet_tri_tests;
+        if (packet) {
+            s->packet_rays = RT_PK_LANES;
+            s->packet_isa = rt_pk_isa();
+            s->packet_vector = rt_pk_isa_lanes();
+        }
         s->backend = packet ? "packet" : "cpu";
         s->threads = rt_pool_size(prep.pool);
         s->notice = choice.notice;

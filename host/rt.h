@@ -163,8 +163,13 @@ typedef struct rt_render_stats {
     uint64_t primary_rays;
     uint64_t box_tests;        /* ray/box tests, all rays */
     uint64_t tri_tests;        /* ray/triangle tests, all rays */
-    uint64_t packets;          /* 2x2 packets traced (packet backend), else 0 */
-    uint64_t packet_box_tests; /* box tests counted once per packet step */
+    uint64_t packets;          /* primary packets traced (packet backend), else 0 */
+    uint64_t packet_box_tests; /* box tests of whole vectors of a packet (and its
+                                  interval tests, one per child), all packets */
+    uint64_t packet_tri_tests; /* triangle tests of whole vectors, all packets */
+    int packet_rays;           /* rays per packet */
+    int packet_vector;         /* lanes per vector of the build that ran ... */
+    const char *packet_isa;    /* ... and its instruction set */
     const char *backend;       /* the backend that ran */
     int threads;
     /* Set when "auto" could not use the device and rendered on the CPU: the

@@ -109,9 +109,15 @@ static void print_stats(const rt_render_stats *s, int width, int height) {
            (unsigned long long)s->primary_rays);
     printf("box tests/ray    %.2f\n", (double)s->box_tests / rays);
     printf("tri tests/ray    %.2f\n", (double)s->tri_tests / rays);
-    if (s->packets)
-        printf("box tests/packet %.2f (group tests of 4 rays; packets of 16: %llu)\n",
-               (double)s->packet_box_tests / (double)s->packets, (unsigned long long)s->packets);
+    if (s->packets) {
+        printf("packets          %llu of %d rays, vectors of %d lanes (%s)\n",
+               (unsigned long long)s->packets, s->packet_rays, s->packet_vector,
+               s->packet_isa ? s->packet_isa : "?");
+        printf("vector tests     %.2f box and interval, %.2f triangle per primary packet "
+               "(with its shadow rays)\n",
+               (double)s->packet_box_tests / (double)s->packets,
+               (double)s->packet_tri_tests / (double)s->packets);
+    }
     if (s->device[0]) {
         printf("device           %s (%s)\n", s->device,
                s->exact ? "bit-exact with the CPU oracle promised"
