@@ -32,6 +32,10 @@
 
 enum { L = RT_PK_LANES, N = RT_VN, G = RT_PK_LANES / RT_VN };
 _Static_assert(RT_PK_LANES % RT_VN == 0, "a packet is whole vectors");
+/* Below a subtree of this many primitives the packet tracer follows each
+ * group's lanes (pk_bvh_ia); measured best at 32 to 64 for every vector
+ * width on the shared scenes (docs/OPTIMISATION_LOG.md). */
+enum { SMALL_TREE = 32 };
 
 /* The packet's rays in one space: the world, or an instance's object space. */
 typedef struct pk_geom {
@@ -212,8 +216,25 @@ static void pk_geom_setup(pk_geom *p, const rt_ray_d *ray, rt_pk_mask valid) {
     for (int k = 0; k < 3; k++) p->one_origin &= p->org_min[k] == p->org_max[k];
 }
 
+/* One lane per child of a wide node. */
+#if RT_PK_WIDTH == 4
+typedef rt_v4f ck_f;
+typedef rt_v4i ck_i;
+#define ck_splat rt_v4splat
+#define ck_min   rt_v4min
+#define ck_max   rt_v4max
+#define ck_bits  rt_v4bits
+#elif RT_PK_WIDTH == 8
+typedef rt_v8f ck_f;
+typedef rt_v8i ck_i;
+#define ck_splat rt_v8splat
+#define ck_min   rt_v8min
+#define ck_max   rt_v8max
+#define ck_bits  rt_v8bits
+#endif
+
 /* Interval arithmetic over the whole packet (Wald, Boulos and Shirley 2007),
- * for the four children of a wide node at once: bit c is set unless no
+ * for all children of a wide node at once: bit c is set unless no
  * lane's rt_box_test can pass for child c. Every lane computes t0 =
  * fl(fl(a - org) * inv) with its org and inv inside the packet's ranges;
  * rounding is monotonic and the product bilinear, so t0 is at least the
@@ -223,33 +244,33 @@ static void pk_geom_setup(pk_geom *p, const rt_ray_d *ray, rt_pk_mask valid) {
  * rt_box_hi(t)) at most 'leave'. *enter_out gets 'enter' per child. Empty
  * slots (inverted boxes) come out infinitely far. */
 static inline uint32_t pk_ia_children(const rt_pk_node *n, const pk_geom *p, float hi_max,
-                                      rt_v4f *enter_out) {
-    rt_v4f enter = rt_v4splat(p->lo_min), leave = rt_v4splat(RT_INF);
+                                      ck_f *enter_out) {
+    ck_f enter = ck_splat(p->lo_min), leave = ck_splat(RT_INF);
     for (int k = 0; k < 3; k++) {
-        rt_v4f a, b, t0, t1;
+        ck_f a, b, t0, t1;
         memcpy(&a, p->neg_axis[k] ? n->bmax[k] : n->bmin[k], sizeof a);
         memcpy(&b, p->neg_axis[k] ? n->bmin[k] : n->bmax[k], sizeof b);
-        const rt_v4f i0 = rt_v4splat(p->inv_min[k]), i1 = rt_v4splat(p->inv_max[k]);
+        const ck_f i0 = ck_splat(p->inv_min[k]), i1 = ck_splat(p->inv_max[k]);
         if (p->one_origin) {
-            const rt_v4f o = rt_v4splat(p->org_min[k]);
+            const ck_f o = ck_splat(p->org_min[k]);
             a = a - o, b = b - o;
-            t0 = rt_v4min(a * i0, a * i1);
-            t1 = rt_v4max(b * i0, b * i1);
+            t0 = ck_min(a * i0, a * i1);
+            t1 = ck_max(b * i0, b * i1);
         } else {
-            const rt_v4f o0 = rt_v4splat(p->org_max[k]), o1 = rt_v4splat(p->org_min[k]);
-            const rt_v4f a0 = a - o0, a1 = a - o1, b0 = b - o0, b1 = b - o1;
-            t0 = rt_v4min(rt_v4min(a0 * i0, a0 * i1), rt_v4min(a1 * i0, a1 * i1));
-            t1 = rt_v4max(rt_v4max(b0 * i0, b0 * i1), rt_v4max(b1 * i0, b1 * i1));
+            const ck_f o0 = ck_splat(p->org_max[k]), o1 = ck_splat(p->org_min[k]);
+            const ck_f a0 = a - o0, a1 = a - o1, b0 = b - o0, b1 = b - o1;
+            t0 = ck_min(ck_min(a0 * i0, a0 * i1), ck_min(a1 * i0, a1 * i1));
+            t1 = ck_max(ck_max(b0 * i0, b0 * i1), ck_max(b1 * i0, b1 * i1));
         }
-        enter = rt_v4max(enter, t0);
-        leave = rt_v4min(leave, t1);
+        enter = ck_max(enter, t0);
+        leave = ck_min(leave, t1);
     }
-    const rt_v4f zero = rt_v4splat(0.0f);
-    const rt_v4f neg = rt_v4splat(RT_BOX_FAR_SCALE_NEG), pos = rt_v4splat(RT_BOX_FAR_SCALE);
-    leave = leave * (rt_v4f)(((leave < zero) & (rt_v4i)neg) | (~(leave < zero) & (rt_v4i)pos));
-    leave = rt_v4min(leave, rt_v4splat(hi_max));
+    const ck_f zero = ck_splat(0.0f);
+    const ck_f neg = ck_splat(RT_BOX_FAR_SCALE_NEG), pos = ck_splat(RT_BOX_FAR_SCALE);
+    leave = leave * (ck_f)(((leave < zero) & (ck_i)neg) | (~(leave < zero) & (ck_i)pos));
+    leave = ck_min(leave, ck_splat(hi_max));
     *enter_out = enter;
-    return rt_v4bits(enter <= leave);
+    return ck_bits(enter <= leave);
 }
 
 /* ---- box test: rt_box_test on the lanes of group g ------------------------ */
@@ -277,24 +298,6 @@ static inline uint32_t pk_box(const rt_pk_node *n, int c, const pk_geom *p, cons
     hi = rt_vmin_of(st->hi[g], hi);
     *tnear = lo;
     return rt_vbits(lo <= hi) & st->alive[g];
-}
-
-/* The first group from 'first' on with a lane that enters child c of n, or
- * -1; *mask gets that group's entering lanes, *tnear their entry distances. */
-static inline int pk_enter(const rt_pk_node *n, int c, const pk_geom *p, pk_state *st, int first,
-                           uint32_t *mask, rt_vf *tnear) {
-    for (int g = first; g < G; g++) {
-        uint32_t alive = st->alive[g];
-        if (!alive) continue;
-        st->counts->group_box_tests++;
-        count(st, &st->counts->box_tests, st->box, g, alive);
-        uint32_t m = pk_box(n, c, p, st, g, tnear);
-        if (m) {
-            *mask = m;
-            return g;
-        }
-    }
-    return -1;
 }
 
 /* ---- triangles -------------------------------------------------------------- */
@@ -454,69 +457,143 @@ static void pk_tri(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u32 e, 
     st->hi_stale = 1;
 }
 
-/* Leaf child c of n of a mesh BVH: every group from 'first' on whose lanes
- * enter its box tests its triangles (group 'first' entered with
- * first_mask). */
-static void pk_leaf(pk_state *st, const pk_geom *p, const rt_pk_node *n, int c, rt_u32 inst,
-                    int first, uint32_t first_mask) {
+/* The triangles of leaf child c of n for the lanes of m in group g. */
+static void pk_leaf(pk_state *st, const pk_geom *p, const rt_pk_node *n, int c, rt_u32 inst, int g,
+                    uint32_t m) {
     const rt_u32 begin = n->ref[c], end = begin + (n->count[c] & RT_NODE_COUNT_MASK);
-    for (int g = first; g < G; g++) {
-        uint32_t m;
-        if (g == first) {
-            m = first_mask & st->alive[g];
-        } else {
-            if (!st->alive[g]) continue;
-            rt_vf tn;
-            st->counts->group_box_tests++;
-            count(st, &st->counts->box_tests, st->box, g, st->alive[g]);
-            m = pk_box(n, c, p, st, g, &tn);
-        }
-        for (rt_u32 e = begin; e < end && m; e++) {
-            pk_tri(st, p, g, m, e, inst);
-            m &= st->alive[g];
-        }
+    for (rt_u32 e = begin; e < end && m; e++) {
+        pk_tri(st, p, g, m, e, inst);
+        m &= st->alive[g];
     }
 }
 
 /* ---- traversal -------------------------------------------------------------- */
 
-static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, int first);
+/* A set of groups: bit g is group g. */
+typedef uint32_t pk_groups;
 
-/* Leaf child c of n for every alive lane: each group's lanes that pass its
- * box test test its triangles (or, in the object BVH, its instances). */
-static void pk_leaf_all(pk_state *st, const pk_geom *p, const rt_pk_node *n, int c, rt_u32 inst) {
-    if (inst == RT_NO_HIT) {
-        const rt_u32 end = n->ref[c] + (n->count[c] & RT_NODE_COUNT_MASK);
-        for (rt_u32 e = n->ref[c]; e < end && st->alive_groups; e++)
-            pk_instance(st, p, st->s->inst_ids[e], 0);
-        return;
-    }
-    for (int g = 0; g < G; g++) {
-        if (!st->alive[g]) continue;
-        rt_vf tn;
-        st->counts->group_box_tests++;
-        count(st, &st->counts->box_tests, st->box, g, st->alive[g]);
-        uint32_t m = pk_box(n, c, p, st, g, &tn);
-        const rt_u32 begin = n->ref[c], end = begin + (n->count[c] & RT_NODE_COUNT_MASK);
-        for (rt_u32 e = begin; e < end && m; e++) {
-            pk_tri(st, p, g, m, e, inst);
-            m &= st->alive[g];
+static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, pk_groups gm);
+
+/* Counts the box tests of lanes m of group g, n_boxes of them each. */
+static inline void count_boxes(pk_state *st, int g, uint32_t m, int n_boxes) {
+    st->counts->group_box_tests += (uint64_t)n_boxes;
+    st->counts->box_tests += (uint64_t)n_boxes * lanes_in(m);
+    if (st->per_lane) st->box[g] -= rt_vmask(m) * n_boxes;
+}
+
+/* Group g's lanes through the tree below child 'slot' of node 'entry' (a
+ * mesh's, inst its instance, or the object BVH's, inst == RT_NO_HIT):
+ * rt_trace_mesh's and rt_trace's loops with each lane's own box tests, the
+ * children of a wide node all tested without a branch (an empty slot's
+ * inverted box is missed by every lane) by the lanes that entered it,
+ * entered children nearest first (by the entry distance of the first lane
+ * that enters; the order changes speed, never the hits). A pushed child
+ * goes on, when popped, with the lanes whose entry distance is still inside
+ * their range (hits found since may have shortened it): the others would
+ * fail its box test now, and the oracle's culling relies on that losing
+ * nothing. */
+static void pk_bvh_group(pk_state *st, const pk_geom *p, rt_u32 entry, int slot, rt_u32 inst,
+                         int g) {
+    typedef struct {
+        rt_vf tnear;
+        rt_u32 node;
+        int slot;
+        uint32_t mask;
+    } item;
+    const rt_pk_node *nodes = st->w->nodes;
+    item stack[(RT_PK_WIDTH - 1) * RT_STACK_SIZE + 1];
+    int sp = 0;
+    item cur = {rt_vsplat(0.0f), entry, slot, st->alive[g]};
+    count_boxes(st, g, cur.mask, 1);
+    cur.mask &= pk_box(&nodes[entry], slot, p, st, g, &cur.tnear);
+    while (cur.mask) {
+        const rt_pk_node *n = &nodes[cur.node];
+        const int c = cur.slot;
+        if (n->count[c] & RT_NODE_LEAF_FLAG) {
+            if (inst != RT_NO_HIT) {
+                pk_leaf(st, p, n, c, inst, g, cur.mask);
+            } else {
+                const rt_u32 end = n->ref[c] + (n->count[c] & RT_NODE_COUNT_MASK);
+                for (rt_u32 e = n->ref[c]; e < end && st->alive[g]; e++)
+                    pk_instance(st, p, st->s->inst_ids[e], 1u << g);
+            }
+            if (!st->alive[g]) return;
+        } else {
+            const rt_u32 child = n->ref[c];
+            const rt_pk_node *ch = &nodes[child];
+            const uint32_t lanes = cur.mask & st->alive[g];
+            uint32_t ms[RT_PK_WIDTH], entered = 0;
+            rt_vf ts[RT_PK_WIDTH];
+            int kids = 0;
+            for (int s = 0; s < RT_PK_WIDTH; s++) {
+                kids += ch->ref[s] != RT_PK_NO_CHILD;
+                ms[s] = pk_box(ch, s, p, st, g, &ts[s]) & lanes;
+                entered |= (uint32_t)(ms[s] != 0) << s;
+            }
+            count_boxes(st, g, lanes, kids);
+            item hit[RT_PK_WIDTH];
+            float key[RT_PK_WIDTH];
+            int hits = 0;
+            for (; entered; entered &= entered - 1) {
+                const int s = lowest_bit(entered);
+                if (!(ch->count[s] & RT_NODE_LEAF_FLAG)) {
+                    __builtin_prefetch(&nodes[ch->ref[s]]);
+                    __builtin_prefetch((const char *)&nodes[ch->ref[s]] + 64);
+                }
+                const float k = ts[s][lowest_bit(ms[s])];
+                int i = hits++;
+                while (i > 0 && key[i - 1] > k) {
+                    hit[i] = hit[i - 1];
+                    key[i] = key[i - 1];
+                    i--;
+                }
+                hit[i] = (item){ts[s], child, s, ms[s]};
+                key[i] = k;
+            }
+            if (hits) {
+                for (int i = hits - 1; i > 0; i--) stack[sp++] = hit[i];
+                cur = hit[0];
+                continue;
+            }
+        }
+        cur.mask = 0;
+        while (!cur.mask && sp > 0) {
+            cur = stack[--sp];
+            cur.mask &= st->alive[g] & rt_vbits(cur.tnear <= st->hi[g]);
         }
     }
 }
 
-/* pk_bvh for a packet whose interval bounds exist (p->ia): inner nodes are
- * culled by the interval test over all four children at once, which stands
- * for every lane (it fails only when every lane's box test would); only at
- * a leaf does each lane test the box, and the lanes that pass test the
- * triangles. So a lane visits a superset of its own nodes, as pk_bvh's
- * lanes do, and gets the same hits; the packet decides each inner node with
- * one test instead of one per lane (Embree's coherent packets do the like
- * with frusta). Children are taken nearest first by their interval entry,
- * and a pushed child whose entry lies beyond every lane's range by the time
- * it is popped is dropped. */
-static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst) {
-    _Static_assert(RT_PK_WIDTH == 4, "one interval lane per child");
+/* Leaf child c of n for the alive lanes of the groups of gm: each group's
+ * lanes that pass its box test test its triangles (or, in the object BVH,
+ * its instances). */
+static void pk_leaf_all(pk_state *st, const pk_geom *p, const rt_pk_node *n, int c, rt_u32 inst,
+                        pk_groups gm) {
+    if (inst == RT_NO_HIT) {
+        const rt_u32 end = n->ref[c] + (n->count[c] & RT_NODE_COUNT_MASK);
+        for (rt_u32 e = n->ref[c]; e < end && (st->alive_groups & gm); e++)
+            pk_instance(st, p, st->s->inst_ids[e], gm);
+        return;
+    }
+    for (pk_groups todo = gm & st->alive_groups; todo; todo &= todo - 1) {
+        const int g = lowest_bit(todo);
+        rt_vf tn;
+        count_boxes(st, g, st->alive[g], 1);
+        pk_leaf(st, p, n, c, inst, g, pk_box(n, c, p, st, g, &tn));
+    }
+}
+
+/* The groups of gm through a BVH by the packet's bounds (p->ia): the
+ * interval test over all children of a wide node at once stands for every
+ * lane (it fails only when every lane's box test would), so the packet
+ * decides each inner node with one test (Embree's coherent packets do the
+ * like with frusta). Where the rays part ways, at a leaf or a subtree of at
+ * most SMALL_TREE primitives, each group goes on with its lanes' own tests.
+ * Either way a lane visits a superset of the nodes its scalar traversal
+ * visits and gets the same hits. Children are taken nearest first by their
+ * interval entry, and a pushed child whose entry lies beyond every lane's
+ * range by the time it is popped is dropped. */
+static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, pk_groups gm) {
     typedef struct {
         float enter;
         rt_u32 node;
@@ -525,16 +602,19 @@ static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst)
     const rt_pk_node *nodes = st->w->nodes;
     item stack[(RT_PK_WIDTH - 1) * RT_STACK_SIZE + 1];
     int sp = 0;
-    rt_v4f en;
+    ck_f en;
     st->counts->group_box_tests++;
     if (!(pk_ia_children(&nodes[entry], p, hi_max(st), &en) & 1u)) return;
     item cur = {en[0], entry, 0};
     for (;;) {
         const rt_pk_node *n = &nodes[cur.node];
         const int c = cur.slot;
-        if (n->count[c] & RT_NODE_LEAF_FLAG) {
-            pk_leaf_all(st, p, n, c, inst);
-            if (!st->alive_groups) return;
+        const rt_u32 count = n->count[c];
+        if (count & RT_NODE_LEAF_FLAG) {
+            pk_leaf_all(st, p, n, c, inst, gm);
+        } else if (count <= SMALL_TREE) {
+            for (pk_groups todo = gm & st->alive_groups; todo; todo &= todo - 1)
+                pk_bvh_group(st, p, cur.node, c, inst, lowest_bit(todo));
         } else {
             const rt_u32 child = n->ref[c];
             const rt_pk_node *ch = &nodes[child];
@@ -561,6 +641,7 @@ static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst)
                 continue;
             }
         }
+        if (!(st->alive_groups & gm)) return;
         do {
             if (sp == 0) return;
             cur = stack[--sp];
@@ -568,129 +649,32 @@ static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst)
     }
 }
 
-/* One BVH from its entry node: a mesh's (inst is its instance) or the
- * object BVH (inst == RT_NO_HIT), whose leaves hand their instances to
- * pk_instance. rt_trace_mesh's and rt_trace's loops for the packet over the
- * wide nodes: a child is entered by the groups from the parent's first on
- * whose lanes pass its box test, nearest first (by the entry distance of its
- * first entering lane; the order changes speed, never the hits), the others
- * are pushed. */
-static void pk_bvh(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, int first) {
+/* One BVH from its entry node for the groups of gm: by the packet's bounds
+ * where they exist, else group by group. */
+static void pk_bvh(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, pk_groups gm) {
     if (p->ia) {
-        pk_bvh_ia(st, p, entry, inst);
+        pk_bvh_ia(st, p, entry, inst, gm);
         return;
     }
-    typedef struct {
-        rt_vf tnear; /* group first's entry distances */
-        rt_u32 node;
-        int slot, first;
-        uint32_t mask; /* group first's lanes that entered */
-    } item;
-    const rt_pk_node *nodes = st->w->nodes;
-    item stack[(RT_PK_WIDTH - 1) * RT_STACK_SIZE + 1];
-    int sp = 0;
-    rt_vf tn;
-    item cur = {rt_vsplat(0.0f), entry, 0, 0, 0};
-    cur.first = pk_enter(&nodes[entry], 0, p, st, first, &cur.mask, &tn);
-    if (cur.first < 0) return;
-    for (;;) {
-        const rt_pk_node *n = &nodes[cur.node];
-        const int c = cur.slot;
-        if (n->count[c] & RT_NODE_LEAF_FLAG) {
-            if (inst == RT_NO_HIT) {
-                const rt_u32 end = n->ref[c] + (n->count[c] & RT_NODE_COUNT_MASK);
-                for (rt_u32 e = n->ref[c]; e < end && st->alive_groups; e++)
-                    pk_instance(st, p, st->s->inst_ids[e], cur.first);
-            } else {
-                pk_leaf(st, p, n, c, inst, cur.first, cur.mask);
-            }
-            if (!st->alive_groups) return;
-        } else {
-            const rt_u32 child = n->ref[c];
-            const rt_pk_node *ch = &nodes[child];
-            item hit[RT_PK_WIDTH];
-            float key[RT_PK_WIDTH];
-            int hits = 0;
-            /* The children each group from 'first' on enters: with one
-             * vector for the whole packet, every slot is tested without a
-             * branch (an empty slot's inverted box is missed by every lane)
-             * by the lanes that entered this node; with several, from the
-             * first group on (pk_enter). */
-            uint32_t ms[RT_PK_WIDTH], entered = 0;
-            int fs[RT_PK_WIDTH];
-            rt_vf ts[RT_PK_WIDTH];
-            if (G == 1) {
-                const uint32_t lanes = cur.mask & st->alive[0];
-                int kids = 0;
-                for (int s = 0; s < RT_PK_WIDTH; s++) {
-                    kids += ch->ref[s] != RT_PK_NO_CHILD;
-                    ms[s] = pk_box(ch, s, p, st, 0, &ts[s]) & lanes;
-                    fs[s] = 0;
-                    entered |= (uint32_t)(ms[s] != 0) << s;
-                }
-                st->counts->group_box_tests += (uint64_t)kids;
-                st->counts->box_tests += (uint64_t)kids * lanes_in(lanes);
-                if (st->per_lane) st->box[0] -= rt_vmask(lanes) * kids;
-            } else {
-                for (int s = 0; s < RT_PK_WIDTH && ch->ref[s] != RT_PK_NO_CHILD; s++) {
-                    ms[s] = 0;
-                    fs[s] = pk_enter(ch, s, p, st, cur.first, &ms[s], &ts[s]);
-                    entered |= (uint32_t)(fs[s] >= 0) << s;
-                }
-            }
-            for (; entered; entered &= entered - 1) {
-                const int s = lowest_bit(entered), f = fs[s];
-                /* The child's node is read next (the nearest) or later. */
-                if (!(ch->count[s] & RT_NODE_LEAF_FLAG)) {
-                    __builtin_prefetch(&nodes[ch->ref[s]]);
-                    __builtin_prefetch((const char *)&nodes[ch->ref[s]] + 64);
-                }
-                /* Insertion by (first group, entry distance of its first lane). */
-                float k = ts[s][lowest_bit(ms[s])];
-                int i = hits++;
-                while (i > 0 &&
-                       (hit[i - 1].first > f || (hit[i - 1].first == f && key[i - 1] > k))) {
-                    hit[i] = hit[i - 1];
-                    key[i] = key[i - 1];
-                    i--;
-                }
-                hit[i] = (item){ts[s], child, s, f, ms[s]};
-                key[i] = k;
-            }
-            if (hits) {
-                for (int i = hits - 1; i > 0; i--) stack[sp++] = hit[i];
-                cur = hit[0];
-                continue;
-            }
-        }
-        /* A pushed child goes on with the lanes of its group whose entry
-         * distance is still inside their range, which hits found since may
-         * have shortened: the others would fail its box test now, and the
-         * oracle's culling relies on that losing nothing. With one group
-         * and no lane left, the child is dropped. */
-        do {
-            if (sp == 0) return;
-            cur = stack[--sp];
-            cur.mask &= rt_vbits(cur.tnear <= st->hi[cur.first]);
-        } while (G == 1 && !cur.mask);
-    }
+    for (pk_groups todo = gm & st->alive_groups; todo; todo &= todo - 1)
+        pk_bvh_group(st, p, entry, 0, inst, lowest_bit(todo));
 }
 
-/* One instance for the groups from 'first' on: the same rays when it is the
- * identity, else each lane's ray moved into object space as rt_trace_instance
- * moves it. */
-static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, int first) {
+/* One instance for the groups of gm: the same rays when it is the identity,
+ * else each lane's ray moved into object space as rt_trace_instance moves
+ * it. */
+static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, pk_groups gm) {
     const rt_instance *in = &st->s->instances[inst];
     const rt_u32 entry = st->w->inst_root[inst];
     if (in->flags & RT_INST_IDENTITY) {
-        pk_bvh(st, world, entry, inst, first);
+        pk_bvh(st, world, entry, inst, gm);
         return;
     }
     pk_geom obj;
     rt_ray_d ray[L];
     for (int l = 0; l < L; l++) rt_ray_to_object(in, &world->ray[world->lane[l]], &ray[l]);
     pk_geom_setup(&obj, ray, RT_PK_ALL);
-    pk_bvh(st, &obj, entry, inst, first);
+    pk_bvh(st, &obj, entry, inst, gm);
 }
 
 void RT_PK_TRACE(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *rays, int any_hit,
@@ -722,9 +706,9 @@ void RT_PK_TRACE(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *
         pk_geom world;
         pk_geom_setup(&world, rays->ray, valid);
         if (s->hdr->flags & RT_SCENE_SINGLE)
-            pk_instance(&st, &world, 0, 0);
+            pk_instance(&st, &world, 0, st.alive_groups);
         else
-            pk_bvh(&st, &world, w->top, RT_NO_HIT, 0);
+            pk_bvh(&st, &world, w->top, RT_NO_HIT, st.alive_groups);
     }
     for (int g = 0; g < G; g++) {
         const rt_vf u = st.V[g] / st.det[g], v = st.W[g] / st.det[g];

@@ -200,4 +200,46 @@ static inline uint32_t rt_v4bits(rt_v4i m) {
 #endif
 }
 
+/* ---- eight lanes, one per child of an eight-wide node -------------------- */
+
+typedef float rt_v8f __attribute__((vector_size(32)));
+typedef int32_t rt_v8i __attribute__((vector_size(32)));
+
+static inline rt_v8f rt_v8splat(float x) {
+    return (rt_v8f){x, x, x, x, x, x, x, x};
+}
+
+#if defined(__AVX__)
+static inline rt_v8f rt_v8min(rt_v8f a, rt_v8f b) {
+    return (rt_v8f)_mm256_min_ps((__m256)a, (__m256)b);
+}
+static inline rt_v8f rt_v8max(rt_v8f a, rt_v8f b) {
+    return (rt_v8f)_mm256_max_ps((__m256)a, (__m256)b);
+}
+static inline uint32_t rt_v8bits(rt_v8i m) {
+    return (uint32_t)_mm256_movemask_ps((__m256)m);
+}
+#else
+typedef union {
+    rt_v8f v;
+    rt_v4f h[2];
+} rt_v8split;
+static inline rt_v8f rt_v8min(rt_v8f a, rt_v8f b) {
+    rt_v8split x = {a}, y = {b};
+    x.h[0] = rt_v4min(x.h[0], y.h[0]);
+    x.h[1] = rt_v4min(x.h[1], y.h[1]);
+    return x.v;
+}
+static inline rt_v8f rt_v8max(rt_v8f a, rt_v8f b) {
+    rt_v8split x = {a}, y = {b};
+    x.h[0] = rt_v4max(x.h[0], y.h[0]);
+    x.h[1] = rt_v4max(x.h[1], y.h[1]);
+    return x.v;
+}
+static inline uint32_t rt_v8bits(rt_v8i m) {
+    rt_v8split x = {(rt_v8f)m};
+    return rt_v4bits((rt_v4i)x.h[0]) | rt_v4bits((rt_v4i)x.h[1]) << 4;
+}
+#endif
+
 #endif /* RT_SIMD_WIDE_H */
