@@ -39,7 +39,7 @@ enum { SMALL_TREE = 32 };
 
 /* The packet's rays in one space: the world, or an instance's object space. */
 typedef struct pk_geom {
-    rt_vf org[3][G], inv[3][G];
+    rt_vf org[3][G], dir[3][G], inv[3][G];
     rt_vi neg[3][G]; /* inv < 0 */
     rt_vf lo[G];     /* rt_box_lo(tmin) */
     rt_vf tmin[G];
@@ -56,8 +56,6 @@ typedef struct pk_geom {
      * every lane (primary rays) makes the test cheaper and tighter. */
     int ia, one_origin;
     float org_min[3], org_max[3], inv_min[3], inv_max[3], lo_min;
-    const rt_ray_d *ray; /* the rays, lane l at ray[lane[l]] (for scalar tests) */
-    uint8_t lane[L];
 } pk_geom;
 
 typedef struct pk_state {
@@ -109,8 +107,9 @@ static inline void count(const pk_state *st, uint64_t *total, rt_vi *per_lane, i
 
 /* ---- set-up --------------------------------------------------------------- */
 
-/* rt_ray_prepare on every lane of group g, from its direction. */
-static void pk_prepare(pk_geom *p, int g, const rt_vf *dir) {
+/* rt_ray_prepare on every lane of group g. */
+static void pk_prepare(pk_geom *p, int g) {
+    const rt_vf *dir = (const rt_vf[3]){p->dir[0][g], p->dir[1][g], p->dir[2][g]};
     const rt_vf zero = rt_vsplat(0.0f), one = rt_vsplat(1.0f);
     for (int k = 0; k < 3; k++) {
         p->inv[k][g] = one / dir[k];
@@ -148,31 +147,13 @@ static void pk_prepare(pk_geom *p, int g, const rt_vf *dir) {
     p->perm[g][2] = b[4] ? 0 : b[5] ? 1 : 2;
 }
 
-/* The packet's vectors; invalid lanes hold a copy of a valid lane's ray, so
- * that every lane computes on real numbers. */
-static void pk_geom_setup(pk_geom *p, const rt_ray_d *ray, rt_pk_mask valid) {
-    int src = valid ? __builtin_ctzll(valid) : 0;
-    p->ray = ray;
-    for (int l = 0; l < L; l++) p->lane[l] = (uint8_t)((valid >> l) & 1u ? l : src);
+/* The rest of the set-up once org, dir and tmin are in place: rt_ray_prepare
+ * per lane, the box range's lower ends, the signs and the interval bounds. */
+static void pk_geom_finish(pk_geom *p) {
     rt_pk_mask neg_bits[3] = {0, 0, 0};
     for (int g = 0; g < G; g++) {
-        float o[3][N], d[3][N], tmin[N];
-        for (int i = 0; i < N; i++) {
-            const rt_ray_d *r = &ray[p->lane[N * g + i]];
-            for (int k = 0; k < 3; k++) {
-                o[k][i] = r->org[k];
-                d[k][i] = r->dir[k];
-            }
-            tmin[i] = r->tmin;
-        }
-        rt_vf dir[3];
-        for (int k = 0; k < 3; k++) {
-            memcpy(&p->org[k][g], o[k], sizeof(rt_vf));
-            memcpy(&dir[k], d[k], sizeof(rt_vf));
-        }
-        memcpy(&p->tmin[g], tmin, sizeof(rt_vf));
         p->lo[g] = p->tmin[g] - rt_vabs(p->tmin[g]) * rt_vsplat(RT_BOX_T_MARGIN);
-        pk_prepare(p, g, dir);
+        pk_prepare(p, g);
         for (int k = 0; k < 3; k++) neg_bits[k] |= (rt_pk_mask)rt_vbits(p->neg[k][g]) << (N * g);
     }
     p->uniform = 1;
@@ -214,6 +195,56 @@ static void pk_geom_setup(pk_geom *p, const rt_ray_d *ray, rt_pk_mask valid) {
         }
     }
     for (int k = 0; k < 3; k++) p->one_origin &= p->org_min[k] == p->org_max[k];
+}
+
+/* The packet's rays as vectors; invalid lanes take a copy of a valid lane's
+ * ray, so that every lane computes on real numbers. */
+static void pk_geom_setup(pk_geom *p, const rt_ray_d *ray, rt_pk_mask valid) {
+    const int src = valid ? __builtin_ctzll(valid) : 0;
+    for (int g = 0; g < G; g++) {
+        float o[3][N], d[3][N], tmin[N];
+        for (int i = 0; i < N; i++) {
+            const int l = N * g + i;
+            const rt_ray_d *r = &ray[(valid >> l) & 1u ? l : src];
+            for (int k = 0; k < 3; k++) {
+                o[k][i] = r->org[k];
+                d[k][i] = r->dir[k];
+            }
+            tmin[i] = r->tmin;
+        }
+        for (int k = 0; k < 3; k++) {
+            memcpy(&p->org[k][g], o[k], sizeof(rt_vf));
+            memcpy(&p->dir[k][g], d[k], sizeof(rt_vf));
+        }
+        memcpy(&p->tmin[g], tmin, sizeof(rt_vf));
+    }
+    pk_geom_finish(p);
+}
+
+/* The world packet w in an instance's object space: rt_ray_to_object per
+ * lane, o' = M o + m and d' = M d in its order of operations. */
+static void pk_geom_to_object(pk_geom *o, const pk_geom *w, const rt_instance *in) {
+    const float *m = in->world_to_object;
+    for (int g = 0; g < G; g++) {
+        for (int i = 0; i < 3; i++) {
+            const rt_vf m0 = rt_vsplat(m[4 * i]), m1 = rt_vsplat(m[4 * i + 1]);
+            const rt_vf m2 = rt_vsplat(m[4 * i + 2]), m3 = rt_vsplat(m[4 * i + 3]);
+            o->org[i][g] = ((m0 * w->org[0][g] + m1 * w->org[1][g]) + m2 * w->org[2][g]) + m3;
+            o->dir[i][g] = (m0 * w->dir[0][g] + m1 * w->dir[1][g]) + m2 * w->dir[2][g];
+        }
+        o->tmin[g] = w->tmin[g];
+    }
+    pk_geom_finish(o);
+}
+
+/* Lane i of group g as a ray (for the shared scalar tests; tmax unused). */
+static void lane_ray(const pk_geom *p, int g, int i, rt_ray_d *r) {
+    for (int k = 0; k < 3; k++) {
+        r->org[k] = p->org[k][g][i];
+        r->dir[k] = p->dir[k][g][i];
+    }
+    r->tmin = p->tmin[g][i];
+    r->tmax = RT_INF;
 }
 
 /* One lane per child of a wide node. */
@@ -353,7 +384,9 @@ static void pk_tri_lanes(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u
     const rt_u32 prim = st->s->tri_ids[e];
     for (; m; m &= m - 1) {
         const int i = lowest_bit(m);
-        const rt_ray_d *r = &p->ray[p->lane[N * g + i]];
+        rt_ray_d lr;
+        lane_ray(p, g, i, &lr);
+        const rt_ray_d *r = &lr;
         rt_ray_pre pre; /* only the watertight test reads it */
         float t, u, v;
         if (st->method == RT_TRI_WATERTIGHT)
@@ -671,9 +704,7 @@ static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, pk_grou
         return;
     }
     pk_geom obj;
-    rt_ray_d ray[L];
-    for (int l = 0; l < L; l++) rt_ray_to_object(in, &world->ray[world->lane[l]], &ray[l]);
-    pk_geom_setup(&obj, ray, RT_PK_ALL);
+    pk_geom_to_object(&obj, world, in);
     pk_bvh(st, &obj, entry, inst, gm);
 }
 
