@@ -76,7 +76,7 @@ for name in tri_tests builders opencl_options; do
     script=$root/bench/study_$name.sh
     [ -f "$script" ] || continue
     step "study $name"
-    bash "$script" "$build" "$shared" "$tmp/studies" $study_mode >&2
+    RT_STUDY_THREADS=$threads bash "$script" "$build" "$shared" "$tmp/studies" $study_mode >&2
     studies+=("$name")
 done
 

@@ -7,17 +7,19 @@
 #include <stdint.h>
 
 #include "flatten.h"
+#include "packet_wide.h"
 #include "rt.h"
 #include "rt_shade.h"
 #include "thread_pool.h"
 
 typedef struct rt_cpu_counts {
     uint64_t rays, primary_rays, box_tests, tri_tests;
-    uint64_t packets, packet_box_tests; /* packet path only */
+    uint64_t packets, packet_box_tests, packet_tri_tests; /* packet path only */
 } rt_cpu_counts;
 
 typedef struct rt_cpu_frame {
     const rt_flat *flat;
+    const rt_pk_wide *wide; /* the packet backend's wide BVHs of flat */
     rt_aov aov;
     float *pixels; /* width * height * channels */
     int channels;  /* 3 for the image and normals, else 1 */
@@ -28,8 +30,9 @@ typedef struct rt_cpu_frame {
 /* Renders with the scalar oracle on the pool's workers (interleaved rows). */
 void rt_cpu_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *counts);
 
-/* Renders with 2x2 packets on the pool's workers (interleaved strips of two
- * rows). */
+/* Renders with packets of RT_PACKET_TILE_W x RT_PACKET_TILE_H pixels (one
+ * per tile) on the pool's workers, which take rows of tiles in turn. */
+enum { RT_PACKET_TILE_W = 8, RT_PACKET_TILE_H = 8 };
 void rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *counts);
 
 /* Finishes one pixel whose primary ray and hit are known: shading (or the
@@ -37,11 +40,11 @@ void rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *c
 void rt_cpu_finish_pixel(const rt_cpu_frame *frame, const rt_scene_view *view, int x, int y,
                          const rt_ray_d *ray, const rt_hit_d *hit, rt_counters *c);
 
-/* Traces n rays (closest or any hit) with the scalar code, or in packets of
- * four; misses get prim = RT_NO_HIT. */
+/* Traces n rays (closest or any hit) with the scalar code, or in packets
+ * (consecutive rays together); misses get prim = RT_NO_HIT. */
 void rt_cpu_trace_rays(const rt_flat *flat, const rt_ray_d *rays, size_t n, rt_hit_d *hits,
                        int any_hit, rt_counters *c);
-void rt_packet_trace_rays(const rt_flat *flat, const rt_ray_d *rays, size_t n, rt_hit_d *hits,
-                          int any_hit, rt_counters *c);
+void rt_packet_trace_rays(const rt_flat *flat, const rt_pk_wide *wide, const rt_ray_d *rays,
+                          size_t n, rt_hit_d *hits, int any_hit, rt_counters *c);
 
 #endif /* RT_CPU_RENDER_H */

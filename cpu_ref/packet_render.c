@@ -1,246 +1,177 @@
-/* packet_render.c - the thesis's packet path (Langr 2016, section 3.2.6):
- * 2x2 rays traverse the BVHs together, their box tests four lanes at a time
- * through NEON (host/simd_neon.h), threads over interlaced strips.
+/* packet_render.c - the packet path (Langr 2016, section 3.2.6, with larger
+ * packets): tiles of TILE_W x TILE_H pixels, one ray packet per tile
+ * (cpu_ref/packet_trace.c), their shadow rays traced as packets too, blocks
+ * of tiles taken by the pool's workers in turn.
  *
- * Bit-identical to the scalar oracle by construction: each lane's box test
- * performs the scalar test's operations in the same order (no FMA), so a lane
- * never culls a node that holds its closest hit; triangle tests are the shared
- * scalar ones per lane; the total hit order makes the closest hit independent
- * of the visiting order; shading after the primary hit is the shared
- * rt_shade_hit. */
+ * Bit-identical to the scalar oracle: the packet tracer gives each lane the
+ * oracle's hit, and shading is the shared code (kernels/rt_shade.h) split
+ * where the shadow rays are traced: rt_shade_begin per lane, per light
+ * rt_phong_light per lane, one packet of shadow rays, rt_phong_add per
+ * unoccluded lane, then rt_shade_end and the secondary rays per lane
+ * (rt_shade_children). */
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cpu_render.h"
-#include "simd_neon.h"
+#include "packet_trace.h"
 
-typedef struct packet {
-    rt_ray_d ray[4];
-    rt_ray_pre pre[4];
-    float32x4_t org[3], inv[3];
-    uint32x4_t neg[3]; /* all ones where the lane's inv < 0 */
-    float32x4_t lo;    /* rt_box_lo(tmin) per lane */
-} packet;
+/* A tile is one packet. Its lanes run in Morton order, so that every run
+ * of 4, 8 or 16 lanes (one vector of the packet tracer) is a compact block
+ * of pixels. */
+enum { TILE_W = RT_PACKET_TILE_W, TILE_H = RT_PACKET_TILE_H };
+_Static_assert(TILE_W *TILE_H == RT_PK_LANES, "a tile is one packet");
+_Static_assert(TILE_W == TILE_H || TILE_W == 2 * TILE_H, "a Morton tile");
 
-static void packet_setup(packet *p) {
-    float o[4], iv[4], lo[4];
-    uint32_t ng[4];
-    for (int k = 0; k < 3; k++) {
-        for (int l = 0; l < 4; l++) {
-            o[l] = p->ray[l].org[k];
-            iv[l] = p->pre[l].inv[k];
-            ng[l] = p->pre[l].sign[k] ? 0xffffffffu : 0u;
-        }
-        p->org[k] = vld1q_f32(o);
-        p->inv[k] = vld1q_f32(iv);
-        p->neg[k] = vld1q_u32(ng);
+static void lane_pixel(int x0, int y0, int l, int *x, int *y) {
+    int dx = 0, dy = 0;
+    for (int b = 0; (1 << (2 * b)) < RT_PK_LANES; b++) {
+        dx |= ((l >> (2 * b)) & 1) << b;
+        dy |= ((l >> (2 * b + 1)) & 1) << b;
     }
-    for (int l = 0; l < 4; l++) lo[l] = rt_box_lo(p->ray[l].tmin);
-    p->lo = vld1q_f32(lo);
+    *x = x0 + dx;
+    *y = y0 + dy;
 }
 
-static uint32_t lane_bits(uint32x4_t m) {
-    return (vgetq_lane_u32(m, 0) & 1u) | (vgetq_lane_u32(m, 1) & 2u) | (vgetq_lane_u32(m, 2) & 4u) |
-           (vgetq_lane_u32(m, 3) & 8u);
+static void add_counts(rt_cpu_counts *total, const rt_pk_counts *pc) {
+    total->packet_box_tests += pc->group_box_tests;
+    total->packet_tri_tests += pc->group_tri_tests;
+    total->rays += pc->rays;
+    total->box_tests += pc->box_tests;
+    total->tri_tests += pc->tri_tests;
 }
 
-/* rt_box_test on four lanes; returns the lanes of 'active' that hit. */
-static uint32_t packet_box(const rt_node *n, const packet *p, float32x4_t hi_t, uint32_t active,
-                           float tnear[4]) {
-    float32x4_t lo = p->lo, hi = vdupq_n_f32(RT_INF);
-    for (int k = 0; k < 3; k++) {
-        float32x4_t bmin = vdupq_n_f32(n->bmin[k]), bmax = vdupq_n_f32(n->bmax[k]);
-        float32x4_t a = vbslq_f32(p->neg[k], bmax, bmin);
-        float32x4_t b = vbslq_f32(p->neg[k], bmin, bmax);
-        float32x4_t t0 = vmulq_f32(vsubq_f32(a, p->org[k]), p->inv[k]);
-        float32x4_t t1 = vmulq_f32(vsubq_f32(b, p->org[k]), p->inv[k]);
-        lo = vbslq_f32(vcgtq_f32(t0, lo), t0, lo);
-        hi = vbslq_f32(vcltq_f32(t1, hi), t1, hi);
+/* The shading of a tile's hits (the image, or the test-count AOVs, which
+ * count the shading rays too): rt_shade_hit's steps with the shadow rays in
+ * packets. */
+static void shade_tile(const rt_cpu_frame *f, const rt_scene_view *v, const rt_pk_rays *primary,
+                       const rt_hit_d *hit, rt_pk_counts *pc, const int *px, const int *py) {
+    rt_shade_entry e[RT_PK_LANES];
+    rt_shade_node nd[RT_PK_LANES];
+    rt_pk_mask lit = 0; /* lanes whose node has a Phong term */
+    for (int l = 0; l < RT_PK_LANES; l++) {
+        if (!((primary->valid >> l) & 1u)) continue;
+        e[l].ray = primary->ray[l];
+        e[l].w[0] = e[l].w[1] = e[l].w[2] = 1.0f;
+        e[l].depth = 0;
+        if (rt_shade_begin(v, &e[l], &hit[l], &nd[l])) lit |= (rt_pk_mask)1 << l;
     }
-    float32x4_t scale = vbslq_f32(vcltq_f32(hi, vdupq_n_f32(0.0f)),
-                                  vdupq_n_f32(RT_BOX_FAR_SCALE_NEG), vdupq_n_f32(RT_BOX_FAR_SCALE));
-    hi = vmulq_f32(hi, scale); /* as rt_box_test: widened for negative t too */
-    hi = vbslq_f32(vcltq_f32(hi_t, hi), hi_t, hi);
-    vst1q_f32(tnear, lo);
-    return lane_bits(vcleq_f32(lo, hi)) & active;
-}
-
-typedef struct packet_state {
-    const rt_scene_view *s;
-    rt_hit_d hit[4];
-    rt_counters c[4];
-    uint32_t done; /* any-hit lanes that found an occluder */
-    int any_hit;
-    uint64_t packet_box_tests;
-} packet_state;
-
-/* The box range's upper end per lane: rt_box_hi(best t). */
-static float32x4_t packet_hi(const packet_state *st) {
-    float t[4] = {st->hit[0].t, st->hit[1].t, st->hit[2].t, st->hit[3].t};
-    float32x4_t bt = vld1q_f32(t);
-    return vaddq_f32(bt, vmulq_f32(vabsq_f32(bt), vdupq_n_f32(RT_BOX_T_MARGIN)));
-}
-
-static void count_boxes(packet_state *st, uint32_t mask) {
-    st->packet_box_tests++;
-    for (int l = 0; l < 4; l++)
-        if (mask & (1u << l)) st->c[l].box_tests++;
-}
-
-static void packet_instance(packet_state *st, const packet *world, rt_u32 inst, uint32_t active);
-
-/* Traverses one BVH with the lanes in 'active': a mesh's (inst is its
- * instance), or the object BVH (inst == RT_NO_HIT), whose leaves hand each
- * instance to packet_instance. */
-static void packet_mesh(packet_state *st, const packet *p, rt_u32 root, rt_u32 inst,
-                        uint32_t active) {
-    const rt_scene_view *s = st->s;
-    rt_u32 stack_node[RT_STACK_SIZE];
-    uint32_t stack_mask[RT_STACK_SIZE];
-    int sp = 0;
-    float tn0[4], tn1[4];
-    active &= ~st->done;
-    count_boxes(st, active);
-    uint32_t mask = packet_box(&s->nodes[root], p, packet_hi(st), active, tn0);
-    rt_u32 node = root;
-    while (mask) {
-        const rt_node *n = &s->nodes[node];
-        if (n->b & RT_NODE_LEAF_FLAG) {
-            if (inst == RT_NO_HIT) {
-                for (rt_u32 e = n->a; e < n->a + (n->b & RT_NODE_COUNT_MASK); e++)
-                    packet_instance(st, p, s->inst_ids[e], mask);
-            } else {
-                for (int l = 0; l < 4; l++) {
-                    if (!(mask & (1u << l)) || (st->done & (1u << l))) continue;
-                    if (rt_leaf_test(s, n->a, n->b & RT_NODE_COUNT_MASK, inst, &p->ray[l],
-                                     &p->pre[l], st->any_hit, &st->hit[l], &st->c[l]))
-                        st->done |= 1u << l;
-                }
-            }
-            mask = 0;
-        } else {
-            float32x4_t hi = packet_hi(st);
-            mask &= ~st->done;
-            count_boxes(st, mask);
-            count_boxes(st, mask);
-            uint32_t m0 = packet_box(&s->nodes[n->a], p, hi, mask, tn0);
-            uint32_t m1 = packet_box(&s->nodes[n->b], p, hi, mask, tn1);
-            if (m0 && m1) {
-                /* Nearer child first, judged by the first lane that hits both. */
-                uint32_t both = m0 & m1;
-                int l = both ? (both & 1 ? 0 : both & 2 ? 1 : both & 4 ? 2 : 3) : -1;
-                int right_first = l >= 0 && tn1[l] < tn0[l];
-                stack_node[sp] = right_first ? n->a : n->b;
-                stack_mask[sp++] = right_first ? m0 : m1;
-                node = right_first ? n->b : n->a;
-                mask = right_first ? m1 : m0;
-                continue;
-            }
-            node = m0 ? n->a : n->b;
-            mask = m0 ? m0 : m1;
-            if (mask) continue;
+    for (rt_u32 li = 0; li < v->hdr->light_count && lit; li++) {
+        rt_pk_rays shadow;
+        rt_hit_d occluder[RT_PK_LANES];
+        float Ln[RT_PK_LANES][3], ndl[RT_PK_LANES];
+        shadow.valid = 0;
+        for (rt_pk_mask m = lit; m; m &= m - 1) {
+            int l = __builtin_ctzll(m);
+            if (rt_phong_light(v, &nd[l].sf, li, &shadow.ray[l], Ln[l], &ndl[l]))
+                shadow.valid |= (rt_pk_mask)1 << l;
         }
-        while (!mask && sp > 0) {
-            --sp;
-            node = stack_node[sp];
-            mask = stack_mask[sp] & ~st->done;
+        if (!shadow.valid) continue;
+        rt_pk_trace(v, f->wide, &shadow, 1, occluder, pc);
+        for (rt_pk_mask m = shadow.valid; m; m &= m - 1) {
+            int l = __builtin_ctzll(m);
+            if (occluder[l].prim == RT_NO_HIT)
+                rt_phong_add(v, &nd[l].sf, li, Ln[l], ndl[l], nd[l].dn, nd[l].lit);
         }
     }
+    const int w = v->hdr->width;
+    for (int l = 0; l < RT_PK_LANES; l++) {
+        if (!((primary->valid >> l) & 1u)) continue;
+        float term[3], rgb[3] = {0.0f, 0.0f, 0.0f};
+        rt_shade_entry child[2];
+        int has_term, children;
+        rt_shade_end(v, &e[l], &hit[l], &nd[l], term, &has_term, child, &children);
+        if (has_term)
+            for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + term[k];
+        rt_counters sec = {0, 0, 0}; /* the secondary rays' */
+        rt_shade_children(v, child, children, &sec, rgb);
+        pc->rays += sec.rays;
+        pc->box_tests += sec.box_tests;
+        pc->tri_tests += sec.tri_tests;
+        size_t i = (size_t)py[l] * (size_t)w + (size_t)px[l];
+        if (f->aov == RT_AOV_NONE)
+            memcpy(f->pixels + 3 * i, rgb, sizeof rgb);
+        else
+            f->pixels[i] = (float)(f->aov == RT_AOV_BOX_TESTS ? pc->c[l].box_tests + sec.box_tests
+                                                              : pc->c[l].tri_tests + sec.tri_tests);
+    }
 }
 
-/* One instance for the lanes in 'active': the same rays when the instance is
- * the identity, else each lane's ray transformed exactly as rt_trace does. */
-static void packet_instance(packet_state *st, const packet *world, rt_u32 inst, uint32_t active) {
-    const rt_instance *in = &st->s->instances[inst];
-    if (in->flags & RT_INST_IDENTITY) {
-        packet_mesh(st, world, in->root, inst, active);
-        return;
+static void render_tile(const rt_cpu_frame *f, const rt_scene_view *v, int x0, int y0,
+                        rt_cpu_counts *total) {
+    const rt_scene_header *h = v->hdr;
+    rt_pk_rays primary;
+    rt_hit_d hit[RT_PK_LANES];
+    rt_pk_counts pc;
+    int px[RT_PK_LANES], py[RT_PK_LANES];
+    memset(&pc, 0, sizeof pc);
+    pc.per_lane = f->aov == RT_AOV_BOX_TESTS || f->aov == RT_AOV_TRI_TESTS;
+    primary.valid = 0;
+    for (int l = 0; l < RT_PK_LANES; l++) {
+        lane_pixel(x0, y0, l, &px[l], &py[l]);
+        if (px[l] >= h->width || py[l] >= h->height) continue;
+        primary.valid |= (rt_pk_mask)1 << l;
+        rt_camera_ray(h, px[l], py[l], &primary.ray[l]);
     }
-    packet op;
-    for (int l = 0; l < 4; l++) {
-        rt_ray_to_object(in, &world->ray[l], &op.ray[l]);
-        rt_ray_prepare(&op.ray[l], &op.pre[l]);
+    rt_pk_trace(v, f->wide, &primary, 0, hit, &pc);
+    if (f->aov == RT_AOV_NONE || f->aov == RT_AOV_BOX_TESTS || f->aov == RT_AOV_TRI_TESTS) {
+        shade_tile(f, v, &primary, hit, &pc, px, py);
+    } else {
+        for (rt_pk_mask m = primary.valid; m; m &= m - 1) {
+            int l = __builtin_ctzll(m);
+            rt_cpu_finish_pixel(f, v, px[l], py[l], &primary.ray[l], &hit[l], &pc.c[l]);
+        }
     }
-    packet_setup(&op);
-    packet_mesh(st, &op, in->root, inst, active);
+    total->packets++;
+    total->primary_rays += (uint64_t)__builtin_popcountll(primary.valid);
+    add_counts(total, &pc);
 }
 
-/* The two-level traversal for a packet. */
-static void packet_trace(packet_state *st, const packet *p, uint32_t active) {
-    const rt_scene_view *s = st->s;
-    for (int l = 0; l < 4; l++) {
-        rt_hit_init(&st->hit[l], &p->ray[l]);
-        if (active & (1u << l)) st->c[l].rays++;
-    }
-    if (s->hdr->instance_count == 0) return;
-    if (s->hdr->flags & RT_SCENE_SINGLE) {
-        packet_instance(st, p, 0, active);
-        return;
-    }
-    packet_mesh(st, p, s->hdr->top_root, RT_NO_HIT, active);
-}
+/* ---- the frame ---------------------------------------------------------------- */
 
-/* ---- rendering ------------------------------------------------------------ */
+/* Tiles are taken in blocks of BLOCK x BLOCK tiles, in rows of blocks: the
+ * tiles traced one after another then lie close together and find their
+ * BVH nodes still in cache (a row of tiles would come back to its
+ * neighbours below a whole image width later). */
+enum { BLOCK = 4 };
 
 typedef struct packet_job {
     const rt_cpu_frame *frame;
     rt_cpu_counts *per_worker;
+    atomic_int next_block;
 } packet_job;
 
-static void packet_strips(void *ctx, int worker, int workers) {
+static void packet_blocks(void *ctx, int worker, int workers) {
+    (void)workers;
     packet_job *job = ctx;
     const rt_cpu_frame *f = job->frame;
     rt_scene_view v = rt_flat_view(f->flat);
-    const int w = v.hdr->width, h = v.hdr->height, strips = (h + 1) / 2;
-    rt_cpu_counts *total = &job->per_worker[worker];
-    packet_state st;
-    memset(&st, 0, sizeof st);
-    st.s = &v;
-    for (int strip = worker; strip < strips; strip += workers) {
-        int y0 = 2 * strip;
-        for (int x0 = 0; x0 < w; x0 += 2) {
-            packet p;
-            uint32_t active = 0;
-            for (int l = 0; l < 4; l++) {
-                int x = x0 + (l & 1), y = y0 + (l >> 1);
-                if (x < w && y < h) active |= 1u << l;
-                rt_camera_ray(v.hdr, x < w ? x : x0, y < h ? y : y0, &p.ray[l]);
-                rt_ray_prepare(&p.ray[l], &p.pre[l]);
-            }
-            packet_setup(&p);
-            memset(st.c, 0, sizeof st.c);
-            st.done = 0;
-            st.packet_box_tests = 0;
-            packet_trace(&st, &p, active);
-            total->packets++;
-            total->packet_box_tests += st.packet_box_tests;
-            for (int l = 0; l < 4; l++) {
-                if (!(active & (1u << l))) continue;
-                int x = x0 + (l & 1), y = y0 + (l >> 1);
-                rt_cpu_finish_pixel(f, &v, x, y, &p.ray[l], &st.hit[l], &st.c[l]);
-                if (f->aov == RT_AOV_BOX_TESTS)
-                    f->pixels[(size_t)y * w + x] = (float)st.c[l].box_tests;
-                if (f->aov == RT_AOV_TRI_TESTS)
-                    f->pixels[(size_t)y * w + x] = (float)st.c[l].tri_tests;
-                total->rays += st.c[l].rays;
-                total->box_tests += st.c[l].box_tests;
-                total->tri_tests += st.c[l].tri_tests;
-                total->primary_rays++;
-            }
-        }
-        if (worker == 0 && f->progress) f->progress(f->progress_user, (double)(strip + 1) / strips);
+    const int w = v.hdr->width, h = v.hdr->height;
+    const int bw = BLOCK * TILE_W, bh = BLOCK * TILE_H;
+    const int across = (w + bw - 1) / bw, blocks = across * ((h + bh - 1) / bh);
+    for (;;) {
+        int b = atomic_fetch_add_explicit(&job->next_block, 1, memory_order_relaxed);
+        if (b >= blocks) break;
+        const int bx = (b % across) * bw, by = (b / across) * bh;
+        for (int y0 = by; y0 < by + bh && y0 < h; y0 += TILE_H)
+            for (int x0 = bx; x0 < bx + bw && x0 < w; x0 += TILE_W)
+                render_tile(f, &v, x0, y0, &job->per_worker[worker]);
+        if (worker == 0 && f->progress) f->progress(f->progress_user, (double)(b + 1) / blocks);
     }
 }
 
 void rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *counts) {
     int workers = pool ? rt_pool_size(pool) : 1;
-    packet_job job = {frame, calloc((size_t)workers, sizeof(rt_cpu_counts))};
+    packet_job job;
+    job.frame = frame;
+    job.per_worker = calloc((size_t)workers, sizeof(rt_cpu_counts));
+    atomic_init(&job.next_block, 0);
     memset(counts, 0, sizeof *counts);
     if (!job.per_worker) return;
     if (pool)
-        rt_pool_run(pool, packet_strips, &job);
+        rt_pool_run(pool, packet_blocks, &job);
     else
-        packet_strips(&job, 0, 1);
+        packet_blocks(&job, 0, 1);
     for (int i = 0; i < workers; i++) {
         counts->rays += job.per_worker[i].rays;
         counts->primary_rays += job.per_worker[i].primary_rays;
@@ -248,35 +179,26 @@ void rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *c
         counts->tri_tests += job.per_worker[i].tri_tests;
         counts->packets += job.per_worker[i].packets;
         counts->packet_box_tests += job.per_worker[i].packet_box_tests;
+        counts->packet_tri_tests += job.per_worker[i].packet_tri_tests;
     }
     free(job.per_worker);
 }
 
-void rt_packet_trace_rays(const rt_flat *flat, const rt_ray_d *rays, size_t n, rt_hit_d *hits,
-                          int any_hit, rt_counters *c) {
+void rt_packet_trace_rays(const rt_flat *flat, const rt_pk_wide *wide, const rt_ray_d *rays,
+                          size_t n, rt_hit_d *hits, int any_hit, rt_counters *c) {
     rt_scene_view v = rt_flat_view(flat);
-    packet_state st;
-    memset(&st, 0, sizeof st);
-    st.s = &v;
-    st.any_hit = any_hit;
-    for (size_t i = 0; i < n; i += 4) {
-        packet p;
-        uint32_t active = 0;
-        for (int l = 0; l < 4; l++) {
-            size_t j = i + (size_t)l < n ? i + (size_t)l : i;
-            if (i + (size_t)l < n) active |= 1u << l;
-            p.ray[l] = rays[j];
-            rt_ray_prepare(&p.ray[l], &p.pre[l]);
-        }
-        packet_setup(&p);
-        memset(st.c, 0, sizeof st.c);
-        st.done = 0;
-        packet_trace(&st, &p, active);
-        for (int l = 0; l < 4 && i + (size_t)l < n; l++) {
-            hits[i + (size_t)l] = st.hit[l];
-            c->rays += st.c[l].rays;
-            c->box_tests += st.c[l].box_tests;
-            c->tri_tests += st.c[l].tri_tests;
-        }
+    for (size_t i = 0; i < n; i += RT_PK_LANES) {
+        rt_pk_rays p;
+        rt_hit_d h[RT_PK_LANES];
+        rt_pk_counts pc;
+        memset(&pc, 0, sizeof pc);
+        size_t count = n - i < RT_PK_LANES ? n - i : RT_PK_LANES;
+        p.valid = RT_PK_ALL >> (RT_PK_LANES - count);
+        memcpy(p.ray, rays + i, count * sizeof *rays);
+        rt_pk_trace(&v, wide, &p, any_hit, h, &pc);
+        memcpy(hits + i, h, count * sizeof *h);
+        c->rays += (rt_u32)pc.rays;
+        c->box_tests += (rt_u32)pc.box_tests;
+        c->tri_tests += (rt_u32)pc.tri_tests;
     }
 }

@@ -4,7 +4,9 @@
  *
  * The kernels compute with the CPU oracle's header, built with no contraction
  * and correctly rounded division and sqrt, so on a device that promises both
- * (and fp64) the results are the oracle's bits. */
+ * (and fp64) the results are the oracle's bits. Extra build options
+ * (rt_render_options.device_options, for the speed-versus-error study) are
+ * appended to the program's options; the results are then not promised. */
 #include <CL/cl.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -79,8 +81,9 @@ typedef struct cl_state {
     cl_context ctx;
     cl_command_queue queue;
     cl_program program;
-    char options[512]; /* the program's build options */
+    char options[768]; /* the program's build options (the cache key) */
     char defines[192]; /* the specialisation part of options */
+    char extra[256];   /* the device_options part of options ("" for the exact build) */
     cl_kernel k_camera, k_trace, k_shade;
     cl_kernel k_wcam, k_wtrace, k_wshade, k_wsum; /* the wavefront */
     cl_kernel k_packet, k_ptrace;                 /* CPU devices: rt_k_packet, rt_k_packet_trace */
@@ -205,16 +208,26 @@ static int packet_lanes(const cl_state *s) {
     return n == 4 || n == 8 ? n : 16;
 }
 
-static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms, char *msg,
-                               size_t size) {
-    char defines[192], options[512];
+/* The longest device_options string taken (rt.h). */
+#define RT_CL_EXTRA_MAX 255
+
+static rt_status build_program(cl_state *s, const rt_flat *f, const char *extra, double *compile_ms,
+                               char *msg, size_t size) {
+    char defines[192], options[768];
     scene_defines(f, defines, sizeof defines);
+    if (!extra) extra = "";
+    if (strlen(extra) > RT_CL_EXTRA_MAX)
+        return fail(msg, size, RT_ERROR_INVALID_ARGUMENT,
+                    "extra kernel build options (device_options) longer than %d characters",
+                    RT_CL_EXTRA_MAX);
     int lanes = packet_lanes(s);
-    /* No -cl-mad-enable, no -cl-fast-relaxed-math: they change results. */
     char packet[32] = "";
     if (lanes) snprintf(packet, sizeof packet, " -DRT_PK_LANES=%d", lanes);
-    snprintf(options, sizeof options, "%s%s%s",
-             s->dev.cr_div_sqrt ? "-cl-fp32-correctly-rounded-divide-sqrt " : "", defines, packet);
+    /* The exact build: no mad or fast-relaxed maths (they change results).
+     * Study variants append their options (device_options) after ours. */
+    snprintf(options, sizeof options, "%s%s%s%s%s",
+             s->dev.cr_div_sqrt ? "-cl-fp32-correctly-rounded-divide-sqrt " : "", defines, packet,
+             extra[0] ? " " : "", extra);
     if (s->program && strcmp(options, s->options) == 0) return RT_OK;
     if (s->k_camera) clReleaseKernel(s->k_camera);
     if (s->k_trace) clReleaseKernel(s->k_trace);
@@ -259,6 +272,7 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
     s->lanes = lanes;
     snprintf(s->options, sizeof s->options, "%s", options);
     snprintf(s->defines, sizeof s->defines, "%s", defines);
+    snprintf(s->extra, sizeof s->extra, "%s", extra);
     rt_status st = warm_up(s, (f->hdr.flags & RT_SCENE_SECONDARY) != 0, msg, size);
     *compile_ms += rt_now_ms() - t0;
     return st;
@@ -590,15 +604,19 @@ static uint32_t next_tile(const cl_state *s, uint32_t tile, double longest_ms) {
 }
 
 static rt_status prepare(rt_scene *scene, const rt_prepared *prep, const char *device,
-                         cl_state **out, rt_render_stats *stats, char *msg, size_t size) {
+                         const char *device_options, cl_state **out, rt_render_stats *stats,
+                         char *msg, size_t size) {
     rt_status st = get_state(prep, device, out, msg, size);
-    if (st == RT_OK) st = build_program(*out, prep->flat, &stats->compile_ms, msg, size);
+    if (st == RT_OK)
+        st = build_program(*out, prep->flat, device_options, &stats->compile_ms, msg, size);
     if (st == RT_OK)
         st = upload_scene(*out, prep, &stats->upload_bytes, &stats->upload_ms, msg, size);
     if (st == RT_OK) {
         snprintf(stats->device, sizeof stats->device, "%s", (*out)->dev.name);
         snprintf(stats->specialisation, sizeof stats->specialisation, "%s", (*out)->defines);
-        stats->exact = (*out)->dev.exact;
+        snprintf(stats->device_options, sizeof stats->device_options, "%s", (*out)->extra);
+        /* Extra options (the study's variants) void the device's promise. */
+        stats->exact = (*out)->dev.exact && !(*out)->extra[0];
     }
     (void)scene;
     return st;
@@ -772,7 +790,7 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
                            rt_render_stats *stats) {
     char msg[1000] = "";
     cl_state *s;
-    rt_status st = prepare(scene, prep, device, &s, stats, msg, sizeof msg);
+    rt_status st = prepare(scene, prep, device, opt->device_options, &s, stats, msg, sizeof msg);
     if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
     const rt_scene_header *h = &prep->flat->hdr;
     uint32_t pixels = (uint32_t)h->width * (uint32_t)h->height;
@@ -898,12 +916,13 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
 }
 
 static rt_status cl_trace(rt_scene *scene, const rt_prepared *prep, const char *device,
-                          const rt_ray_d *rays, size_t count, rt_hit_d *hits, int any_hit) {
+                          const char *device_options, const rt_ray_d *rays, size_t count,
+                          rt_hit_d *hits, int any_hit) {
     char msg[1000] = "";
     rt_render_stats stats;
     memset(&stats, 0, sizeof stats);
     cl_state *s = NULL;
-    rt_status st = prepare(scene, prep, device, &s, &stats, msg, sizeof msg);
+    rt_status st = prepare(scene, prep, device, device_options, &s, &stats, msg, sizeof msg);
     if (st == RT_OK) st = ensure_ray_buffers(s, RT_CL_TILE_MAX, msg, sizeof msg);
     /* Closest hits on a CPU device: packets of consecutive rays
      * (rt_k_packet_trace, the same hits); any hit: rt_k_trace, so that the

@@ -7,6 +7,7 @@
 #include <time.h>
 
 #include "cpu_render.h"
+#include "packet_trace.h"
 #include "render_internal.h"
 #include "tlas.h"
 
@@ -19,6 +20,9 @@ struct rt_render_cache {
     rt_flat flat;
     int flat_valid;
     uint32_t flat_version;
+    uint32_t flat_generation; /* bumped by every flatten */
+    rt_pk_wide wide;          /* the packet backend's wide BVHs of flat ... */
+    uint32_t wide_generation; /* ... made from this flatten (0: none) */
     rt_pool *pool;
     int pool_threads;
     uint32_t mesh_generation; /* bumped by every mesh BVH (re)build */
@@ -54,6 +58,7 @@ void rt_render_cache_free(struct rt_render_cache *c) {
     free(c->built);
     rt_bvh_free(&c->top);
     rt_flat_free(&c->flat);
+    rt_pk_wide_free(&c->wide);
     if (c->pool) rt_pool_destroy(c->pool);
     if (c->backend_state_free) c->backend_state_free(c->backend_state);
     free(c);
@@ -151,6 +156,7 @@ rt_status rt_render_prepare(rt_scene *scene, int threads, rt_prepared *out) {
         if (st != RT_OK) return rt_scene_fail(scene, st, "%s", msg);
         c->flat_valid = 1;
         c->flat_version = scene->version;
+        c->flat_generation++;
     }
     out->build_ms = rt_now_ms() - t0;
     out->flat = &c->flat;
@@ -226,6 +232,21 @@ static rt_status choose_backend(rt_scene *scene, const char *backend, const char
                          what, cl ? ", opencl[:DEVICE]" : "");
 }
 
+rt_status rt_render_wide(rt_scene *scene, rt_prepared *prep, const rt_pk_wide **out) {
+    struct rt_render_cache *c = scene->render_cache;
+    if (c->wide_generation != c->flat_generation) {
+        double t0 = rt_now_ms();
+        rt_pk_wide_free(&c->wide);
+        c->wide_generation = 0;
+        if (rt_pk_wide_build(&c->flat, &c->wide) != RT_OK)
+            return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory (packet BVH)");
+        c->wide_generation = c->flat_generation;
+        prep->build_ms += rt_now_ms() - t0;
+    }
+    *out = &c->wide;
+    return RT_OK;
+}
+
 /* The public enum mirrors the layout's RT_TRI_* numbers. */
 _Static_assert(RT_TRI_TEST_WATERTIGHT == RT_TRI_WATERTIGHT && RT_TRI_TEST_MOLLER == RT_TRI_MOLLER &&
                    RT_TRI_TEST_PLUECKER == RT_TRI_PLUECKER && RT_TRI_TEST_BADOUEL == RT_TRI_BADOUEL,
@@ -285,7 +306,13 @@ rt_status rt_render(rt_scene *scene, const rt_render_options *options, rt_frameb
         return RT_OK;
     }
 
-    rt_cpu_frame frame = {&flat, opt.aov, fb->pixels, channels, opt.progress, opt.progress_user};
+    const rt_pk_wide *wide = NULL;
+    if (packet && (st = rt_render_wide(scene, &prep, &wide)) != RT_OK) {
+        rt_framebuffer_free(fb);
+        return st;
+    }
+    rt_cpu_frame frame = {&flat,    wide,         opt.aov,          fb->pixels,
+                          channels, opt.progress, opt.progress_user};
     rt_cpu_counts counts;
     double t0 = rt_now_ms();
     if (packet)
@@ -305,6 +332,12 @@ rt_status rt_render(rt_scene *scene, const rt_render_options *options, rt_frameb
         s->tri_tests = counts.tri_tests;
         s->packets = counts.packets;
         s->packet_box_tests = counts.packet_box_tests;
+        s->packet_tri_tests = counts.packet_tri_tests;
+        if (packet) {
+            s->packet_rays = RT_PK_LANES;
+            s->packet_isa = rt_pk_isa();
+            s->packet_vector = rt_pk_isa_lanes();
+        }
         s->backend = packet ? "packet" : "cpu";
         s->threads = rt_pool_size(prep.pool);
         s->notice = choice.notice;

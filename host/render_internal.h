@@ -5,6 +5,7 @@
 
 #include "clock.h"
 #include "flatten.h"
+#include "packet_wide.h"
 #include "scene.h"
 #include "thread_pool.h"
 
@@ -34,8 +35,10 @@ typedef struct rt_backend_ops {
      * selects a device (NULL: the default). */
     rt_status (*render)(rt_scene *scene, const rt_prepared *prep, const char *device,
                         const rt_render_options *opt, rt_framebuffer *fb, rt_render_stats *stats);
+    /* device_options: extra compiler options (rt_render_options), may be NULL. */
     rt_status (*trace)(rt_scene *scene, const rt_prepared *prep, const char *device,
-                       const rt_ray_d *rays, size_t count, rt_hit_d *hits, int any_hit);
+                       const char *device_options, const rt_ray_d *rays, size_t count,
+                       rt_hit_d *hits, int any_hit);
     /* 1 when some device exists; else 0 and a reason in msg. */
     int (*available)(char *msg, size_t msg_size);
     void (*state_free)(void *state);
@@ -51,6 +54,10 @@ extern const rt_backend_ops rt_opencl_backend __attribute__((weak));
 /* Splits "name:device" (device after the first ':'); name is copied into
  * name_out. Returns the device part or NULL. */
 const char *rt_backend_split(const char *backend, char *name_out, size_t name_size);
+
+/* The packet backend's wide BVHs of prep's layout, built when the layout
+ * changed (the time goes to prep->build_ms). */
+rt_status rt_render_wide(rt_scene *scene, rt_prepared *prep, const rt_pk_wide **out);
 
 /* The backend rt_trace_rays uses (a name as rt_render takes it). */
 rt_status rt_trace_backend(rt_scene *scene, const char *backend, int *packet,

@@ -163,17 +163,23 @@ typedef struct rt_render_stats {
     uint64_t primary_rays;
     uint64_t box_tests;        /* ray/box tests, all rays */
     uint64_t tri_tests;        /* ray/triangle tests, all rays */
-    uint64_t packets;          /* 2x2 packets traced (packet backend), else 0 */
-    uint64_t packet_box_tests; /* box tests counted once per packet step */
+    uint64_t packets;          /* primary packets traced (packet backend), else 0 */
+    uint64_t packet_box_tests; /* box tests of whole vectors of a packet (and its
+                                  interval tests, one per child), all packets */
+    uint64_t packet_tri_tests; /* triangle tests of whole vectors, all packets */
+    int packet_rays;           /* rays per packet */
+    int packet_vector;         /* lanes per vector of the build that ran ... */
+    const char *packet_isa;    /* ... and its instruction set */
     const char *backend;       /* the backend that ran */
     int threads;
     /* Set when "auto" could not use the device and rendered on the CPU: the
      * reason, for the caller to show (the library never prints). */
     const char *notice;
     /* Device backends (opencl); zero or empty on the CPU. */
-    char device[128];         /* the device that ran */
-    int exact;                /* the device promises the CPU oracle's bits */
+    char device[128]; /* the device that ran */
+    int exact;        /* the device promises the CPU oracle's bits (0 with device_options) */
     char specialisation[192]; /* the -D feature switches of the kernels */
+    char device_options[256]; /* the extra options the kernels were built with ("": none) */
     double compile_ms;        /* kernel program builds done for this frame */
     double upload_ms;         /* host-to-device copies */
     uint64_t upload_bytes;    /* bytes copied to the device for this frame */
@@ -214,8 +220,10 @@ typedef struct rt_render_options {
     int direct_only;
     /* Extra OpenCL C compiler options for the speed-versus-error study
      * (e.g. "-cl-mad-enable", "-cl-fast-relaxed-math", "-DRT_NATIVE_MATH").
-     * They may change results: with any set, stats->exact is 0. NULL or "":
-     * none (the exact build). Ignored by the CPU backends. */
+     * They are appended to the program's build options (the program cache
+     * keys on them) and may change results: with any set, stats->exact is 0
+     * and stats->device_options repeats them. NULL or "": none (the exact
+     * build). At most 255 characters. Ignored by the CPU backends. */
     const char *device_options;
 } rt_render_options;
 
@@ -255,8 +263,8 @@ typedef struct rt_hit {
 rt_status rt_trace_rays(rt_scene *scene, const rt_ray *rays, size_t count, rt_hit *hits,
                         int any_hit, const char *backend);
 
-/* rt_trace_rays with options: backend, threads and tri_test are read (NULL:
- * the defaults); stats, aov and progress are ignored. */
+/* rt_trace_rays with options: backend, threads, tri_test and device_options
+ * are read (NULL: the defaults); stats, aov and progress are ignored. */
 rt_status rt_trace_rays_with(rt_scene *scene, const rt_ray *rays, size_t count, rt_hit *hits,
                              int any_hit, const rt_render_options *options);
 

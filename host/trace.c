@@ -5,10 +5,12 @@
 #include <string.h>
 
 #include "cpu_render.h"
+#include "packet_trace.h"
 #include "render_internal.h"
 
 typedef struct trace_job {
     const rt_flat *flat;
+    const rt_pk_wide *wide;
     const rt_ray_d *rays;
     rt_hit_d *hits;
     size_t count;
@@ -17,15 +19,16 @@ typedef struct trace_job {
 
 static void trace_chunk(void *ctx, int worker, int workers) {
     trace_job *job = ctx;
-    /* Contiguous chunks (multiples of 4, so packets stay whole). */
+    /* Contiguous chunks (whole packets). */
     size_t per = (job->count + (size_t)workers - 1) / (size_t)workers;
-    per = (per + 3) & ~(size_t)3;
+    per = (per + RT_PK_LANES - 1) / RT_PK_LANES * RT_PK_LANES;
     size_t first = per * (size_t)worker;
     if (first >= job->count) return;
     size_t n = job->count - first < per ? job->count - first : per;
     rt_counters c = {0, 0, 0};
     if (job->packet)
-        rt_packet_trace_rays(job->flat, job->rays + first, n, job->hits + first, job->any_hit, &c);
+        rt_packet_trace_rays(job->flat, job->wide, job->rays + first, n, job->hits + first,
+                             job->any_hit, &c);
     else
         rt_cpu_trace_rays(job->flat, job->rays + first, n, job->hits + first, job->any_hit, &c);
 }
@@ -84,14 +87,21 @@ rt_status rt_trace_rays_with(rt_scene *scene, const rt_ray *rays, size_t count, 
         /* The device compiles the triangle test in from the header it is given. */
         rt_prepared with_test = prep;
         with_test.flat = &flat;
-        st = device_ops->trace(scene, &with_test, device, in, count, out, any_hit);
+        st = device_ops->trace(scene, &with_test, device, opt.device_options, in, count, out,
+                               any_hit);
         if (st != RT_OK) {
             free(in);
             free(out);
             return st;
         }
     } else {
-        trace_job job = {&flat, in, out, count, any_hit, packet};
+        const rt_pk_wide *wide = NULL;
+        if (packet && (st = rt_render_wide(scene, &prep, &wide)) != RT_OK) {
+            free(in);
+            free(out);
+            return st;
+        }
+        trace_job job = {&flat, wide, in, out, count, any_hit, packet};
         rt_pool_run(prep.pool, trace_chunk, &job);
     }
     for (size_t i = 0; i < count; i++) {

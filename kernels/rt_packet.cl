@@ -610,82 +610,61 @@ __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int cha
             }
         }
     } else {
-        /* Mirrors rt_shade_hit per lane: its root node is rt_shade_step
-         * (weight 1, depth 0) with rt_phong in its three steps, the lanes'
-         * shadow rays traced together per light; then, with secondary rays,
-         * each lane's subtrees one ray at a time (rt_shade_children,
-         * rt_shade_subtrees). */
+        /* rt_shade_hit per lane, with its root node's rt_shade_step in its
+         * halves: rt_shade_begin per lane, then per light rt_phong_light per
+         * lane, the lanes' shadow rays traced together, rt_phong_add per
+         * lane where unoccluded; rt_shade_end per lane; then, with secondary
+         * rays, each lane's subtrees one ray at a time (rt_shade_children). */
         float rgb[RT_PK_LANES][3];
-        {
-            rt_surface sf[RT_PK_LANES];
-            float dn[RT_PK_LANES][3], lw[RT_PK_LANES], lit[RT_PK_LANES][3];
-            int lighting[RT_PK_LANES];
-            const float one[3] = {1.0f, 1.0f, 1.0f}; /* the primary ray's weight */
+        rt_shade_entry root[RT_PK_LANES];
+        rt_shade_node nd[RT_PK_LANES];
+        int lighting[RT_PK_LANES];
+        for (int l = 0; l < RT_PK_LANES; l++) {
+            root[l].ray = ray[l];
+            root[l].w[0] = root[l].w[1] = root[l].w[2] = 1.0f;
+            root[l].depth = 0;
+            lighting[l] = in_image[l] && rt_shade_begin(&s, &root[l], &hit[l], &nd[l]);
+        }
+        for (rt_u32 li = 0; li < hdr->light_count; li++) {
+            rt_ray_d sr[RT_PK_LANES];
+            float Ln[RT_PK_LANES][3], ndl[RT_PK_LANES];
+            int shadow[RT_PK_LANES];
             for (int l = 0; l < RT_PK_LANES; l++) {
-                lighting[l] = 0;
-                rgb[l][0] = rgb[l][1] = rgb[l][2] = 0.0f;
-                if (!in_image[l]) continue;
-                if (hit[l].prim == RT_NO_HIT) {
-                    for (int k = 0; k < 3; k++) rgb[l][k] = rgb[l][k] + one[k] * hdr->background[k];
-                    continue;
-                }
-                rt_surface_at(&s, &ray[l], &hit[l], &sf[l]);
-                RT_GLOBAL const rt_material_d *m = &s.materials[sf[l].material];
-                for (int k = 0; k < 3; k++) dn[l][k] = ray[l].dir[k];
-                rt_normalize3(dn[l]);
-                lw[l] = (1.0f - m->reflectivity) - m->transparency;
-                if (lw[l] > 0.0f) {
-                    rt_phong_ambient(&s, &sf[l], lit[l]);
-                    lighting[l] = 1;
-                }
+                shadow[l] =
+                    lighting[l] && rt_phong_light(&s, &nd[l].sf, li, &sr[l], Ln[l], &ndl[l]);
+                if (!shadow[l]) sr[l] = ray[l]; /* inactive: any defined ray */
             }
-            for (rt_u32 li = 0; li < hdr->light_count; li++) {
-                rt_ray_d sr[RT_PK_LANES];
-                float Ln[RT_PK_LANES][3], ndl[RT_PK_LANES];
-                int shadow[RT_PK_LANES];
-                for (int l = 0; l < RT_PK_LANES; l++) {
-                    shadow[l] =
-                        lighting[l] && rt_phong_light(&s, &sf[l], li, &sr[l], Ln[l], &ndl[l]);
-                    if (!shadow[l]) sr[l] = ray[l]; /* inactive: any defined ray */
-                }
-                pk_i sact = pk_vload(0, shadow) != 0;
-                if (!pk_any(sact)) continue;
-                pk_ray sp;
-                pk_load(sr, &sp);
-                pk_state ss;
-                ss.boxes = ss.tris = ss.rays = (pk_i)0;
-                pk_trace(&s, &sp, sact, 1, &ss);
-                uint occ[RT_PK_LANES];
-                int sb[RT_PK_LANES], stt[RT_PK_LANES], srays[RT_PK_LANES];
-                pk_vstore(ss.prim, 0, occ);
-                pk_vstore(ss.boxes, 0, sb);
-                pk_vstore(ss.tris, 0, stt);
-                pk_vstore(ss.rays, 0, srays);
-                for (int l = 0; l < RT_PK_LANES; l++) {
-                    c[l].box_tests += (rt_u32)sb[l];
-                    c[l].tri_tests += (rt_u32)stt[l];
-                    c[l].rays += (rt_u32)srays[l];
-                    if (shadow[l] && occ[l] == RT_NO_HIT)
-                        rt_phong_add(&s, &sf[l], li, Ln[l], ndl[l], dn[l], lit[l]);
-                }
-            }
+            pk_i sact = pk_vload(0, shadow) != 0;
+            if (!pk_any(sact)) continue;
+            pk_ray sp;
+            pk_load(sr, &sp);
+            pk_state ss;
+            ss.boxes = ss.tris = ss.rays = (pk_i)0;
+            pk_trace(&s, &sp, sact, 1, &ss);
+            uint occ[RT_PK_LANES];
+            int sb[RT_PK_LANES], stt[RT_PK_LANES], srays[RT_PK_LANES];
+            pk_vstore(ss.prim, 0, occ);
+            pk_vstore(ss.boxes, 0, sb);
+            pk_vstore(ss.tris, 0, stt);
+            pk_vstore(ss.rays, 0, srays);
             for (int l = 0; l < RT_PK_LANES; l++) {
-                if (!lighting[l]) continue;
-                for (int k = 0; k < 3; k++) rgb[l][k] = rgb[l][k] + (one[k] * lw[l]) * lit[l][k];
+                c[l].box_tests += (rt_u32)sb[l];
+                c[l].tri_tests += (rt_u32)stt[l];
+                c[l].rays += (rt_u32)srays[l];
+                if (shadow[l] && occ[l] == RT_NO_HIT)
+                    rt_phong_add(&s, &nd[l].sf, li, Ln[l], ndl[l], nd[l].dn, nd[l].lit);
             }
-            if (RT_SCENE_FLAGS(&s) & RT_SCENE_SECONDARY) {
-                for (int l = 0; l < RT_PK_LANES; l++) {
-                    if (!in_image[l] || hit[l].prim == RT_NO_HIT) continue;
-                    rt_shade_entry root, stack[RT_SHADE_STACK];
-                    root.ray = ray[l];
-                    root.w[0] = root.w[1] = root.w[2] = 1.0f;
-                    root.depth = 0;
-                    int children;
-                    rt_shade_children(&s, &root, &sf[l], &s.materials[sf[l].material], dn[l], stack,
-                                      &children);
-                    rt_shade_subtrees(&s, stack, children, &c[l], rgb[l]);
-                }
-            }
+        }
+        for (int l = 0; l < RT_PK_LANES; l++) {
+            if (!in_image[l]) continue;
+            float term[3];
+            rt_shade_entry child[2];
+            int has_term, children;
+            rt_shade_end(&s, &root[l], &hit[l], &nd[l], term, &has_term, child, &children);
+            rgb[l][0] = rgb[l][1] = rgb[l][2] = 0.0f;
+            if (has_term)
+                for (int k = 0; k < 3; k++) rgb[l][k] = rgb[l][k] + term[k];
+            rt_shade_children(&s, child, children, &c[l], rgb[l]);
         }
         for (int l = 0; l < RT_PK_LANES; l++) {
             if (!in_image[l]) continue;

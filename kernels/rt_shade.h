@@ -75,8 +75,9 @@ RT_FN void rt_surface_at(const rt_scene_view *s, const rt_ray_d *r, const rt_hit
  * rt_phong's terms in rt_phong's order: the ambient term, then per light
  * rt_phong_light (is the light in front of the shading normal? its shadow
  * ray) and, when the shadow ray finds no occluder, rt_phong_add (diffuse and
- * specular, integer shininess by repeated multiplication). */
-RT_FN void rt_phong_ambient(const rt_scene_view *s, const rt_surface *sf, float out[3]) {
+ * specular, integer shininess by repeated multiplication). rt_shade_step
+ * runs them with one scalar shadow ray at a time. */
+RT_FN void rt_phong_ambient(const rt_scene_view *s, const rt_surface *sf, float *out) {
     RT_GLOBAL const rt_material_d *m = &s->materials[sf->material];
     for (int k = 0; k < 3; k++) out[k] = (m->ambient * m->color[k]) * s->hdr->ambient[k];
 }
@@ -86,7 +87,7 @@ RT_FN void rt_phong_ambient(const rt_scene_view *s, const rt_surface *sf, float 
  * it, ndl = ns . Ln and the shadow ray from the offset point to the light
  * (t = 1 at the light, excluded). */
 RT_FN int rt_phong_light(const rt_scene_view *s, const rt_surface *sf, rt_u32 li, rt_ray_d *sr,
-                         float Ln[3], float *ndl) {
+                         float *Ln, float *ndl) {
     RT_GLOBAL const rt_light_d *light = &s->lights[li];
     float L[3];
     for (int k = 0; k < 3; k++) L[k] = light->position[k] - sf->p[k];
@@ -104,8 +105,8 @@ RT_FN int rt_phong_light(const rt_scene_view *s, const rt_surface *sf, rt_u32 li
 
 /* Adds light li's diffuse and specular terms for a surface seen along unit
  * direction dn (the light's shadow ray found no occluder). */
-RT_FN void rt_phong_add(const rt_scene_view *s, const rt_surface *sf, rt_u32 li, const float Ln[3],
-                        float ndl, const float *dn, float out[3]) {
+RT_FN void rt_phong_add(const rt_scene_view *s, const rt_surface *sf, rt_u32 li, const float *Ln,
+                        float ndl, const float *dn, float *out) {
     RT_GLOBAL const rt_material_d *m = &s->materials[sf->material];
     RT_GLOBAL const rt_light_d *light = &s->lights[li];
     for (int k = 0; k < 3; k++)
@@ -122,22 +123,6 @@ RT_FN void rt_phong_add(const rt_scene_view *s, const rt_surface *sf, rt_u32 li,
     }
 }
 
-/* Phong at a surface seen along unit direction dn: ambient, then per light
- * that is in front of the shading normal and not occluded, diffuse and
- * specular. */
-RT_FN void rt_phong(const rt_scene_view *s, const rt_surface *sf, const float *dn, rt_counters *c,
-                    float out[3]) {
-    rt_phong_ambient(s, sf, out);
-    for (rt_u32 li = 0; li < s->hdr->light_count; li++) {
-        rt_ray_d sr;
-        rt_hit_d sh;
-        float Ln[3], ndl;
-        if (!rt_phong_light(s, sf, li, &sr, Ln, &ndl)) continue;
-        if (rt_trace(s, &sr, 1, &sh, c)) continue;
-        rt_phong_add(s, sf, li, Ln, ndl, dn, out);
-    }
-}
-
 typedef struct rt_shade_entry {
     rt_ray_d ray;
     float w[3];
@@ -148,19 +133,61 @@ RT_FN int rt_weight_counts(const float *w, float min_weight) {
     return w[0] >= min_weight || w[1] >= min_weight || w[2] >= min_weight;
 }
 
-/* The secondary rays of a node whose ray (entry e, seen along unit
- * direction dn) hit surface sf of material m: child[0 .. *children - 1] in
- * the order they are pushed, refraction then reflection (so reflection is
- * popped, and its subtree added, first). None without secondary rays in the
- * scene or at the depth limit. Part of rt_shade_step; the OpenCL packet
- * kernel calls it after shading its lanes' primary hits together. */
-RT_FN void rt_shade_children(const rt_scene_view *s, const rt_shade_entry *e, const rt_surface *sf,
-                             RT_GLOBAL const rt_material_d *m, const float *dn,
-                             rt_shade_entry *child, int *children) {
+/* A shading-tree node between its two halves (rt_shade_begin and
+ * rt_shade_end): the surface at the hit, the unit ray direction and the
+ * Phong sum so far. Between them the caller adds each light whose shadow ray
+ * is unoccluded (rt_phong_light, then rt_phong_add), light by light in index
+ * order; rt_shade_step does exactly that with one scalar shadow ray at a
+ * time, a packet tracer with the shadow rays of many pixels at once. */
+typedef struct rt_shade_node {
+    rt_surface sf;
+    float dn[3];
+    float lit[3];
+    float lw; /* the local weight, 1 - reflectivity - transparency */
+} rt_shade_node;
+
+/* The first half of the node of entry e with closest hit h: returns 1 when
+ * the node has a Phong term, i.e. the caller must now add the lights; 0 for
+ * a miss or a surface without local weight. */
+RT_FN int rt_shade_begin(const rt_scene_view *s, const rt_shade_entry *e, const rt_hit_d *h,
+                         rt_shade_node *nd) {
+    if (h->prim == RT_NO_HIT) return 0;
+    rt_surface_at(s, &e->ray, h, &nd->sf);
+    RT_GLOBAL const rt_material_d *m = &s->materials[nd->sf.material];
+    for (int k = 0; k < 3; k++) nd->dn[k] = e->ray.dir[k];
+    rt_normalize3(nd->dn);
+    nd->lw = (1.0f - m->reflectivity) - m->transparency;
+    if (!(nd->lw > 0.0f)) return 0;
+    rt_phong_ambient(s, &nd->sf, nd->lit);
+    return 1;
+}
+
+/* The second half: term gets what the node adds to the pixel (has_term says
+ * whether it adds anything: a miss adds the weighted background, a hit its
+ * weighted Phong term when the material keeps local weight), child[0 ..
+ * *children - 1] the secondary rays in the order they are pushed:
+ * refraction, then reflection (so reflection is popped, and its subtree
+ * added, first). */
+RT_FN void rt_shade_end(const rt_scene_view *s, const rt_shade_entry *e, const rt_hit_d *h,
+                        const rt_shade_node *nd, float *term, int *has_term, rt_shade_entry *child,
+                        int *children) {
+    *has_term = 0;
     *children = 0;
+    term[0] = term[1] = term[2] = 0.0f; /* defined even when not added */
+    if (h->prim == RT_NO_HIT) {
+        for (int k = 0; k < 3; k++) term[k] = e->w[k] * s->hdr->background[k];
+        *has_term = 1;
+        return;
+    }
+    RT_GLOBAL const rt_material_d *m = &s->materials[nd->sf.material];
+    if (nd->lw > 0.0f) {
+        for (int k = 0; k < 3; k++) term[k] = (e->w[k] * nd->lw) * nd->lit[k];
+        *has_term = 1;
+    }
     if (!(RT_SCENE_FLAGS(s) & RT_SCENE_SECONDARY) || e->depth >= s->hdr->max_depth) return;
+    const rt_surface *sf = &nd->sf;
     float refl = m->reflectivity;
-    float cosi = -rt_dot3(dn, sf->ns);
+    float cosi = -rt_dot3(nd->dn, sf->ns);
     if (m->transparency > 0.0f) {
         float eta = sf->front ? RT_DIV(1.0f, m->ior) : m->ior;
         float k2 = 1.0f - (eta * eta) * (1.0f - cosi * cosi);
@@ -170,7 +197,7 @@ RT_FN void rt_shade_children(const rt_scene_view *s, const rt_shade_entry *e, co
             rt_shade_entry t;
             float a = eta * cosi - RT_SQRT(k2);
             for (int k = 0; k < 3; k++) {
-                t.ray.dir[k] = eta * dn[k] + a * sf->ns[k];
+                t.ray.dir[k] = eta * nd->dn[k] + a * sf->ns[k];
                 t.w[k] = e->w[k] * m->transparency;
             }
             rt_offset_point(sf->p, sf->ng, -1.0f, t.ray.org);
@@ -183,7 +210,7 @@ RT_FN void rt_shade_children(const rt_scene_view *s, const rt_shade_entry *e, co
     if (refl > 0.0f) {
         rt_shade_entry t;
         for (int k = 0; k < 3; k++) {
-            t.ray.dir[k] = dn[k] + (2.0f * cosi) * sf->ns[k];
+            t.ray.dir[k] = nd->dn[k] + (2.0f * cosi) * sf->ns[k];
             t.w[k] = e->w[k] * refl;
         }
         rt_offset_point(sf->p, sf->ng, 1.0f, t.ray.org);
@@ -194,81 +221,72 @@ RT_FN void rt_shade_children(const rt_scene_view *s, const rt_shade_entry *e, co
     }
 }
 
-/* One node of the shading tree: the ray of entry e and its closest hit h.
- * term gets what the node adds to the pixel (has_term says whether it adds
- * anything: a miss adds the weighted background, a hit its weighted Phong
- * term when the material keeps local weight), child[0 .. *children - 1] the
- * secondary rays in the order they are pushed: refraction, then reflection
- * (so reflection is popped, and its subtree added, first). Shared by
- * rt_shade_hit (depth-first with a stack) and the OpenCL wavefront, which
- * keeps each node's term and adds them in rt_shade_hit's order at the end. */
+/* One node of the shading tree, whole: the ray of entry e and its closest
+ * hit h, with each light's shadow ray traced here (see rt_shade_end for
+ * term, has_term and child). Shared by rt_shade_hit (depth-first with a
+ * stack) and the OpenCL wavefront, which keeps each node's term and adds them
+ * in rt_shade_hit's order at the end. */
 RT_FN void rt_shade_step(const rt_scene_view *s, const rt_shade_entry *e, const rt_hit_d *h,
                          rt_counters *c, float *term, int *has_term, rt_shade_entry *child,
                          int *children) {
-    *has_term = 0;
-    *children = 0;
-    term[0] = term[1] = term[2] = 0.0f; /* defined even when not added */
-    if (h->prim == RT_NO_HIT) {
-        for (int k = 0; k < 3; k++) term[k] = e->w[k] * s->hdr->background[k];
-        *has_term = 1;
-        return;
+    rt_shade_node nd;
+    if (rt_shade_begin(s, e, h, &nd)) {
+        for (rt_u32 li = 0; li < s->hdr->light_count; li++) {
+            rt_ray_d sr;
+            rt_hit_d sh;
+            float Ln[3], ndl;
+            if (!rt_phong_light(s, &nd.sf, li, &sr, Ln, &ndl)) continue;
+            if (rt_trace(s, &sr, 1, &sh, c)) continue;
+            rt_phong_add(s, &nd.sf, li, Ln, ndl, nd.dn, nd.lit);
+        }
     }
-    rt_surface sf;
-    rt_surface_at(s, &e->ray, h, &sf);
-    RT_GLOBAL const rt_material_d *m = &s->materials[sf.material];
-    float dn[3] = {e->ray.dir[0], e->ray.dir[1], e->ray.dir[2]};
-    rt_normalize3(dn);
-    float lw = (1.0f - m->reflectivity) - m->transparency;
-    if (lw > 0.0f) {
-        float lit[3];
-        rt_phong(s, &sf, dn, c, lit);
-        for (int k = 0; k < 3; k++) term[k] = (e->w[k] * lw) * lit[k];
-        *has_term = 1;
-    }
-    rt_shade_children(s, e, &sf, m, dn, child, children);
+    rt_shade_end(s, e, h, &nd, term, has_term, child, children);
 }
 
-/* The rest of rt_shade_hit's walk after the root: stack[0 .. sp - 1] holds
- * the root's secondary rays as pushed; each popped ray is traced and shaded,
- * its term added to rgb, its own secondary rays pushed. */
-RT_FN void rt_shade_subtrees(const rt_scene_view *s, rt_shade_entry *stack, int sp, rt_counters *c,
-                             float *rgb) {
+/* The rest of a pixel's shading tree once its root node is done: rgb holds
+ * the root's term (added to 0), child[0 .. children - 1] its secondary rays
+ * as rt_shade_end gave them. Depth-first with an explicit stack, up to
+ * hdr->max_depth bounces and while a ray's weight reaches hdr->min_weight;
+ * each node's term is added in the same order on every backend: a node's own
+ * term, then its reflection subtree, then its refraction subtree. The stack
+ * never overflows (max_depth + 2 entries suffice, RT_MAX_DEPTH + 2 <=
+ * RT_SHADE_STACK), so the wavefront needs no equivalent of the sp check. */
+RT_FN void rt_shade_children(const rt_scene_view *s, const rt_shade_entry *child, int children,
+                             rt_counters *c, float *rgb) {
+    rt_shade_entry stack[RT_SHADE_STACK];
+    int sp = 0;
+    for (int i = 0; i < children; i++) stack[sp++] = child[i];
     while (sp > 0) {
         rt_shade_entry e = stack[--sp];
         rt_hit_d h;
         rt_trace(s, &e.ray, 0, &h, c);
         float term[3];
-        rt_shade_entry child[2];
-        int has_term, children;
-        rt_shade_step(s, &e, &h, c, term, &has_term, child, &children);
+        rt_shade_entry next[2];
+        int has_term, n;
+        rt_shade_step(s, &e, &h, c, term, &has_term, next, &n);
         if (has_term)
             for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + term[k];
-        for (int i = 0; i < children; i++)
-            if (sp < RT_SHADE_STACK) stack[sp++] = child[i];
+        for (int i = 0; i < n; i++)
+            if (sp < RT_SHADE_STACK) stack[sp++] = next[i];
     }
 }
 
-/* The colour seen along a primary ray whose closest hit is already known:
- * depth-first over reflection and refraction rays with an explicit stack,
- * up to hdr->max_depth bounces and while a ray's weight reaches
- * hdr->min_weight. Every contribution is added in the same order on every
- * backend: a node's own term, then its reflection subtree, then its
- * refraction subtree. The stack never overflows (max_depth + 2 entries
- * suffice, RT_MAX_DEPTH + 2 <= RT_SHADE_STACK), so the wavefront needs no
- * equivalent of the sp check. */
+/* The colour seen along a primary ray whose closest hit is already known
+ * (the root node, then rt_shade_children). */
 RT_FN void rt_shade_hit(const rt_scene_view *s, const rt_ray_d *primary,
                         const rt_hit_d *primary_hit, rt_counters *c, float *rgb) {
-    rt_shade_entry stack[RT_SHADE_STACK], root;
+    rt_shade_entry root;
     root.ray = *primary;
     root.w[0] = root.w[1] = root.w[2] = 1.0f;
     root.depth = 0;
-    rgb[0] = rgb[1] = rgb[2] = 0.0f;
     float term[3];
+    rt_shade_entry child[2];
     int has_term, children;
-    rt_shade_step(s, &root, primary_hit, c, term, &has_term, stack, &children);
+    rt_shade_step(s, &root, primary_hit, c, term, &has_term, child, &children);
+    rgb[0] = rgb[1] = rgb[2] = 0.0f;
     if (has_term)
         for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + term[k];
-    rt_shade_subtrees(s, stack, children, c, rgb);
+    rt_shade_children(s, child, children, c, rgb);
 }
 
 /* The OpenCL wavefront's queue entry and per-node record (see

@@ -40,4 +40,10 @@ expect 2 "unknown.json:3:[0-9]+: .*colour" -- "$RTCL" info "$tmp/unknown.json"
 # A good bare OBJ loads and gets the default view.
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$tmp/tri.obj"
 expect 0 "triangles +1 " -- "$RTCL" info "$tmp/tri.obj"
+# info says whether the OpenCL kernels would be the exact build (--cl-options:
+# the study's variants are not).
+expect 0 "opencl build exact \(no extra options\)" -- "$RTCL" info "$tmp/tri.obj"
+expect 0 "opencl build NOT exact: extra options '-cl-mad-enable'" -- "$RTCL" info "$tmp/tri.obj" \
+    --cl-options -cl-mad-enable
+expect 2 "option --cl-options needs a value" -- "$RTCL" info "$tmp/tri.obj" --cl-options
 finish

@@ -55,6 +55,17 @@ for f in wave wave1; do
     checks=$((checks + 1))
     cmp -s "$tmp/cpu.png" "$tmp/$f.png" || { echo "FAIL: cornell: opencl $f PNG differs"; fails=$((fails + 1)); }
 done
+# --cl-options (the speed-versus-error study's variants): appended to the
+# kernels' build, said by --stats; the exact build after it is the oracle's.
+expect 0 'extra options +-cl-fast-relaxed-math .*NOT the exact build' -- "$RTCL" render \
+    builtin:cornell --width 64 --height 36 --backend opencl --cl-options -cl-fast-relaxed-math \
+    --stats -o "$tmp/fast.png"
+expect 0 'exactness with the CPU oracle NOT promised' -- "$RTCL" render builtin:cornell --width 64 \
+    --height 36 --backend opencl --cl-options "-cl-mad-enable -DRT_NATIVE_MATH" --stats -o "$tmp/fast.png"
+expect 0 'bit-exact with the CPU oracle promised' -- "$RTCL" render builtin:cornell --width 64 \
+    --height 36 --backend opencl --stats -o "$tmp/fast.png"
+expect 2 'kernel build failed.*-cl-no-such-option' -- "$RTCL" render builtin:cornell --width 32 \
+    --height 18 --backend opencl --cl-options -cl-no-such-option -o "$tmp/x.png"
 expect 2 'no OpenCL device 99' -- "$RTCL" render builtin:cornell --backend opencl --device 99 -o "$tmp/x.png"
 expect 2 '--device applies to --backend opencl or auto' -- "$RTCL" render builtin:cornell --device 0 -o "$tmp/x.png"
 

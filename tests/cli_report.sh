@@ -2,7 +2,8 @@
 # cli_report.sh - the single command that regenerates docs/BENCHMARKS.md
 # (bench/report.sh) runs end to end in its quick mode and prints every section:
 # the build, thesis, render and Whitted tables with real rows, the targets
-# judged, and one section with a PNG plot per speed-against-error study.
+# judged, and one section with a PNG plot per speed-against-error study, whose
+# tables have real rows and whose checks hold.
 set -u
 [ -d "${RT_SHARED_SCENES:-}" ] || { echo "skipped: no shared scenes at '${RT_SHARED_SCENES:-}'"; exit 77; }
 command -v python3 >/dev/null || { echo "skipped: python3 is needed"; exit 77; }
@@ -39,5 +40,26 @@ for script in "$RT_SOURCE_DIR"/bench/study_*.sh; do
     head -c 8 "$out/plots/$name.png" 2>/dev/null | od -An -tx1 | grep -q "89 50 4e 47" ||
         { echo "FAIL: plots/$name.png is missing or not a PNG"; fails=$((fails + 1)); }
 done
+# The studies' tables have real rows, and what must hold does: the watertight
+# test has no leak, every builder's tree gives the default image, the exact
+# OpenCL build is the oracle's image (or the section says there is no device).
+if [ -f "$RT_SOURCE_DIR/bench/study_tri_tests.sh" ]; then
+    need '^## Speed against error: triangle tests'
+    need '^\| watertight \| 0 \| [0-9.]+ / [0-9.]+ \| [0-9.e+-]+ \|'
+    need '^\| Moller-Trumbore \| [0-9]+ \|'
+fi
+if [ -f "$RT_SOURCE_DIR/bench/study_builders.sh" ]; then
+    need '^## Speed against error: BVH builders'
+    need '^\| fast, 16 bins, leaf 10 \(default\) \| 2 \| [0-9.]+ / [0-9.]+ \| [0-9.]+ \|'
+    need '^\| fast, 64 bins, leaf 10 \|'
+    need '^\| fast, 16 bins, leaf 1 \|'
+    need 'Every tree gave the default image bit for bit\.'
+    ! grep -q 'NOT the default image' "$md" || { echo "FAIL: a tree changed the image"; fails=$((fails + 1)); }
+fi
+if [ -f "$RT_SOURCE_DIR/bench/study_opencl_options.sh" ]; then
+    need '^## Speed against error: OpenCL kernel build options'
+    need '^\| none \(exact build\) \| yes \| [0-9.]+ / [0-9.]+ \| \+0\.0% \| 0 \| inf \| 0 \(0\.00%\) \| 0 \||No OpenCL device on this machine'
+    need '^\| `-cl-fast-relaxed-math` \| no \||No OpenCL device on this machine'
+fi
 [ $fails = 0 ] || { echo "--- report:"; head -c 6000 "$md"; exit 1; }
 echo "cli_report: ok"

@@ -1,5 +1,7 @@
 /* test_core_bvh_fast.c - the fast builder: valid trees, the same bytes for
- * every thread count and for the scalar and NEON loops, degenerate inputs. */
+ * every thread count and for the scalar and NEON loops, degenerate inputs,
+ * and the parameter ranges of the builder study (bins 2..256, leaf sizes 1 to
+ * 16): valid trees within the leaf size, traversal equal to brute force. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -7,6 +9,9 @@
 #include "bvh_internal.h"
 #include "bvh_validate.h"
 #include "check.h"
+#include "flatten.h"
+#include "oracle_util.h"
+#include "scene.h"
 #include "thread_pool.h"
 
 /* A triangle soup: n random small triangles in a cube, plus a dense cluster
@@ -197,7 +202,185 @@ static void test_scratch_reuse(void) {
     free(boxes);
 }
 
+/* Largest leaf, and whether any leaf of more than one primitive exists. */
+static uint32_t largest_leaf(const rt_bvh *bvh) {
+    uint32_t biggest = 0;
+    for (uint32_t i = 0; i < bvh->node_count; i++)
+        if (bvh->nodes[i].b & RT_NODE_LEAF_FLAG) {
+            uint32_t c = bvh->nodes[i].b & RT_NODE_COUNT_MASK;
+            biggest = c > biggest ? c : biggest;
+        }
+    return biggest;
+}
+
+/* The study's settings (bins 4..64, leaf sizes 1..16) and the ends of the
+ * accepted range: every tree is valid, no leaf exceeds the leaf size, the
+ * same bytes for 1 and 3 threads and for the scalar and NEON loops, and the
+ * settings change the tree (they are not ignored). */
+static void test_parameter_ranges(void) {
+    const uint32_t n = 12000; /* above MIN_BIG_NODE: the parallel phase runs too */
+    rt_aabb *boxes = make_soup(n, 5);
+    const int bins[] = {2, 4, 8, 16, 32, 64, 256};
+    const int leaves[] = {1, 2, 4, 8, 10, 16};
+    rt_bvh by_bins[7], by_leaf[6];
+    for (int b = 0; b < 7; b++) {
+        for (int l = 0; l < 6; l++) {
+            rt_build_options o = opts(1);
+            o.bins = bins[b];
+            o.leaf_size = leaves[l];
+            rt_bvh one, three;
+            char msg[256] = "";
+            rt_status st = rt_bvh_build_fast(boxes, n, &o, NULL, 0, &one, msg, sizeof msg);
+            CHECK_MSG(st == RT_OK, "bins %d leaf %d: %s", bins[b], leaves[l], msg);
+            if (st != RT_OK) continue;
+            char what[64];
+            snprintf(what, sizeof what, "bins %d, leaf size %d", bins[b], leaves[l]);
+            check_valid(&one, boxes, n, (uint32_t)leaves[l], what);
+            CHECK_MSG(largest_leaf(&one) <= (uint32_t)leaves[l], "%s: a leaf of %u", what,
+                      largest_leaf(&one));
+            o.threads = 3;
+            rt_pool *pool = rt_pool_create(3);
+            CHECK(rt_bvh_build_fast(boxes, n, &o, pool, 1, &three, msg, sizeof msg) == RT_OK);
+            rt_pool_destroy(pool);
+            CHECK_MSG(same_bvh(&one, &three), "%s: 3 threads NEON differ from 1 thread scalar",
+                      what);
+            rt_bvh_free(&three);
+            if (leaves[l] == 10)
+                by_bins[b] = one;
+            else if (bins[b] == 16)
+                by_leaf[l] = one;
+            else
+                rt_bvh_free(&one);
+        }
+        if (bins[b] == 16) by_leaf[4] = by_bins[b]; /* leaf 10 at 16 bins */
+    }
+    /* Different bin counts give different trees (bins 2 against 4, ..., 64
+     * against 256: nodes of 64 and more primitives use them all). */
+    for (int b = 0; b + 1 < 7; b++)
+        CHECK_MSG(!same_bvh(&by_bins[b], &by_bins[b + 1]), "bins %d and %d give the same tree",
+                  bins[b], bins[b + 1]);
+    /* Leaf size 1: one primitive per leaf. */
+    CHECK_EQ_INT(largest_leaf(&by_leaf[0]), 1);
+    CHECK_EQ_INT(by_leaf[0].node_count, 2 * n - 1);
+    for (int b = 0; b < 7; b++)
+        if (bins[b] != 16) rt_bvh_free(&by_bins[b]);
+    for (int l = 0; l < 6; l++) rt_bvh_free(&by_leaf[l]);
+    free(boxes);
+}
+
+/* Every leaf size from 1 to 16 is used up to its limit: clusters of 1 to 17
+ * nearly coincident boxes, where the SAH prefers one leaf (splitting does not
+ * shrink the areas), so the largest leaf holds exactly leaf_size primitives. */
+static void test_leaf_sizes_used(void) {
+    const uint32_t n = 9 * (17 * 18 / 2); /* 9 rounds of clusters of 1..17 */
+    rt_aabb *boxes = malloc(sizeof *boxes * n);
+    uint32_t i = 0, s = 21;
+    for (int round = 0; round < 9; round++)
+        for (int size = 1; size <= 17; size++) {
+            float c[3] = {(float)(size * 10), (float)(round * 10), 0.0f};
+            for (int k = 0; k < size; k++, i++) {
+                float v[9];
+                for (int j = 0; j < 9; j++)
+                    v[j] = c[j % 3] + (j < 3 ? 0.0f : 1.0f) * (j % 3 == j / 3 - 1 ? 1.0f : 0.0f) +
+                           bvh_test_uniform(&s, 0.0f, 1e-3f);
+                boxes[i] = bvh_test_tri_box(v);
+            }
+        }
+    for (int leaf = 1; leaf <= 16; leaf++) {
+        rt_build_options o = opts(1);
+        o.leaf_size = leaf;
+        rt_bvh bvh;
+        CHECK(rt_bvh_build_fast(boxes, n, &o, NULL, 1, &bvh, NULL, 0) == RT_OK);
+        char what[64];
+        snprintf(what, sizeof what, "clusters, leaf size %d", leaf);
+        check_valid(&bvh, boxes, n, (uint32_t)leaf, what);
+        CHECK_MSG(largest_leaf(&bvh) == (uint32_t)leaf, "%s: largest leaf %u", what,
+                  largest_leaf(&bvh));
+        rt_bvh_free(&bvh);
+    }
+    free(boxes);
+}
+
+/* A one-mesh scene of random small triangles (and a few large ones). */
+static rt_scene *soup_scene(uint32_t tris, uint32_t seed) {
+    rt_scene *s;
+    if (rt_scene_create(&s) != RT_OK) return NULL;
+    float *pos = malloc(sizeof(float) * 9 * tris);
+    uint32_t *idx = malloc(sizeof(uint32_t) * 3 * tris);
+    uint32_t st = seed;
+    for (uint32_t i = 0; i < tris; i++) {
+        float size = (i % 97 == 0) ? 6.0f : 0.4f, base[3];
+        for (int k = 0; k < 3; k++) base[k] = bvh_test_uniform(&st, -5.0f, 5.0f);
+        for (int j = 0; j < 9; j++) pos[9 * i + j] = base[j % 3] + bvh_test_uniform(&st, 0, size);
+        for (int j = 0; j < 3; j++) idx[3 * i + j] = 3 * i + (uint32_t)j;
+    }
+    uint32_t mesh, mat, obj;
+    rt_material m = rt_material_default();
+    rt_material_add(s, &m, &mat);
+    rt_mesh_create(s, &mesh);
+    rt_mesh_add_triangles(s, mesh, pos, NULL, 3 * tris, idx, tris);
+    rt_object_create(s, mat, &obj);
+    rt_object_add_mesh(s, obj, mesh);
+    rt_camera cam = {{0, 0, 14}, {0, 0, 0}, {0, 1, 0}, 60, 64, 48};
+    rt_camera_set(s, &cam);
+    free(pos);
+    free(idx);
+    return s;
+}
+
+/* The traversal over trees of the fast builder at bins 64 and leaf sizes 1
+ * and 16 (and bins 4) finds the hits brute force finds, bit for bit. */
+static void test_ranges_traverse(void) {
+    rt_scene *s = soup_scene(4000, 9);
+    CHECK(s != NULL);
+    if (!s) return;
+    const rt_mesh_data *md = &s->meshes[0];
+    rt_aabb *boxes = malloc(sizeof(rt_aabb) * md->triangle_count);
+    rt_mesh_tri_boxes(md, boxes);
+    const int settings[][2] = {{64, 1}, {64, 16}, {4, 1}, {4, 16}};
+    for (int k = 0; k < 4; k++) {
+        rt_build_options o = opts(2);
+        o.bins = settings[k][0];
+        o.leaf_size = settings[k][1];
+        rt_bvh bvh;
+        char msg[256] = "";
+        CHECK_MSG(rt_bvh_build(boxes, md->triangle_count, &o, NULL, &bvh, msg, sizeof msg) == RT_OK,
+                  "%s", msg);
+        rt_flat flat;
+        rt_status st = rt_flatten(s, &bvh, NULL, NULL, &flat, msg, sizeof msg);
+        CHECK_MSG(st == RT_OK, "flatten: %s", msg);
+        rt_bvh_free(&bvh);
+        if (st != RT_OK) continue;
+        rt_scene_view v = rt_flat_view(&flat);
+        float lo[3], hi[3];
+        rt_scene_bounds(s, lo, hi);
+        int bad = 0, hits = 0;
+        for (int i = 0; i < 2000; i++) {
+            rt_ray_d r;
+            oracle_ray(&flat.hdr, lo, hi, i, &r);
+            rt_hit_d a, b;
+            rt_counters c = {0, 0, 0};
+            rt_trace(&v, &r, 0, &a, &c);
+            oracle_brute_force(&v, &r, 0, &b);
+            hits += a.prim != RT_NO_HIT;
+            if (!oracle_same_hit(&a, &b)) bad++;
+            int occluded = rt_trace(&v, &r, 1, &a, &c);
+            if (occluded != (b.prim != RT_NO_HIT)) bad++;
+        }
+        CHECK_MSG(bad == 0, "bins %d leaf %d: %d rays differ from brute force", settings[k][0],
+                  settings[k][1], bad);
+        CHECK_MSG(hits > 200, "bins %d leaf %d: only %d hits: a weak test", settings[k][0],
+                  settings[k][1], hits);
+        rt_flat_free(&flat);
+    }
+    free(boxes);
+    rt_scene_destroy(s);
+}
+
 int main(void) {
+    test_parameter_ranges();
+    test_leaf_sizes_used();
+    test_ranges_traverse();
     test_determinism();
     test_scratch_reuse();
     test_sah_leaves();

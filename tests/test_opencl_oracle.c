@@ -6,7 +6,10 @@
  * only what changed, and a bad --device is an error. Skips only when there is
  * no OpenCL device (or the build has no OpenCL). The wavefront (reflection
  * and refraction as passes over ray queues) is checked on cornell, also with
- * queues too small so every tile takes the fallback.
+ * queues too small so every tile takes the fallback. Extra build options
+ * (device_options, the speed-versus-error study) reach the compiler, are
+ * reported and void the exactness promise, and the program cache keys on them:
+ * the default build after a variant is the oracle's bits again.
  *
  * On a CPU device frames and closest-hit ray queries run the packet kernels
  * (kernels/rt_packet.cl; the hit buffers above check rt_k_packet_trace): its
@@ -310,6 +313,67 @@ static void check_hits(const char *name, rt_scene *s) {
     free(b);
 }
 
+/* device_options: appended to the build (a bad option fails the build and
+ * the error names it, for renders and ray queries), reported in the
+ * statistics with exact 0; the cache keys on them, so the exact build comes
+ * back, bit for bit, after a variant. On PoCL -cl-fast-relaxed-math changes
+ * pixels (it does not have to elsewhere: then only a note is printed). */
+static void check_device_options(void) {
+    rt_scene *s = test_builtin_scene("cornell", 96, 54);
+    if (!s) return;
+    rt_framebuffer cpu, fast, exact, bad;
+    rt_render_stats st;
+    CHECK(render(s, "cpu", RT_AOV_NONE, &cpu, NULL) == RT_OK);
+    rt_render_options o = rt_render_options_default();
+    o.backend = "opencl";
+    o.stats = &st;
+    o.device_options = "-cl-fast-relaxed-math"; /* a study variant's option */
+    rt_status status = rt_render(s, &o, &fast);
+    CHECK_MSG(status == RT_OK, "fast-relaxed-math option: %s", rt_scene_error(s));
+    if (status != RT_OK) {
+        rt_framebuffer_free(&cpu);
+        rt_scene_destroy(s);
+        return;
+    }
+    CHECK(st.exact == 0);
+    CHECK_CONTAINS(st.device_options, "-cl-fast-relaxed-math");
+    size_t n = (size_t)cpu.width * cpu.height * 3, differ = 0;
+    for (size_t i = 0; i < n; i++) differ += memcmp(&cpu.pixels[i], &fast.pixels[i], 4) != 0;
+    if (!differ) printf("note: this device's fast-relaxed-math build gives the oracle's bits\n");
+    if (strstr(st.device, "pthread") || strstr(st.device, "cpu"))
+        CHECK_MSG(differ > 0, "PoCL: the fast-relaxed-math option changed no channel");
+    /* The exact build again: the cache must not hand back the variant. */
+    o.device_options = NULL;
+    CHECK(rt_render(s, &o, &exact) == RT_OK);
+    CHECK(st.exact == 1 && st.device_options[0] == 0);
+    same_pixels("cornell", "image (exact build after a study option variant)", &cpu, &exact);
+    /* The options reach the compiler: an unknown one fails with its name. */
+    o.device_options = "-DRT_STUDY_OPTION=1 -cl-no-such-option";
+    CHECK(rt_render(s, &o, &bad) == RT_ERROR_BACKEND);
+    CHECK_CONTAINS(rt_scene_error(s), "-cl-no-such-option");
+    rt_ray ray = {{0, 1, 3}, {0, 0, -1}, 0, INFINITY};
+    rt_hit hit;
+    rt_render_options q = rt_render_options_default();
+    q.backend = "opencl";
+    q.device_options = o.device_options;
+    CHECK(rt_trace_rays_with(s, &ray, 1, &hit, 0, &q) == RT_ERROR_BACKEND);
+    CHECK_CONTAINS(rt_scene_error(s), "-cl-no-such-option");
+    q.device_options = NULL;
+    CHECK(rt_trace_rays_with(s, &ray, 1, &hit, 0, &q) == RT_OK && hit.hit);
+    /* Too long an option string is refused before any build. */
+    char lengthy[400];
+    memset(lengthy, 'x', sizeof lengthy - 1);
+    lengthy[0] = '-';
+    lengthy[sizeof lengthy - 1] = 0;
+    o.device_options = lengthy;
+    CHECK(rt_render(s, &o, &bad) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK_CONTAINS(rt_scene_error(s), "longer than");
+    rt_framebuffer_free(&cpu);
+    rt_framebuffer_free(&fast);
+    rt_framebuffer_free(&exact);
+    rt_scene_destroy(s);
+}
+
 /* Frame 2 uploads nothing; after moving an object only the per-frame part
  * (object BVH, instances, header), and the image is still the oracle's. */
 static void check_uploads(void) {
@@ -369,6 +433,7 @@ int main(void) {
         rt_scene_destroy(s);
     }
     check_uploads();
+    check_device_options();
     /* A device that does not exist is an error with a reason. */
     rt_scene *s;
     rt_error err;

@@ -1,14 +1,16 @@
 /* test_oracle_scenes.c - the renderer's traversal (real builders, the layout
  * rt_render uses) against brute force over all triangles, on random and
  * camera rays over the built-in scenes and the shared scenes: identical hits
- * (t bits, u, v, prim, inst) for the scalar oracle and the packet path, and
- * any-hit agreeing on occlusion. Ray counts scale down with triangle count
+ * (t bits, u, v, prim, inst) for the scalar oracle and the packet path (every
+ * instruction-set build of it that this CPU runs), and any-hit agreeing on
+ * occlusion. Ray counts scale down with triangle count
  * (brute force costs rays x triangles), more so under sanitizers. */
 #include <stdlib.h>
 
 #include "check.h"
 #include "cpu_render.h"
 #include "oracle_util.h"
+#include "packet_trace.h"
 #include "render_internal.h"
 #include "scene_builtin.h"
 
@@ -37,30 +39,44 @@ static void check_scene(const char *name, rt_scene *scene) {
     rt_hit_d *packet = malloc(sizeof(rt_hit_d) * (size_t)rays);
     rt_hit_d *any = malloc(sizeof(rt_hit_d) * (size_t)rays);
     for (int i = 0; i < rays; i++) oracle_ray(&prep.flat->hdr, lo, hi, i, &r[i]);
+    const rt_pk_wide *wide = NULL;
+    CHECK(rt_render_wide(scene, &prep, &wide) == RT_OK);
     rt_counters c = {0, 0, 0};
     rt_cpu_trace_rays(prep.flat, r, (size_t)rays, scalar, 0, &c);
-    rt_packet_trace_rays(prep.flat, r, (size_t)rays, packet, 0, &c);
-    rt_packet_trace_rays(prep.flat, r, (size_t)rays, any, 1, &c);
-    int bad = 0, bad_packet = 0, bad_any = 0, hits = 0;
+    rt_hit_d *b = malloc(sizeof(rt_hit_d) * (size_t)rays);
+    int bad = 0, hits = 0;
     for (int i = 0; i < rays; i++) {
-        rt_hit_d b;
-        oracle_brute_force(&v, &r[i], 0, &b);
-        hits += b.prim != RT_NO_HIT;
-        if (!oracle_same_hit(&scalar[i], &b)) {
+        oracle_brute_force(&v, &r[i], 0, &b[i]);
+        hits += b[i].prim != RT_NO_HIT;
+        if (!oracle_same_hit(&scalar[i], &b[i])) {
             if (bad < 3)
                 fprintf(stderr,
                         "%s ray %d: bvh t=%.9g prim %u inst %u, brute t=%.9g prim %u inst %u\n",
-                        name, i, scalar[i].t, scalar[i].prim, scalar[i].inst, b.t, b.prim, b.inst);
+                        name, i, scalar[i].t, scalar[i].prim, scalar[i].inst, b[i].t, b[i].prim,
+                        b[i].inst);
             bad++;
         }
-        bad_packet += !oracle_same_hit(&packet[i], &b);
-        bad_any += (any[i].prim != RT_NO_HIT) != (b.prim != RT_NO_HIT);
     }
     printf("%s: %d rays, %d hits, %u triangles\n", name, rays, hits, prep.flat->tri_count);
     CHECK_MSG(bad == 0, "%s: %d of %d scalar hits differ from brute force", name, bad, rays);
-    CHECK_MSG(bad_packet == 0, "%s: %d of %d packet hits differ", name, bad_packet, rays);
-    CHECK_MSG(bad_any == 0, "%s: %d of %d any-hit results differ", name, bad_any, rays);
     CHECK_MSG(hits > 0, "%s: no ray hit anything", name);
+    for (int k = 0; rt_pk_isa_name(k); k++) {
+        const char *isa = rt_pk_isa_name(k);
+        if (!rt_pk_select(isa)) continue;
+        rt_packet_trace_rays(prep.flat, wide, r, (size_t)rays, packet, 0, &c);
+        rt_packet_trace_rays(prep.flat, wide, r, (size_t)rays, any, 1, &c);
+        int bad_packet = 0, bad_any = 0;
+        for (int i = 0; i < rays; i++) {
+            bad_packet += !oracle_same_hit(&packet[i], &b[i]);
+            bad_any += (any[i].prim != RT_NO_HIT) != (b[i].prim != RT_NO_HIT);
+        }
+        CHECK_MSG(bad_packet == 0, "%s: %d of %d packet (%s) hits differ", name, bad_packet, rays,
+                  isa);
+        CHECK_MSG(bad_any == 0, "%s: %d of %d any-hit (%s) results differ", name, bad_any, rays,
+                  isa);
+    }
+    rt_pk_select(NULL);
+    free(b);
     free(r);
     free(scalar);
     free(packet);

@@ -37,8 +37,9 @@ static const char usage[] =
     "                 (the thesis's benchmark set-up)\n"
     "  --cl-options OPTS\n"
     "                 extra OpenCL compiler options, e.g. -cl-mad-enable,\n"
-    "                 -cl-fast-relaxed-math, -DRT_NATIVE_MATH; results may then differ\n"
-    "                 from the CPU oracle (the speed-versus-error study)\n"
+    "                 -cl-fast-relaxed-math, -DRT_NATIVE_MATH (options appended to\n"
+    "                 the kernels' build); results may then differ from the CPU\n"
+    "                 oracle, and --stats says so (the speed-versus-error study)\n"
     "  --stats        print BVH cost, box and triangle tests per ray and render time;\n"
     "                 for opencl also the device, kernel specialisation, compile,\n"
     "                 upload (bytes), per-kernel and download times\n";
@@ -108,14 +109,24 @@ static void print_stats(const rt_render_stats *s, int width, int height) {
            (unsigned long long)s->primary_rays);
     printf("box tests/ray    %.2f\n", (double)s->box_tests / rays);
     printf("tri tests/ray    %.2f\n", (double)s->tri_tests / rays);
-    if (s->packets)
-        printf("box tests/packet %.2f (2x2 packets: %llu)\n",
-               (double)s->packet_box_tests / (double)s->packets, (unsigned long long)s->packets);
+    if (s->packets) {
+        printf("packets          %llu of %d rays, vectors of %d lanes (%s)\n",
+               (unsigned long long)s->packets, s->packet_rays, s->packet_vector,
+               s->packet_isa ? s->packet_isa : "?");
+        printf("vector tests     %.2f box and interval, %.2f triangle per primary packet "
+               "(with its shadow rays)\n",
+               (double)s->packet_box_tests / (double)s->packets,
+               (double)s->packet_tri_tests / (double)s->packets);
+    }
     if (s->device[0]) {
         printf("device           %s (%s)\n", s->device,
                s->exact ? "bit-exact with the CPU oracle promised"
                         : "exactness with the CPU oracle NOT promised");
         printf("specialisation   %s\n", s->specialisation);
+        if (s->device_options[0])
+            printf("extra options    %s (--cl-options: the kernels are NOT the exact build; "
+                   "results may differ from the CPU oracle)\n",
+                   s->device_options);
         printf("kernel compile   %.2f ms\n", s->compile_ms);
         printf("upload           %.2f ms, %llu bytes\n", s->upload_ms,
                (unsigned long long)s->upload_bytes);

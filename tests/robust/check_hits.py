@@ -11,7 +11,9 @@ mean relative error of t and maximum error of the barycentrics, and how many
 
 With --strict the exit status is 1 when any leak, false hit, wrong primitive
 or t out of bound was found (the watertight default must have none); without
-it the failures are only reported (the other triangle tests).
+it the failures are only reported (the other triangle tests). --json=FILE
+also writes the per-category figures (and their totals under "total") to
+FILE, for the speed-against-error study (bench/study_tri_tests.sh).
 """
 import json
 import os
@@ -26,6 +28,7 @@ def parse_q(s):
 def main():
     args = [a for a in sys.argv[1:] if not a.startswith('--')]
     strict = '--strict' in sys.argv
+    json_out = next((a[len('--json='):] for a in sys.argv[1:] if a.startswith('--json=')), None)
     if len(args) != 3:
         print(__doc__)
         return 2
@@ -48,10 +51,11 @@ def main():
         if cat not in stats:
             order.append(cat)
             stats[cat] = dict(rays=0, leaks=0, false=0, prim=0, tbound=0, terr_max=0.0, terr_sum=0.0,
-                              terr_n=0, bary=0.0, either=0, either_hit=0)
+                              terr_n=0, bary=0.0, either=0, either_hit=0, must=0)
         s = stats[cat]
         for i, (e, h) in enumerate(zip(case['expect'], lines)):
             s['rays'] += 1
+            s['must'] += e['hit'] == 'must'
             hit = h[0] == '1'
             what = None
             if e['hit'] == 'either':
@@ -91,7 +95,7 @@ def main():
         'bary max', 'either')
     print('== %s' % label)
     print(head)
-    tot = dict(rays=0, leaks=0, false=0, prim=0, tbound=0)
+    tot = dict(rays=0, must=0, leaks=0, false=0, prim=0, tbound=0)
     for cat in order:
         s = stats[cat]
         for k in tot:
@@ -104,6 +108,12 @@ def main():
         print('  ' + p)
     if len(problems) > 12:
         print('  ... and %d more' % (len(problems) - 12))
+    if json_out:
+        figures = {cat: dict(stats[cat], terr_mean=stats[cat]['terr_sum'] / stats[cat]['terr_n']
+                             if stats[cat]['terr_n'] else 0.0) for cat in order}
+        figures['total'] = tot
+        with open(json_out, 'w') as f:
+            json.dump({'label': label, 'categories': order, 'figures': figures}, f, indent=1)
     bad = tot['leaks'] + tot['false'] + tot['prim'] + tot['tbound']
     print('SUMMARY %s: %d rays, %d leaks, %d false hits, %d wrong prims, %d t out of bound: %s' % (
         label, tot['rays'], tot['leaks'], tot['false'], tot['prim'], tot['tbound'],

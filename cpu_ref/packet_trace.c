@@ -1,0 +1,762 @@
+/* packet_trace.c - RT_PK_LANES rays through the two-level BVH together
+ * (packet_trace.h), in G groups of RT_VN lanes, one native vector each
+ * (host/simd_wide.h: 4 groups of 4 lanes with NEON or SSE2, 2 of 8 with
+ * AVX2, 1 of 16 with AVX-512).
+ *
+ * A node is entered when some lane's box test passes, found by testing the
+ * groups in order from the first group still inside the parent ("first
+ * active group", Wald, Boulos and Shirley 2007), with an interval test over
+ * the whole packet after the first group misses; at a leaf every group is
+ * box-tested and only the lanes that pass test the triangles.
+ *
+ * Every vector operation below is the scalar oracle's operation on each lane
+ * (kernels/rt_shared.h, named at each function), in the same order, so each
+ * lane's values are the oracle's bits. Minimum and maximum are the oracle's
+ * 'a < b ? a : b', NaN behaviour included (rt_vmin_of, rt_vmax_of).
+ *
+ * This file is compiled once per instruction set (RT_PK_ISA names the
+ * variant; cpu_ref/packet_dispatch.c picks one at run time); the variants
+ * differ in register width only, never in results. */
+#include <string.h>
+
+#include "packet_trace.h"
+#include "packet_wide.h"
+#include "simd_wide.h"
+
+#ifndef RT_PK_ISA
+#define RT_PK_ISA generic
+#endif
+#define RT_PK_CAT_(a, b) a##_##b
+#define RT_PK_CAT(a, b)  RT_PK_CAT_(a, b)
+#define RT_PK_TRACE      RT_PK_CAT(rt_pk_trace, RT_PK_ISA)
+
+enum { L = RT_PK_LANES, N = RT_VN, G = RT_PK_LANES / RT_VN };
+_Static_assert(RT_PK_LANES % RT_VN == 0, "a packet is whole vectors");
+/* Below a subtree of this many primitives the packet tracer follows each
+ * group's lanes (pk_bvh_ia); measured best at 32 to 64 for every vector
+ * width on the shared scenes (docs/OPTIMISATION_LOG.md). */
+enum { SMALL_TREE = 32 };
+
+/* The packet's rays in one space: the world, or an instance's object space. */
+typedef struct pk_geom {
+    rt_vf org[3][G], dir[3][G], inv[3][G];
+    rt_vi neg[3][G]; /* inv < 0 */
+    rt_vf lo[G];     /* rt_box_lo(tmin) */
+    rt_vf tmin[G];
+    rt_vf sx[G], sy[G], sz[G]; /* the watertight shear ... */
+    rt_vi kx0[G], kx1[G];      /* ... and its axes per lane: kx == 0, kx == 1 */
+    rt_vi ky0[G], ky1[G], kz0[G], kz1[G];
+    int perm[G][3];  /* kx, ky, kz when the group's lanes agree on them, else
+                        perm[g][0] = -1 */
+    int uniform;     /* all lanes share the sign of inv on every axis ... */
+    int neg_axis[3]; /* ... and these are the signs */
+    /* The packet's bounds for the interval test (pk_ia_children): the range
+     * of every lane's org and inv per axis and the least rt_box_lo(tmin);
+     * only when 'uniform' and all of them are finite (ia). One origin for
+     * every lane (primary rays) makes the test cheaper and tighter. */
+    int ia, one_origin;
+    float org_min[3], org_max[3], inv_min[3], inv_max[3], lo_min;
+} pk_geom;
+
+typedef struct pk_state {
+    const rt_scene_view *s;
+    const rt_pk_wide *w;
+    rt_vf t[G];  /* the best hit's t (the ray's tmax at first) */
+    rt_vf hi[G]; /* rt_box_hi(t) */
+    /* The best hit's edge functions (u = V / det, v = W / det once the
+     * traversal is done, as the oracle divides) and its names. */
+    rt_vf V[G], W[G], det[G];
+    rt_vi prim[G], inst[G], entry[G];
+    rt_vi box[G], tri[G]; /* tests per lane, when per_lane */
+    int per_lane;         /* counts->per_lane */
+    float hi_max;         /* the greatest of hi (for the interval test) ... */
+    int hi_stale;         /* ... to be recomputed: some hit shortened hi */
+    rt_pk_counts *counts;
+    uint32_t alive[G];     /* lanes of each group still tracing */
+    uint32_t alive_groups; /* groups with a lane alive */
+    int any_hit;
+    rt_u32 method;
+} pk_state;
+
+static inline int lowest_bit(uint32_t m) {
+    return __builtin_ctz(m);
+}
+
+/* rt_box_hi per lane. */
+static inline rt_vf box_hi(rt_vf t) {
+    return t + rt_vabs(t) * rt_vsplat(RT_BOX_T_MARGIN);
+}
+
+/* The number of lanes in m (baseline x86-64 has no popcount instruction). */
+static inline uint32_t lanes_in(uint32_t m) {
+#if defined(__POPCNT__) || defined(__aarch64__)
+    return (uint32_t)__builtin_popcount(m);
+#else
+    static const uint8_t n[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+    uint32_t c = 0;
+    for (int i = 0; i < N; i += 4) c += n[(m >> i) & 15u];
+    return c;
+#endif
+}
+
+/* Counts one test for each lane of m in group g. */
+static inline void count(const pk_state *st, uint64_t *total, rt_vi *per_lane, int g, uint32_t m) {
+    *total += lanes_in(m);
+    if (st->per_lane) per_lane[g] -= rt_vmask(m);
+}
+
+/* ---- set-up --------------------------------------------------------------- */
+
+/* rt_ray_prepare on every lane of group g. */
+static void pk_prepare(pk_geom *p, int g) {
+    const rt_vf *dir = (const rt_vf[3]){p->dir[0][g], p->dir[1][g], p->dir[2][g]};
+    const rt_vf zero = rt_vsplat(0.0f), one = rt_vsplat(1.0f);
+    for (int k = 0; k < 3; k++) {
+        p->inv[k][g] = one / dir[k];
+        p->neg[k][g] = p->inv[k][g] < zero;
+    }
+    /* kz: the axis of the largest |dir| (ties broken as rt_ray_prepare
+     * breaks them); kx, ky the next two, swapped where dir[kz] < 0. */
+    rt_vf ax = rt_vabs(dir[0]), ay = rt_vabs(dir[1]), az = rt_vabs(dir[2]);
+    rt_vi m1 = ay > ax;
+    rt_vi z2 = az > rt_vsel(m1, ay, ax);
+    rt_vi z1 = m1 & ~z2, z0 = ~m1 & ~z2;
+    rt_vf dz = rt_vsel(z2, dir[2], rt_vsel(z1, dir[1], dir[0]));
+    /* Unswapped, kx = kz + 1 and ky = kz + 2 (mod 3). */
+    rt_vi ux0 = z2, ux1 = z0, uy0 = z1, uy1 = z2;
+    rt_vf dx = rt_vsel(ux0, dir[0], rt_vsel(ux1, dir[1], dir[2]));
+    rt_vf dy = rt_vsel(uy0, dir[0], rt_vsel(uy1, dir[1], dir[2]));
+    rt_vi swap = dz < zero;
+    p->kx0[g] = (swap & uy0) | (~swap & ux0);
+    p->kx1[g] = (swap & uy1) | (~swap & ux1);
+    p->ky0[g] = (swap & ux0) | (~swap & uy0);
+    p->ky1[g] = (swap & ux1) | (~swap & uy1);
+    p->kz0[g] = z0;
+    p->kz1[g] = z1;
+    p->sx[g] = rt_vsel(swap, dy, dx) / dz;
+    p->sy[g] = rt_vsel(swap, dx, dy) / dz;
+    p->sz[g] = one / dz;
+    /* One permutation for the whole group? */
+    const uint32_t all = (1u << N) - 1u;
+    uint32_t b[6] = {rt_vbits(p->kx0[g]), rt_vbits(p->kx1[g]), rt_vbits(p->ky0[g]),
+                     rt_vbits(p->ky1[g]), rt_vbits(p->kz0[g]), rt_vbits(p->kz1[g])};
+    int same = 1;
+    for (int i = 0; i < 6; i++) same &= b[i] == 0 || b[i] == all;
+    p->perm[g][0] = !same ? -1 : b[0] ? 0 : b[1] ? 1 : 2;
+    p->perm[g][1] = b[2] ? 0 : b[3] ? 1 : 2;
+    p->perm[g][2] = b[4] ? 0 : b[5] ? 1 : 2;
+}
+
+/* The rest of the set-up once org, dir and tmin are in place: rt_ray_prepare
+ * per lane, the box range's lower ends, the signs and the interval bounds. */
+static void pk_geom_finish(pk_geom *p) {
+    rt_pk_mask neg_bits[3] = {0, 0, 0};
+    for (int g = 0; g < G; g++) {
+        p->lo[g] = p->tmin[g] - rt_vabs(p->tmin[g]) * rt_vsplat(RT_BOX_T_MARGIN);
+        pk_prepare(p, g);
+        for (int k = 0; k < 3; k++) neg_bits[k] |= (rt_pk_mask)rt_vbits(p->neg[k][g]) << (N * g);
+    }
+    p->uniform = 1;
+    for (int k = 0; k < 3; k++) {
+        p->neg_axis[k] = neg_bits[k] != 0;
+        if (neg_bits[k] != 0 && neg_bits[k] != RT_PK_ALL) p->uniform = 0;
+    }
+    p->ia = p->uniform;
+    if (!p->ia) return;
+    /* The ranges, lane by lane of the vectors' minima and maxima. */
+    rt_vf lo = p->lo[0], fin = rt_vsplat(0.0f);
+    rt_vf omin[3], omax[3], imin[3], imax[3];
+    for (int k = 0; k < 3; k++) omin[k] = omax[k] = p->org[k][0], imin[k] = imax[k] = p->inv[k][0];
+    for (int g = 0; g < G; g++) {
+        lo = rt_vmin_of(p->lo[g], lo);
+        fin = fin + p->lo[g] * rt_vsplat(0.0f); /* NaN where lo is not finite */
+        for (int k = 0; k < 3; k++) {
+            omin[k] = rt_vmin_of(p->org[k][g], omin[k]),
+            omax[k] = rt_vmax_of(p->org[k][g], omax[k]);
+            imin[k] = rt_vmin_of(p->inv[k][g], imin[k]),
+            imax[k] = rt_vmax_of(p->inv[k][g], imax[k]);
+            fin = fin + (p->org[k][g] + p->inv[k][g]) * rt_vsplat(0.0f);
+        }
+    }
+    p->one_origin = 1;
+    p->lo_min = lo[0];
+    for (int k = 0; k < 3; k++) {
+        p->org_min[k] = omin[k][0], p->org_max[k] = omax[k][0];
+        p->inv_min[k] = imin[k][0], p->inv_max[k] = imax[k][0];
+    }
+    for (int i = 0; i < N; i++) {
+        if (!(fin[i] == 0.0f)) p->ia = 0; /* an infinite or NaN org, inv or lo */
+        p->lo_min = lo[i] < p->lo_min ? lo[i] : p->lo_min;
+        for (int k = 0; k < 3; k++) {
+            p->org_min[k] = omin[k][i] < p->org_min[k] ? omin[k][i] : p->org_min[k];
+            p->org_max[k] = omax[k][i] > p->org_max[k] ? omax[k][i] : p->org_max[k];
+            p->inv_min[k] = imin[k][i] < p->inv_min[k] ? imin[k][i] : p->inv_min[k];
+            p->inv_max[k] = imax[k][i] > p->inv_max[k] ? imax[k][i] : p->inv_max[k];
+        }
+    }
+    for (int k = 0; k < 3; k++) p->one_origin &= p->org_min[k] == p->org_max[k];
+}
+
+/* The packet's rays as vectors; invalid lanes take a copy of a valid lane's
+ * ray, so that every lane computes on real numbers. */
+static void pk_geom_setup(pk_geom *p, const rt_ray_d *ray, rt_pk_mask valid) {
+    const int src = valid ? __builtin_ctzll(valid) : 0;
+    for (int g = 0; g < G; g++) {
+        float o[3][N], d[3][N], tmin[N];
+        for (int i = 0; i < N; i++) {
+            const int l = N * g + i;
+            const rt_ray_d *r = &ray[(valid >> l) & 1u ? l : src];
+            for (int k = 0; k < 3; k++) {
+                o[k][i] = r->org[k];
+                d[k][i] = r->dir[k];
+            }
+            tmin[i] = r->tmin;
+        }
+        for (int k = 0; k < 3; k++) {
+            memcpy(&p->org[k][g], o[k], sizeof(rt_vf));
+            memcpy(&p->dir[k][g], d[k], sizeof(rt_vf));
+        }
+        memcpy(&p->tmin[g], tmin, sizeof(rt_vf));
+    }
+    pk_geom_finish(p);
+}
+
+/* The world packet w in an instance's object space: rt_ray_to_object per
+ * lane, o' = M o + m and d' = M d in its order of operations. */
+static void pk_geom_to_object(pk_geom *o, const pk_geom *w, const rt_instance *in) {
+    const float *m = in->world_to_object;
+    for (int g = 0; g < G; g++) {
+        for (int i = 0; i < 3; i++) {
+            const rt_vf m0 = rt_vsplat(m[4 * i]), m1 = rt_vsplat(m[4 * i + 1]);
+            const rt_vf m2 = rt_vsplat(m[4 * i + 2]), m3 = rt_vsplat(m[4 * i + 3]);
+            o->org[i][g] = ((m0 * w->org[0][g] + m1 * w->org[1][g]) + m2 * w->org[2][g]) + m3;
+            o->dir[i][g] = (m0 * w->dir[0][g] + m1 * w->dir[1][g]) + m2 * w->dir[2][g];
+        }
+        o->tmin[g] = w->tmin[g];
+    }
+    pk_geom_finish(o);
+}
+
+/* Lane i of group g as a ray (for the shared scalar tests; tmax unused). */
+static void lane_ray(const pk_geom *p, int g, int i, rt_ray_d *r) {
+    for (int k = 0; k < 3; k++) {
+        r->org[k] = p->org[k][g][i];
+        r->dir[k] = p->dir[k][g][i];
+    }
+    r->tmin = p->tmin[g][i];
+    r->tmax = RT_INF;
+}
+
+/* One lane per child of a wide node. */
+#if RT_PK_WIDTH == 4
+typedef rt_v4f ck_f;
+typedef rt_v4i ck_i;
+#define ck_splat rt_v4splat
+#define ck_min   rt_v4min
+#define ck_max   rt_v4max
+#define ck_bits  rt_v4bits
+#elif RT_PK_WIDTH == 8
+typedef rt_v8f ck_f;
+typedef rt_v8i ck_i;
+#define ck_splat rt_v8splat
+#define ck_min   rt_v8min
+#define ck_max   rt_v8max
+#define ck_bits  rt_v8bits
+#endif
+
+/* Interval arithmetic over the whole packet (Wald, Boulos and Shirley 2007),
+ * for all children of a wide node at once: bit c is set unless no
+ * lane's rt_box_test can pass for child c. Every lane computes t0 =
+ * fl(fl(a - org) * inv) with its org and inv inside the packet's ranges;
+ * rounding is monotonic and the product bilinear, so t0 is at least the
+ * least product at the ranges' corners and its t1 at most the greatest. Its
+ * entry (the greatest t0, and its rt_box_lo(tmin)) is then at least 'enter'
+ * and its exit (the least t1, scaled as rt_box_test scales it, and its
+ * rt_box_hi(t)) at most 'leave'. *enter_out gets 'enter' per child. Empty
+ * slots (inverted boxes) come out infinitely far. */
+static inline uint32_t pk_ia_children(const rt_pk_node *n, const pk_geom *p, float hi_max,
+                                      ck_f *enter_out) {
+    ck_f enter = ck_splat(p->lo_min), leave = ck_splat(RT_INF);
+    for (int k = 0; k < 3; k++) {
+        ck_f a, b, t0, t1;
+        memcpy(&a, p->neg_axis[k] ? n->bmax[k] : n->bmin[k], sizeof a);
+        memcpy(&b, p->neg_axis[k] ? n->bmin[k] : n->bmax[k], sizeof b);
+        const ck_f i0 = ck_splat(p->inv_min[k]), i1 = ck_splat(p->inv_max[k]);
+        if (p->one_origin) {
+            const ck_f o = ck_splat(p->org_min[k]);
+            a = a - o, b = b - o;
+            t0 = ck_min(a * i0, a * i1);
+            t1 = ck_max(b * i0, b * i1);
+        } else {
+            const ck_f o0 = ck_splat(p->org_max[k]), o1 = ck_splat(p->org_min[k]);
+            const ck_f a0 = a - o0, a1 = a - o1, b0 = b - o0, b1 = b - o1;
+            t0 = ck_min(ck_min(a0 * i0, a0 * i1), ck_min(a1 * i0, a1 * i1));
+            t1 = ck_max(ck_max(b0 * i0, b0 * i1), ck_max(b1 * i0, b1 * i1));
+        }
+        enter = ck_max(enter, t0);
+        leave = ck_min(leave, t1);
+    }
+    const ck_f zero = ck_splat(0.0f);
+    const ck_f neg = ck_splat(RT_BOX_FAR_SCALE_NEG), pos = ck_splat(RT_BOX_FAR_SCALE);
+    leave = leave * (ck_f)(((leave < zero) & (ck_i)neg) | (~(leave < zero) & (ck_i)pos));
+    leave = ck_min(leave, ck_splat(hi_max));
+    *enter_out = enter;
+    return ck_bits(enter <= leave);
+}
+
+/* ---- box test: rt_box_test on the lanes of group g ------------------------ */
+
+static inline uint32_t pk_box(const rt_pk_node *n, int c, const pk_geom *p, const pk_state *st,
+                              int g, rt_vf *tnear) {
+    rt_vf lo = p->lo[g], hi = rt_vsplat(RT_INF);
+    for (int k = 0; k < 3; k++) {
+        rt_vf a, b;
+        if (p->uniform) {
+            a = rt_vsplat(p->neg_axis[k] ? n->bmax[k][c] : n->bmin[k][c]);
+            b = rt_vsplat(p->neg_axis[k] ? n->bmin[k][c] : n->bmax[k][c]);
+        } else {
+            rt_vf bmin = rt_vsplat(n->bmin[k][c]), bmax = rt_vsplat(n->bmax[k][c]);
+            a = rt_vsel(p->neg[k][g], bmax, bmin);
+            b = rt_vsel(p->neg[k][g], bmin, bmax);
+        }
+        rt_vf t0 = (a - p->org[k][g]) * p->inv[k][g];
+        rt_vf t1 = (b - p->org[k][g]) * p->inv[k][g];
+        lo = rt_vmax_of(t0, lo);
+        hi = rt_vmin_of(t1, hi);
+    }
+    hi = hi * rt_vsel(hi < rt_vsplat(0.0f), rt_vsplat(RT_BOX_FAR_SCALE_NEG),
+                      rt_vsplat(RT_BOX_FAR_SCALE));
+    hi = rt_vmin_of(st->hi[g], hi);
+    *tnear = lo;
+    return rt_vbits(lo <= hi) & st->alive[g];
+}
+
+/* ---- triangles -------------------------------------------------------------- */
+
+/* The greatest of hi (hi only shrinks, so a stale value is merely loose). */
+static inline float hi_max(pk_state *st) {
+    if (st->hi_stale) {
+        rt_vf m = st->hi[0];
+        for (int g = 1; g < G; g++) m = rt_vmax_of(st->hi[g], m);
+        float x = m[0];
+        for (int i = 1; i < N; i++) x = m[i] > x ? m[i] : x;
+        st->hi_max = x;
+        st->hi_stale = 0;
+    }
+    return st->hi_max;
+}
+
+/* Retires the any-hit lanes of m in group g (they found an occluder). */
+static inline void retire(pk_state *st, int g, uint32_t m, rt_u32 prim) {
+    st->prim[g] = rt_vsel_i(rt_vmask(m), rt_vsplat_i((int32_t)prim), st->prim[g]);
+    st->alive[g] &= ~m;
+    if (!st->alive[g]) st->alive_groups &= ~(1u << g);
+}
+
+/* rt_hit_before for lane i of group g: is (t, inst, prim) before its best
+ * hit, whose t is t (a tie)? */
+static inline int tie_before(const pk_state *st, int g, int i, rt_u32 inst, rt_u32 prim) {
+    rt_u32 best_inst = (rt_u32)st->inst[g][i], best_prim = (rt_u32)st->prim[g][i];
+    if (inst != best_inst) return inst < best_inst;
+    return prim < best_prim;
+}
+
+/* Records lane i of group g's hit on entry e at t with edge functions V, W
+ * and det (u = V / det, v = W / det), as rt_leaf_test accepts it. */
+static void accept_lane(pk_state *st, int g, int i, rt_u32 e, rt_u32 inst, float t, float V,
+                        float W, float det) {
+    st->t[g][i] = t;
+    st->hi[g][i] = rt_box_hi(t);
+    st->V[g][i] = V;
+    st->W[g][i] = W;
+    st->det[g][i] = det;
+    st->prim[g][i] = (int32_t)st->s->tri_ids[e];
+    st->inst[g][i] = (int32_t)inst;
+    st->entry[g][i] = (int32_t)e;
+    st->hi_stale = 1;
+}
+
+/* The lanes of m in group g through the shared scalar test (rt_leaf_test's
+ * body): the other triangle tests, and lanes that need the watertight test's
+ * exact re-check of a zero edge function. */
+static void pk_tri_lanes(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u32 e, rt_u32 inst) {
+    const rt_tri *tri = &st->s->tris[e];
+    const rt_u32 prim = st->s->tri_ids[e];
+    for (; m; m &= m - 1) {
+        const int i = lowest_bit(m);
+        rt_ray_d lr;
+        lane_ray(p, g, i, &lr);
+        const rt_ray_d *r = &lr;
+        rt_ray_pre pre; /* only the watertight test reads it */
+        float t, u, v;
+        if (st->method == RT_TRI_WATERTIGHT)
+            rt_ray_prepare(r, &pre);
+        else
+            memset(&pre, 0, sizeof pre);
+        if (!rt_tri_test(st->method, tri, r, &pre, r->tmin, st->t[g][i], &t, &u, &v)) continue;
+        if (st->any_hit)
+            retire(st, g, 1u << i, prim);
+        else if (t < st->t[g][i] || tie_before(st, g, i, inst, prim))
+            accept_lane(st, g, i, e, inst, t, u, v, 1.0f); /* u / 1 and v / 1 are u and v */
+    }
+}
+
+/* v[k] per lane, k given by the masks k0 (k == 0) and k1 (k == 1). */
+static inline rt_vf pick(rt_vi k0, rt_vi k1, const rt_vf *v) {
+    return rt_vsel(k0, v[0], rt_vsel(k1, v[1], v[2]));
+}
+
+/* rt_tri_watertight on the lanes of m in group g against entry e. */
+static void pk_tri(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u32 e, rt_u32 inst) {
+    st->counts->group_tri_tests++;
+    count(st, &st->counts->tri_tests, st->tri, g, m);
+    if (st->method != RT_TRI_WATERTIGHT) {
+        pk_tri_lanes(st, p, g, m, e, inst);
+        return;
+    }
+    const rt_tri *tri = &st->s->tris[e];
+    /* The oracle's A[i] = v0[i] - org[i], taken at kx, ky and kz (A[kz] is
+     * named Az here), ... */
+    rt_vf Ax, Ay, Az, Bx, By, Bz, Cx, Cy, Cz;
+    const int kx = p->perm[g][0], ky = p->perm[g][1], kz = p->perm[g][2];
+    if (kx >= 0) {
+        const rt_vf ox = p->org[kx][g], oy = p->org[ky][g], oz = p->org[kz][g];
+        Ax = rt_vsplat(tri->v0[kx]) - ox, Ay = rt_vsplat(tri->v0[ky]) - oy;
+        Az = rt_vsplat(tri->v0[kz]) - oz;
+        Bx = rt_vsplat(tri->v1[kx]) - ox, By = rt_vsplat(tri->v1[ky]) - oy;
+        Bz = rt_vsplat(tri->v1[kz]) - oz;
+        Cx = rt_vsplat(tri->v2[kx]) - ox, Cy = rt_vsplat(tri->v2[ky]) - oy;
+        Cz = rt_vsplat(tri->v2[kz]) - oz;
+    } else { /* lanes disagree on the axes: each picks its own */
+        rt_vf A[3], B[3], C[3];
+        for (int k = 0; k < 3; k++) {
+            A[k] = rt_vsplat(tri->v0[k]) - p->org[k][g];
+            B[k] = rt_vsplat(tri->v1[k]) - p->org[k][g];
+            C[k] = rt_vsplat(tri->v2[k]) - p->org[k][g];
+        }
+        const rt_vi x0 = p->kx0[g], x1 = p->kx1[g], y0 = p->ky0[g], y1 = p->ky1[g];
+        const rt_vi z0 = p->kz0[g], z1 = p->kz1[g];
+        Ax = pick(x0, x1, A), Ay = pick(y0, y1, A), Az = pick(z0, z1, A);
+        Bx = pick(x0, x1, B), By = pick(y0, y1, B), Bz = pick(z0, z1, B);
+        Cx = pick(x0, x1, C), Cy = pick(y0, y1, C), Cz = pick(z0, z1, C);
+    }
+    /* ... A[kx] - sx A[kz], A[ky] - sy A[kz], ... */
+    const rt_vf sx = p->sx[g], sy = p->sy[g];
+    Ax = Ax - sx * Az, Ay = Ay - sy * Az;
+    Bx = Bx - sx * Bz, By = By - sy * Bz;
+    Cx = Cx - sx * Cz, Cy = Cy - sy * Cz;
+    rt_vf U = Cx * By - Cy * Bx;
+    rt_vf V = Ax * Cy - Ay * Cx;
+    rt_vf W = Bx * Ay - By * Ax;
+    const rt_vf zero = rt_vsplat(0.0f);
+    /* An edge function of exactly zero takes the oracle's exact re-check. */
+    uint32_t z = rt_vbits((U == zero) | (V == zero) | (W == zero)) & m;
+    if (z) {
+        pk_tri_lanes(st, p, g, z, e, inst);
+        m &= ~z;
+    }
+    rt_vf det = (U + V) + W;
+    rt_vi out = (((U < zero) | (V < zero) | (W < zero)) & ((U > zero) | (V > zero) | (W > zero))) |
+                (det == zero);
+    uint32_t inside = ~rt_vbits(out) & m;
+    if (!inside) return;
+    /* The oracle's Az = sz A[kz], its T and its t. */
+    const rt_vf sz = p->sz[g];
+    rt_vf T = (U * (sz * Az) + V * (sz * Bz)) + W * (sz * Cz);
+    rt_vf t = T / det;
+    uint32_t hit = rt_vbits((t >= p->tmin[g]) & (t <= st->t[g])) & inside;
+    if (!hit) return;
+    const rt_u32 prim = st->s->tri_ids[e];
+    if (st->any_hit) {
+        retire(st, g, hit, prim);
+        return;
+    }
+    /* rt_hit_before: a smaller t wins at once; an equal t goes by the names. */
+    uint32_t closer = rt_vbits(t < st->t[g]) & hit;
+    for (uint32_t tie = hit & ~closer; tie; tie &= tie - 1) {
+        int i = lowest_bit(tie);
+        if (tie_before(st, g, i, inst, prim)) closer |= 1u << i;
+    }
+    if (!closer) return;
+    const rt_vi take = rt_vmask(closer);
+    st->t[g] = rt_vsel(take, t, st->t[g]);
+    st->hi[g] = rt_vsel(take, box_hi(t), st->hi[g]);
+    st->V[g] = rt_vsel(take, V, st->V[g]);
+    st->W[g] = rt_vsel(take, W, st->W[g]);
+    st->det[g] = rt_vsel(take, det, st->det[g]);
+    st->prim[g] = rt_vsel_i(take, rt_vsplat_i((int32_t)prim), st->prim[g]);
+    st->inst[g] = rt_vsel_i(take, rt_vsplat_i((int32_t)inst), st->inst[g]);
+    st->entry[g] = rt_vsel_i(take, rt_vsplat_i((int32_t)e), st->entry[g]);
+    st->hi_stale = 1;
+}
+
+/* The triangles of leaf child c of n for the lanes of m in group g. */
+static void pk_leaf(pk_state *st, const pk_geom *p, const rt_pk_node *n, int c, rt_u32 inst, int g,
+                    uint32_t m) {
+    const rt_u32 begin = n->ref[c], end = begin + (n->count[c] & RT_NODE_COUNT_MASK);
+    for (rt_u32 e = begin; e < end && m; e++) {
+        pk_tri(st, p, g, m, e, inst);
+        m &= st->alive[g];
+    }
+}
+
+/* ---- traversal -------------------------------------------------------------- */
+
+/* A set of groups: bit g is group g. */
+typedef uint32_t pk_groups;
+
+static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, pk_groups gm);
+
+/* Counts the box tests of lanes m of group g, n_boxes of them each. */
+static inline void count_boxes(pk_state *st, int g, uint32_t m, int n_boxes) {
+    st->counts->group_box_tests += (uint64_t)n_boxes;
+    st->counts->box_tests += (uint64_t)n_boxes * lanes_in(m);
+    if (st->per_lane) st->box[g] -= rt_vmask(m) * n_boxes;
+}
+
+/* Group g's lanes through the tree below child 'slot' of node 'entry' (a
+ * mesh's, inst its instance, or the object BVH's, inst == RT_NO_HIT):
+ * rt_trace_mesh's and rt_trace's loops with each lane's own box tests, the
+ * children of a wide node all tested without a branch (an empty slot's
+ * inverted box is missed by every lane) by the lanes that entered it,
+ * entered children nearest first (by the entry distance of the first lane
+ * that enters; the order changes speed, never the hits). A pushed child
+ * goes on, when popped, with the lanes whose entry distance is still inside
+ * their range (hits found since may have shortened it): the others would
+ * fail its box test now, and the oracle's culling relies on that losing
+ * nothing. */
+static void pk_bvh_group(pk_state *st, const pk_geom *p, rt_u32 entry, int slot, rt_u32 inst,
+                         int g) {
+    typedef struct {
+        rt_vf tnear;
+        rt_u32 node;
+        int slot;
+        uint32_t mask;
+    } item;
+    const rt_pk_node *nodes = st->w->nodes;
+    item stack[(RT_PK_WIDTH - 1) * RT_STACK_SIZE + 1];
+    int sp = 0;
+    item cur = {rt_vsplat(0.0f), entry, slot, st->alive[g]};
+    count_boxes(st, g, cur.mask, 1);
+    cur.mask &= pk_box(&nodes[entry], slot, p, st, g, &cur.tnear);
+    while (cur.mask) {
+        const rt_pk_node *n = &nodes[cur.node];
+        const int c = cur.slot;
+        if (n->count[c] & RT_NODE_LEAF_FLAG) {
+            if (inst != RT_NO_HIT) {
+                pk_leaf(st, p, n, c, inst, g, cur.mask);
+            } else {
+                const rt_u32 end = n->ref[c] + (n->count[c] & RT_NODE_COUNT_MASK);
+                for (rt_u32 e = n->ref[c]; e < end && st->alive[g]; e++)
+                    pk_instance(st, p, st->s->inst_ids[e], 1u << g);
+            }
+            if (!st->alive[g]) return;
+        } else {
+            const rt_u32 child = n->ref[c];
+            const rt_pk_node *ch = &nodes[child];
+            const uint32_t lanes = cur.mask & st->alive[g];
+            uint32_t ms[RT_PK_WIDTH], entered = 0;
+            rt_vf ts[RT_PK_WIDTH];
+            int kids = 0;
+            for (int s = 0; s < RT_PK_WIDTH; s++) {
+                kids += ch->ref[s] != RT_PK_NO_CHILD;
+                ms[s] = pk_box(ch, s, p, st, g, &ts[s]) & lanes;
+                entered |= (uint32_t)(ms[s] != 0) << s;
+            }
+            count_boxes(st, g, lanes, kids);
+            item hit[RT_PK_WIDTH];
+            float key[RT_PK_WIDTH];
+            int hits = 0;
+            for (; entered; entered &= entered - 1) {
+                const int s = lowest_bit(entered);
+                if (!(ch->count[s] & RT_NODE_LEAF_FLAG)) {
+                    __builtin_prefetch(&nodes[ch->ref[s]]);
+                    __builtin_prefetch((const char *)&nodes[ch->ref[s]] + 64);
+                }
+                const float k = ts[s][lowest_bit(ms[s])];
+                int i = hits++;
+                while (i > 0 && key[i - 1] > k) {
+                    hit[i] = hit[i - 1];
+                    key[i] = key[i - 1];
+                    i--;
+                }
+                hit[i] = (item){ts[s], child, s, ms[s]};
+                key[i] = k;
+            }
+            if (hits) {
+                for (int i = hits - 1; i > 0; i--) stack[sp++] = hit[i];
+                cur = hit[0];
+                continue;
+            }
+        }
+        cur.mask = 0;
+        while (!cur.mask && sp > 0) {
+            cur = stack[--sp];
+            cur.mask &= st->alive[g] & rt_vbits(cur.tnear <= st->hi[g]);
+        }
+    }
+}
+
+/* Leaf child c of n for the alive lanes of the groups of gm: each group's
+ * lanes that pass its box test test its triangles (or, in the object BVH,
+ * its instances). */
+static void pk_leaf_all(pk_state *st, const pk_geom *p, const rt_pk_node *n, int c, rt_u32 inst,
+                        pk_groups gm) {
+    if (inst == RT_NO_HIT) {
+        const rt_u32 end = n->ref[c] + (n->count[c] & RT_NODE_COUNT_MASK);
+        for (rt_u32 e = n->ref[c]; e < end && (st->alive_groups & gm); e++)
+            pk_instance(st, p, st->s->inst_ids[e], gm);
+        return;
+    }
+    for (pk_groups todo = gm & st->alive_groups; todo; todo &= todo - 1) {
+        const int g = lowest_bit(todo);
+        rt_vf tn;
+        count_boxes(st, g, st->alive[g], 1);
+        pk_leaf(st, p, n, c, inst, g, pk_box(n, c, p, st, g, &tn));
+    }
+}
+
+/* The groups of gm through a BVH by the packet's bounds (p->ia): the
+ * interval test over all children of a wide node at once stands for every
+ * lane (it fails only when every lane's box test would), so the packet
+ * decides each inner node with one test (Embree's coherent packets do the
+ * like with frusta). Where the rays part ways, at a leaf or a subtree of at
+ * most SMALL_TREE primitives, each group goes on with its lanes' own tests.
+ * Either way a lane visits a superset of the nodes its scalar traversal
+ * visits and gets the same hits. Children are taken nearest first by their
+ * interval entry, and a pushed child whose entry lies beyond every lane's
+ * range by the time it is popped is dropped. */
+static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, pk_groups gm) {
+    typedef struct {
+        float enter;
+        rt_u32 node;
+        int slot;
+    } item;
+    const rt_pk_node *nodes = st->w->nodes;
+    item stack[(RT_PK_WIDTH - 1) * RT_STACK_SIZE + 1];
+    int sp = 0;
+    ck_f en;
+    st->counts->group_box_tests++;
+    if (!(pk_ia_children(&nodes[entry], p, hi_max(st), &en) & 1u)) return;
+    item cur = {en[0], entry, 0};
+    for (;;) {
+        const rt_pk_node *n = &nodes[cur.node];
+        const int c = cur.slot;
+        const rt_u32 count = n->count[c];
+        if (count & RT_NODE_LEAF_FLAG) {
+            pk_leaf_all(st, p, n, c, inst, gm);
+        } else if (count <= SMALL_TREE) {
+            for (pk_groups todo = gm & st->alive_groups; todo; todo &= todo - 1)
+                pk_bvh_group(st, p, cur.node, c, inst, lowest_bit(todo));
+        } else {
+            const rt_u32 child = n->ref[c];
+            const rt_pk_node *ch = &nodes[child];
+            st->counts->group_box_tests += RT_PK_WIDTH;
+            uint32_t entered = pk_ia_children(ch, p, hi_max(st), &en);
+            item hit[RT_PK_WIDTH];
+            int hits = 0;
+            for (; entered; entered &= entered - 1) {
+                const int s = lowest_bit(entered);
+                if (!(ch->count[s] & RT_NODE_LEAF_FLAG)) {
+                    __builtin_prefetch(&nodes[ch->ref[s]]);
+                    __builtin_prefetch((const char *)&nodes[ch->ref[s]] + 64);
+                }
+                int i = hits++;
+                while (i > 0 && hit[i - 1].enter > en[s]) {
+                    hit[i] = hit[i - 1];
+                    i--;
+                }
+                hit[i] = (item){en[s], child, s};
+            }
+            if (hits) {
+                for (int i = hits - 1; i > 0; i--) stack[sp++] = hit[i];
+                cur = hit[0];
+                continue;
+            }
+        }
+        if (!(st->alive_groups & gm)) return;
+        do {
+            if (sp == 0) return;
+            cur = stack[--sp];
+        } while (cur.enter > hi_max(st));
+    }
+}
+
+/* One BVH from its entry node for the groups of gm: by the packet's bounds
+ * where they exist, else group by group. */
+static void pk_bvh(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, pk_groups gm) {
+    if (p->ia) {
+        pk_bvh_ia(st, p, entry, inst, gm);
+        return;
+    }
+    for (pk_groups todo = gm & st->alive_groups; todo; todo &= todo - 1)
+        pk_bvh_group(st, p, entry, 0, inst, lowest_bit(todo));
+}
+
+/* One instance for the groups of gm: the same rays when it is the identity,
+ * else each lane's ray moved into object space as rt_trace_instance moves
+ * it. */
+static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, pk_groups gm) {
+    const rt_instance *in = &st->s->instances[inst];
+    const rt_u32 entry = st->w->inst_root[inst];
+    if (in->flags & RT_INST_IDENTITY) {
+        pk_bvh(st, world, entry, inst, gm);
+        return;
+    }
+    pk_geom obj;
+    pk_geom_to_object(&obj, world, in);
+    pk_bvh(st, &obj, entry, inst, gm);
+}
+
+void RT_PK_TRACE(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *rays, int any_hit,
+                 rt_hit_d *hits, rt_pk_counts *counts) {
+    pk_state st;
+    st.s = s;
+    st.w = w;
+    st.counts = counts;
+    st.per_lane = counts->per_lane;
+    st.any_hit = any_hit;
+    st.method = s->hdr->tri_method;
+    st.alive_groups = 0;
+    st.hi_stale = 1;
+    const rt_vi none = rt_vsplat_i((int32_t)RT_NO_HIT);
+    for (int g = 0; g < G; g++) {
+        st.box[g] = st.tri[g] = rt_vsplat_i(0);
+        st.alive[g] = (uint32_t)(rays->valid >> (N * g)) & ((1u << N) - 1u);
+        if (st.alive[g]) st.alive_groups |= 1u << g;
+        st.prim[g] = st.inst[g] = st.entry[g] = none;
+        st.V[g] = st.W[g] = rt_vsplat(0.0f);
+        st.det[g] = rt_vsplat(1.0f);
+        for (int i = 0; i < N; i++) /* rt_hit_init's t; no ray: a miss at infinity */
+            st.t[g][i] = (st.alive[g] >> i) & 1u ? rays->ray[N * g + i].tmax : RT_INF;
+        st.hi[g] = box_hi(st.t[g]);
+        counts->rays += lanes_in(st.alive[g]);
+    }
+    const rt_pk_mask valid = rays->valid & RT_PK_ALL;
+    if (st.alive_groups && s->hdr->instance_count != 0) {
+        pk_geom world;
+        pk_geom_setup(&world, rays->ray, valid);
+        if (s->hdr->flags & RT_SCENE_SINGLE)
+            pk_instance(&st, &world, 0, st.alive_groups);
+        else
+            pk_bvh(&st, &world, w->top, RT_NO_HIT, st.alive_groups);
+    }
+    for (int g = 0; g < G; g++) {
+        const rt_vf u = st.V[g] / st.det[g], v = st.W[g] / st.det[g];
+        for (int i = 0; i < N; i++) {
+            rt_hit_d *h = &hits[N * g + i];
+            h->t = st.t[g][i];
+            h->prim = (rt_u32)st.prim[g][i];
+            h->inst = (rt_u32)st.inst[g][i];
+            h->entry = (rt_u32)st.entry[g][i];
+            h->u = h->prim == RT_NO_HIT ? 0.0f : u[i];
+            h->v = h->prim == RT_NO_HIT ? 0.0f : v[i];
+        }
+    }
+    if (counts->per_lane)
+        for (int l = 0; l < L; l++) {
+            counts->c[l].rays += (rt_u32)((valid >> l) & 1u);
+            counts->c[l].box_tests += (rt_u32)st.box[l / N][l % N];
+            counts->c[l].tri_tests += (rt_u32)st.tri[l / N][l % N];
+        }
+}

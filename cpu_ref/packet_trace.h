@@ -1,0 +1,66 @@
+/* packet_trace.h - ray packets through the two-level BVH, sixteen rays at once.
+ *
+ * A packet is RT_PK_LANES rays, one lane each of sixteen-lane vectors
+ * (host/simd_wide.h). It traverses the tree together: a node is entered by
+ * the lanes whose box test passes, and at a leaf those lanes test its
+ * triangles, all lanes in one vector test.
+ *
+ * Each lane performs exactly the scalar oracle's box and triangle arithmetic
+ * (kernels/rt_shared.h: the same operations in the same order, no FMA), so a
+ * lane visits a superset of the nodes its scalar traversal would and tests
+ * every candidate triangle the same way; with the total hit order (t, then
+ * instance, then primitive) its closest hit is the oracle's, bit for bit, and
+ * an any-hit lane's occluded flag is the oracle's.
+ */
+#ifndef RT_PACKET_TRACE_H
+#define RT_PACKET_TRACE_H
+
+#include <stdint.h>
+
+#include "packet_wide.h"
+#include "rt_shared.h"
+
+enum { RT_PK_LANES = 64 };
+
+/* A set of a packet's lanes: bit l is lane l. */
+typedef uint64_t rt_pk_mask;
+#define RT_PK_ALL (~(rt_pk_mask)0 >> (64 - RT_PK_LANES))
+
+/* The rays of a packet; lanes outside 'valid' (bit l = lane l) are ignored
+ * and need not hold a ray. The closer the rays, the fewer nodes the packet
+ * visits. */
+typedef struct rt_pk_rays {
+    rt_ray_d ray[RT_PK_LANES];
+    rt_pk_mask valid;
+} rt_pk_rays;
+
+/* What packets traced: rays and the tests performed for them, as the oracle
+ * counts them (one per lane a test was performed for), in all and, when
+ * per_lane is set, per lane; and the tests of whole packets (one vector test
+ * each, however many lanes it served). */
+typedef struct rt_pk_counts {
+    int per_lane;
+    rt_counters c[RT_PK_LANES];
+    uint64_t rays, box_tests, tri_tests;
+    uint64_t group_box_tests, group_tri_tests;
+} rt_pk_counts;
+
+/* Traces the valid lanes (closest hit, or any hit when any_hit is set)
+ * through the layout s with its wide BVHs w (rt_pk_wide_build of the same
+ * layout) into hits[0 .. RT_PK_LANES - 1] (prim == RT_NO_HIT on a miss; for
+ * any_hit only whether prim != RT_NO_HIT is defined); invalid lanes get a
+ * miss. The tests are added to *counts. */
+void rt_pk_trace(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *rays, int any_hit,
+                 rt_hit_d *hits, rt_pk_counts *counts);
+
+/* The packet tracer is built for several instruction sets where the target
+ * has them (cpu_ref/packet_dispatch.c): rt_pk_isa names the one in use (the
+ * widest the CPU supports, or RTCL_PACKET_ISA's), rt_pk_isa_name(i) the
+ * build's i-th one (NULL past the last), and rt_pk_select switches to one by
+ * name (0 when this build or CPU lacks it). */
+const char *rt_pk_isa(void);
+int rt_pk_isa_lanes(void); /* lanes per vector of that build */
+const char *rt_pk_isa_name(int i);
+int rt_pk_select(const char *name);
+
+#endif /* RT_PACKET_TRACE_H */
