@@ -51,20 +51,24 @@ static void shade_tile(const rt_cpu_frame *f, const rt_scene_view *v, const rt_p
     rt_pk_mask lit = 0; /* lanes whose node has a Phong term */
     for (int l = 0; l < RT_PK_LANES; l++) {
         if (!((primary->valid >> l) & 1u)) continue;
-        e[l].ray = primary->ray[l];
+        rt_pk_get_ray(primary, l, &e[l].ray);
         e[l].w[0] = e[l].w[1] = e[l].w[2] = 1.0f;
         e[l].depth = 0;
         if (rt_shade_begin(v, &e[l], &hit[l], &nd[l])) lit |= (rt_pk_mask)1 << l;
     }
     for (rt_u32 li = 0; li < v->hdr->light_count && lit; li++) {
         rt_pk_rays shadow;
+        memset(&shadow, 0, sizeof shadow); /* lanes without a ray hold zeros */
         rt_hit_d occluder[RT_PK_LANES];
         float Ln[RT_PK_LANES][3], ndl[RT_PK_LANES];
         shadow.valid = 0;
         for (rt_pk_mask m = lit; m; m &= m - 1) {
             int l = __builtin_ctzll(m);
-            if (rt_phong_light(v, &nd[l].sf, li, &shadow.ray[l], Ln[l], &ndl[l]))
+            rt_ray_d sr;
+            if (rt_phong_light(v, &nd[l].sf, li, &sr, Ln[l], &ndl[l])) {
+                rt_pk_set_ray(&shadow, l, &sr);
                 shadow.valid |= (rt_pk_mask)1 << l;
+            }
         }
         if (!shadow.valid) continue;
         rt_pk_trace(v, f->wide, &shadow, 1, occluder, pc);
@@ -105,13 +109,19 @@ static void render_tile(const rt_cpu_frame *f, const rt_scene_view *v, int x0, i
     rt_pk_counts pc;
     int px[RT_PK_LANES], py[RT_PK_LANES];
     memset(&pc, 0, sizeof pc);
+    memset(&primary, 0, sizeof primary); /* lanes outside the image hold zeros */
     pc.per_lane = f->aov == RT_AOV_BOX_TESTS || f->aov == RT_AOV_TRI_TESTS;
-    primary.valid = 0;
+    /* rt_camera_ray's screen coordinates, once per column and row. */
+    float sx[TILE_W], sy[TILE_H];
+    for (int i = 0; i < TILE_W; i++) sx[i] = rt_camera_sx(h, x0 + i);
+    for (int i = 0; i < TILE_H; i++) sy[i] = rt_camera_sy(h, y0 + i);
     for (int l = 0; l < RT_PK_LANES; l++) {
         lane_pixel(x0, y0, l, &px[l], &py[l]);
         if (px[l] >= h->width || py[l] >= h->height) continue;
         primary.valid |= (rt_pk_mask)1 << l;
-        rt_camera_ray(h, px[l], py[l], &primary.ray[l]);
+        rt_ray_d r;
+        rt_camera_ray_at(h, sx[px[l] - x0], sy[py[l] - y0], &r);
+        rt_pk_set_ray(&primary, l, &r);
     }
     rt_pk_trace(v, f->wide, &primary, 0, hit, &pc);
     if (f->aov == RT_AOV_NONE || f->aov == RT_AOV_BOX_TESTS || f->aov == RT_AOV_TRI_TESTS) {
@@ -119,7 +129,9 @@ static void render_tile(const rt_cpu_frame *f, const rt_scene_view *v, int x0, i
     } else {
         for (rt_pk_mask m = primary.valid; m; m &= m - 1) {
             int l = __builtin_ctzll(m);
-            rt_cpu_finish_pixel(f, v, px[l], py[l], &primary.ray[l], &hit[l], &pc.c[l]);
+            rt_ray_d r;
+            rt_pk_get_ray(&primary, l, &r);
+            rt_cpu_finish_pixel(f, v, px[l], py[l], &r, &hit[l], &pc.c[l]);
         }
     }
     total->packets++;
@@ -192,9 +204,10 @@ void rt_packet_trace_rays(const rt_flat *flat, const rt_pk_wide *wide, const rt_
         rt_hit_d h[RT_PK_LANES];
         rt_pk_counts pc;
         memset(&pc, 0, sizeof pc);
+        memset(&p, 0, sizeof p);
         size_t count = n - i < RT_PK_LANES ? n - i : RT_PK_LANES;
         p.valid = RT_PK_ALL >> (RT_PK_LANES - count);
-        memcpy(p.ray, rays + i, count * sizeof *rays);
+        for (size_t l = 0; l < count; l++) rt_pk_set_ray(&p, (int)l, &rays[i + l]);
         rt_pk_trace(&v, wide, &p, any_hit, h, &pc);
         memcpy(hits + i, h, count * sizeof *h);
         c->rays += (rt_u32)pc.rays;

@@ -26,13 +26,32 @@ enum { RT_PK_LANES = 64 };
 typedef uint64_t rt_pk_mask;
 #define RT_PK_ALL (~(rt_pk_mask)0 >> (64 - RT_PK_LANES))
 
-/* The rays of a packet; lanes outside 'valid' (bit l = lane l) are ignored
- * and need not hold a ray. The closer the rays, the fewer nodes the packet
- * visits. */
+/* The rays of a packet, field by field (the tracer loads them as vectors);
+ * lanes outside 'valid' (bit l = lane l) are ignored and need not hold a
+ * ray. The closer the rays, the fewer nodes the packet visits. */
 typedef struct rt_pk_rays {
-    rt_ray_d ray[RT_PK_LANES];
+    float org[3][RT_PK_LANES], dir[3][RT_PK_LANES];
+    float tmin[RT_PK_LANES], tmax[RT_PK_LANES];
     rt_pk_mask valid;
 } rt_pk_rays;
+
+static inline void rt_pk_set_ray(rt_pk_rays *p, int l, const rt_ray_d *r) {
+    for (int k = 0; k < 3; k++) {
+        p->org[k][l] = r->org[k];
+        p->dir[k][l] = r->dir[k];
+    }
+    p->tmin[l] = r->tmin;
+    p->tmax[l] = r->tmax;
+}
+
+static inline void rt_pk_get_ray(const rt_pk_rays *p, int l, rt_ray_d *r) {
+    for (int k = 0; k < 3; k++) {
+        r->org[k] = p->org[k][l];
+        r->dir[k] = p->dir[k][l];
+    }
+    r->tmin = p->tmin[l];
+    r->tmax = p->tmax[l];
+}
 
 /* What packets traced: rays and the tests performed for them, as the oracle
  * counts them (one per lane a test was performed for), in all and, when
