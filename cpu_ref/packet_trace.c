@@ -705,7 +705,7 @@ static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, pk_grou
 }
 
 void RT_PK_TRACE(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *rays, int any_hit,
-                 rt_hit_d *hits, rt_pk_counts *counts) {
+                 rt_pk_hits *hits, rt_pk_counts *counts) {
     pk_state st;
     st.s = s;
     st.w = w;
@@ -723,8 +723,9 @@ void RT_PK_TRACE(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *
         st.prim[g] = st.inst[g] = st.entry[g] = none;
         st.V[g] = st.W[g] = rt_vsplat(0.0f);
         st.det[g] = rt_vsplat(1.0f);
-        for (int i = 0; i < N; i++) /* rt_hit_init's t; no ray: a miss at infinity */
-            st.t[g][i] = (st.alive[g] >> i) & 1u ? rays->tmax[N * g + i] : RT_INF;
+        rt_vf tmax; /* rt_hit_init's t; no ray: a miss at infinity */
+        memcpy(&tmax, &rays->tmax[N * g], sizeof tmax);
+        st.t[g] = rt_vsel(rt_vmask(st.alive[g]), tmax, rt_vsplat(RT_INF));
         st.hi[g] = box_hi(st.t[g]);
         counts->rays += lanes_in(st.alive[g]);
     }
@@ -738,16 +739,15 @@ void RT_PK_TRACE(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *
             pk_bvh(&st, &world, w->top, RT_NO_HIT, st.alive_groups);
     }
     for (int g = 0; g < G; g++) {
-        const rt_vf u = st.V[g] / st.det[g], v = st.W[g] / st.det[g];
-        for (int i = 0; i < N; i++) {
-            rt_hit_d *h = &hits[N * g + i];
-            h->t = st.t[g][i];
-            h->prim = (rt_u32)st.prim[g][i];
-            h->inst = (rt_u32)st.inst[g][i];
-            h->entry = (rt_u32)st.entry[g][i];
-            h->u = h->prim == RT_NO_HIT ? 0.0f : u[i];
-            h->v = h->prim == RT_NO_HIT ? 0.0f : v[i];
-        }
+        const rt_vi miss = st.prim[g] == none;
+        const rt_vf u = rt_vsel(miss, rt_vsplat(0.0f), st.V[g] / st.det[g]);
+        const rt_vf v = rt_vsel(miss, rt_vsplat(0.0f), st.W[g] / st.det[g]);
+        memcpy(&hits->t[N * g], &st.t[g], sizeof(rt_vf));
+        memcpy(&hits->u[N * g], &u, sizeof(rt_vf));
+        memcpy(&hits->v[N * g], &v, sizeof(rt_vf));
+        memcpy(&hits->prim[N * g], &st.prim[g], sizeof(rt_vi));
+        memcpy(&hits->inst[N * g], &st.inst[g], sizeof(rt_vi));
+        memcpy(&hits->entry[N * g], &st.entry[g], sizeof(rt_vi));
     }
     if (counts->per_lane)
         for (int l = 0; l < L; l++) {
