@@ -13,15 +13,15 @@
 #include "packet_trace.h"
 
 typedef void (*pk_trace_fn)(const rt_scene_view *, const rt_pk_wide *, const rt_pk_rays *, int,
-                            rt_hit_d *, rt_pk_counts *);
+                            rt_pk_hits *, rt_pk_counts *);
 
 void rt_pk_trace_generic(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *rays,
-                         int any_hit, rt_hit_d *hits, rt_pk_counts *counts);
+                         int any_hit, rt_pk_hits *hits, rt_pk_counts *counts);
 #ifdef RT_PK_X86_VARIANTS
 void rt_pk_trace_avx2(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *rays,
-                      int any_hit, rt_hit_d *hits, rt_pk_counts *counts);
+                      int any_hit, rt_pk_hits *hits, rt_pk_counts *counts);
 void rt_pk_trace_avx512(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *rays,
-                        int any_hit, rt_hit_d *hits, rt_pk_counts *counts);
+                        int any_hit, rt_pk_hits *hits, rt_pk_counts *counts);
 #endif
 
 typedef struct pk_variant {
@@ -92,6 +92,6 @@ const char *rt_pk_isa_name(int i) {
 }
 
 void rt_pk_trace(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *rays, int any_hit,
-                 rt_hit_d *hits, rt_pk_counts *counts) {
+                 rt_pk_hits *hits, rt_pk_counts *counts) {
     current()->fn(s, w, rays, any_hit, hits, counts);
 }

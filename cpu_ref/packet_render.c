@@ -45,32 +45,38 @@ static void add_counts(rt_cpu_counts *total, const rt_pk_counts *pc) {
  * count the shading rays too): rt_shade_hit's steps with the shadow rays in
  * packets. */
 static void shade_tile(const rt_cpu_frame *f, const rt_scene_view *v, const rt_pk_rays *primary,
-                       const rt_hit_d *hit, rt_pk_counts *pc, const int *px, const int *py) {
+                       const rt_pk_hits *hits, rt_pk_counts *pc, const int *px, const int *py) {
+    rt_hit_d hit[RT_PK_LANES];
     rt_shade_entry e[RT_PK_LANES];
     rt_shade_node nd[RT_PK_LANES];
     rt_pk_mask lit = 0; /* lanes whose node has a Phong term */
     for (int l = 0; l < RT_PK_LANES; l++) {
         if (!((primary->valid >> l) & 1u)) continue;
-        e[l].ray = primary->ray[l];
+        rt_pk_get_ray(primary, l, &e[l].ray);
+        rt_pk_get_hit(hits, l, &hit[l]);
         e[l].w[0] = e[l].w[1] = e[l].w[2] = 1.0f;
         e[l].depth = 0;
         if (rt_shade_begin(v, &e[l], &hit[l], &nd[l])) lit |= (rt_pk_mask)1 << l;
     }
     for (rt_u32 li = 0; li < v->hdr->light_count && lit; li++) {
         rt_pk_rays shadow;
-        rt_hit_d occluder[RT_PK_LANES];
+        memset(&shadow, 0, sizeof shadow); /* lanes without a ray hold zeros */
+        rt_pk_hits occluder;
         float Ln[RT_PK_LANES][3], ndl[RT_PK_LANES];
         shadow.valid = 0;
         for (rt_pk_mask m = lit; m; m &= m - 1) {
             int l = __builtin_ctzll(m);
-            if (rt_phong_light(v, &nd[l].sf, li, &shadow.ray[l], Ln[l], &ndl[l]))
+            rt_ray_d sr;
+            if (rt_phong_light(v, &nd[l].sf, li, &sr, Ln[l], &ndl[l])) {
+                rt_pk_set_ray(&shadow, l, &sr);
                 shadow.valid |= (rt_pk_mask)1 << l;
+            }
         }
         if (!shadow.valid) continue;
-        rt_pk_trace(v, f->wide, &shadow, 1, occluder, pc);
+        rt_pk_trace(v, f->wide, &shadow, 1, &occluder, pc);
         for (rt_pk_mask m = shadow.valid; m; m &= m - 1) {
             int l = __builtin_ctzll(m);
-            if (occluder[l].prim == RT_NO_HIT)
+            if (occluder.prim[l] == RT_NO_HIT)
                 rt_phong_add(v, &nd[l].sf, li, Ln[l], ndl[l], nd[l].dn, nd[l].lit);
         }
     }
@@ -101,25 +107,35 @@ static void render_tile(const rt_cpu_frame *f, const rt_scene_view *v, int x0, i
                         rt_cpu_counts *total) {
     const rt_scene_header *h = v->hdr;
     rt_pk_rays primary;
-    rt_hit_d hit[RT_PK_LANES];
+    rt_pk_hits hit;
     rt_pk_counts pc;
     int px[RT_PK_LANES], py[RT_PK_LANES];
     memset(&pc, 0, sizeof pc);
+    memset(&primary, 0, sizeof primary); /* lanes outside the image hold zeros */
     pc.per_lane = f->aov == RT_AOV_BOX_TESTS || f->aov == RT_AOV_TRI_TESTS;
-    primary.valid = 0;
+    /* rt_camera_ray's screen coordinates, once per column and row. */
+    float sx[TILE_W], sy[TILE_H];
+    for (int i = 0; i < TILE_W; i++) sx[i] = rt_camera_sx(h, x0 + i);
+    for (int i = 0; i < TILE_H; i++) sy[i] = rt_camera_sy(h, y0 + i);
     for (int l = 0; l < RT_PK_LANES; l++) {
         lane_pixel(x0, y0, l, &px[l], &py[l]);
         if (px[l] >= h->width || py[l] >= h->height) continue;
         primary.valid |= (rt_pk_mask)1 << l;
-        rt_camera_ray(h, px[l], py[l], &primary.ray[l]);
+        rt_ray_d r;
+        rt_camera_ray_at(h, sx[px[l] - x0], sy[py[l] - y0], &r);
+        rt_pk_set_ray(&primary, l, &r);
     }
-    rt_pk_trace(v, f->wide, &primary, 0, hit, &pc);
+    rt_pk_trace(v, f->wide, &primary, 0, &hit, &pc);
     if (f->aov == RT_AOV_NONE || f->aov == RT_AOV_BOX_TESTS || f->aov == RT_AOV_TRI_TESTS) {
-        shade_tile(f, v, &primary, hit, &pc, px, py);
+        shade_tile(f, v, &primary, &hit, &pc, px, py);
     } else {
         for (rt_pk_mask m = primary.valid; m; m &= m - 1) {
             int l = __builtin_ctzll(m);
-            rt_cpu_finish_pixel(f, v, px[l], py[l], &primary.ray[l], &hit[l], &pc.c[l]);
+            rt_ray_d r;
+            rt_hit_d hl;
+            rt_pk_get_ray(&primary, l, &r);
+            rt_pk_get_hit(&hit, l, &hl);
+            rt_cpu_finish_pixel(f, v, px[l], py[l], &r, &hl, &pc.c[l]);
         }
     }
     total->packets++;
@@ -189,14 +205,15 @@ void rt_packet_trace_rays(const rt_flat *flat, const rt_pk_wide *wide, const rt_
     rt_scene_view v = rt_flat_view(flat);
     for (size_t i = 0; i < n; i += RT_PK_LANES) {
         rt_pk_rays p;
-        rt_hit_d h[RT_PK_LANES];
+        rt_pk_hits h;
         rt_pk_counts pc;
         memset(&pc, 0, sizeof pc);
+        memset(&p, 0, sizeof p);
         size_t count = n - i < RT_PK_LANES ? n - i : RT_PK_LANES;
         p.valid = RT_PK_ALL >> (RT_PK_LANES - count);
-        memcpy(p.ray, rays + i, count * sizeof *rays);
-        rt_pk_trace(&v, wide, &p, any_hit, h, &pc);
-        memcpy(hits + i, h, count * sizeof *h);
+        for (size_t l = 0; l < count; l++) rt_pk_set_ray(&p, (int)l, &rays[i + l]);
+        rt_pk_trace(&v, wide, &p, any_hit, &h, &pc);
+        for (size_t l = 0; l < count; l++) rt_pk_get_hit(&h, (int)l, &hits[i + l]);
         c->rays += (rt_u32)pc.rays;
         c->box_tests += (rt_u32)pc.box_tests;
         c->tri_tests += (rt_u32)pc.tri_tests;

@@ -197,26 +197,22 @@ static void pk_geom_finish(pk_geom *p) {
     for (int k = 0; k < 3; k++) p->one_origin &= p->org_min[k] == p->org_max[k];
 }
 
-/* The packet's rays as vectors; invalid lanes take a copy of a valid lane's
- * ray, so that every lane computes on real numbers. */
-static void pk_geom_setup(pk_geom *p, const rt_ray_d *ray, rt_pk_mask valid) {
+/* The packet's rays as vectors; invalid lanes take a valid lane's ray, so
+ * that every lane computes on real numbers. */
+static void pk_geom_setup(pk_geom *p, const rt_pk_rays *r, rt_pk_mask valid) {
     const int src = valid ? __builtin_ctzll(valid) : 0;
     for (int g = 0; g < G; g++) {
-        float o[3][N], d[3][N], tmin[N];
-        for (int i = 0; i < N; i++) {
-            const int l = N * g + i;
-            const rt_ray_d *r = &ray[(valid >> l) & 1u ? l : src];
-            for (int k = 0; k < 3; k++) {
-                o[k][i] = r->org[k];
-                d[k][i] = r->dir[k];
-            }
-            tmin[i] = r->tmin;
-        }
+        const rt_vi in = rt_vmask((uint32_t)(valid >> (N * g)) & ((1u << N) - 1u));
         for (int k = 0; k < 3; k++) {
-            memcpy(&p->org[k][g], o[k], sizeof(rt_vf));
-            memcpy(&p->dir[k][g], d[k], sizeof(rt_vf));
+            rt_vf o, d;
+            memcpy(&o, &r->org[k][N * g], sizeof o);
+            memcpy(&d, &r->dir[k][N * g], sizeof d);
+            p->org[k][g] = rt_vsel(in, o, rt_vsplat(r->org[k][src]));
+            p->dir[k][g] = rt_vsel(in, d, rt_vsplat(r->dir[k][src]));
         }
-        memcpy(&p->tmin[g], tmin, sizeof(rt_vf));
+        rt_vf t;
+        memcpy(&t, &r->tmin[N * g], sizeof t);
+        p->tmin[g] = rt_vsel(in, t, rt_vsplat(r->tmin[src]));
     }
     pk_geom_finish(p);
 }
@@ -709,7 +705,7 @@ static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, pk_grou
 }
 
 void RT_PK_TRACE(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *rays, int any_hit,
-                 rt_hit_d *hits, rt_pk_counts *counts) {
+                 rt_pk_hits *hits, rt_pk_counts *counts) {
     pk_state st;
     st.s = s;
     st.w = w;
@@ -727,31 +723,31 @@ void RT_PK_TRACE(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *
         st.prim[g] = st.inst[g] = st.entry[g] = none;
         st.V[g] = st.W[g] = rt_vsplat(0.0f);
         st.det[g] = rt_vsplat(1.0f);
-        for (int i = 0; i < N; i++) /* rt_hit_init's t; no ray: a miss at infinity */
-            st.t[g][i] = (st.alive[g] >> i) & 1u ? rays->ray[N * g + i].tmax : RT_INF;
+        rt_vf tmax; /* rt_hit_init's t; no ray: a miss at infinity */
+        memcpy(&tmax, &rays->tmax[N * g], sizeof tmax);
+        st.t[g] = rt_vsel(rt_vmask(st.alive[g]), tmax, rt_vsplat(RT_INF));
         st.hi[g] = box_hi(st.t[g]);
         counts->rays += lanes_in(st.alive[g]);
     }
     const rt_pk_mask valid = rays->valid & RT_PK_ALL;
     if (st.alive_groups && s->hdr->instance_count != 0) {
         pk_geom world;
-        pk_geom_setup(&world, rays->ray, valid);
+        pk_geom_setup(&world, rays, valid);
         if (s->hdr->flags & RT_SCENE_SINGLE)
             pk_instance(&st, &world, 0, st.alive_groups);
         else
             pk_bvh(&st, &world, w->top, RT_NO_HIT, st.alive_groups);
     }
     for (int g = 0; g < G; g++) {
-        const rt_vf u = st.V[g] / st.det[g], v = st.W[g] / st.det[g];
-        for (int i = 0; i < N; i++) {
-            rt_hit_d *h = &hits[N * g + i];
-            h->t = st.t[g][i];
-            h->prim = (rt_u32)st.prim[g][i];
-            h->inst = (rt_u32)st.inst[g][i];
-            h->entry = (rt_u32)st.entry[g][i];
-            h->u = h->prim == RT_NO_HIT ? 0.0f : u[i];
-            h->v = h->prim == RT_NO_HIT ? 0.0f : v[i];
-        }
+        const rt_vi miss = st.prim[g] == none;
+        const rt_vf u = rt_vsel(miss, rt_vsplat(0.0f), st.V[g] / st.det[g]);
+        const rt_vf v = rt_vsel(miss, rt_vsplat(0.0f), st.W[g] / st.det[g]);
+        memcpy(&hits->t[N * g], &st.t[g], sizeof(rt_vf));
+        memcpy(&hits->u[N * g], &u, sizeof(rt_vf));
+        memcpy(&hits->v[N * g], &v, sizeof(rt_vf));
+        memcpy(&hits->prim[N * g], &st.prim[g], sizeof(rt_vi));
+        memcpy(&hits->inst[N * g], &st.inst[g], sizeof(rt_vi));
+        memcpy(&hits->entry[N * g], &st.entry[g], sizeof(rt_vi));
     }
     if (counts->per_lane)
         for (int l = 0; l < L; l++) {

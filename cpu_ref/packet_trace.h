@@ -26,13 +26,49 @@ enum { RT_PK_LANES = 64 };
 typedef uint64_t rt_pk_mask;
 #define RT_PK_ALL (~(rt_pk_mask)0 >> (64 - RT_PK_LANES))
 
-/* The rays of a packet; lanes outside 'valid' (bit l = lane l) are ignored
- * and need not hold a ray. The closer the rays, the fewer nodes the packet
- * visits. */
+/* The rays of a packet, field by field (the tracer loads them as vectors);
+ * lanes outside 'valid' (bit l = lane l) are ignored and need not hold a
+ * ray. The closer the rays, the fewer nodes the packet visits. */
 typedef struct rt_pk_rays {
-    rt_ray_d ray[RT_PK_LANES];
+    float org[3][RT_PK_LANES], dir[3][RT_PK_LANES];
+    float tmin[RT_PK_LANES], tmax[RT_PK_LANES];
     rt_pk_mask valid;
 } rt_pk_rays;
+
+static inline void rt_pk_set_ray(rt_pk_rays *p, int l, const rt_ray_d *r) {
+    for (int k = 0; k < 3; k++) {
+        p->org[k][l] = r->org[k];
+        p->dir[k][l] = r->dir[k];
+    }
+    p->tmin[l] = r->tmin;
+    p->tmax[l] = r->tmax;
+}
+
+static inline void rt_pk_get_ray(const rt_pk_rays *p, int l, rt_ray_d *r) {
+    for (int k = 0; k < 3; k++) {
+        r->org[k] = p->org[k][l];
+        r->dir[k] = p->dir[k][l];
+    }
+    r->tmin = p->tmin[l];
+    r->tmax = p->tmax[l];
+}
+
+/* What a packet trace finds, field by field: per lane the closest hit
+ * (prim == RT_NO_HIT on a miss, with t the ray's tmax, u = v = 0; for any hit
+ * only whether prim != RT_NO_HIT is defined). */
+typedef struct rt_pk_hits {
+    float t[RT_PK_LANES], u[RT_PK_LANES], v[RT_PK_LANES];
+    uint32_t prim[RT_PK_LANES], inst[RT_PK_LANES], entry[RT_PK_LANES];
+} rt_pk_hits;
+
+static inline void rt_pk_get_hit(const rt_pk_hits *h, int l, rt_hit_d *out) {
+    out->t = h->t[l];
+    out->u = h->u[l];
+    out->v = h->v[l];
+    out->prim = h->prim[l];
+    out->inst = h->inst[l];
+    out->entry = h->entry[l];
+}
 
 /* What packets traced: rays and the tests performed for them, as the oracle
  * counts them (one per lane a test was performed for), in all and, when
@@ -47,11 +83,10 @@ typedef struct rt_pk_counts {
 
 /* Traces the valid lanes (closest hit, or any hit when any_hit is set)
  * through the layout s with its wide BVHs w (rt_pk_wide_build of the same
- * layout) into hits[0 .. RT_PK_LANES - 1] (prim == RT_NO_HIT on a miss; for
- * any_hit only whether prim != RT_NO_HIT is defined); invalid lanes get a
- * miss. The tests are added to *counts. */
+ * layout) into *hits; invalid lanes get a miss at t = inf. The tests are
+ * added to *counts. */
 void rt_pk_trace(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *rays, int any_hit,
-                 rt_hit_d *hits, rt_pk_counts *counts);
+                 rt_pk_hits *hits, rt_pk_counts *counts);
 
 /* The packet tracer is built for several instruction sets where the target
  * has them (cpu_ref/packet_dispatch.c): rt_pk_isa names the one in use (the
