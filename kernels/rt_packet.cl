@@ -567,14 +567,17 @@ __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int cha
     const uint bw = ((uint)w + PK_W - 1u) / PK_W, block = first + i;
     const int x0 = (int)(block % bw) * PK_W, y0 = (int)(block / bw) * PK_H;
 
+    /* rt_camera_ray per lane, its screen coordinates once per column and
+     * row of the block. Lanes outside the image trace a copy of an inside
+     * pixel's ray, inactive. */
+    float sx[PK_W], sy[PK_H];
+    for (int i = 0; i < PK_W; i++) sx[i] = rt_camera_sx(hdr, x0 + i < w ? x0 + i : w - 1);
+    for (int j = 0; j < PK_H; j++) sy[j] = rt_camera_sy(hdr, y0 + j < h ? y0 + j : h - 1);
     rt_ray_d ray[RT_PK_LANES];
     int in_image[RT_PK_LANES];
     for (int l = 0; l < RT_PK_LANES; l++) {
-        int x = x0 + l % PK_W, y = y0 + l / PK_W;
-        in_image[l] = x < w && y < h;
-        /* Lanes outside the image trace a copy of an inside pixel's ray,
-         * inactive. */
-        rt_camera_ray(hdr, x < w ? x : w - 1, y < h ? y : h - 1, &ray[l]);
+        in_image[l] = x0 + l % PK_W < w && y0 + l / PK_W < h;
+        rt_camera_ray_at(hdr, sx[l % PK_W], sy[l / PK_W], &ray[l]);
     }
     pk_i active = pk_vload(0, in_image) != 0;
     pk_ray p;
