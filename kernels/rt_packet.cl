@@ -7,11 +7,13 @@
  * PoCL's skylake-avx512 target), through the same two-level BVH: a node is
  * visited when any active lane's box test passes, and each lane carries its
  * own mask, so a lane goes into a node's children only where its own test of
- * the node passed. Then the block is shaded per lane with the shared
- * functions, its shadow rays traced as a packet too (any hit; a lane retires
- * when occluded). rt_k_packet does a whole direct frame's block (camera,
- * trace, shading, shadows) in one launch; rt_k_packet_trace answers
- * closest-hit ray queries in packets of consecutive rays.
+ * the node passed. Then the block is shaded: in direct frames in vectors as
+ * well (the surface, Phong and the shadow rays, traced as a packet: any hit,
+ * a lane retires when occluded), in Whitted frames per lane with the shared
+ * functions (shadow rays of the primary hits still as packets). rt_k_packet
+ * does a whole direct frame's block (camera, trace, shading, shadows) in one
+ * launch; rt_k_packet_trace answers closest-hit ray queries in packets of
+ * consecutive rays.
  *
  * Exactness (the oracle's bits). Every pk_* function below mirrors one
  * function of rt_shared.h or rt_shade.h (named at each): per lane it performs
@@ -31,9 +33,11 @@
  * independent of layout and threads). An any-hit lane's range stays
  * [tmin, tmax] until it finds a hit, so the leaves it can reach are the
  * scalar traversal's and it is occluded exactly when that is. Camera rays,
- * surfaces, Phong and Whitted shading are the shared functions, called per
- * lane. Only the test counters differ from the scalar kernels: each lane
- * counts the box and triangle tests performed while it was active
+ * the AOVs' surfaces and Whitted shading are the shared functions, called
+ * per lane; the vector shading of direct frames mirrors rt_surface_at,
+ * rt_shade_begin, rt_phong_light, rt_phong_add and rt_shade_end like the
+ * traversal. Only the test counters differ from the scalar kernels: each
+ * lane counts the box and triangle tests performed while it was active
  * (docs/OPENCL.md).
  *
  * Built together with rt_render.cl (one program) on CPU devices only.
@@ -53,6 +57,9 @@ typedef uint16 pk_u;
 #define PK_W      4 /* block width in pixels (lanes l: x = l % PK_W, y = l / PK_W) */
 #define pk_vload  vload16
 #define pk_vstore vstore16
+#define pk_as_i   as_int16
+#define pk_as_f   as_float16
+#define pk_to_i   convert_int16 /* towards zero, as C's (int) */
 #if RT_HAVE_DOUBLE
 typedef double16 pk_d;
 #define pk_to_d convert_double16
@@ -65,6 +72,9 @@ typedef uint8 pk_u;
 #define PK_W      4
 #define pk_vload  vload8
 #define pk_vstore vstore8
+#define pk_as_i   as_int8
+#define pk_as_f   as_float8
+#define pk_to_i   convert_int8 /* towards zero, as C's (int) */
 #if RT_HAVE_DOUBLE
 typedef double8 pk_d;
 #define pk_to_d convert_double8
@@ -77,6 +87,9 @@ typedef uint4 pk_u;
 #define PK_W      2
 #define pk_vload  vload4
 #define pk_vstore vstore4
+#define pk_as_i   as_int4
+#define pk_as_f   as_float4
+#define pk_to_i   convert_int4 /* towards zero, as C's (int) */
 #if RT_HAVE_DOUBLE
 typedef double4 pk_d;
 #define pk_to_d convert_double4
@@ -521,6 +534,222 @@ static void pk_trace(const rt_scene_view *s, const pk_ray *p, pk_i active, int a
     pk_top(s, p, active, st);
 }
 
+/* ---- shading of direct frames ---------------------------------------------
+ *
+ * Without secondary rays a pixel's shading tree is its root node, and the
+ * block shades it in vectors: each function mirrors the shared one named at
+ * it, per lane, with the lane's own triangle, instance and material gathered
+ * into vectors. Frames with secondary rays shade per lane with the shared
+ * functions themselves (rt_k_packet). */
+
+/* Mirrors rt_normalize3. */
+static void pk_normalize3(pk_f *v) {
+    pk_f len = RT_SQRT(pk_dot3(v, v));
+    pk_i pos = len > 0.0f;
+    for (int k = 0; k < 3; k++) v[k] = select(v[k], RT_DIV(v[k], len), pos);
+}
+
+/* Mirrors rt_offset_point. */
+static void pk_offset_point(const pk_f *p, const pk_f *n, pk_f sign, pk_f *out) {
+    for (int i = 0; i < 3; i++) {
+        pk_f ni = sign * n[i];
+        pk_i of = pk_to_i(256.0f * ni);
+        pk_f pi = pk_as_f(pk_as_i(p[i]) + select(of, -of, p[i] < 0.0f));
+        out[i] = select(pi, p[i] + 0.0000152587890625f * ni, RT_FABS(p[i]) < 0.03125f);
+    }
+}
+
+/* rt_surface per lane, and the lanes' materials (rt_material_d). */
+typedef struct pk_surf {
+    pk_f p[3], ng[3], ns[3];
+    pk_i front;
+} pk_surf;
+
+typedef struct pk_mat {
+    pk_f color[3], ambient, diffuse, specular, reflectivity, transparency;
+    pk_i shininess;
+} pk_mat;
+
+/* Mirrors rt_normal_to_world: m[j][i] is the lanes' world_to_object[4 j + i]. */
+static void pk_normal_to_world(pk_f m[3][3], const pk_f *n, pk_f *out) {
+    for (int i = 0; i < 3; i++) out[i] = (m[0][i] * n[0] + m[1][i] * n[1]) + m[2][i] * n[2];
+}
+
+/* Mirrors rt_surface_at for the lanes in hit (closest hits in h of the rays
+ * r), and gathers each hit lane's material into mat. Lanes outside hit read
+ * lane some's triangle (some hits) and compute values nobody uses. */
+static void pk_surface_at(const rt_scene_view *s, const pk_ray *r, const pk_state *h, pk_i hit,
+                          int some, pk_surf *sf, pk_mat *mat) {
+    uint ent[RT_PK_LANES], ins[RT_PK_LANES], mi[RT_PK_LANES];
+    int hm[RT_PK_LANES], fl[RT_PK_LANES], shin[RT_PK_LANES];
+    float v[9][RT_PK_LANES], m[9][RT_PK_LANES], vn[9][RT_PK_LANES], mf[8][RT_PK_LANES];
+    pk_vstore(h->entry, 0, ent);
+    pk_vstore(h->inst, 0, ins);
+    pk_vstore(hit, 0, hm);
+    for (int l = 0; l < RT_PK_LANES; l++) {
+        uint e = hm[l] ? ent[l] : ent[some], ii = hm[l] ? ins[l] : ins[some];
+        RT_GLOBAL const rt_tri *tri = &s->tris[e];
+        RT_GLOBAL const rt_instance *in = &s->instances[ii];
+        for (int k = 0; k < 3; k++) {
+            v[k][l] = tri->v0[k];
+            v[3 + k][l] = tri->v1[k];
+            v[6 + k][l] = tri->v2[k];
+            for (int j = 0; j < 3; j++) m[3 * j + k][l] = in->world_to_object[4 * j + k];
+        }
+        fl[l] = (int)RT_INST_FLAGS(in);
+        for (int k = 0; k < 9; k++)
+            vn[k][l] = (RT_INST_FLAGS(in) & RT_INST_NORMALS) ? s->tri_normals[9 * e + k] : 0.0f;
+        mi[l] = in->material;
+        if ((RT_SCENE_FLAGS(s) & RT_SCENE_TRI_MATS) && s->tri_mats[e] != RT_NO_MATERIAL)
+            mi[l] = s->tri_mats[e];
+        RT_GLOBAL const rt_material_d *md = &s->materials[mi[l]];
+        for (int k = 0; k < 3; k++) mf[k][l] = md->color[k];
+        mf[3][l] = md->ambient;
+        mf[4][l] = md->diffuse;
+        mf[5][l] = md->specular;
+        mf[6][l] = md->reflectivity;
+        mf[7][l] = md->transparency;
+        shin[l] = md->shininess;
+    }
+    for (int k = 0; k < 3; k++) mat->color[k] = pk_vload(0, mf[k]);
+    mat->ambient = pk_vload(0, mf[3]);
+    mat->diffuse = pk_vload(0, mf[4]);
+    mat->specular = pk_vload(0, mf[5]);
+    mat->reflectivity = pk_vload(0, mf[6]);
+    mat->transparency = pk_vload(0, mf[7]);
+    mat->shininess = pk_vload(0, shin);
+
+    pk_i flags = pk_vload(0, fl);
+    pk_i identity = (flags & (int)RT_INST_IDENTITY) != 0;
+    int transform = pk_any(hit & ~identity);
+    pk_f wm[3][3];
+    if (transform)
+        for (int j = 0; j < 3; j++)
+            for (int k = 0; k < 3; k++) wm[j][k] = pk_vload(0, m[3 * j + k]);
+    pk_f e1[3], e2[3], n[3], w[3];
+    for (int k = 0; k < 3; k++) {
+        pk_f v0 = pk_vload(0, v[k]);
+        e1[k] = pk_vload(0, v[3 + k]) - v0;
+        e2[k] = pk_vload(0, v[6 + k]) - v0;
+        sf->p[k] = r->org[k] + h->t * r->dir[k];
+    }
+    pk_cross3(e1, e2, n);
+    if (transform) {
+        pk_normal_to_world(wm, n, w);
+        for (int k = 0; k < 3; k++) sf->ng[k] = select(w[k], n[k], identity);
+    } else {
+        for (int k = 0; k < 3; k++) sf->ng[k] = n[k];
+    }
+    pk_normalize3(sf->ng);
+    for (int k = 0; k < 3; k++) sf->ns[k] = sf->ng[k];
+    pk_i normals = hit & ((flags & (int)RT_INST_NORMALS) != 0);
+    if (pk_any(normals)) {
+        pk_f wt = (1.0f - h->u) - h->v, ns[3];
+        for (int k = 0; k < 3; k++)
+            n[k] = (wt * pk_vload(0, vn[k]) + h->u * pk_vload(0, vn[3 + k])) +
+                   h->v * pk_vload(0, vn[6 + k]);
+        if (transform) {
+            pk_normal_to_world(wm, n, w);
+            for (int k = 0; k < 3; k++) ns[k] = select(w[k], n[k], identity);
+        } else {
+            for (int k = 0; k < 3; k++) ns[k] = n[k];
+        }
+        pk_normalize3(ns);
+        pk_i take = normals & (pk_dot3(ns, ns) > 0.0f);
+        for (int k = 0; k < 3; k++) sf->ns[k] = select(sf->ns[k], ns[k], take);
+    }
+    sf->front = pk_dot3(sf->ns, r->dir) < 0.0f;
+    pk_i flip = pk_dot3(sf->ng, r->dir) > 0.0f;
+    for (int k = 0; k < 3; k++) {
+        sf->ng[k] = select(sf->ng[k], -sf->ng[k], flip);
+        sf->ns[k] = select(-sf->ns[k], sf->ns[k], sf->front);
+    }
+}
+
+/* Mirrors rt_shade_hit for primary rays p with closest hits h in a scene
+ * without secondary rays (a tree of one node: rt_shade_begin, per light
+ * rt_phong_light and rt_phong_add, rt_shade_end, weight 1), the lanes'
+ * shadow rays traced together. rgb gets the lanes' colours; the shadow
+ * rays' tests are added to boxes, tris, rays. */
+static void pk_shade_direct(const rt_scene_view *s, const pk_ray *p, const pk_state *h, pk_i active,
+                            pk_f *rgb, pk_i *boxes, pk_i *tris, pk_i *rays) {
+    RT_GLOBAL const rt_scene_header *hdr = s->hdr;
+    const float one = 1.0f; /* the primary ray's weight, each channel */
+    pk_i hit = active & (h->prim != RT_NO_HIT);
+    for (int k = 0; k < 3; k++) /* rt_shade_end of a miss: 0 + w * background */
+        rgb[k] = select((pk_f)0.0f, (pk_f)(0.0f + one * hdr->background[k]), active & ~hit);
+    int some = -1;
+    {
+        int hm[RT_PK_LANES];
+        pk_vstore(hit, 0, hm);
+        for (int l = RT_PK_LANES - 1; l >= 0; l--)
+            if (hm[l]) some = l;
+    }
+    if (some < 0) return;
+    /* rt_shade_begin */
+    pk_surf sf;
+    pk_mat m;
+    pk_surface_at(s, p, h, hit, some, &sf, &m);
+    pk_f dn[3] = {p->dir[0], p->dir[1], p->dir[2]}, lit[3];
+    pk_normalize3(dn);
+    pk_f lw = (1.0f - m.reflectivity) - m.transparency;
+    pk_i lighting = hit & (lw > 0.0f);
+    if (!pk_any(lighting)) return;
+    for (int k = 0; k < 3; k++) lit[k] = (m.ambient * m.color[k]) * hdr->ambient[k];
+    for (rt_u32 li = 0; li < hdr->light_count; li++) {
+        /* rt_phong_light */
+        RT_GLOBAL const rt_light_d *light = &s->lights[li];
+        pk_f L[3], Ln[3];
+        for (int k = 0; k < 3; k++) L[k] = light->position[k] - sf.p[k];
+        pk_f dist = RT_SQRT(pk_dot3(L, L));
+        pk_i ok = lighting & (dist > 0.0f);
+        for (int k = 0; k < 3; k++) Ln[k] = RT_DIV(L[k], dist);
+        pk_f ndl = pk_dot3(sf.ns, Ln);
+        ok &= ndl > 0.0f;
+        if (!pk_any(ok)) continue;
+        pk_ray sr;
+        pk_offset_point(sf.p, sf.ng, select((pk_f)-1.0f, (pk_f)1.0f, pk_dot3(sf.ng, L) >= 0.0f),
+                        sr.org);
+        for (int k = 0; k < 3; k++) {
+            sr.dir[k] = light->position[k] - sr.org[k];
+            /* Lanes without a shadow ray trace their primary ray, inactive. */
+            sr.org[k] = select(p->org[k], sr.org[k], ok);
+            sr.dir[k] = select(p->dir[k], sr.dir[k], ok);
+        }
+        sr.tmin = (pk_f)0.0f;
+        sr.tmax = (pk_f)RT_SHADOW_TMAX;
+        pk_prepare(&sr);
+        pk_state ss;
+        ss.boxes = ss.tris = ss.rays = (pk_i)0;
+        pk_trace(s, &sr, ok, 1, &ss);
+        *boxes += ss.boxes;
+        *tris += ss.tris;
+        *rays += ss.rays;
+        /* rt_phong_add where the shadow ray found no occluder */
+        pk_i add = ok & (ss.prim == RT_NO_HIT);
+        if (!pk_any(add)) continue;
+        for (int k = 0; k < 3; k++)
+            lit[k] =
+                select(lit[k], lit[k] + ((m.diffuse * m.color[k]) * light->color[k]) * ndl, add);
+        pk_i spec = add & (m.specular > 0.0f);
+        if (!pk_any(spec)) continue;
+        pk_f R[3];
+        for (int k = 0; k < 3; k++) R[k] = (2.0f * ndl) * sf.ns[k] - Ln[k];
+        pk_f rv = -pk_dot3(R, dn); /* R . V with V = -dn */
+        spec &= rv > 0.0f;
+        if (!pk_any(spec)) continue;
+        int sh[RT_PK_LANES], most = 0;
+        pk_vstore(select((pk_i)0, m.shininess, spec), 0, sh);
+        for (int l = 0; l < RT_PK_LANES; l++) most = sh[l] > most ? sh[l] : most;
+        pk_f pw = (pk_f)1.0f;
+        for (int i = 0; i < most; i++) pw = select(pw, pw * rv, (pk_i)i < m.shininess);
+        for (int k = 0; k < 3; k++)
+            lit[k] = select(lit[k], lit[k] + (m.specular * light->color[k]) * pw, spec);
+    }
+    /* rt_shade_end: the term (w * lw) * lit, added to 0 */
+    for (int k = 0; k < 3; k++) rgb[k] = select(rgb[k], 0.0f + (one * lw) * lit[k], lighting);
+}
+
 /* The lanes' hits and counters as scalars (rt_hit_d, rt_counters). */
 static void pk_unpack(const pk_state *st, rt_hit_d *hit, rt_counters *c) {
     float ht[RT_PK_LANES], hu[RT_PK_LANES], hv[RT_PK_LANES];
@@ -613,61 +842,80 @@ __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int cha
             }
         }
     } else {
-        /* rt_shade_hit per lane, with its root node's rt_shade_step in its
-         * halves: rt_shade_begin per lane, then per light rt_phong_light per
-         * lane, the lanes' shadow rays traced together, rt_phong_add per
-         * lane where unoccluded; rt_shade_end per lane; then, with secondary
-         * rays, each lane's subtrees one ray at a time (rt_shade_children). */
         float rgb[RT_PK_LANES][3];
-        rt_shade_entry root[RT_PK_LANES];
-        rt_shade_node nd[RT_PK_LANES];
-        int lighting[RT_PK_LANES];
-        for (int l = 0; l < RT_PK_LANES; l++) {
-            root[l].ray = ray[l];
-            root[l].w[0] = root[l].w[1] = root[l].w[2] = 1.0f;
-            root[l].depth = 0;
-            lighting[l] = in_image[l] && rt_shade_begin(&s, &root[l], &hit[l], &nd[l]);
-        }
-        for (rt_u32 li = 0; li < hdr->light_count; li++) {
-            rt_ray_d sr[RT_PK_LANES];
-            float Ln[RT_PK_LANES][3], ndl[RT_PK_LANES];
-            int shadow[RT_PK_LANES];
+        if (!(RT_SCENE_FLAGS(&s) & RT_SCENE_SECONDARY)) {
+            /* Direct frames: the block's shading in vectors (pk_shade_direct). */
+            pk_f col[3];
+            pk_i sb = (pk_i)0, stt = (pk_i)0, srays = (pk_i)0;
+            pk_shade_direct(&s, &p, &st, active, col, &sb, &stt, &srays);
+            float cc[3][RT_PK_LANES];
+            int b0[RT_PK_LANES], t0[RT_PK_LANES], r0[RT_PK_LANES];
+            for (int k = 0; k < 3; k++) pk_vstore(col[k], 0, cc[k]);
+            pk_vstore(sb, 0, b0);
+            pk_vstore(stt, 0, t0);
+            pk_vstore(srays, 0, r0);
             for (int l = 0; l < RT_PK_LANES; l++) {
-                shadow[l] =
-                    lighting[l] && rt_phong_light(&s, &nd[l].sf, li, &sr[l], Ln[l], &ndl[l]);
-                if (!shadow[l]) sr[l] = ray[l]; /* inactive: any defined ray */
+                for (int k = 0; k < 3; k++) rgb[l][k] = cc[k][l];
+                c[l].box_tests += (rt_u32)b0[l];
+                c[l].tri_tests += (rt_u32)t0[l];
+                c[l].rays += (rt_u32)r0[l];
             }
-            pk_i sact = pk_vload(0, shadow) != 0;
-            if (!pk_any(sact)) continue;
-            pk_ray sp;
-            pk_load(sr, &sp);
-            pk_state ss;
-            ss.boxes = ss.tris = ss.rays = (pk_i)0;
-            pk_trace(&s, &sp, sact, 1, &ss);
-            uint occ[RT_PK_LANES];
-            int sb[RT_PK_LANES], stt[RT_PK_LANES], srays[RT_PK_LANES];
-            pk_vstore(ss.prim, 0, occ);
-            pk_vstore(ss.boxes, 0, sb);
-            pk_vstore(ss.tris, 0, stt);
-            pk_vstore(ss.rays, 0, srays);
+        } else {
+            /* rt_shade_hit per lane, with its root node's rt_shade_step in its
+             * halves: rt_shade_begin per lane, then per light rt_phong_light per
+             * lane, the lanes' shadow rays traced together, rt_phong_add per
+             * lane where unoccluded; rt_shade_end per lane; then, with secondary
+             * rays, each lane's subtrees one ray at a time (rt_shade_children). */
+            rt_shade_entry root[RT_PK_LANES];
+            rt_shade_node nd[RT_PK_LANES];
+            int lighting[RT_PK_LANES];
             for (int l = 0; l < RT_PK_LANES; l++) {
-                c[l].box_tests += (rt_u32)sb[l];
-                c[l].tri_tests += (rt_u32)stt[l];
-                c[l].rays += (rt_u32)srays[l];
-                if (shadow[l] && occ[l] == RT_NO_HIT)
-                    rt_phong_add(&s, &nd[l].sf, li, Ln[l], ndl[l], nd[l].dn, nd[l].lit);
+                root[l].ray = ray[l];
+                root[l].w[0] = root[l].w[1] = root[l].w[2] = 1.0f;
+                root[l].depth = 0;
+                lighting[l] = in_image[l] && rt_shade_begin(&s, &root[l], &hit[l], &nd[l]);
             }
-        }
-        for (int l = 0; l < RT_PK_LANES; l++) {
-            if (!in_image[l]) continue;
-            float term[3];
-            rt_shade_entry child[2];
-            int has_term, children;
-            rt_shade_end(&s, &root[l], &hit[l], &nd[l], term, &has_term, child, &children);
-            rgb[l][0] = rgb[l][1] = rgb[l][2] = 0.0f;
-            if (has_term)
-                for (int k = 0; k < 3; k++) rgb[l][k] = rgb[l][k] + term[k];
-            rt_shade_children(&s, child, children, &c[l], rgb[l]);
+            for (rt_u32 li = 0; li < hdr->light_count; li++) {
+                rt_ray_d sr[RT_PK_LANES];
+                float Ln[RT_PK_LANES][3], ndl[RT_PK_LANES];
+                int shadow[RT_PK_LANES];
+                for (int l = 0; l < RT_PK_LANES; l++) {
+                    shadow[l] =
+                        lighting[l] && rt_phong_light(&s, &nd[l].sf, li, &sr[l], Ln[l], &ndl[l]);
+                    if (!shadow[l]) sr[l] = ray[l]; /* inactive: any defined ray */
+                }
+                pk_i sact = pk_vload(0, shadow) != 0;
+                if (!pk_any(sact)) continue;
+                pk_ray sp;
+                pk_load(sr, &sp);
+                pk_state ss;
+                ss.boxes = ss.tris = ss.rays = (pk_i)0;
+                pk_trace(&s, &sp, sact, 1, &ss);
+                uint occ[RT_PK_LANES];
+                int sb[RT_PK_LANES], stt[RT_PK_LANES], srays[RT_PK_LANES];
+                pk_vstore(ss.prim, 0, occ);
+                pk_vstore(ss.boxes, 0, sb);
+                pk_vstore(ss.tris, 0, stt);
+                pk_vstore(ss.rays, 0, srays);
+                for (int l = 0; l < RT_PK_LANES; l++) {
+                    c[l].box_tests += (rt_u32)sb[l];
+                    c[l].tri_tests += (rt_u32)stt[l];
+                    c[l].rays += (rt_u32)srays[l];
+                    if (shadow[l] && occ[l] == RT_NO_HIT)
+                        rt_phong_add(&s, &nd[l].sf, li, Ln[l], ndl[l], nd[l].dn, nd[l].lit);
+                }
+            }
+            for (int l = 0; l < RT_PK_LANES; l++) {
+                if (!in_image[l]) continue;
+                float term[3];
+                rt_shade_entry child[2];
+                int has_term, children;
+                rt_shade_end(&s, &root[l], &hit[l], &nd[l], term, &has_term, child, &children);
+                rgb[l][0] = rgb[l][1] = rgb[l][2] = 0.0f;
+                if (has_term)
+                    for (int k = 0; k < 3; k++) rgb[l][k] = rgb[l][k] + term[k];
+                rt_shade_children(&s, child, children, &c[l], rgb[l]);
+            }
         }
         for (int l = 0; l < RT_PK_LANES; l++) {
             if (!in_image[l]) continue;
