@@ -206,11 +206,54 @@ static void check_image_mode(const char *name, rt_scene *s, mode m) {
 }
 
 /* The packet kernel in every configuration at an odd size (97x61: blocks cut
- * at the right and bottom edges): every AOV in direct mode; image and depth
+ * at the right and bottom edges), with an object turned about an oblique
+ * axis and a second, coloured light: every AOV in direct mode; image and depth
  * with every triangle test, both modes; every block size (4, 8, 16 lanes).
  * Then the one-ray kernels (RTCL_OPENCL_NO_PACKET=1): every AOV including
  * the counters exactly, both modes. */
+/* Turns object obj by 0.5 rad about the oblique axis (1, 2, 3) through c: an
+ * instance transform with no zero entry (so a sum in another order shows). */
+static void oblique_turn(rt_scene *s, uint32_t obj, const float c[3]) {
+    double a[3] = {1.0, 2.0, 3.0}, len = sqrt(14.0), t = 0.5, co = cos(t), si = sin(t), r[3][3];
+    for (int i = 0; i < 3; i++) a[i] /= len;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double cross = 0.0;
+            if (i != j) {
+                int k = 3 - i - j;
+                double sign = ((i + 1) % 3 == j) ? -1.0 : 1.0;
+                cross = sign * a[k] * si;
+            }
+            r[i][j] = (i == j ? co : 0.0) + (1.0 - co) * a[i] * a[j] + cross;
+        }
+    float m[16] = {0};
+    for (int i = 0; i < 3; i++) {
+        double tr = c[i];
+        for (int j = 0; j < 3; j++) {
+            m[4 * i + j] = (float)r[i][j];
+            tr -= r[i][j] * c[j];
+        }
+        m[4 * i + 3] = (float)tr;
+    }
+    m[15] = 1.0f;
+    CHECK(rt_object_transform(s, obj, m) == RT_OK);
+}
+
 static void check_packet(const char *name, rt_scene *s) {
+    /* An object turned about an oblique axis (cornell: the mirror sphere,
+     * which has vertex normals), and a second, coloured light: two lights
+     * per pixel, light colours other than 1 (so a product in another order
+     * shows). Kept for the later checks of this scene, which compare with the
+     * oracle too. */
+    int cornell = strcmp(name, "cornell") == 0;
+    const float centre_cornell[3] = {-0.8f, 0.4f, -0.2f}, centre_keyframes[3] = {0.5f, 1.0f, 0.0f};
+    oblique_turn(s, cornell ? 4 : 1, cornell ? centre_cornell : centre_keyframes);
+    float lo[3], hi[3], pos[3];
+    CHECK(rt_scene_bounds(s, lo, hi));
+    for (int k = 0; k < 3; k++) pos[k] = lo[k] + (hi[k] - lo[k]) * (k == 1 ? 0.85f : 0.3f);
+    const float color[3] = {0.7f, 0.45f, 0.9f};
+    uint32_t light;
+    CHECK(rt_light_add(s, pos, color, &light) == RT_OK);
     rt_camera cam, odd;
     rt_camera_get(s, &cam);
     odd = cam;
