@@ -563,6 +563,7 @@ static void pk_offset_point(const pk_f *p, const pk_f *n, pk_f sign, pk_f *out) 
 typedef struct pk_surf {
     pk_f p[3], ng[3], ns[3];
     pk_i front;
+    pk_u material;
 } pk_surf;
 
 typedef struct pk_mat {
@@ -611,6 +612,7 @@ static void pk_surface_at(const rt_scene_view *s, const pk_ray *r, const pk_stat
         mf[7][l] = md->transparency;
         shin[l] = md->shininess;
     }
+    sf->material = pk_vload(0, mi);
     for (int k = 0; k < 3; k++) mat->color[k] = pk_vload(0, mf[k]);
     mat->ambient = pk_vload(0, mf[3]);
     mat->diffuse = pk_vload(0, mf[4]);
@@ -666,16 +668,22 @@ static void pk_surface_at(const rt_scene_view *s, const pk_ray *r, const pk_stat
     }
 }
 
-/* Mirrors rt_shade_hit for primary rays p with closest hits h in a scene
- * without secondary rays (a tree of one node: rt_shade_begin, per light
- * rt_phong_light and rt_phong_add, rt_shade_end, weight 1), the lanes'
- * shadow rays traced together. rgb gets the lanes' colours; the shadow
- * rays' tests are added to boxes, tris, rays. */
-static void pk_shade_direct(const rt_scene_view *s, const pk_ray *p, const pk_state *h, pk_i active,
-                            pk_f *rgb, pk_i *boxes, pk_i *tris, pk_i *rays) {
+/* The root node of each lane's shading tree (primary rays p, closest hits
+ * h), as rt_shade_step: rt_shade_begin, then per light rt_phong_light and,
+ * where the shadow ray (the lanes' traced together) finds no occluder,
+ * rt_phong_add; then rt_shade_end's term. rgb gets 0 + that term (a miss:
+ * 0 + the background; nothing without local weight): the pixel where there
+ * are no secondary rays. The shadow rays' tests are added to boxes, tris,
+ * rays. For rt_shade_end's secondary rays the node's halves stay in hitp
+ * (lanes with a hit), sfp, dn, lit and lwp (rt_shade_node's fields). */
+static void pk_shade_root(const rt_scene_view *s, const pk_ray *p, const pk_state *h, pk_i active,
+                          pk_f *rgb, pk_i *boxes, pk_i *tris, pk_i *rays, pk_i *hitp, pk_surf *sfp,
+                          pk_f *dn, pk_f *lit, pk_f *lwp) {
     RT_GLOBAL const rt_scene_header *hdr = s->hdr;
     const float one = 1.0f; /* the primary ray's weight, each channel */
     pk_i hit = active & (h->prim != RT_NO_HIT);
+    *hitp = hit;
+    for (int k = 0; k < 3; k++) lit[k] = (pk_f)0.0f; /* defined where not lit */
     for (int k = 0; k < 3; k++) /* rt_shade_end of a miss: 0 + w * background */
         rgb[k] = select((pk_f)0.0f, (pk_f)(0.0f + one * hdr->background[k]), active & ~hit);
     int some = -1;
@@ -687,12 +695,13 @@ static void pk_shade_direct(const rt_scene_view *s, const pk_ray *p, const pk_st
     }
     if (some < 0) return;
     /* rt_shade_begin */
-    pk_surf sf;
     pk_mat m;
-    pk_surface_at(s, p, h, hit, some, &sf, &m);
-    pk_f dn[3] = {p->dir[0], p->dir[1], p->dir[2]}, lit[3];
+    pk_surface_at(s, p, h, hit, some, sfp, &m);
+    const pk_surf *sf = sfp;
+    for (int k = 0; k < 3; k++) dn[k] = p->dir[k];
     pk_normalize3(dn);
     pk_f lw = (1.0f - m.reflectivity) - m.transparency;
+    *lwp = lw;
     pk_i lighting = hit & (lw > 0.0f);
     if (!pk_any(lighting)) return;
     for (int k = 0; k < 3; k++) lit[k] = (m.ambient * m.color[k]) * hdr->ambient[k];
@@ -700,15 +709,15 @@ static void pk_shade_direct(const rt_scene_view *s, const pk_ray *p, const pk_st
         /* rt_phong_light */
         RT_GLOBAL const rt_light_d *light = &s->lights[li];
         pk_f L[3], Ln[3];
-        for (int k = 0; k < 3; k++) L[k] = light->position[k] - sf.p[k];
+        for (int k = 0; k < 3; k++) L[k] = light->position[k] - sf->p[k];
         pk_f dist = RT_SQRT(pk_dot3(L, L));
         pk_i ok = lighting & (dist > 0.0f);
         for (int k = 0; k < 3; k++) Ln[k] = RT_DIV(L[k], dist);
-        pk_f ndl = pk_dot3(sf.ns, Ln);
+        pk_f ndl = pk_dot3(sf->ns, Ln);
         ok &= ndl > 0.0f;
         if (!pk_any(ok)) continue;
         pk_ray sr;
-        pk_offset_point(sf.p, sf.ng, select((pk_f)-1.0f, (pk_f)1.0f, pk_dot3(sf.ng, L) >= 0.0f),
+        pk_offset_point(sf->p, sf->ng, select((pk_f)-1.0f, (pk_f)1.0f, pk_dot3(sf->ng, L) >= 0.0f),
                         sr.org);
         for (int k = 0; k < 3; k++) {
             sr.dir[k] = light->position[k] - sr.org[k];
@@ -734,7 +743,7 @@ static void pk_shade_direct(const rt_scene_view *s, const pk_ray *p, const pk_st
         pk_i spec = add & (m.specular > 0.0f);
         if (!pk_any(spec)) continue;
         pk_f R[3];
-        for (int k = 0; k < 3; k++) R[k] = (2.0f * ndl) * sf.ns[k] - Ln[k];
+        for (int k = 0; k < 3; k++) R[k] = (2.0f * ndl) * sf->ns[k] - Ln[k];
         pk_f rv = -pk_dot3(R, dn); /* R . V with V = -dn */
         spec &= rv > 0.0f;
         if (!pk_any(spec)) continue;
@@ -843,77 +852,63 @@ __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int cha
         }
     } else {
         float rgb[RT_PK_LANES][3];
-        if (!(RT_SCENE_FLAGS(&s) & RT_SCENE_SECONDARY)) {
-            /* Direct frames: the block's shading in vectors (pk_shade_direct). */
-            pk_f col[3];
-            pk_i sb = (pk_i)0, stt = (pk_i)0, srays = (pk_i)0;
-            pk_shade_direct(&s, &p, &st, active, col, &sb, &stt, &srays);
-            float cc[3][RT_PK_LANES];
-            int b0[RT_PK_LANES], t0[RT_PK_LANES], r0[RT_PK_LANES];
-            for (int k = 0; k < 3; k++) pk_vstore(col[k], 0, cc[k]);
-            pk_vstore(sb, 0, b0);
-            pk_vstore(stt, 0, t0);
-            pk_vstore(srays, 0, r0);
-            for (int l = 0; l < RT_PK_LANES; l++) {
-                for (int k = 0; k < 3; k++) rgb[l][k] = cc[k][l];
-                c[l].box_tests += (rt_u32)b0[l];
-                c[l].tri_tests += (rt_u32)t0[l];
-                c[l].rays += (rt_u32)r0[l];
+        /* The root nodes in vectors (pk_shade_root); the pixel where the
+         * scene has no secondary rays. */
+        pk_f col[3], dn[3], lit[3], lw;
+        pk_i hitm, sb = (pk_i)0, stt = (pk_i)0, srays = (pk_i)0;
+        pk_surf sf;
+        pk_shade_root(&s, &p, &st, active, col, &sb, &stt, &srays, &hitm, &sf, dn, lit, &lw);
+        float cc[3][RT_PK_LANES];
+        int b0[RT_PK_LANES], t0[RT_PK_LANES], r0[RT_PK_LANES];
+        for (int k = 0; k < 3; k++) pk_vstore(col[k], 0, cc[k]);
+        pk_vstore(sb, 0, b0);
+        pk_vstore(stt, 0, t0);
+        pk_vstore(srays, 0, r0);
+        for (int l = 0; l < RT_PK_LANES; l++) {
+            for (int k = 0; k < 3; k++) rgb[l][k] = cc[k][l];
+            c[l].box_tests += (rt_u32)b0[l];
+            c[l].tri_tests += (rt_u32)t0[l];
+            c[l].rays += (rt_u32)r0[l];
+        }
+        if ((RT_SCENE_FLAGS(&s) & RT_SCENE_SECONDARY) && pk_any(hitm)) {
+            /* rt_shade_end per lane on the root's halves (rt_shade_node from
+             * the vectors' lanes) for its secondary rays, then the lane's
+             * subtrees one ray at a time (rt_shade_children), added after
+             * the root's term as in rt_shade_hit. */
+            rt_shade_node nd;
+            int hm[RT_PK_LANES], fr[RT_PK_LANES];
+            float v[16][RT_PK_LANES];
+            uint mt[RT_PK_LANES];
+            pk_vstore(hitm, 0, hm);
+            pk_vstore(sf.front, 0, fr);
+            pk_vstore(sf.material, 0, mt);
+            for (int k = 0; k < 3; k++) {
+                pk_vstore(sf.p[k], 0, v[k]);
+                pk_vstore(sf.ng[k], 0, v[3 + k]);
+                pk_vstore(sf.ns[k], 0, v[6 + k]);
+                pk_vstore(dn[k], 0, v[9 + k]);
+                pk_vstore(lit[k], 0, v[12 + k]);
             }
-        } else {
-            /* rt_shade_hit per lane, with its root node's rt_shade_step in its
-             * halves: rt_shade_begin per lane, then per light rt_phong_light per
-             * lane, the lanes' shadow rays traced together, rt_phong_add per
-             * lane where unoccluded; rt_shade_end per lane; then, with secondary
-             * rays, each lane's subtrees one ray at a time (rt_shade_children). */
-            rt_shade_entry root[RT_PK_LANES];
-            rt_shade_node nd[RT_PK_LANES];
-            int lighting[RT_PK_LANES];
+            pk_vstore(lw, 0, v[15]);
             for (int l = 0; l < RT_PK_LANES; l++) {
-                root[l].ray = ray[l];
-                root[l].w[0] = root[l].w[1] = root[l].w[2] = 1.0f;
-                root[l].depth = 0;
-                lighting[l] = in_image[l] && rt_shade_begin(&s, &root[l], &hit[l], &nd[l]);
-            }
-            for (rt_u32 li = 0; li < hdr->light_count; li++) {
-                rt_ray_d sr[RT_PK_LANES];
-                float Ln[RT_PK_LANES][3], ndl[RT_PK_LANES];
-                int shadow[RT_PK_LANES];
-                for (int l = 0; l < RT_PK_LANES; l++) {
-                    shadow[l] =
-                        lighting[l] && rt_phong_light(&s, &nd[l].sf, li, &sr[l], Ln[l], &ndl[l]);
-                    if (!shadow[l]) sr[l] = ray[l]; /* inactive: any defined ray */
+                if (!hm[l]) continue;
+                for (int k = 0; k < 3; k++) {
+                    nd.sf.p[k] = v[k][l];
+                    nd.sf.ng[k] = v[3 + k][l];
+                    nd.sf.ns[k] = v[6 + k][l];
+                    nd.dn[k] = v[9 + k][l];
+                    nd.lit[k] = v[12 + k][l];
                 }
-                pk_i sact = pk_vload(0, shadow) != 0;
-                if (!pk_any(sact)) continue;
-                pk_ray sp;
-                pk_load(sr, &sp);
-                pk_state ss;
-                ss.boxes = ss.tris = ss.rays = (pk_i)0;
-                pk_trace(&s, &sp, sact, 1, &ss);
-                uint occ[RT_PK_LANES];
-                int sb[RT_PK_LANES], stt[RT_PK_LANES], srays[RT_PK_LANES];
-                pk_vstore(ss.prim, 0, occ);
-                pk_vstore(ss.boxes, 0, sb);
-                pk_vstore(ss.tris, 0, stt);
-                pk_vstore(ss.rays, 0, srays);
-                for (int l = 0; l < RT_PK_LANES; l++) {
-                    c[l].box_tests += (rt_u32)sb[l];
-                    c[l].tri_tests += (rt_u32)stt[l];
-                    c[l].rays += (rt_u32)srays[l];
-                    if (shadow[l] && occ[l] == RT_NO_HIT)
-                        rt_phong_add(&s, &nd[l].sf, li, Ln[l], ndl[l], nd[l].dn, nd[l].lit);
-                }
-            }
-            for (int l = 0; l < RT_PK_LANES; l++) {
-                if (!in_image[l]) continue;
+                nd.sf.front = fr[l] != 0;
+                nd.sf.material = mt[l];
+                nd.lw = v[15][l];
+                rt_shade_entry root, child[2];
+                root.ray = ray[l];
+                root.w[0] = root.w[1] = root.w[2] = 1.0f;
+                root.depth = 0;
                 float term[3];
-                rt_shade_entry child[2];
                 int has_term, children;
-                rt_shade_end(&s, &root[l], &hit[l], &nd[l], term, &has_term, child, &children);
-                rgb[l][0] = rgb[l][1] = rgb[l][2] = 0.0f;
-                if (has_term)
-                    for (int k = 0; k < 3; k++) rgb[l][k] = rgb[l][k] + term[k];
+                rt_shade_end(&s, &root, &hit[l], &nd, term, &has_term, child, &children);
                 rt_shade_children(&s, child, children, &c[l], rgb[l]);
             }
         }
