@@ -7,10 +7,10 @@
  * PoCL's skylake-avx512 target), through the same two-level BVH: a node is
  * visited when any active lane's box test passes, and each lane carries its
  * own mask, so a lane goes into a node's children only where its own test of
- * the node passed. Then the block is shaded: in direct frames in vectors as
+ * the node passed. Then the block's primary hits are shaded in vectors as
  * well (the surface, Phong and the shadow rays, traced as a packet: any hit,
- * a lane retires when occluded), in Whitted frames per lane with the shared
- * functions (shadow rays of the primary hits still as packets). rt_k_packet
+ * a lane retires when occluded); in Whitted frames each lane then shades its
+ * reflection and refraction subtrees with the shared functions. rt_k_packet
  * does a whole direct frame's block (camera, trace, shading, shadows) in one
  * launch; rt_k_packet_trace answers closest-hit ray queries in packets of
  * consecutive rays.
@@ -33,12 +33,11 @@
  * independent of layout and threads). An any-hit lane's range stays
  * [tmin, tmax] until it finds a hit, so the leaves it can reach are the
  * scalar traversal's and it is occluded exactly when that is. Camera rays,
- * the AOVs' surfaces and Whitted shading are the shared functions, called
- * per lane; the vector shading of direct frames mirrors rt_surface_at,
- * rt_shade_begin, rt_phong_light, rt_phong_add and rt_shade_end like the
- * traversal. Only the test counters differ from the scalar kernels: each
- * lane counts the box and triangle tests performed while it was active
- * (docs/OPENCL.md).
+ * the AOVs' surfaces, rt_shade_end's secondary rays and the subtrees are the
+ * shared functions, called per lane; the vector shading of the primary hits
+ * mirrors rt_surface_at, rt_shade_begin, rt_phong_light, rt_phong_add and
+ * rt_shade_end's term like the traversal. Only the test counters differ from the scalar kernels:
+ * each lane counts the box and triangle tests performed while it was active (docs/OPENCL.md).
  *
  * Built together with rt_render.cl (one program) on CPU devices only.
  */
@@ -534,13 +533,13 @@ static void pk_trace(const rt_scene_view *s, const pk_ray *p, pk_i active, int a
     pk_top(s, p, active, st);
 }
 
-/* ---- shading of direct frames ---------------------------------------------
+/* ---- shading of the primary hits ------------------------------------------
  *
- * Without secondary rays a pixel's shading tree is its root node, and the
- * block shades it in vectors: each function mirrors the shared one named at
- * it, per lane, with the lane's own triangle, instance and material gathered
- * into vectors. Frames with secondary rays shade per lane with the shared
- * functions themselves (rt_k_packet). */
+ * The root node of each pixel's shading tree (the whole tree without
+ * secondary rays) is shaded in vectors: each function mirrors the shared one
+ * named at it, per lane, with the lane's own triangle, instance and material
+ * gathered into vectors. The subtrees of reflection and refraction rays are
+ * the shared functions per lane (rt_k_packet). */
 
 /* Mirrors rt_normalize3. */
 static void pk_normalize3(pk_f *v) {
@@ -790,9 +789,10 @@ static void pk_unpack(const pk_state *st, rt_hit_d *hit, rt_counters *c) {
 
 /* Blocks first .. first + count - 1 of the image (PK_W x PK_H pixels each,
  * row-major over the image, partial at the right and bottom edges): primary
- * rays, closest hits, then the image (the primary hits' shadow rays as
- * packets; with secondary rays, each lane's reflection and refraction
- * subtrees one ray at a time) or an AOV into fb (channels floats per pixel,
+ * rays, closest hits, then the image (the primary hits shaded in vectors,
+ * their shadow rays as packets; with secondary rays, each lane's reflection
+ * and refraction subtrees one ray at a time) or an AOV into fb (channels
+ * floats per pixel,
  * the whole frame), as rt_k_camera + rt_k_trace + rt_k_shade would.
  * counters[i] gets the block's rays and tests (the host only adds them up:
  * a block's sum is 1/16 of the bytes to read back). */
