@@ -282,9 +282,14 @@ rt_status rt_render(rt_scene *scene, const rt_render_options *options, rt_frameb
     if (opt.direct_only) flat.hdr.flags &= ~(uint32_t)RT_SCENE_SECONDARY;
     const rt_scene_header *h = &flat.hdr;
     int channels = (opt.aov == RT_AOV_NONE || opt.aov == RT_AOV_NORMAL) ? 3 : 1;
-    memset(fb, 0, sizeof *fb);
-    fb->pixels = calloc((size_t)h->width * (size_t)h->height * (size_t)channels, sizeof(float));
-    if (!fb->pixels) return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    int reuse = opt.reuse_framebuffer && fb->pixels && fb->width == h->width &&
+                fb->height == h->height && fb->channels == channels;
+    if (!reuse) {
+        if (opt.reuse_framebuffer) rt_framebuffer_free(fb);
+        memset(fb, 0, sizeof *fb);
+        fb->pixels = calloc((size_t)h->width * (size_t)h->height * (size_t)channels, sizeof(float));
+        if (!fb->pixels) return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    }
     fb->width = h->width;
     fb->height = h->height;
     fb->channels = channels;

@@ -222,6 +222,11 @@ typedef struct rt_render_options {
      * and stats->device_options repeats them. NULL or "": none (the exact
      * build). At most 255 characters. Ignored by the CPU backends. */
     const char *device_options;
+    /* 1: *fb holds a framebuffer of an earlier rt_render (or pixels NULL),
+     * and when its size and channels match, its memory is reused, so that
+     * a frame loop touches no fresh pages (every pixel is written anew). 0:
+     * *fb is overwritten, as a new framebuffer. */
+    int reuse_framebuffer;
 } rt_render_options;
 
 rt_render_options rt_render_options_default(void);
