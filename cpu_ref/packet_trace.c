@@ -1,13 +1,14 @@
 /* packet_trace.c - RT_PK_LANES rays through the two-level BVH together
  * (packet_trace.h), in G groups of RT_VN lanes, one native vector each
- * (host/simd_wide.h: 4 groups of 4 lanes with NEON or SSE2, 2 of 8 with
- * AVX2, 1 of 16 with AVX-512).
+ * (host/simd_wide.h: 16 groups of 4 lanes with NEON or SSE2, 8 of 8 with
+ * AVX2, 4 of 16 with AVX-512), over the layout's BVHs as four-wide nodes
+ * (cpu_ref/packet_wide.h).
  *
- * A node is entered when some lane's box test passes, found by testing the
- * groups in order from the first group still inside the parent ("first
- * active group", Wald, Boulos and Shirley 2007), with an interval test over
- * the whole packet after the first group misses; at a leaf every group is
- * box-tested and only the lanes that pass test the triangles.
+ * Down to subtrees of SMALL_TREE primitives, the whole packet decides each
+ * node with one interval test over its four children (pk_bvh_ia); below
+ * them, and for packets whose signs differ, each group goes on with its
+ * lanes' own box tests (pk_bvh_group); at a leaf each group's lanes that
+ * pass its box test test the triangles, a group's lanes in one vector test.
  *
  * Every vector operation below is the scalar oracle's operation on each lane
  * (kernels/rt_shared.h, named at each function), in the same order, so each

@@ -1,6 +1,6 @@
 /* render.c - rt_render: keeps the scene's BVHs and layout up to date and runs
  * one frame on the chosen backend ("cpu", the scalar oracle, or "packet", the
- * 2x2 NEON path). */
+ * SIMD packet path). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

@@ -259,7 +259,7 @@ typedef struct rt_hit {
 } rt_hit;
 
 /* Traces count rays through the scene (after applying queued transforms) with
- * a backend ("cpu" or NULL: the scalar oracle; "packet": 2x2 packets;
+ * a backend ("cpu" or NULL: the scalar oracle; "packet": ray packets;
  * "opencl[:DEVICE]" where built; all give identical closest hits). A ray with a NaN or infinite
  * component, or a zero direction, is a miss. */
 rt_status rt_trace_rays(rt_scene *scene, const rt_ray *rays, size_t count, rt_hit *hits,

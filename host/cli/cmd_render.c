@@ -20,7 +20,7 @@ static const char usage[] =
     "\n"
     "  -o FILE        output image, format by extension: .png, .ppm (8-bit, clamped),\n"
     "                 .exr (32-bit float, linear) [out.png]\n"
-    "  --backend B    cpu (the scalar oracle), packet (2x2 SIMD rays), opencl (fails\n"
+    "  --backend B    cpu (the scalar oracle), packet (SIMD ray packets), opencl (fails\n"
     "                 when no device exists), or auto (opencl when a device exists,\n"
     "                 else cpu with a notice) [cpu]\n"
     "  --device D     the OpenCL device: an index or part of a name (rtcl devices)\n"
