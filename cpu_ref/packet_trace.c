@@ -179,23 +179,18 @@ static void pk_geom_finish(pk_geom *p) {
             fin = fin + (p->org[k][g] + p->inv[k][g]) * rt_vsplat(0.0f);
         }
     }
+    /* An infinite or NaN org, inv or lo makes fin NaN: no bounds then. */
+    if (rt_vbits(fin == fin) != (1u << N) - 1u) {
+        p->ia = 0;
+        return;
+    }
     p->one_origin = 1;
-    p->lo_min = lo[0];
+    p->lo_min = rt_vhmin(lo);
     for (int k = 0; k < 3; k++) {
-        p->org_min[k] = omin[k][0], p->org_max[k] = omax[k][0];
-        p->inv_min[k] = imin[k][0], p->inv_max[k] = imax[k][0];
+        p->org_min[k] = rt_vhmin(omin[k]), p->org_max[k] = rt_vhmax(omax[k]);
+        p->inv_min[k] = rt_vhmin(imin[k]), p->inv_max[k] = rt_vhmax(imax[k]);
+        p->one_origin &= p->org_min[k] == p->org_max[k];
     }
-    for (int i = 0; i < N; i++) {
-        if (!(fin[i] == 0.0f)) p->ia = 0; /* an infinite or NaN org, inv or lo */
-        p->lo_min = lo[i] < p->lo_min ? lo[i] : p->lo_min;
-        for (int k = 0; k < 3; k++) {
-            p->org_min[k] = omin[k][i] < p->org_min[k] ? omin[k][i] : p->org_min[k];
-            p->org_max[k] = omax[k][i] > p->org_max[k] ? omax[k][i] : p->org_max[k];
-            p->inv_min[k] = imin[k][i] < p->inv_min[k] ? imin[k][i] : p->inv_min[k];
-            p->inv_max[k] = imax[k][i] > p->inv_max[k] ? imax[k][i] : p->inv_max[k];
-        }
-    }
-    for (int k = 0; k < 3; k++) p->one_origin &= p->org_min[k] == p->org_max[k];
 }
 
 /* The packet's rays as vectors; invalid lanes take a valid lane's ray, so
