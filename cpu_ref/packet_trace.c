@@ -4,11 +4,11 @@
  * AVX2, 4 of 16 with AVX-512), over the layout's BVHs as four-wide nodes
  * (cpu_ref/packet_wide.h).
  *
- * Down to subtrees of SMALL_TREE primitives, the whole packet decides each
- * node with one interval test over its four children (pk_bvh_ia); below
- * them, and for packets whose signs differ, each group goes on with its
- * lanes' own box tests (pk_bvh_group); at a leaf each group's lanes that
- * pass its box test test the triangles, a group's lanes in one vector test.
+ * Until a node is narrower than the packet where the packet enters it, the
+ * whole packet decides each node with one interval test over its four
+ * children (pk_bvh_ia); below such nodes, and for packets whose signs differ, each group goes on
+ * with its lanes' own box tests (pk_bvh_group); at a leaf each group's lanes that pass its box test
+ * test the triangles, a group's lanes in one vector test.
  *
  * Every vector operation below is the scalar oracle's operation on each lane
  * (kernels/rt_shared.h, named at each function), in the same order, so each
@@ -33,10 +33,6 @@
 
 enum { L = RT_PK_LANES, N = RT_VN, G = RT_PK_LANES / RT_VN };
 _Static_assert(RT_PK_LANES % RT_VN == 0, "a packet is whole vectors");
-/* Below a subtree of this many primitives the packet tracer follows each
- * group's lanes (pk_bvh_ia); measured best at 32 to 64 for every vector
- * width on the shared scenes (docs/OPTIMISATION_LOG.md). */
-enum { SMALL_TREE = 32 };
 
 /* The packet's rays in one space: the world, or an instance's object space. */
 typedef struct pk_geom {
@@ -57,6 +53,7 @@ typedef struct pk_geom {
      * every lane (primary rays) makes the test cheaper and tighter. */
     int ia, one_origin;
     float org_min[3], org_max[3], inv_min[3], inv_max[3], lo_min;
+    float org_span, dir_span; /* the largest range of org and of dir over the axes */
 } pk_geom;
 
 typedef struct pk_state {
@@ -185,11 +182,21 @@ static void pk_geom_finish(pk_geom *p) {
         return;
     }
     p->one_origin = 1;
+    p->org_span = p->dir_span = 0.0f;
+    for (int k = 0; k < 3; k++) {
+        rt_vf dmin = p->dir[k][0], dmax = p->dir[k][0];
+        for (int g = 1; g < G; g++)
+            dmin = rt_vmin_of(p->dir[k][g], dmin), dmax = rt_vmax_of(p->dir[k][g], dmax);
+        float d = rt_vhmax(dmax) - rt_vhmin(dmin);
+        p->dir_span = d > p->dir_span ? d : p->dir_span;
+    }
     p->lo_min = rt_vhmin(lo);
     for (int k = 0; k < 3; k++) {
         p->org_min[k] = rt_vhmin(omin[k]), p->org_max[k] = rt_vhmax(omax[k]);
         p->inv_min[k] = rt_vhmin(imin[k]), p->inv_max[k] = rt_vhmax(imax[k]);
         p->one_origin &= p->org_min[k] == p->org_max[k];
+        float o = p->org_max[k] - p->org_min[k];
+        p->org_span = o > p->org_span ? o : p->org_span;
     }
 }
 
@@ -612,12 +619,30 @@ static void pk_leaf_all(pk_state *st, const pk_geom *p, const rt_pk_node *n, int
  * interval test over all children of a wide node at once stands for every
  * lane (it fails only when every lane's box test would), so the packet
  * decides each inner node with one test (Embree's coherent packets do the
- * like with frusta). Where the rays part ways, at a leaf or a subtree of at
- * most SMALL_TREE primitives, each group goes on with its lanes' own tests.
+ * like with frusta). Where the rays part ways, at a leaf or a node narrower
+ * than the packet (narrower()), each group goes on with its lanes' own tests.
  * Either way a lane visits a superset of the nodes its scalar traversal
  * visits and gets the same hits. Children are taken nearest first by their
  * interval entry, and a pushed child whose entry lies beyond every lane's
  * range by the time it is popped is dropped. */
+/* Does child c of n lie inside the packet's width where it enters it? The
+ * rays are then bound to part ways inside the child: rather than take its
+ * subtree by the packet's bounds, each group takes it with its own lanes
+ * (pk_bvh_ia). The packet's width at distance t is at most org_span + t
+ * dir_span on every axis; FOOTPRINT scales it (measured best about 2 for
+ * every vector width on the shared scenes, docs/OPTIMISATION_LOG.md). Where
+ * the packets switch changes speed only: either way is exact. */
+enum { FOOTPRINT = 2 };
+static inline int narrower(const rt_pk_node *n, int c, const pk_geom *p, float enter) {
+    float e = 0.0f;
+    for (int k = 0; k < 3; k++) {
+        float d = n->bmax[k][c] - n->bmin[k][c];
+        e = d > e ? d : e;
+    }
+    float t = enter > 0.0f ? enter : 0.0f;
+    return e < (float)FOOTPRINT * (p->org_span + t * p->dir_span);
+}
+
 static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, pk_groups gm) {
     typedef struct {
         float enter;
@@ -634,10 +659,9 @@ static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst,
     for (;;) {
         const rt_pk_node *n = &nodes[cur.node];
         const int c = cur.slot;
-        const rt_u32 count = n->count[c];
-        if (count & RT_NODE_LEAF_FLAG) {
+        if (n->count[c] & RT_NODE_LEAF_FLAG) {
             pk_leaf_all(st, p, n, c, inst, gm);
-        } else if (count <= SMALL_TREE) {
+        } else if (narrower(n, c, p, cur.enter)) {
             for (pk_groups todo = gm & st->alive_groups; todo; todo &= todo - 1)
                 pk_bvh_group(st, p, cur.node, c, inst, lowest_bit(todo));
         } else {
