@@ -501,6 +501,14 @@ static void pk_leaf(pk_state *st, const pk_geom *p, const rt_pk_node *n, int c, 
 
 /* ---- traversal -------------------------------------------------------------- */
 
+/* The node of child s of ch, read next (if nearest) or later: both of its
+ * cache lines. */
+static inline void prefetch_child(const rt_pk_node *nodes, const rt_pk_node *ch, int s) {
+    if (ch->count[s] & RT_NODE_LEAF_FLAG) return;
+    __builtin_prefetch(&nodes[ch->ref[s]]);
+    __builtin_prefetch((const char *)&nodes[ch->ref[s]] + 64);
+}
+
 /* A set of groups: bit g is group g. */
 typedef uint32_t pk_groups;
 
@@ -568,10 +576,7 @@ static void pk_bvh_group(pk_state *st, const pk_geom *p, rt_u32 entry, int slot,
             int hits = 0;
             for (; entered; entered &= entered - 1) {
                 const int s = lowest_bit(entered);
-                if (!(ch->count[s] & RT_NODE_LEAF_FLAG)) {
-                    __builtin_prefetch(&nodes[ch->ref[s]]);
-                    __builtin_prefetch((const char *)&nodes[ch->ref[s]] + 64);
-                }
+                prefetch_child(nodes, ch, s);
                 const float k = ts[s][lowest_bit(ms[s])];
                 int i = hits++;
                 while (i > 0 && key[i - 1] > k) {
@@ -673,10 +678,7 @@ static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst,
             int hits = 0;
             for (; entered; entered &= entered - 1) {
                 const int s = lowest_bit(entered);
-                if (!(ch->count[s] & RT_NODE_LEAF_FLAG)) {
-                    __builtin_prefetch(&nodes[ch->ref[s]]);
-                    __builtin_prefetch((const char *)&nodes[ch->ref[s]] + 64);
-                }
+                prefetch_child(nodes, ch, s);
                 int i = hits++;
                 while (i > 0 && hit[i - 1].enter > en[s]) {
                     hit[i] = hit[i - 1];
