@@ -49,7 +49,11 @@ def main():
         "pixels differing visibly from cpu: packet / opencl / embree"]
     print("| " + " | ".join(head) + " |")
     print("|" + "---|" * len(head))
+    # The targets are on the shared scenes; the shipped scenes (the
+    # repository's scenes/) are shown but judged apart.
+    shipped_dir = os.path.realpath(os.path.join(os.path.dirname(__file__), "..", "scenes")) + os.sep
     packet_vs_embree, opencl_vs_cpu = [], []
+    shipped = []
     widths = []
     for o in objs:
         by = {r["backend"]: r for r in o["render"]}
@@ -61,10 +65,13 @@ def main():
                                 for b in OURS + ["embree"]))
         pe = rate_ratio(by.get("packet"), e)
         oc = rate_ratio(by.get("opencl"), by.get("cpu"))
-        if pe is not None:
-            packet_vs_embree.append((pe, scene_name(o["scene"])))
-        if oc is not None:
-            opencl_vs_cpu.append((oc, scene_name(o["scene"])))
+        if os.path.realpath(o["scene"]).startswith(shipped_dir):
+            shipped.append((scene_name(o["scene"]), pe, oc))
+        else:
+            if pe is not None:
+                packet_vs_embree.append((pe, scene_name(o["scene"])))
+            if oc is not None:
+                opencl_vs_cpu.append((oc, scene_name(o["scene"])))
         cells += [fmt(pe), fmt(oc)]
         cpu = by.get("cpu", {})
         cells += [fmt(cpu.get("box_tests")), fmt(cpu.get("tri_tests"))]
@@ -80,15 +87,19 @@ def main():
 
     def judge(pairs, target, what):
         if not pairs:
-            return f"- {what}: not measured (backend unavailable)."
+            return f"- {what}: not measured (no shared scene in this run, or the backend is unavailable)."
         lo, hi = min(pairs), max(pairs)
         met = sum(1 for r, _ in pairs if r >= target)
         return (f"- {what}: {lo[0]:.2f}x ({lo[1]}) to {hi[0]:.2f}x ({hi[1]}); target {target}x "
                 f"{'met' if met == len(pairs) else 'NOT met'} ({met} of {len(pairs)} scenes).")
 
-    print("\nAgainst the targets (computed from the table):\n")
+    print("\nAgainst the targets, on the shared scenes (computed from the table):\n")
     print(judge(packet_vs_embree, 0.8, "packet rate / Embree's best packet rate"))
     print(judge(opencl_vs_cpu, 1.5, "OpenCL (PoCL) rate / the scalar oracle's rate"))
+    for name, pe, oc in shipped:
+        print(f"- shipped scene {name} (not a shared scene; its objects are instances, which the "
+              f"Embree peer gets flattened into one world-space BVH): packet / embree "
+              f"{fmt(pe)}x, opencl / cpu {fmt(oc)}x.")
 
 
 if __name__ == "__main__":

@@ -13,21 +13,7 @@
 # (primary and shadow rays) through the trees with the scalar oracle, and
 # checks that the image is the default build's, bit for bit.
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
-quick=0
-args=()
-for a in "$@"; do
-    if [ "$a" = --quick ]; then quick=1; else args+=("$a"); fi
-done
-[ ${#args[@]} = 3 ] || { echo "usage: study_builders.sh BUILD_DIR SHARED_SCENES OUT_DIR [--quick]" >&2; exit 2; }
-build=$(cd "${args[0]}" && pwd)
-shared=$(cd "${args[1]}" && pwd)
-out=${args[2]}
-mkdir -p "$out/plots"
-data=$out/data/builders
-rm -rf "$data"
-mkdir -p "$data"
-threads=${RT_STUDY_THREADS:-2} # bench/report.sh passes its thread count
+. "$(dirname "$0")/common_study_args.sh"
 setups=(thesis-scalar:16:10 thesis-neon:16:10 thesis-mt:16:10
         fast:4:10 fast:8:10 fast:16:10 fast:32:10 fast:64:10
         fast:16:1 fast:16:2 fast:16:4 fast:16:8 fast:16:16 embree::10)

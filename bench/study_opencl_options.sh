@@ -12,21 +12,7 @@
 # by frame; each image is compared with the oracle's by rtcl compare, as
 # float EXR and as 8-bit PNG. Without an OpenCL device the section says so.
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
-quick=0
-args=()
-for a in "$@"; do
-    if [ "$a" = --quick ]; then quick=1; else args+=("$a"); fi
-done
-[ ${#args[@]} = 3 ] || { echo "usage: study_opencl_options.sh BUILD_DIR SHARED_SCENES OUT_DIR [--quick]" >&2; exit 2; }
-build=$(cd "${args[0]}" && pwd)
-shared=$(cd "${args[1]}" && pwd)
-out=${args[2]}
-mkdir -p "$out/plots"
-data=$out/data/opencl_options
-rm -rf "$data"
-mkdir -p "$data"
-threads=${RT_STUDY_THREADS:-2} # bench/report.sh passes its thread count
+. "$(dirname "$0")/common_study_args.sh"
 # The study's option variants ("" is the exact build).
 variants=("" -cl-mad-enable -cl-fast-relaxed-math -DRT_NATIVE_MATH "-cl-fast-relaxed-math -DRT_NATIVE_MATH")
 if [ $quick = 1 ]; then

@@ -14,21 +14,7 @@
 #   reported triangle, and on a subsample the closest hit against a
 #   double-precision brute-force reference).
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
-quick=0
-args=()
-for a in "$@"; do
-    if [ "$a" = --quick ]; then quick=1; else args+=("$a"); fi
-done
-[ ${#args[@]} = 3 ] || { echo "usage: study_tri_tests.sh BUILD_DIR SHARED_SCENES OUT_DIR [--quick]" >&2; exit 2; }
-build=$(cd "${args[0]}" && pwd)
-shared=$(cd "${args[1]}" && pwd)
-out=${args[2]}
-mkdir -p "$out/plots"
-data=$out/data/tri_tests
-rm -rf "$data"
-mkdir -p "$data"
-threads=${RT_STUDY_THREADS:-2} # bench/report.sh passes its thread count
+. "$(dirname "$0")/common_study_args.sh"
 tests="watertight mt pluecker badouel"
 
 if [ $quick = 1 ]; then

@@ -1,5 +1,5 @@
 /* cpu_render.h - the CPU backends over the flattened layout: the scalar
- * oracle ("cpu") and the 2x2 NEON packet path ("packet"). Both write the same
+ * oracle ("cpu") and the packet path ("packet", cpu_ref/packet_trace.h). Both write the same
  * bits: the packet path only changes how primary rays find their hits. */
 #ifndef RT_CPU_RENDER_H
 #define RT_CPU_RENDER_H

@@ -1,13 +1,14 @@
 /* packet_trace.c - RT_PK_LANES rays through the two-level BVH together
  * (packet_trace.h), in G groups of RT_VN lanes, one native vector each
- * (host/simd_wide.h: 4 groups of 4 lanes with NEON or SSE2, 2 of 8 with
- * AVX2, 1 of 16 with AVX-512).
+ * (host/simd_wide.h: 16 groups of 4 lanes with NEON or SSE2, 8 of 8 with
+ * AVX2, 4 of 16 with AVX-512), over the layout's BVHs as four-wide nodes
+ * (cpu_ref/packet_wide.h).
  *
- * A node is entered when some lane's box test passes, found by testing the
- * groups in order from the first group still inside the parent ("first
- * active group", Wald, Boulos and Shirley 2007), with an interval test over
- * the whole packet after the first group misses; at a leaf every group is
- * box-tested and only the lanes that pass test the triangles.
+ * Until a node is narrower than the packet where the packet enters it, the
+ * whole packet decides each node with one interval test over its four
+ * children (pk_bvh_ia); below such nodes, and for packets whose signs differ, each group goes on
+ * with its lanes' own box tests (pk_bvh_group); at a leaf each group's lanes that pass its box test
+ * test the triangles, a group's lanes in one vector test.
  *
  * Every vector operation below is the scalar oracle's operation on each lane
  * (kernels/rt_shared.h, named at each function), in the same order, so each
@@ -32,10 +33,6 @@
 
 enum { L = RT_PK_LANES, N = RT_VN, G = RT_PK_LANES / RT_VN };
 _Static_assert(RT_PK_LANES % RT_VN == 0, "a packet is whole vectors");
-/* Below a subtree of this many primitives the packet tracer follows each
- * group's lanes (pk_bvh_ia); measured best at 32 to 64 for every vector
- * width on the shared scenes (docs/OPTIMISATION_LOG.md). */
-enum { SMALL_TREE = 32 };
 
 /* The packet's rays in one space: the world, or an instance's object space. */
 typedef struct pk_geom {
@@ -56,6 +53,7 @@ typedef struct pk_geom {
      * every lane (primary rays) makes the test cheaper and tighter. */
     int ia, one_origin;
     float org_min[3], org_max[3], inv_min[3], inv_max[3], lo_min;
+    float org_span, dir_span; /* the largest range of org and of dir over the axes */
 } pk_geom;
 
 typedef struct pk_state {
@@ -178,23 +176,28 @@ static void pk_geom_finish(pk_geom *p) {
             fin = fin + (p->org[k][g] + p->inv[k][g]) * rt_vsplat(0.0f);
         }
     }
+    /* An infinite or NaN org, inv or lo makes fin NaN: no bounds then. */
+    if (rt_vbits(fin == fin) != (1u << N) - 1u) {
+        p->ia = 0;
+        return;
+    }
     p->one_origin = 1;
-    p->lo_min = lo[0];
+    p->org_span = p->dir_span = 0.0f;
     for (int k = 0; k < 3; k++) {
-        p->org_min[k] = omin[k][0], p->org_max[k] = omax[k][0];
-        p->inv_min[k] = imin[k][0], p->inv_max[k] = imax[k][0];
+        rt_vf dmin = p->dir[k][0], dmax = p->dir[k][0];
+        for (int g = 1; g < G; g++)
+            dmin = rt_vmin_of(p->dir[k][g], dmin), dmax = rt_vmax_of(p->dir[k][g], dmax);
+        float d = rt_vhmax(dmax) - rt_vhmin(dmin);
+        p->dir_span = d > p->dir_span ? d : p->dir_span;
     }
-    for (int i = 0; i < N; i++) {
-        if (!(fin[i] == 0.0f)) p->ia = 0; /* an infinite or NaN org, inv or lo */
-        p->lo_min = lo[i] < p->lo_min ? lo[i] : p->lo_min;
-        for (int k = 0; k < 3; k++) {
-            p->org_min[k] = omin[k][i] < p->org_min[k] ? omin[k][i] : p->org_min[k];
-            p->org_max[k] = omax[k][i] > p->org_max[k] ? omax[k][i] : p->org_max[k];
-            p->inv_min[k] = imin[k][i] < p->inv_min[k] ? imin[k][i] : p->inv_min[k];
-            p->inv_max[k] = imax[k][i] > p->inv_max[k] ? imax[k][i] : p->inv_max[k];
-        }
+    p->lo_min = rt_vhmin(lo);
+    for (int k = 0; k < 3; k++) {
+        p->org_min[k] = rt_vhmin(omin[k]), p->org_max[k] = rt_vhmax(omax[k]);
+        p->inv_min[k] = rt_vhmin(imin[k]), p->inv_max[k] = rt_vhmax(imax[k]);
+        p->one_origin &= p->org_min[k] == p->org_max[k];
+        float o = p->org_max[k] - p->org_min[k];
+        p->org_span = o > p->org_span ? o : p->org_span;
     }
-    for (int k = 0; k < 3; k++) p->one_origin &= p->org_min[k] == p->org_max[k];
 }
 
 /* The packet's rays as vectors; invalid lanes take a valid lane's ray, so
@@ -498,6 +501,14 @@ static void pk_leaf(pk_state *st, const pk_geom *p, const rt_pk_node *n, int c, 
 
 /* ---- traversal -------------------------------------------------------------- */
 
+/* The node of child s of ch, read next (if nearest) or later: both of its
+ * cache lines. */
+static inline void prefetch_child(const rt_pk_node *nodes, const rt_pk_node *ch, int s) {
+    if (ch->count[s] & RT_NODE_LEAF_FLAG) return;
+    __builtin_prefetch(&nodes[ch->ref[s]]);
+    __builtin_prefetch((const char *)&nodes[ch->ref[s]] + 64);
+}
+
 /* A set of groups: bit g is group g. */
 typedef uint32_t pk_groups;
 
@@ -565,10 +576,7 @@ static void pk_bvh_group(pk_state *st, const pk_geom *p, rt_u32 entry, int slot,
             int hits = 0;
             for (; entered; entered &= entered - 1) {
                 const int s = lowest_bit(entered);
-                if (!(ch->count[s] & RT_NODE_LEAF_FLAG)) {
-                    __builtin_prefetch(&nodes[ch->ref[s]]);
-                    __builtin_prefetch((const char *)&nodes[ch->ref[s]] + 64);
-                }
+                prefetch_child(nodes, ch, s);
                 const float k = ts[s][lowest_bit(ms[s])];
                 int i = hits++;
                 while (i > 0 && key[i - 1] > k) {
@@ -616,12 +624,30 @@ static void pk_leaf_all(pk_state *st, const pk_geom *p, const rt_pk_node *n, int
  * interval test over all children of a wide node at once stands for every
  * lane (it fails only when every lane's box test would), so the packet
  * decides each inner node with one test (Embree's coherent packets do the
- * like with frusta). Where the rays part ways, at a leaf or a subtree of at
- * most SMALL_TREE primitives, each group goes on with its lanes' own tests.
+ * like with frusta). Where the rays part ways, at a leaf or a node narrower
+ * than the packet (narrower()), each group goes on with its lanes' own tests.
  * Either way a lane visits a superset of the nodes its scalar traversal
  * visits and gets the same hits. Children are taken nearest first by their
  * interval entry, and a pushed child whose entry lies beyond every lane's
  * range by the time it is popped is dropped. */
+/* Does child c of n lie inside the packet's width where it enters it? The
+ * rays are then bound to part ways inside the child: rather than take its
+ * subtree by the packet's bounds, each group takes it with its own lanes
+ * (pk_bvh_ia). The packet's width at distance t is at most org_span + t
+ * dir_span on every axis; FOOTPRINT scales it (measured best about 2 for
+ * every vector width on the shared scenes, docs/OPTIMISATION_LOG.md). Where
+ * the packets switch changes speed only: either way is exact. */
+enum { FOOTPRINT = 2 };
+static inline int narrower(const rt_pk_node *n, int c, const pk_geom *p, float enter) {
+    float e = 0.0f;
+    for (int k = 0; k < 3; k++) {
+        float d = n->bmax[k][c] - n->bmin[k][c];
+        e = d > e ? d : e;
+    }
+    float t = enter > 0.0f ? enter : 0.0f;
+    return e < (float)FOOTPRINT * (p->org_span + t * p->dir_span);
+}
+
 static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, pk_groups gm) {
     typedef struct {
         float enter;
@@ -638,10 +664,9 @@ static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst,
     for (;;) {
         const rt_pk_node *n = &nodes[cur.node];
         const int c = cur.slot;
-        const rt_u32 count = n->count[c];
-        if (count & RT_NODE_LEAF_FLAG) {
+        if (n->count[c] & RT_NODE_LEAF_FLAG) {
             pk_leaf_all(st, p, n, c, inst, gm);
-        } else if (count <= SMALL_TREE) {
+        } else if (narrower(n, c, p, cur.enter)) {
             for (pk_groups todo = gm & st->alive_groups; todo; todo &= todo - 1)
                 pk_bvh_group(st, p, cur.node, c, inst, lowest_bit(todo));
         } else {
@@ -653,10 +678,7 @@ static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst,
             int hits = 0;
             for (; entered; entered &= entered - 1) {
                 const int s = lowest_bit(entered);
-                if (!(ch->count[s] & RT_NODE_LEAF_FLAG)) {
-                    __builtin_prefetch(&nodes[ch->ref[s]]);
-                    __builtin_prefetch((const char *)&nodes[ch->ref[s]] + 64);
-                }
+                prefetch_child(nodes, ch, s);
                 int i = hits++;
                 while (i > 0 && hit[i - 1].enter > en[s]) {
                     hit[i] = hit[i - 1];

@@ -1,12 +1,16 @@
-/* packet_trace.h - ray packets through the two-level BVH, sixteen rays at once.
+/* packet_trace.h - ray packets through the two-level BVH, RT_PK_LANES rays
+ * at once (an 8x8-pixel tile of the renderer, or 64 consecutive rays of a
+ * query).
  *
- * A packet is RT_PK_LANES rays, one lane each of sixteen-lane vectors
- * (host/simd_wide.h). It traverses the tree together: a node is entered by
- * the lanes whose box test passes, and at a leaf those lanes test its
- * triangles, all lanes in one vector test.
+ * The packet's lanes sit in vectors of the machine's width (host/simd_wide.h)
+ * and traverse four-wide copies of the layout's BVHs (packet_wide.h): the
+ * packet's bounds cull inner nodes for all its rays at once, and near the
+ * leaves each vector of lanes goes on with its own box tests
+ * (packet_trace.c says how).
  *
  * Each lane performs exactly the scalar oracle's box and triangle arithmetic
- * (kernels/rt_shared.h: the same operations in the same order, no FMA), so a
+ * (kernels/rt_shared.h: the same operations in the same order, no FMA), and
+ * every culling of a node by the packet is conservative for every lane, so a
  * lane visits a superset of the nodes its scalar traversal would and tests
  * every candidate triangle the same way; with the total hit order (t, then
  * instance, then primitive) its closest hit is the oracle's, bit for bit, and

@@ -70,7 +70,7 @@ static int set_child(builder *b, uint32_t w, int c, uint32_t x, work *stack, uin
     } else if (!(src->b & RT_NODE_LEAF_FLAG)) {
         ref = new_node(b);
         if (ref == UINT32_MAX) return 0;
-        count = b->sub_count[x] < RT_NODE_LEAF_FLAG ? b->sub_count[x] : RT_NODE_COUNT_MASK;
+        count = 0;
         stack[(*sp)++] = (work){x, ref};
     }
     rt_pk_node *n = &b->nodes[w];

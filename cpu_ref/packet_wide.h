@@ -34,7 +34,7 @@
  * past the last child have ref RT_PK_NO_CHILD. A child is a leaf when its
  * count has RT_NODE_LEAF_FLAG: ref and count are then the layout leaf's a and
  * b (first entry, count | flag); else ref is the child's node index and
- * count the number of primitives below it (capped at RT_NODE_COUNT_MASK). */
+ * count 0. */
 typedef struct rt_pk_node {
     float bmin[3][RT_PK_WIDTH];
     float bmax[3][RT_PK_WIDTH];

@@ -1,6 +1,6 @@
 /* render.c - rt_render: keeps the scene's BVHs and layout up to date and runs
  * one frame on the chosen backend ("cpu", the scalar oracle, or "packet", the
- * 2x2 NEON path). */
+ * SIMD packet path). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,6 +15,7 @@ struct rt_render_cache {
     uint32_t mesh_count;
     rt_bvh *bvhs;
     uint32_t *built_tris, *built_verts; /* mesh sizes when its BVH was built */
+    double *sah;                        /* its SAH cost (for the statistics) */
     uint8_t *built;
     rt_bvh top;
     rt_flat flat;
@@ -55,6 +56,7 @@ void rt_render_cache_free(struct rt_render_cache *c) {
     free(c->bvhs);
     free(c->built_tris);
     free(c->built_verts);
+    free(c->sah);
     free(c->built);
     rt_bvh_free(&c->top);
     rt_flat_free(&c->flat);
@@ -79,6 +81,9 @@ static int cache_grow(struct rt_render_cache *c, uint32_t meshes) {
     uint8_t *f = realloc(c->built, meshes);
     if (!f) return 0;
     c->built = f;
+    double *h = realloc(c->sah, sizeof(double) * meshes);
+    if (!h) return 0;
+    c->sah = h;
     for (uint32_t i = c->mesh_count; i < meshes; i++) {
         memset(&c->bvhs[i], 0, sizeof(rt_bvh));
         c->built[i] = 0;
@@ -108,6 +113,8 @@ static rt_status build_mesh(rt_scene *scene, struct rt_render_cache *c, uint32_t
         if (st != RT_OK) return rt_scene_fail(scene, st, "BVH of mesh '%s': %s", md->name, msg);
     }
     c->built[m] = 1;
+    /* Measured once per build, not per frame: it walks the whole tree. */
+    c->sah[m] = md->triangle_count ? rt_bvh_measure(&c->bvhs[m], 1.0f, 2.0f).sah : 0.0;
     c->mesh_generation++;
     c->built_tris[m] = md->triangle_count;
     c->built_verts[m] = md->vertex_count;
@@ -171,7 +178,7 @@ rt_status rt_render_prepare(rt_scene *scene, int threads, rt_prepared *out) {
         uint32_t m = ob->meshes[ob->selected];
         double n = (double)scene->meshes[m].triangle_count;
         if (n == 0) continue;
-        sah += n * rt_bvh_measure(&c->bvhs[m], 1.0f, 2.0f).sah;
+        sah += n * c->sah[m];
         weight += n;
     }
     out->sah_cost = weight > 0 ? sah / weight : 0.0;
@@ -282,9 +289,14 @@ rt_status rt_render(rt_scene *scene, const rt_render_options *options, rt_frameb
     if (opt.direct_only) flat.hdr.flags &= ~(uint32_t)RT_SCENE_SECONDARY;
     const rt_scene_header *h = &flat.hdr;
     int channels = (opt.aov == RT_AOV_NONE || opt.aov == RT_AOV_NORMAL) ? 3 : 1;
-    memset(fb, 0, sizeof *fb);
-    fb->pixels = calloc((size_t)h->width * (size_t)h->height * (size_t)channels, sizeof(float));
-    if (!fb->pixels) return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    int reuse = opt.reuse_framebuffer && fb->pixels && fb->width == h->width &&
+                fb->height == h->height && fb->channels == channels;
+    if (!reuse) {
+        if (opt.reuse_framebuffer) rt_framebuffer_free(fb);
+        memset(fb, 0, sizeof *fb);
+        fb->pixels = calloc((size_t)h->width * (size_t)h->height * (size_t)channels, sizeof(float));
+        if (!fb->pixels) return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    }
     fb->width = h->width;
     fb->height = h->height;
     fb->channels = channels;

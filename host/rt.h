@@ -225,6 +225,11 @@ typedef struct rt_render_options {
      * and stats->device_options repeats them. NULL or "": none (the exact
      * build). At most 255 characters. Ignored by the CPU backends. */
     const char *device_options;
+    /* 1: *fb holds a framebuffer of an earlier rt_render (or pixels NULL),
+     * and when its size and channels match, its memory is reused, so that
+     * a frame loop touches no fresh pages (every pixel is written anew). 0:
+     * *fb is overwritten, as a new framebuffer. */
+    int reuse_framebuffer;
 } rt_render_options;
 
 rt_render_options rt_render_options_default(void);
@@ -257,7 +262,7 @@ typedef struct rt_hit {
 } rt_hit;
 
 /* Traces count rays through the scene (after applying queued transforms) with
- * a backend ("cpu" or NULL: the scalar oracle; "packet": 2x2 packets;
+ * a backend ("cpu" or NULL: the scalar oracle; "packet": ray packets;
  * "opencl[:DEVICE]" where built; all give identical closest hits). A ray with a NaN or infinite
  * component, or a zero direction, is a miss. */
 rt_status rt_trace_rays(rt_scene *scene, const rt_ray *rays, size_t count, rt_hit *hits,

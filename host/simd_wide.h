@@ -14,6 +14,7 @@
 #define RT_SIMD_WIDE_H
 
 #include <stdint.h>
+#include <string.h>
 
 #if defined(__AVX512F__)
 #include <immintrin.h>
@@ -132,6 +133,31 @@ static inline rt_vf rt_vmin_of(rt_vf a, rt_vf b) {
     return (rt_vf)_mm_min_ps((__m128)a, (__m128)b);
 #else
     return rt_vsel(a < b, a, b);
+#endif
+}
+
+/* The least and the greatest lane of v (no lane NaN). */
+static inline float rt_vhmin(rt_vf v) {
+#if defined(__AVX512F__)
+    return _mm512_reduce_min_ps((__m512)v);
+#else
+    float a[RT_VN];
+    memcpy(a, &v, sizeof a);
+    for (int w = RT_VN / 2; w > 0; w /= 2)
+        for (int i = 0; i < w; i++) a[i] = a[i + w] < a[i] ? a[i + w] : a[i];
+    return a[0];
+#endif
+}
+
+static inline float rt_vhmax(rt_vf v) {
+#if defined(__AVX512F__)
+    return _mm512_reduce_max_ps((__m512)v);
+#else
+    float a[RT_VN];
+    memcpy(a, &v, sizeof a);
+    for (int w = RT_VN / 2; w > 0; w /= 2)
+        for (int i = 0; i < w; i++) a[i] = a[i + w] > a[i] ? a[i + w] : a[i];
+    return a[0];
 #endif
 }
 

@@ -20,7 +20,7 @@ static const char usage[] =
     "\n"
     "  -o FILE        output image, format by extension: .png, .ppm (8-bit, clamped),\n"
     "                 .exr (32-bit float, linear) [out.png]\n"
-    "  --backend B    cpu (the scalar oracle), packet (2x2 SIMD rays), opencl (fails\n"
+    "  --backend B    cpu (the scalar oracle), packet (SIMD ray packets), opencl (fails\n"
     "                 when no device exists), or auto (opencl when a device exists,\n"
     "                 else cpu with a notice) [cpu]\n"
     "  --device D     the OpenCL device: an index or part of a name (rtcl devices)\n"
@@ -246,12 +246,14 @@ int cmd_render(int argc, char **argv) {
     if (frames > 1) { /* the same frame again: warm caches, uploads done */
         double first_ms = st.render_ms, *ms = malloc(sizeof(double) * (size_t)frames);
         int timed = 0;
+        rt_framebuffer again;
+        memset(&again, 0, sizeof again);
+        opt.reuse_framebuffer = 1; /* as a real-time loop does */
         for (int f = 1; f < frames && ms && status == RT_OK; f++) {
-            rt_framebuffer again;
             status = rt_render(scene, &opt, &again);
             if (status == RT_OK) ms[timed++] = st.render_ms;
-            rt_framebuffer_free(&again);
         }
+        rt_framebuffer_free(&again);
         if (status != RT_OK || !ms) {
             cli_error("render", "%s", ms ? rt_scene_error(scene) : "out of memory");
             free(ms);

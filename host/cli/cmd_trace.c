@@ -27,7 +27,7 @@ static const char usage[] =
     "           the 0-based triangle index in its mesh's file order; inst the object\n"
     "           index. Floats as %.9g. A miss is '0 inf 0 0 -1' (plus ' -1').\n"
     "\n"
-    "  --backend B  cpu (the scalar oracle), packet (2x2 SIMD rays), opencl, or auto\n"
+    "  --backend B  cpu (the scalar oracle), packet (SIMD ray packets), opencl, or auto\n"
     "               (opencl when a device exists, else cpu) [cpu]\n"
     "  --device D   the OpenCL device: an index or part of a name (rtcl devices)\n"
     "  --tri-test T the ray/triangle test: watertight (Woop, Benthin, Wald 2013),\n"
