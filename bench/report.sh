@@ -36,6 +36,9 @@ step() { echo "report.sh: $*" >&2; }
 
 cpu=$(lscpu 2>/dev/null | sed -n 's/^Model name: *//p' | head -1)
 mem=$(awk '/MemTotal/ {printf "%.0f GiB", $2 / 1048576}' /proc/meminfo)
+# The packet tracer picks its vector width at run time; ask it which it used.
+packet_isa=$("$rtcl" render "$root/scenes/cornell.json" --backend packet --width 64 \
+    --height 64 --stats -o "$tmp/isa.png" 2>&1 | sed -n 's/^packets .*vectors of \(.*\)$/\1/p')
 date=$(date -u +%F)
 commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
 
@@ -99,8 +102,9 @@ machine with noisy neighbours: every figure is the min and median of several run
 process, with warm-up runs excluded, and ratios within one run mean more than absolute
 times. Every peer and every backend ran with the same thread count ($threads; PoCL runs its
 own pool of one thread per core). Release build (\`cmake -S . -B build -G Ninja &&
-cmake --build build\`: \`-O3\`, no \`-march\`, so NEON through SIMDe is SSE2-level on x86,
-while Embree picks its widest ISA at run time). \`S=../shared/scenes\`.
+cmake --build build\`: \`-O3\`, no \`-march\`, so the builders' NEON code through SIMDe is
+SSE2-level on x86; the packet tracer is compiled for several ISAs and picks the widest this
+CPU runs, here vectors of ${packet_isa:-unknown width}; Embree picks its widest ISA at run time too). \`S=../shared/scenes\`.
 
 ## OBJ parsing
 
@@ -153,7 +157,8 @@ $render_cmd --json --reps $reps --threads $threads | python3 bench/render_table.
 
 One point light, primary plus shadow rays, Phong (\`rt_render\` with \`direct_only\`; \`rtcl
 render --direct\`). Each backend renders one warm-up frame (BVH build, kernel compile and
-upload; not counted), then $reps frames. Embree (\`host/embree_trace.c\`) traces the same
+upload; not counted), then $reps frames. Our packet backend traces packets of 64 rays
+(8x8 pixels) in vectors of ${packet_isa:-unknown width}. Embree (\`host/embree_trace.c\`) traces the same
 primary rays (our camera formula) with \`rtcIntersect1\` or packets of 2x2, 4x2 and 4x4
 pixels (\`rtcIntersect4/8/16\`), then the same shadow rays (our origin offset and t range)
 with \`rtcOccluded1/4/8/16\`, and computes the same Phong terms; its scene is the layout's
@@ -165,7 +170,7 @@ grazing shadow ray the other way).
 
 $(python3 "$root/bench/render_table.py" <"$tmp/render.json")
 
-## Rendering, Whitted: CPU oracle, 2x2 packets, OpenCL on PoCL
+## Rendering, Whitted: CPU oracle, packets, OpenCL on PoCL
 
 \`\`\`
 bash bench/whitted_table.sh build/rtcl \$S $frames
@@ -177,6 +182,12 @@ cores). Each cell is min / median of frames 2 to $frames of one process (frame 1
 BVHs and, for OpenCL, uploads the scene and is excluded); Mrays/s counts all rays
 (primary, shadow, secondary) over the median frame. The three backends produce
 bit-identical images (tests \`test_core_packet\`, \`test_opencl_oracle\`, \`cli_opencl\`).
+The packet backend traces primary and shadow rays as packets of 64 rays (8x8 pixels) and
+the secondary rays one by one, as the oracle does. Box and triangle tests per ray are the
+scalar oracle's (the thesis's measure); the last column is the packet tracer's own count:
+vector tests (one box against a group of lanes, or one box's interval bound against the
+whole packet; one triangle against a group of lanes) per primary packet, its shadow rays
+included.
 
 $(cat "$tmp/whitted.md")
 EOF

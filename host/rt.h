@@ -219,7 +219,8 @@ typedef struct rt_render_options {
      * thesis's benchmark set-up: one light, Phong, shadows). 0: Whitted. */
     int direct_only;
     /* Extra OpenCL C compiler options for the speed-versus-error study
-     * (e.g. "-cl-mad-enable", "-cl-fast-relaxed-math", "-DRT_NATIVE_MATH").
+     * (study options such as "-cl-mad-enable", "-cl-fast-relaxed-math",
+     * "-DRT_NATIVE_MATH").
      * They are appended to the program's build options (the program cache
      * keys on them) and may change results: with any set, stats->exact is 0
      * and stats->device_options repeats them. NULL or "": none (the exact

@@ -18,7 +18,7 @@
  * Exactness (the oracle's bits). Every pk_* function below mirrors one
  * function of rt_shared.h or rt_shade.h (named at each): per lane it performs
  * the same IEEE operations in the same order (no contraction: the pragma; no
- * -cl-mad-enable; correctly rounded division and sqrt), choosing between
+ * -cl-mad-enable option; correctly rounded division and sqrt), choosing between
  * values with select() where the scalar code branches or indexes (the
  * watertight test's per-ray axes kx, ky, kz), so each lane computes its own
  * scalar values; the watertight test's double re-check of zero edge

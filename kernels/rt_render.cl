@@ -2,7 +2,7 @@
  *
  * Everything that computes a value comes from rt_shared.h and rt_shade.h, the
  * headers the CPU oracle compiles, so the bits are the oracle's. The host
- * builds this without -cl-mad-enable or fast-math and with
+ * builds this without the options -cl-mad-enable or fast-math and with
  * -cl-fp32-correctly-rounded-divide-sqrt, and specialises it with -D switches
  * (RT_STATIC_FLAGS, ...; see rt_shared.h).
  *

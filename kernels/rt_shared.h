@@ -12,7 +12,7 @@
  *   multiplication; no vector operators; no recursion, no function pointers,
  *   no allocation;
  * - C builds with -ffp-contract=off and without fast-math; OpenCL builds with
- *   '#pragma OPENCL FP_CONTRACT OFF', without -cl-mad-enable or fast-relaxed
+ *   '#pragma OPENCL FP_CONTRACT OFF', without the options -cl-mad-enable or fast-relaxed
  *   maths, and with -cl-fp32-correctly-rounded-divide-sqrt (OpenCL's default
  *   division and sqrt may be off by up to 3 ulp);
  * - the evaluation order of every sum is written out (a + b + c is (a + b) + c).
