@@ -30,7 +30,9 @@ typedef struct bench_render_setup {
  * shadow rays, Phong) on cpu, packet and opencl, one warm-up frame each (not
  * counted: it builds the BVHs, compiles and uploads) then reps frames; with
  * Embree in the build, also rtcIntersect1/4/8(/16) frames and a row "embree"
- * for its fastest width. Returns the number of rows, 0 if the scene could
+ * for its fastest width. Frames are interleaved round by round (every row's
+ * frame i before any row's frame i + 1), so that other work on the machine
+ * falls on every row alike and the ratios hold. Returns the number of rows, 0 if the scene could
  * not be loaded (message in err). */
 int bench_render(const char *path, const bench_render_setup *setup, render_row *rows, char *err,
                  size_t err_size);

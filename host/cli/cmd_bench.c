@@ -64,9 +64,10 @@ static void usage(FILE *f) {
                "Phong) on the backends cpu, packet and opencl, and Embree tracing the same\n"
                "rays (rtcIntersect1, packets of 4, 8 and 16 where native, rtcOccluded for\n"
                "shadow rays) with the same thread count: min and median frame time over N\n"
-               "frames after one warm-up frame, Mrays/s, box and triangle tests per ray,\n"
-               "pixels that differ from the cpu oracle's image, and each rate against\n"
-               "Embree's fastest packet width.\n"
+               "frames after one warm-up frame (frames interleaved round by round over\n"
+               "every backend and width, so that a busy machine slows them alike),\n"
+               "Mrays/s, box and triangle tests per ray, pixels that differ from the cpu\n"
+               "oracle's image, and each rate against Embree's fastest packet width.\n"
                "  --json       one JSON object per scene per line (\"build\", \"reference\",\n"
                "               \"render\" arrays)\n"
                "  --reps N     timed repetitions and frames (default 5)\n"
@@ -322,7 +323,7 @@ static void print_text_render(const bench_args *a, const render_row *rows, int n
     for (int i = 0; i < n; i++)
         if (!strcmp(rows[i].backend, "embree") && !rows[i].error[0]) peer = &rows[i];
     printf("  render %dx%d, one light, primary + shadow rays, Phong; %d timed frames after 1 "
-           "warm-up frame\n",
+           "warm-up frame, interleaved over the rows\n",
            a->width, a->height, a->reps);
     printf("  %-12s %7s %10s %10s %8s %9s %9s %19s", "backend", "threads", "min ms", "median ms",
            "Mrays/s", "box/ray", "tri/ray", "px != cpu (visibly)");

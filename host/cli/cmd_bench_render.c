@@ -51,104 +51,138 @@ static void compare_images(const float *a, const float *b, size_t pixels, render
     }
 }
 
-static void bench_backend(rt_scene *scene, const bench_render_setup *su, const char *backend,
-                          const float *oracle, float **image_out, render_row *r) {
-    snprintf(r->backend, sizeof r->backend, "%s", backend);
+/* One row's run: a backend of ours (opt set) or an Embree packet width. */
+typedef struct {
+    render_row *row;
+    rt_render_options opt;
     rt_render_stats st;
-    rt_render_options opt = rt_render_options_default();
-    opt.backend = backend;
-    opt.threads = su->threads;
-    opt.direct_only = 1;
-    opt.stats = &st;
-    /* One framebuffer for every frame, as the Embree peer keeps one. */
-    opt.reuse_framebuffer = 1;
     rt_framebuffer fb;
-    memset(&fb, 0, sizeof fb);
-    double *ms = malloc(sizeof(double) * (size_t)su->reps);
-    if (!ms) {
-        snprintf(r->error, sizeof r->error, "out of memory");
+    int embree_lanes; /* 0: a backend of ours */
+    float *rgb;       /* Embree's image */
+    double *ms;       /* the timed frames */
+    int failed;
+} bench_run;
+
+/* The Embree scene the embree-N runs trace (empty without Embree). */
+typedef struct {
+#ifdef RT_HAVE_EMBREE
+    rt_prepared prep;
+    rt_embree *em;
+    rt_embree_scene *es;
+#else
+    int none;
+#endif
+} embree_peer;
+
+static void run_init(bench_run *r, render_row *row, const bench_render_setup *su) {
+    memset(r, 0, sizeof *r);
+    r->row = row;
+    r->row->threads = su->threads;
+    r->ms = malloc(sizeof(double) * (size_t)su->reps);
+    if (!r->ms) {
+        snprintf(row->error, sizeof row->error, "out of memory");
+        r->failed = 1;
+    }
+}
+
+static void backend_init(bench_run *r, render_row *row, const bench_render_setup *su,
+                         const char *backend) {
+    run_init(r, row, su);
+    snprintf(row->backend, sizeof row->backend, "%s", backend);
+    r->opt = rt_render_options_default();
+    r->opt.backend = backend;
+    r->opt.threads = su->threads;
+    r->opt.direct_only = 1;
+    r->opt.stats = &r->st;
+    /* One framebuffer for every frame, as the Embree peer keeps one. */
+    r->opt.reuse_framebuffer = 1;
+}
+
+/* Frame i of run r (i < 0: the warm-up frame, not kept). */
+static void run_frame(rt_scene *scene, const embree_peer *peer, bench_run *r, int i) {
+    if (r->failed) return;
+    double ms = 0.0;
+    if (r->embree_lanes) {
+#ifdef RT_HAVE_EMBREE
+        rt_embree_render(peer->es, r->embree_lanes, peer->prep.pool, r->rgb, &r->row->rays, &ms);
+#endif
+    } else if (rt_render(scene, &r->opt, &r->fb) != RT_OK) {
+        snprintf(r->row->error, sizeof r->row->error, "%s", rt_scene_error(scene));
+        r->failed = 1;
         return;
+    } else {
+        ms = r->st.render_ms;
     }
-    for (int i = -1; i < su->reps; i++) {
-        if (rt_render(scene, &opt, &fb) != RT_OK) {
-            snprintf(r->error, sizeof r->error, "%s", rt_scene_error(scene));
-            rt_framebuffer_free(&fb);
-            free(ms);
-            return;
+    if (i >= 0) r->ms[i] = ms;
+}
+
+/* The row's figures once every frame is done; images compared with the
+ * oracle's (NULL when the oracle failed). */
+static void run_finish(bench_run *r, const bench_render_setup *su, const float *oracle,
+                       size_t pixels) {
+    render_row *row = r->row;
+    if (!r->failed) {
+        if (r->embree_lanes) {
+            row->box_tests = row->tri_tests = -1.0;
+        } else {
+            row->threads = r->st.threads ? r->st.threads : su->threads;
+            row->rays = r->st.rays;
+            row->box_tests = r->st.rays ? (double)r->st.box_tests / (double)r->st.rays : 0.0;
+            row->tri_tests = r->st.rays ? (double)r->st.tri_tests / (double)r->st.rays : 0.0;
         }
-        if (i >= 0) ms[i] = st.render_ms;
+        const float *image = r->embree_lanes ? r->rgb : r->fb.pixels;
+        if (oracle && image != oracle) compare_images(oracle, image, pixels, row);
+        summarize(row, r->ms, su->reps);
     }
-    size_t px = (size_t)fb.width * (size_t)fb.height;
-    if (oracle) compare_images(oracle, fb.pixels, px, r);
-    if (image_out) {
-        *image_out = fb.pixels;
-        fb.pixels = NULL;
-    }
-    rt_framebuffer_free(&fb);
-    r->threads = st.threads ? st.threads : su->threads;
-    r->rays = st.rays;
-    r->box_tests = st.rays ? (double)st.box_tests / (double)st.rays : 0.0;
-    r->tri_tests = st.rays ? (double)st.tri_tests / (double)st.rays : 0.0;
-    summarize(r, ms, su->reps);
-    free(ms);
+    free(r->ms);
+    r->ms = NULL;
 }
 
 #ifdef RT_HAVE_EMBREE
-/* Rows embree-1, -4, -8 (and -16 where Embree traces 16 natively), then
- * "embree": a copy of the fastest by median. */
-static int bench_embree(rt_scene *scene, const char *path, const bench_render_setup *su,
-                        const float *oracle, render_row *rows) {
-    int n = 0;
-    rt_prepared prep;
+/* Runs embree-1, -4, -8 (and -16 where Embree traces 16 natively) in rows;
+ * returns how many (0 with the reason in rows[0].error when Embree cannot
+ * run). */
+static int embree_init(rt_scene *scene, const bench_render_setup *su, embree_peer *peer,
+                       bench_run *runs, render_row *rows) {
     char msg[200] = "";
-    rt_embree *em = NULL;
-    rt_embree_scene *es = NULL;
-    render_row *first = rows;
-    snprintf(first->backend, sizeof first->backend, "embree");
-    first->threads = su->threads;
-    double setup_ms;
-    if (rt_render_prepare(scene, su->threads, &prep) != RT_OK) {
-        snprintf(first->error, sizeof first->error, "%s", rt_scene_error(scene));
-        return 1;
+    snprintf(rows[0].backend, sizeof rows[0].backend, "embree");
+    rows[0].threads = su->threads;
+    if (rt_render_prepare(scene, su->threads, &peer->prep) != RT_OK) {
+        snprintf(rows[0].error, sizeof rows[0].error, "%s", rt_scene_error(scene));
+        return 0;
     }
-    if (rt_embree_create(su->threads, &em, msg, sizeof msg) != RT_OK ||
-        rt_embree_scene_create(em, prep.flat, &es, &setup_ms, msg, sizeof msg) != RT_OK) {
-        snprintf(first->error, sizeof first->error, "%s", msg);
-        rt_embree_destroy(em);
-        return 1;
+    if (rt_embree_create(su->threads, &peer->em, msg, sizeof msg) != RT_OK ||
+        rt_embree_scene_create(peer->em, peer->prep.flat, &peer->es, &(double){0}, msg,
+                               sizeof msg) != RT_OK) {
+        snprintf(rows[0].error, sizeof rows[0].error, "%s", msg);
+        return 0;
     }
-    size_t px = (size_t)prep.flat->hdr.width * (size_t)prep.flat->hdr.height;
-    float *rgb = malloc(3 * sizeof(float) * px);
-    double *ms = malloc(sizeof(double) * (size_t)su->reps);
+    size_t px = (size_t)peer->prep.flat->hdr.width * (size_t)peer->prep.flat->hdr.height;
     static const int widths[] = {1, 4, 8, 16};
-    for (size_t w = 0; w < 4 && rgb && ms; w++) {
-        if (!rt_embree_native_lanes(em, widths[w])) continue;
-        render_row *r = &rows[n++];
-        memset(r, 0, sizeof *r);
-        snprintf(r->backend, sizeof r->backend, "embree-%d", widths[w]);
-        char what[32];
-        snprintf(what, sizeof what, "%s", r->backend);
-        if (su->progress) su->progress(path, what);
-        r->threads = rt_pool_size(prep.pool);
-        r->lanes = widths[w];
-        r->box_tests = r->tri_tests = -1.0;
-        for (int i = -1; i < su->reps; i++) {
-            double t;
-            rt_embree_render(es, widths[w], prep.pool, rgb, &r->rays, &t);
-            if (i >= 0) ms[i] = t;
+    int n = 0;
+    for (size_t w = 0; w < 4; w++) {
+        if (!rt_embree_native_lanes(peer->em, widths[w])) continue;
+        bench_run *r = &runs[n];
+        run_init(r, &rows[n], su);
+        n++;
+        snprintf(r->row->backend, sizeof r->row->backend, "embree-%d", widths[w]);
+        r->row->threads = rt_pool_size(peer->prep.pool);
+        r->row->lanes = r->embree_lanes = widths[w];
+        r->rgb = malloc(3 * sizeof(float) * px);
+        if (!r->rgb && !r->failed) {
+            snprintf(r->row->error, sizeof r->row->error, "out of memory");
+            r->failed = 1;
         }
-        summarize(r, ms, su->reps);
-        if (oracle) compare_images(oracle, rgb, px, r);
     }
-    if (!rgb || !ms) snprintf(first->error, sizeof first->error, "out of memory");
-    free(rgb);
-    free(ms);
-    rt_embree_scene_destroy(es);
-    rt_embree_destroy(em);
-    if (n == 0) return 1;
-    int best = 0;
-    for (int i = 1; i < n; i++)
-        if (rows[i].ms_median < rows[best].ms_median) best = i;
+    return n;
+}
+
+/* Row "embree" after the width rows: a copy of the fastest by median. */
+static int embree_best(render_row *rows, int n) {
+    int best = -1;
+    for (int i = 0; i < n; i++)
+        if (!rows[i].error[0] && (best < 0 || rows[i].ms_median < rows[best].ms_median)) best = i;
+    if (best < 0) return n;
     rows[n] = rows[best];
     snprintf(rows[n].backend, sizeof rows[n].backend, "embree");
     return n + 1;
@@ -175,16 +209,38 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
     }
     memset(rows, 0, sizeof(render_row) * BENCH_RENDER_MAX_ROWS);
     static const char *backends[] = {"cpu", "packet", "opencl"};
-    float *oracle = NULL;
+    bench_run runs[BENCH_RENDER_MAX_ROWS];
+    embree_peer peer;
+    memset(&peer, 0, sizeof peer);
     int n = 0;
-    for (int b = 0; b < 3; b++) {
-        if (su->progress) su->progress(path, backends[b]);
-        bench_backend(scene, su, backends[b], oracle, b == 0 ? &oracle : NULL, &rows[n++]);
-    }
+    for (int b = 0; b < 3; b++, n++) backend_init(&runs[n], &rows[n], su, backends[b]);
+    int ours = n, peers = 0;
 #ifdef RT_HAVE_EMBREE
-    n += bench_embree(scene, path, su, oracle, &rows[n]);
+    peers = embree_init(scene, su, &peer, &runs[n], &rows[n]);
 #endif
-    free(oracle);
+    /* Frames interleaved round by round, every run's frame i before any run's
+     * frame i + 1, so that a disturbance of the shared machine falls on every
+     * backend alike and the ratios hold; round -1 is the warm-up. */
+    for (int i = -1; i < su->reps; i++) {
+        if (su->progress) {
+            char what[48];
+            snprintf(what, sizeof what, i < 0 ? "warm-up frames" : "frame %d of %d", i + 1,
+                     su->reps);
+            su->progress(path, what);
+        }
+        for (int k = 0; k < n + peers; k++) run_frame(scene, &peer, &runs[k], i);
+    }
+    size_t px = (size_t)su->width * (size_t)su->height;
+    const float *oracle = runs[0].failed ? NULL : runs[0].fb.pixels;
+    for (int k = 0; k < n + peers; k++) run_finish(&runs[k], su, oracle, px);
+    for (int k = 0; k < ours; k++) rt_framebuffer_free(&runs[k].fb);
+    for (int k = ours; k < n + peers; k++) free(runs[k].rgb);
+    n += peers;
+#ifdef RT_HAVE_EMBREE
+    n = peers ? embree_best(&rows[ours], peers) + ours : n + 1; /* a row with the reason */
+    rt_embree_scene_destroy(peer.es);
+    rt_embree_destroy(peer.em);
+#endif
     rt_scene_destroy(scene);
     return n;
 }
