@@ -159,7 +159,10 @@ One point light, primary plus shadow rays, Phong (\`rt_render\` with \`direct_on
 render --direct\`). Each backend renders one warm-up frame (BVH build, kernel compile and
 upload; not counted), then $reps frames, interleaved round by round with every other backend
 and Embree width (every row's frame i before any row's frame i + 1), so that a disturbance
-of the shared machine falls on all of them alike. Our packet backend traces packets of 64 rays
+of the shared machine falls on all of them alike; each timed frame follows an untimed frame
+of the same row, so that it finds the caches as its own previous frame left them (without
+that, the Embree widths, which share one BVH, warmed each other's caches, while our
+backends followed one another over different trees). Our packet backend traces packets of 64 rays
 (8x8 pixels) in vectors of ${packet_isa:-unknown width}. Embree (\`host/embree_trace.c\`) traces the same
 primary rays (our camera formula) with \`rtcIntersect1\` or packets of 2x2, 4x2 and 4x4
 pixels (\`rtcIntersect4/8/16\`), then the same shadow rays (our origin offset and t range)

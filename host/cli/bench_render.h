@@ -32,7 +32,9 @@ typedef struct bench_render_setup {
  * Embree in the build, also rtcIntersect1/4/8(/16) frames and a row "embree"
  * for its fastest width. Frames are interleaved round by round (every row's
  * frame i before any row's frame i + 1), so that other work on the machine
- * falls on every row alike and the ratios hold. Returns the number of rows, 0 if the scene could
+ * falls on every row alike and the ratios hold; each timed frame follows an
+ * untimed frame of the same row, so that it finds the caches as its own
+ * previous frame left them. Returns the number of rows, 0 if the scene could
  * not be loaded (message in err). */
 int bench_render(const char *path, const bench_render_setup *setup, render_row *rows, char *err,
                  size_t err_size);

@@ -220,7 +220,10 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
 #endif
     /* Frames interleaved round by round, every run's frame i before any run's
      * frame i + 1, so that a disturbance of the shared machine falls on every
-     * backend alike and the ratios hold; round -1 is the warm-up. */
+     * backend alike and the ratios hold; round -1 is the warm-up. Each timed
+     * frame follows an untimed one of the same run, so that it finds the
+     * caches as its own previous frame left them (as in a frame loop), not
+     * as another backend's, or another Embree width over the same BVH, did. */
     for (int i = -1; i < su->reps; i++) {
         if (su->progress) {
             char what[48];
@@ -228,7 +231,10 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
                      su->reps);
             su->progress(path, what);
         }
-        for (int k = 0; k < n + peers; k++) run_frame(scene, &peer, &runs[k], i);
+        for (int k = 0; k < n + peers; k++) {
+            if (i >= 0) run_frame(scene, &peer, &runs[k], -1);
+            run_frame(scene, &peer, &runs[k], i);
+        }
     }
     size_t px = (size_t)su->width * (size_t)su->height;
     const float *oracle = runs[0].failed ? NULL : runs[0].fb.pixels;
