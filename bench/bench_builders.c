@@ -107,15 +107,6 @@ static int single_threaded(const setup *s) {
            (s->o.builder == RT_BUILDER_THESIS_SCALAR || s->o.builder == RT_BUILDER_THESIS_NEON);
 }
 
-static int arg_int(int argc, char **argv, int *i, int lo, int hi, int *out) {
-    if (*i + 1 >= argc) return 0;
-    char *end;
-    long v = strtol(argv[++*i], &end, 10);
-    if (*end || v < lo || v > hi) return 0;
-    *out = (int)v;
-    return 1;
-}
-
 typedef struct bench {
     rt_scene *scene;
     rt_aabb **boxes; /* per mesh (NULL where no object shows it) */
@@ -186,13 +177,13 @@ int main(int argc, char **argv) {
     for (int i = 1; i < argc; i++) {
         int ok = 1;
         if (!strcmp(argv[i], "--width"))
-            ok = arg_int(argc, argv, &i, 1, 16384, &w);
+            ok = bench_arg_int(argc, argv, &i, 1, 16384, &w);
         else if (!strcmp(argv[i], "--height"))
-            ok = arg_int(argc, argv, &i, 1, 16384, &h);
+            ok = bench_arg_int(argc, argv, &i, 1, 16384, &h);
         else if (!strcmp(argv[i], "--reps"))
-            ok = arg_int(argc, argv, &i, 1, MAX_REPS, &reps);
+            ok = bench_arg_int(argc, argv, &i, 1, MAX_REPS, &reps);
         else if (!strcmp(argv[i], "--threads"))
-            ok = arg_int(argc, argv, &i, 1, 256, &threads);
+            ok = bench_arg_int(argc, argv, &i, 1, 256, &threads);
         else if (argv[i][0] == '-')
             ok = 0;
         else if (!path)

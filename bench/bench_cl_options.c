@@ -41,15 +41,6 @@ typedef struct variant {
     rt_framebuffer fb;
 } variant;
 
-static int arg_int(int argc, char **argv, int *i, int lo, int hi, int *out) {
-    if (*i + 1 >= argc) return 0;
-    char *end;
-    long v = strtol(argv[++*i], &end, 10);
-    if (*end || v < lo || v > hi) return 0;
-    *out = (int)v;
-    return 1;
-}
-
 static int render(variant *v, const char *backend, int threads, double *ms) {
     rt_render_options o = rt_render_options_default();
     rt_render_stats st;
@@ -79,13 +70,13 @@ int main(int argc, char **argv) {
     for (int i = 1; i < argc; i++) {
         int ok = 1;
         if (!strcmp(argv[i], "--width"))
-            ok = arg_int(argc, argv, &i, 1, 16384, &w);
+            ok = bench_arg_int(argc, argv, &i, 1, 16384, &w);
         else if (!strcmp(argv[i], "--height"))
-            ok = arg_int(argc, argv, &i, 1, 16384, &h);
+            ok = bench_arg_int(argc, argv, &i, 1, 16384, &h);
         else if (!strcmp(argv[i], "--frames"))
-            ok = arg_int(argc, argv, &i, 1, MAX_FRAMES, &frames);
+            ok = bench_arg_int(argc, argv, &i, 1, MAX_FRAMES, &frames);
         else if (!strcmp(argv[i], "--threads"))
-            ok = arg_int(argc, argv, &i, 1, 256, &threads);
+            ok = bench_arg_int(argc, argv, &i, 1, 256, &threads);
         else if (!strcmp(argv[i], "--out"))
             ok = i + 1 < argc && (out = argv[++i]);
         else if (!strcmp(argv[i], "--device"))

@@ -186,30 +186,21 @@ static void sample_chunk(void *ctx, int worker, int workers) {
         reference(j->w, &j->rays[j->index[i]], j->ref[i]);
 }
 
-static int arg_int(int argc, char **argv, int *i, int lo, int hi, int *out) {
-    if (*i + 1 >= argc) return 0;
-    char *end;
-    long v = strtol(argv[++*i], &end, 10);
-    if (*end || v < lo || v > hi) return 0;
-    *out = (int)v;
-    return 1;
-}
-
 int main(int argc, char **argv) {
     const char *path = NULL;
     int w = 1024, h = 576, runs = 5, threads = 2, sample = 2048;
     for (int i = 1; i < argc; i++) {
         int ok = 1;
         if (!strcmp(argv[i], "--width"))
-            ok = arg_int(argc, argv, &i, 1, 16384, &w);
+            ok = bench_arg_int(argc, argv, &i, 1, 16384, &w);
         else if (!strcmp(argv[i], "--height"))
-            ok = arg_int(argc, argv, &i, 1, 16384, &h);
+            ok = bench_arg_int(argc, argv, &i, 1, 16384, &h);
         else if (!strcmp(argv[i], "--runs"))
-            ok = arg_int(argc, argv, &i, 1, MAX_RUNS, &runs);
+            ok = bench_arg_int(argc, argv, &i, 1, MAX_RUNS, &runs);
         else if (!strcmp(argv[i], "--threads"))
-            ok = arg_int(argc, argv, &i, 1, 1024, &threads);
+            ok = bench_arg_int(argc, argv, &i, 1, 1024, &threads);
         else if (!strcmp(argv[i], "--sample"))
-            ok = arg_int(argc, argv, &i, 0, 1 << 20, &sample);
+            ok = bench_arg_int(argc, argv, &i, 0, 1 << 20, &sample);
         else if (argv[i][0] == '-' || path)
             ok = 0;
         else

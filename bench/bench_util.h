@@ -1,8 +1,8 @@
 /* bench_util.h - what the benchmark programs share: min and median of
- * repeated timings, the interior views of shared/scenes/VIEWS.md for the bare
- * OBJ files of Sponza and Sibenik, and pinhole primary rays through pixel
- * centres. Header-only (static inline functions): every bench/bench_*.c is its own
- * program. */
+ * repeated timings, integer options, the interior views of
+ * shared/scenes/VIEWS.md for the bare OBJ files of Sponza and Sibenik, and
+ * pinhole primary rays through pixel centres. Header-only (static inline
+ * functions): every bench/bench_*.c is its own program. */
 #ifndef RT_BENCH_UTIL_H
 #define RT_BENCH_UTIL_H
 
@@ -15,6 +15,17 @@
 static inline int bench_cmp_double(const void *a, const void *b) {
     double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
+}
+
+/* The integer argument after option argv[*i], in [lo, hi]: advances *i past
+ * it; 0 when it is missing, not a number or out of range. */
+static inline int bench_arg_int(int argc, char **argv, int *i, int lo, int hi, int *out) {
+    if (*i + 1 >= argc) return 0;
+    char *end;
+    long v = strtol(argv[++*i], &end, 10);
+    if (*end || v < lo || v > hi) return 0;
+    *out = (int)v;
+    return 1;
 }
 
 /* Sorts v[0..n) and returns its minimum and median (the mean of the middle

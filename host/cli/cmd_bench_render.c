@@ -135,7 +135,9 @@ static void run_finish(bench_run *r, const bench_render_setup *su, const float *
         summarize(row, r->ms, su->reps);
     }
     free(r->ms);
+    free(r->rgb);
     r->ms = NULL;
+    r->rgb = NULL;
 }
 
 #ifdef RT_HAVE_EMBREE
@@ -209,14 +211,14 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
     }
     memset(rows, 0, sizeof(render_row) * BENCH_RENDER_MAX_ROWS);
     static const char *backends[] = {"cpu", "packet", "opencl"};
+    enum { OURS = 3 };
     bench_run runs[BENCH_RENDER_MAX_ROWS];
     embree_peer peer;
     memset(&peer, 0, sizeof peer);
-    int n = 0;
-    for (int b = 0; b < 3; b++, n++) backend_init(&runs[n], &rows[n], su, backends[b]);
-    int ours = n, peers = 0;
+    for (int b = 0; b < OURS; b++) backend_init(&runs[b], &rows[b], su, backends[b]);
+    int n = OURS; /* runs */
 #ifdef RT_HAVE_EMBREE
-    peers = embree_init(scene, su, &peer, &runs[n], &rows[n]);
+    n += embree_init(scene, su, &peer, &runs[OURS], &rows[OURS]);
 #endif
     /* Frames interleaved round by round, every run's frame i before any run's
      * frame i + 1, so that a disturbance of the shared machine falls on every
@@ -231,19 +233,18 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
                      su->reps);
             su->progress(path, what);
         }
-        for (int k = 0; k < n + peers; k++) {
+        for (int k = 0; k < n; k++) {
             if (i >= 0) run_frame(scene, &peer, &runs[k], -1);
             run_frame(scene, &peer, &runs[k], i);
         }
     }
     size_t px = (size_t)su->width * (size_t)su->height;
-    const float *oracle = runs[0].failed ? NULL : runs[0].fb.pixels;
-    for (int k = 0; k < n + peers; k++) run_finish(&runs[k], su, oracle, px);
-    for (int k = 0; k < ours; k++) rt_framebuffer_free(&runs[k].fb);
-    for (int k = ours; k < n + peers; k++) free(runs[k].rgb);
-    n += peers;
+    const float *oracle = runs[0].failed ? NULL : runs[0].fb.pixels; /* cpu's */
+    for (int k = 0; k < n; k++) run_finish(&runs[k], su, oracle, px);
+    for (int k = 0; k < OURS; k++) rt_framebuffer_free(&runs[k].fb);
 #ifdef RT_HAVE_EMBREE
-    n = peers ? embree_best(&rows[ours], peers) + ours : n + 1; /* a row with the reason */
+    /* Then row "embree", or the row with the reason Embree cannot run. */
+    n = n > OURS ? OURS + embree_best(&rows[OURS], n - OURS) : OURS + 1;
     rt_embree_scene_destroy(peer.es);
     rt_embree_destroy(peer.em);
 #endif
