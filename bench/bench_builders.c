@@ -36,16 +36,16 @@
 #include <string.h>
 
 #include "bench_util.h"
-#include "bvh.h"
-#include "clock.h"
+#include "accel/bvh.h"
+#include "base/clock.h"
 #include "cpu_render.h"
-#include "flatten.h"
+#include "layout/flatten.h"
 #include "rt.h"
-#include "scene.h"
-#include "thread_pool.h"
-#include "tlas.h"
+#include "scene/scene.h"
+#include "base/thread_pool.h"
+#include "accel/tlas.h"
 #ifdef RT_HAVE_EMBREE
-#include "embree_peer.h"
+#include "peer/embree_peer.h"
 #endif
 
 enum { MAX_SETUPS = 64, MAX_REPS = 50 };

@@ -13,12 +13,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "clock.h"
-#include "bvh.h"
-#include "bvh_internal.h"
+#include "base/clock.h"
+#include "accel/bvh.h"
+#include "accel/bvh_internal.h"
 #include "rt.h"
-#include "scene.h"
-#include "thread_pool.h"
+#include "scene/scene.h"
+#include "base/thread_pool.h"
 
 static int cmp_double(const void *a, const void *b) {
     double x = *(const double *)a, y = *(const double *)b;

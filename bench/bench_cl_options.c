@@ -24,7 +24,7 @@
 #include <string.h>
 
 #include "bench_util.h"
-#include "image.h"
+#include "formats/image.h"
 #include "rt.h"
 
 enum { MAX_VARIANTS = 16, MAX_FRAMES = 50 };

@@ -9,7 +9,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "obj_load.h"
+#include "formats/obj_load.h"
 
 static double now_seconds(void) {
     struct timespec ts;

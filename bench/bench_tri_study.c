@@ -40,10 +40,10 @@
 #include <string.h>
 
 #include "bench_util.h"
-#include "clock.h"
+#include "base/clock.h"
 #include "rt.h"
-#include "scene.h"
-#include "thread_pool.h"
+#include "scene/scene.h"
+#include "base/thread_pool.h"
 
 enum { TESTS = 4, MAX_RUNS = 100 };
 static const char *const test_names[TESTS] = {"watertight", "mt", "pluecker", "badouel"};

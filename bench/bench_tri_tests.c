@@ -13,7 +13,7 @@
 #include <string.h>
 
 #include "bench_util.h"
-#include "clock.h"
+#include "base/clock.h"
 #include "rt.h"
 
 int main(int argc, char **argv) {

@@ -6,11 +6,11 @@
 
 #include <stdint.h>
 
-#include "flatten.h"
+#include "layout/flatten.h"
 #include "packet_wide.h"
 #include "rt.h"
 #include "rt_shade.h"
-#include "thread_pool.h"
+#include "base/thread_pool.h"
 
 typedef struct rt_cpu_counts {
     uint64_t rays, primary_rays, box_tests, tri_tests;

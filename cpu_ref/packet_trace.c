@@ -22,7 +22,7 @@
 
 #include "packet_trace.h"
 #include "packet_wide.h"
-#include "simd_wide.h"
+#include "base/simd_wide.h"
 
 #ifndef RT_PK_ISA
 #define RT_PK_ISA generic

@@ -15,7 +15,7 @@
 
 #include <stdint.h>
 
-#include "flatten.h"
+#include "layout/flatten.h"
 
 #define RT_PK_NO_CHILD 0xffffffffu
 

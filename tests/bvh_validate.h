@@ -21,7 +21,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "bvh.h"
+#include "accel/bvh.h"
 
 /* ceil(log2(n)) for n >= 1. */
 static inline uint32_t bvh_validate_ceil_log2(uint32_t n) {

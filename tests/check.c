@@ -6,7 +6,7 @@
 #include <unistd.h>
 
 #include "rt.h"
-#include "scene_builtin.h"
+#include "scene/scene_builtin.h"
 
 int test_failures = 0;
 int test_checks = 0;

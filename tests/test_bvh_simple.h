@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bvh.h"
+#include "accel/bvh.h"
 
 typedef struct simple_build {
     const rt_aabb *boxes;

@@ -6,13 +6,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bvh_internal.h"
+#include "accel/bvh_internal.h"
 #include "bvh_validate.h"
 #include "check.h"
-#include "flatten.h"
+#include "layout/flatten.h"
 #include "oracle_util.h"
-#include "scene.h"
-#include "thread_pool.h"
+#include "scene/scene.h"
+#include "base/thread_pool.h"
 
 /* A triangle soup: n random small triangles in a cube, plus a dense cluster
  * so that the tree is not uniform. */

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bvh.h"
+#include "accel/bvh.h"
 #include "bvh_validate.h"
 #include "check.h"
 

@@ -15,7 +15,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "bvh.h"
+#include "accel/bvh.h"
 #include "bvh_validate.h"
 #include "check.h"
 

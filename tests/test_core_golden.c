@@ -15,7 +15,7 @@
 
 #include "check.h"
 #include "rt.h"
-#include "scene_builtin.h"
+#include "scene/scene_builtin.h"
 
 static uint64_t fnv1a_bits(const float *p, size_t n) {
     uint64_t h = 1469598103934665603ull;

@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "obj_load.h"
+#include "formats/obj_load.h"
 
 static rt_status parse(const char *text, rt_obj_mesh *mesh, rt_error *err) {
     return rt_obj_parse(text, strlen(text), "test.obj", NULL, mesh, err);

@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "parse_number.h"
+#include "formats/parse_number.h"
 
 static uint32_t bits_of(float f) {
     uint32_t u;

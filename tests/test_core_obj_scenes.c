@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "obj_load.h"
+#include "formats/obj_load.h"
 
 static void test_shared_scenes(void) {
     /* test_shared_scene answers in a static buffer: keep copies. */

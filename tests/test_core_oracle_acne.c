@@ -9,9 +9,9 @@
 #include <string.h>
 
 #include "check.h"
-#include "render_internal.h"
+#include "render/render_internal.h"
 #include "rt_shade.h"
-#include "scene_builtin.h"
+#include "scene/scene_builtin.h"
 
 static void lit_plane(float offset) {
     rt_scene *s;

@@ -11,7 +11,7 @@
 #include "cpu_render.h"
 #include "packet_trace.h"
 #include "rt.h"
-#include "scene_builtin.h"
+#include "scene/scene_builtin.h"
 
 static int render(rt_scene *s, const char *backend, rt_aov aov, int threads, rt_framebuffer *fb,
                   rt_render_stats *st) {

@@ -3,7 +3,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 static void test_mesh_and_objects(void) {
     rt_scene *s;

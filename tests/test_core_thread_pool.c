@@ -4,7 +4,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "thread_pool.h"
+#include "base/thread_pool.h"
 
 typedef struct job {
     atomic_int calls[16];

@@ -7,8 +7,8 @@
 
 #include "bvh_validate.h"
 #include "check.h"
-#include "scene.h"
-#include "tlas.h"
+#include "scene/scene.h"
+#include "accel/tlas.h"
 
 enum { OBJECTS = 40 };
 

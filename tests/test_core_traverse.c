@@ -9,10 +9,10 @@
 #include <string.h>
 
 #include "check.h"
-#include "flatten.h"
+#include "layout/flatten.h"
 #include "rt_shared.h"
-#include "scene.h"
-#include "scene_builtin.h"
+#include "scene/scene.h"
+#include "scene/scene_builtin.h"
 #include "oracle_util.h"
 #include "test_bvh_simple.h"
 

@@ -7,9 +7,9 @@
 #include <string.h>
 
 #include "check.h"
-#include "image.h"
+#include "formats/image.h"
 #include "rt.h"
-#include "scene_builtin.h"
+#include "scene/scene_builtin.h"
 
 int main(void) {
     for (int i = 0; rt_builtin_scene_names[i]; i++) {

@@ -7,7 +7,7 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "image.h"
+#include "formats/image.h"
 
 static char temp_dir[512];
 

@@ -27,12 +27,12 @@
 
 #include "check.h"
 #include "rt.h"
-#include "scene_builtin.h"
+#include "scene/scene_builtin.h"
 #ifdef RT_HAVE_OPENCL
-#include "cl_device.h"
-#include "image.h"
+#include "opencl/cl_device.h"
+#include "formats/image.h"
 #include "oracle_util.h"
-#include "render_internal.h"
+#include "render/render_internal.h"
 
 static const char *const aov_names[] = {"image",  "depth",    "primid",  "instid",
                                         "normal", "boxtests", "tritests"};

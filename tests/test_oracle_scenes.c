@@ -11,8 +11,8 @@
 #include "cpu_render.h"
 #include "oracle_util.h"
 #include "packet_trace.h"
-#include "render_internal.h"
-#include "scene_builtin.h"
+#include "render/render_internal.h"
+#include "scene/scene_builtin.h"
 
 #if defined(__SANITIZE_ADDRESS__) || !defined(__OPTIMIZE__)
 #define TRI_TEST_BUDGET 4e6

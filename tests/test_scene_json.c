@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 #define NEAR(a, b) (fabs((double)(a) - (double)(b)) <= 1e-5 * (1.0 + fabs((double)(b))))
 

@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 static rt_scene *load_text(const char *name, const char *json) {
     const char *path = test_write_temp(name, json);

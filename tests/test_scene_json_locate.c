@@ -3,7 +3,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "json_locate.h"
+#include "formats/json_locate.h"
 
 static const char *doc = "{\n"
                          "  \"a\": {\"b\": [10, [20, 21], {\"c\": true}]},\n"

@@ -4,8 +4,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "scene.h"
-#include "scene_builtin.h"
+#include "scene/scene.h"
+#include "scene/scene_builtin.h"
 
 #define SAME_BYTES(a, b, n) (((a) == NULL && (b) == NULL) || ((a) && (b) && !memcmp((a), (b), (n))))
 

@@ -9,7 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "scene_builtin.h"
+#include "scene/scene_builtin.h"
 
 void cli_error(const char *command, const char *fmt, ...) {
     va_list args;

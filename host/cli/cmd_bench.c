@@ -15,14 +15,14 @@
 #include <unistd.h>
 
 #include "bench_render.h"
-#include "bvh.h"
-#include "clock.h"
+#include "accel/bvh.h"
+#include "base/clock.h"
 #include "commands.h"
 #include "rt.h"
-#include "scene.h"
-#include "thread_pool.h"
+#include "scene/scene.h"
+#include "base/thread_pool.h"
 #ifdef RT_HAVE_EMBREE
-#include "embree_peer.h"
+#include "peer/embree_peer.h"
 #endif
 
 enum { MAX_ROWS = 8 };

@@ -13,10 +13,10 @@
 #include <string.h>
 
 #include "bench_render.h"
-#include "render_internal.h"
+#include "render/render_internal.h"
 #include "rt.h"
 #ifdef RT_HAVE_EMBREE
-#include "embree_peer.h"
+#include "peer/embree_peer.h"
 #endif
 
 static int cmp_double(const void *a, const void *b) {

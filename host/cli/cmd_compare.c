@@ -10,7 +10,7 @@
 #include <string.h>
 
 #include "commands.h"
-#include "image.h"
+#include "formats/image.h"
 
 static const char usage_text[] =
     "usage: rtcl compare A B [--diff D] [--max-diff X]\n"

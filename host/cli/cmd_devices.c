@@ -7,7 +7,7 @@
 #include "cli_util.h"
 #include "commands.h"
 #ifdef RT_HAVE_OPENCL
-#include "cl_device.h"
+#include "opencl/cl_device.h"
 #endif
 
 static const char usage[] =

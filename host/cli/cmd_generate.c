@@ -4,8 +4,8 @@
 
 #include "cli_util.h"
 #include "commands.h"
-#include "scene_builtin.h"
-#include "scene_save.h"
+#include "scene/scene_builtin.h"
+#include "formats/scene_save.h"
 
 static const char usage[] =
     "usage: rtcl generate DIR\n"

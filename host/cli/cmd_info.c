@@ -4,7 +4,7 @@
 
 #include "cli_util.h"
 #include "commands.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 static const char usage[] =
     "usage: rtcl info SCENE [--cl-options OPTS] [--help]\n"

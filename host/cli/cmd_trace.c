@@ -9,7 +9,7 @@
 #include "cli_util.h"
 #include "commands.h"
 #include "rt_shared.h"
-#include "scene.h"
+#include "scene/scene.h"
 
 static const char usage[] =
     "usage: rtcl trace SCENE --rays RAYS.txt --out HITS.txt [--backend B] [--device D]\n"

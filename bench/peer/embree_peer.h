@@ -1,0 +1,70 @@
+/* embree_peer.h - Embree as a peer in benchmarks (only when CMake found it:
+ * RT_HAVE_EMBREE=1).
+ *
+ * Two reference points: Embree's own BVH builder through rtcBuildBVH, set up
+ * like ours (binary, the same leaf size and costs) and converted into an
+ * rt_bvh so that rt_bvh_measure judges both trees the same way; and the time
+ * of rtcCommitScene for one triangle geometry, Embree's full production path.
+ */
+#ifndef RT_EMBREE_PEER_H
+#define RT_EMBREE_PEER_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "accel/bvh.h"
+#include "layout/flatten.h"
+#include "base/thread_pool.h"
+
+typedef struct rt_embree rt_embree;
+
+/* A device with the given thread count (<= 0: Embree's default, all cores). */
+rt_status rt_embree_create(int threads, rt_embree **out, char *msg, size_t msg_size);
+void rt_embree_destroy(rt_embree *em);
+
+/* rtcBuildBVH at RTC_BUILD_QUALITY_MEDIUM, branching factor 2, leaf size
+ * options->leaf_size, traversal cost options->cost_box and intersection cost
+ * options->cost_tri. *ms is the time of rtcBuildBVH alone (the copy of the
+ * build primitives, which Embree consumes, and the conversion into *out are
+ * not timed). */
+rt_status rt_embree_build_bvh(rt_embree *em, const rt_aabb *boxes, uint32_t count,
+                              const rt_build_options *options, rt_bvh *out, double *ms, char *msg,
+                              size_t msg_size);
+
+/* Time of rtcCommitScene for one triangle geometry (3 floats per vertex, 3
+ * indices per triangle) at low (quality 0) or medium (quality 1) build
+ * quality. Buffer setup is not timed. */
+rt_status rt_embree_commit_ms(rt_embree *em, const float *positions, uint32_t vertex_count,
+                              const uint32_t *indices, uint32_t triangle_count, int quality,
+                              double *ms, char *msg, size_t msg_size);
+
+/* The RTCDevice (as void *, so that this header needs no Embree header). */
+void *rt_embree_device(rt_embree *em);
+
+/* ---- tracing: the benchmark frame (embree_trace.c) ------------------------ */
+
+typedef struct rt_embree_scene rt_embree_scene;
+
+/* An Embree scene of the layout's triangles: one triangle geometry per
+ * instance, transformed into world space (no Embree instancing: the peer's
+ * fastest case), committed at Embree's default (medium) quality. flat must
+ * outlive the scene. *ms: the whole set-up, rtcCommitScene included. */
+rt_status rt_embree_scene_create(rt_embree *em, const rt_flat *flat, rt_embree_scene **out,
+                                 double *ms, char *msg, size_t msg_size);
+void rt_embree_scene_destroy(rt_embree_scene *es);
+
+/* One frame of the thesis set-up, as rt_render with direct_only renders it:
+ * the camera's primary rays (rt_camera_ray) through rtcIntersect1 (lanes 1)
+ * or packets of 2x2 (4), 4x2 (8) or 4x4 (16) pixels through rtcIntersect4/8/16,
+ * then per light the shadow rays of rt_phong (same origin offset, same
+ * t range) through rtcOccluded1/4/8/16, then the same Phong terms. Rows of
+ * blocks are shared among the pool's workers. rgb (width x height x 3) may
+ * be NULL. *rays counts primary plus shadow rays; *ms is the frame's wall
+ * time. */
+rt_status rt_embree_render(const rt_embree_scene *es, int lanes, rt_pool *pool, float *rgb,
+                           uint64_t *rays, double *ms);
+
+/* Does the device trace packets of this width natively (1 always)? */
+int rt_embree_native_lanes(rt_embree *em, int lanes);
+
+#endif /* RT_EMBREE_PEER_H */

@@ -1,0 +1,82 @@
+/* bvh.h - bounding volume hierarchy builders and tree quality figures.
+ *
+ * Every builder takes one axis-aligned box per primitive (a triangle's box, or
+ * an object's world-space box for the object BVH) and produces the thesis's
+ * 32-byte nodes (kernels/rt_layout.h) plus a primitive index array that leaves
+ * reference. Builders never print; failures come back as an rt_status with a
+ * message.
+ */
+#ifndef RT_BVH_H
+#define RT_BVH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "rt.h"
+#include "rt_layout.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct rt_pool rt_pool; /* thread_pool.h */
+
+typedef struct rt_aabb {
+    float bmin[3];
+    float bmax[3];
+} rt_aabb;
+
+typedef enum rt_builder {
+    RT_BUILDER_THESIS_SCALAR = 0, /* thesis setup 1: one thread, scalar */
+    RT_BUILDER_THESIS_NEON = 1,   /* thesis setup 2: one thread, NEON binning */
+    RT_BUILDER_THESIS_MT = 2,     /* thesis setup 3: two-phase threaded */
+    RT_BUILDER_FAST = 3           /* the default: pooled, parallel binning, SAH leaves */
+} rt_builder;
+
+typedef struct rt_build_options {
+    rt_builder builder;
+    int threads;    /* worker count for threaded builders; <= 0: all cores */
+    int bins;       /* SAH bins (thesis: 16) */
+    int leaf_size;  /* maximum primitives per leaf (thesis: 10) */
+    float cost_box; /* Ct (thesis: 1) */
+    float cost_tri; /* Ci (thesis: 2) */
+} rt_build_options;
+
+/* The thesis's settings with the fast builder. */
+rt_build_options rt_build_options_default(void);
+
+typedef struct rt_bvh {
+    rt_node *nodes;
+    uint32_t node_count;
+    uint32_t *prim_indices; /* leaf entries -> input primitive index */
+    uint32_t prim_count;
+} rt_bvh;
+
+/* Builds a BVH over count boxes. pool may be NULL (the builder then uses a
+ * pool of its own where it needs threads). On failure *out is left empty and
+ * msg (if not NULL) holds the reason; a box with a NaN or infinite coordinate
+ * is refused (RT_ERROR_INVALID_ARGUMENT).
+ * count 0 gives the empty tree: node_count 0, nodes NULL, prim_count 0 (a
+ * traversal must check node_count before reading the root). */
+rt_status rt_bvh_build(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
+                       rt_pool *pool, rt_bvh *out, char *msg, size_t msg_size);
+
+void rt_bvh_free(rt_bvh *bvh);
+
+typedef struct rt_bvh_quality {
+    double sah; /* thesis Table 6 'BVH cost': Ct, Ci, areas relative to the root */
+    uint32_t nodes;
+    uint32_t leaves;
+    uint32_t depth; /* the root alone has depth 1 */
+    size_t bytes;   /* nodes + primitive indices */
+} rt_bvh_quality;
+
+rt_bvh_quality rt_bvh_measure(const rt_bvh *bvh, float cost_box, float cost_tri);
+
+/* Names as rtcl bench prints them: thesis-scalar, thesis-neon, thesis-mt, fast. */
+const char *rt_builder_name(rt_builder builder);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* RT_BVH_H */

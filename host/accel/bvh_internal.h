@@ -1,0 +1,20 @@
+/* bvh_internal.h - entry points of the individual builders behind rt_bvh_build. */
+#ifndef RT_BVH_INTERNAL_H
+#define RT_BVH_INTERNAL_H
+
+#include "accel/bvh.h"
+
+/* The thesis builder (bvh_thesis.c): setups RT_BUILDER_THESIS_SCALAR, _NEON, _MT. */
+rt_status rt_bvh_build_thesis(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
+                              rt_pool *pool, rt_bvh *out, char *msg, size_t msg_size);
+
+/* The fast builder (bvh_fast.c). use_neon selects the NEON binning path; the
+ * output is identical either way and for any thread count. */
+rt_status rt_bvh_build_fast(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
+                            rt_pool *pool, int use_neon, rt_bvh *out, char *msg, size_t msg_size);
+
+/* The fast builder keeps its scratch memory (up to 64 MiB) between builds;
+ * this frees it now (it is otherwise reused or held until exit). */
+void rt_bvh_fast_release_scratch(void);
+
+#endif /* RT_BVH_INTERNAL_H */

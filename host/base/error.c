@@ -1,0 +1,59 @@
+/* error.c - error values with their place of origin. */
+#include "base/error.h"
+
+#include <stdio.h>
+#include <string.h>
+
+const char *rt_status_string(rt_status status) {
+    switch (status) {
+    case RT_OK:
+        return "ok";
+    case RT_ERROR_INVALID_ARGUMENT:
+        return "invalid argument";
+    case RT_ERROR_IO:
+        return "i/o error";
+    case RT_ERROR_PARSE:
+        return "parse error";
+    case RT_ERROR_OUT_OF_MEMORY:
+        return "out of memory";
+    case RT_ERROR_UNSUPPORTED:
+        return "unsupported";
+    case RT_ERROR_BACKEND:
+        return "backend error";
+    }
+    return "unknown status";
+}
+
+void rt_error_clear(rt_error *err) {
+    if (!err) return;
+    memset(err, 0, sizeof *err);
+}
+
+rt_status rt_error_setv(rt_error *err, rt_status status, const char *file, int line, int column,
+                        const char *fmt, va_list args) {
+    if (!err) return status;
+    char reason[768];
+    vsnprintf(reason, sizeof reason, fmt, args);
+    err->status = status;
+    err->line = line;
+    err->column = column;
+    snprintf(err->file, sizeof err->file, "%s", file ? file : "");
+    if (file && line > 0 && column > 0)
+        snprintf(err->message, sizeof err->message, "%s:%d:%d: %s", file, line, column, reason);
+    else if (file && line > 0)
+        snprintf(err->message, sizeof err->message, "%s:%d: %s", file, line, reason);
+    else if (file)
+        snprintf(err->message, sizeof err->message, "%s: %s", file, reason);
+    else
+        snprintf(err->message, sizeof err->message, "%s", reason);
+    return status;
+}
+
+rt_status rt_error_set(rt_error *err, rt_status status, const char *file, int line, int column,
+                       const char *fmt, ...) {
+    va_list args;
+    va_start(args, fmt);
+    rt_error_setv(err, status, file, line, column, fmt, args);
+    va_end(args);
+    return status;
+}

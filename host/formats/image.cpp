@@ -1,0 +1,472 @@
+// image.cpp - the C API of image.h over OpenImageIO 2.4.
+//
+// This is the project's only C++: it turns OIIO's C++ interface into plain C
+// calls. Every entry point catches every exception, because one escaping into
+// C code would terminate the program. OIIO errors are always fetched (and so
+// cleared) and put into the rt_error; nothing is printed.
+#include "formats/image.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <new>
+#include <string>
+
+#include <unistd.h>
+
+extern "C" {
+#include "base/error.h"
+}
+
+namespace {
+
+const char *const supported_extensions = ".png, .ppm, .exr";
+
+// How a file extension is stored.
+enum class file_kind { unknown, png, ppm, exr };
+
+file_kind kind_of(const char *path) {
+    const char *slash = std::strrchr(path, '/');
+    const char *name = slash ? slash + 1 : path;
+    const char *dot = std::strrchr(name, '.');
+    if (!dot) return file_kind::unknown;
+    std::string ext;
+    for (const char *c = dot + 1; *c; c++)
+        ext += static_cast<char>(*c >= 'A' && *c <= 'Z' ? *c - 'A' + 'a' : *c);
+    if (ext == "png") return file_kind::png;
+    if (ext == "ppm") return file_kind::ppm;
+    if (ext == "exr") return file_kind::exr;
+    return file_kind::unknown;
+}
+
+// OIIO's messages can end in a newline; the rt_error message is one line.
+std::string one_line(std::string text) {
+    while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+    for (char &c : text)
+        if (c == '\n') c = ' ';
+    return text.empty() ? std::string("no further detail from OpenImageIO") : text;
+}
+
+// Clears OIIO's per-thread global error so that a later message is ours.
+void clear_global_error() {
+    (void)OIIO::geterror(true);
+}
+
+// width * height * channels, or false when it would not fit in memory.
+bool value_count(int width, int height, int channels, size_t *out) {
+    if (width < 0 || height < 0 || channels < 0) return false;
+    size_t n = static_cast<size_t>(width);
+    if (height && n > SIZE_MAX / sizeof(float) / static_cast<size_t>(height)) return false;
+    n *= static_cast<size_t>(height);
+    if (channels && n > SIZE_MAX / sizeof(float) / static_cast<size_t>(channels)) return false;
+    *out = n * static_cast<size_t>(channels);
+    return true;
+}
+
+rt_status check_image(const rt_image *image, const char *what, const char *path, size_t *count,
+                      rt_error *err) {
+    if (!image)
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0, "%s image is NULL", what);
+    if (image->width <= 0 || image->height <= 0 || image->channels <= 0)
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0,
+                            "%s image has size %dx%d with %d channels (all must be > 0)", what,
+                            image->width, image->height, image->channels);
+    if (!value_count(image->width, image->height, image->channels, count))
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0,
+                            "%s image size %dx%dx%d overflows", what, image->width, image->height,
+                            image->channels);
+    if (!image->pixels)
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0, "%s image has no pixels",
+                            what);
+    return RT_OK;
+}
+
+// Clamps to [0,1] and rounds to the nearest of 256 levels. NaN becomes 0 so
+// that a bad pixel shows as black rather than as an arbitrary value.
+unsigned char to_8bit(float v) {
+    if (!(v > 0.0f)) return 0;
+    if (v >= 1.0f) return 255;
+    return static_cast<unsigned char>(std::floor(static_cast<double>(v) * 255.0 + 0.5));
+}
+
+// Some OIIO writers (PNG) do not say why a file could not be created; the
+// usual reason is the folder, so that is checked and named.
+std::string folder_problem(const char *path) {
+    std::string folder(path);
+    size_t slash = folder.rfind('/');
+    folder = slash == std::string::npos ? std::string(".") : folder.substr(0, slash ? slash : 1);
+    if (access(folder.c_str(), W_OK) == 0) return std::string();
+    return " (folder " + folder + ": " + std::strerror(errno) + ")";
+}
+
+rt_status write_image(const char *path, const rt_image *image, rt_error *err) {
+    size_t count = 0;
+    rt_status status = check_image(image, "the", path, &count, err);
+    if (status != RT_OK) return status;
+
+    file_kind kind = kind_of(path);
+    if (kind == file_kind::unknown)
+        return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
+                            "unknown image file extension (supported: %s)", supported_extensions);
+    if (kind == file_kind::ppm && image->channels != 1 && image->channels != 3)
+        return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
+                            "PPM holds 1 or 3 channels, not %d (use .png or .exr)",
+                            image->channels);
+
+    const bool eight_bit = kind != file_kind::exr;
+    OIIO::ImageSpec spec(image->width, image->height, image->channels,
+                         eight_bit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
+    // The colour channels are stored as given: an alpha channel is not
+    // premultiplied into them, and PPM is written as binary (P5/P6).
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    if (kind == file_kind::ppm) spec.attribute("pnm:binary", 1);
+
+    std::unique_ptr<unsigned char[]> bytes;
+    if (eight_bit) {
+        bytes.reset(new (std::nothrow) unsigned char[count]);
+        if (!bytes)
+            return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0,
+                                "no memory for %zu bytes of pixels", count);
+        for (size_t i = 0; i < count; i++) bytes[i] = to_8bit(image->pixels[i]);
+    }
+
+    clear_global_error();
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out)
+        return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
+                            "OpenImageIO has no writer for this file: %s",
+                            one_line(OIIO::geterror()).c_str());
+    if (!out->open(path, spec))
+        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot open for writing: %s%s",
+                            one_line(out->geterror()).c_str(), folder_problem(path).c_str());
+    bool written = eight_bit ? out->write_image(OIIO::TypeDesc::UINT8, bytes.get())
+                             : out->write_image(OIIO::TypeDesc::FLOAT, image->pixels);
+    std::string write_error = written ? std::string() : one_line(out->geterror());
+    bool closed = out->close();
+    if (!written)
+        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot write pixels: %s",
+                            write_error.c_str());
+    if (!closed)
+        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot finish the file: %s",
+                            one_line(out->geterror()).c_str());
+    return RT_OK;
+}
+
+// ---- a structural check of PNG files -------------------------------------
+// libpng, as OIIO 2.4 drives it, prints "libpng error: ..." to stderr before
+// OIIO reports the error (OIIO's handler returns, so libpng's default one
+// runs too). The library must not print, so a PNG file is checked here
+// first: signature, chunk lengths within the file, every chunk's CRC, a valid
+// IHDR, PLTE where needed, IDAT and IEND. That catches cut-short and damaged
+// files; only a file with correct CRCs around bad compressed data still
+// reaches libpng's message.
+
+const unsigned char png_signature[8] = {137, 80, 78, 71, 13, 10, 26, 10};
+
+struct crc_table {
+    uint32_t entry[256];
+    crc_table() {
+        for (uint32_t n = 0; n < 256; n++) {
+            uint32_t c = n;
+            for (int k = 0; k < 8; k++) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+            entry[n] = c;
+        }
+    }
+};
+
+// The CRC-32 of PNG (and zlib); start with 0xFFFFFFFF, invert at the end.
+uint32_t crc32_update(uint32_t crc, const unsigned char *data, size_t size) {
+    static const crc_table table; // built once, thread-safely
+    for (size_t i = 0; i < size; i++) crc = table.entry[(crc ^ data[i]) & 0xFF] ^ (crc >> 8);
+    return crc;
+}
+
+uint32_t big_endian_32(const unsigned char *b) {
+    return (uint32_t)b[0] << 24 | (uint32_t)b[1] << 16 | (uint32_t)b[2] << 8 | (uint32_t)b[3];
+}
+
+bool png_ihdr_valid(const unsigned char *d) {
+    uint32_t width = big_endian_32(d), height = big_endian_32(d + 4);
+    int depth = d[8], color = d[9];
+    if (width == 0 || height == 0 || width > 0x7FFFFFFFu || height > 0x7FFFFFFFu) return false;
+    if (d[10] != 0 || d[11] != 0 || d[12] > 1) return false; // compression, filter, interlace
+    switch (color) {
+    case 0:
+        return depth == 1 || depth == 2 || depth == 4 || depth == 8 || depth == 16;
+    case 3:
+        return depth == 1 || depth == 2 || depth == 4 || depth == 8;
+    case 2:
+    case 4:
+    case 6:
+        return depth == 8 || depth == 16;
+    default:
+        return false;
+    }
+}
+
+// Empty when the PNG file's structure is sound, else the reason. Files that do
+// not start with the PNG signature are left to OIIO.
+std::string png_structure_problem(std::FILE *file) {
+    unsigned char head[8];
+    if (std::fread(head, 1, 8, file) != 8 || std::memcmp(head, png_signature, 8) != 0)
+        return std::string();
+    bool seen_ihdr = false, seen_plte = false, seen_idat = false, palette = false;
+    std::unique_ptr<unsigned char[]> buffer(new unsigned char[1 << 16]);
+    for (long chunk = 0;; chunk++) {
+        unsigned char header[8];
+        if (std::fread(header, 1, 8, file) != 8) return "PNG file ends before its IEND chunk";
+        uint32_t length = big_endian_32(header);
+        char type[5] = {0};
+        std::memcpy(type, header + 4, 4);
+        for (int i = 0; i < 4; i++)
+            if (!((type[i] >= 'A' && type[i] <= 'Z') || (type[i] >= 'a' && type[i] <= 'z')))
+                return "damaged PNG file: a chunk type is not four letters";
+        if (length > 0x7FFFFFFFu)
+            return std::string("damaged PNG file: chunk ") + type + " is too long";
+        bool is_ihdr = std::strcmp(type, "IHDR") == 0;
+        if (chunk == 0 && (!is_ihdr || length != 13))
+            return "damaged PNG file: it does not begin with an IHDR chunk";
+        uint32_t crc = crc32_update(0xFFFFFFFFu, header + 4, 4);
+        unsigned char ihdr[13] = {0};
+        for (uint32_t left = length; left > 0;) {
+            size_t part = left < (1u << 16) ? left : (1u << 16);
+            if (std::fread(buffer.get(), 1, part, file) != part)
+                return std::string("PNG file ends inside its ") + type + " chunk";
+            if (is_ihdr && length == 13) std::memcpy(ihdr, buffer.get(), 13);
+            crc = crc32_update(crc, buffer.get(), part);
+            left -= static_cast<uint32_t>(part);
+        }
+        unsigned char stored[4];
+        if (std::fread(stored, 1, 4, file) != 4)
+            return std::string("PNG file ends inside its ") + type + " chunk";
+        if ((crc ^ 0xFFFFFFFFu) != big_endian_32(stored))
+            return std::string("damaged PNG file: CRC error in its ") + type + " chunk";
+        if (is_ihdr) {
+            if (seen_ihdr) return "damaged PNG file: two IHDR chunks";
+            if (!png_ihdr_valid(ihdr)) return "damaged PNG file: invalid IHDR chunk";
+            seen_ihdr = true;
+            palette = ihdr[9] == 3;
+        } else if (std::strcmp(type, "PLTE") == 0) {
+            seen_plte = true;
+        } else if (std::strcmp(type, "IDAT") == 0) {
+            if (palette && !seen_plte) return "damaged PNG file: palette image without PLTE";
+            seen_idat = true;
+        } else if (std::strcmp(type, "IEND") == 0) {
+            if (!seen_idat) return "damaged PNG file: no IDAT chunk";
+            return std::string();
+        }
+    }
+}
+
+// Integer levels k of an n-bit file become k / (2^n - 1) as a correctly
+// rounded float division, so that an 8-bit value written from k / 255.0f
+// reads back as exactly the same float. (OIIO's own conversion multiplies by
+// the reciprocal, which can be one ulp off.)
+template <typename T>
+bool read_levels(OIIO::ImageInput &in, OIIO::TypeDesc type, size_t count, float *pixels) {
+    std::unique_ptr<T[]> levels(new T[count]);
+    if (!in.read_image(0, 0, 0, in.spec().nchannels, type, levels.get())) return false;
+    const float top = static_cast<float>(std::numeric_limits<T>::max());
+    for (size_t i = 0; i < count; i++) pixels[i] = static_cast<float>(levels[i]) / top;
+    return true;
+}
+
+bool read_pixels(OIIO::ImageInput &in, size_t count, float *pixels) {
+    const OIIO::ImageSpec &spec = in.spec();
+    bool one_format = spec.channelformats.empty();
+    if (one_format && spec.format == OIIO::TypeDesc::UINT8)
+        return read_levels<unsigned char>(in, OIIO::TypeDesc::UINT8, count, pixels);
+    if (one_format && spec.format == OIIO::TypeDesc::UINT16)
+        return read_levels<unsigned short>(in, OIIO::TypeDesc::UINT16, count, pixels);
+    return in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels);
+}
+
+rt_status read_image(const char *path, rt_image *out, rt_error *err) {
+    // A file we cannot open at all is an i/o error with the system's reason;
+    // a file OIIO cannot make sense of is a parse error with OIIO's reason.
+    std::FILE *probe = std::fopen(path, "rb");
+    if (!probe)
+        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot open: %s", std::strerror(errno));
+    std::string png_problem = png_structure_problem(probe);
+    std::fclose(probe);
+    if (!png_problem.empty())
+        return rt_error_set(err, RT_ERROR_PARSE, path, 0, 0, "%s", png_problem.c_str());
+
+    // Keep colours as stored in files with alpha (no premultiplication).
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    clear_global_error();
+    auto in = OIIO::ImageInput::open(path, &config);
+    if (!in)
+        return rt_error_set(err, RT_ERROR_PARSE, path, 0, 0, "not a readable image: %s",
+                            one_line(OIIO::geterror()).c_str());
+
+    const OIIO::ImageSpec &spec = in->spec();
+    if (spec.deep || spec.depth != 1)
+        return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
+                            "deep and volume images are not supported");
+    size_t count = 0;
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 ||
+        !value_count(spec.width, spec.height, spec.nchannels, &count))
+        return rt_error_set(err, RT_ERROR_PARSE, path, 0, 0,
+                            "unusable image size %dx%d with %d channels", spec.width, spec.height,
+                            spec.nchannels);
+
+    float *pixels = static_cast<float *>(std::malloc(count * sizeof(float)));
+    if (!pixels)
+        return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0,
+                            "no memory for %dx%d pixels with %d channels", spec.width, spec.height,
+                            spec.nchannels);
+    // Some readers (TIFF) report a cut-short file as an error but still
+    // return true, so the error state counts too.
+    bool read = read_pixels(*in, count, pixels);
+    if (!read || in->has_error()) {
+        std::free(pixels);
+        return rt_error_set(err, RT_ERROR_PARSE, path, 0, 0,
+                            "cannot read pixels (is the file cut short?): %s",
+                            one_line(in->geterror()).c_str());
+    }
+    out->width = spec.width;
+    out->height = spec.height;
+    out->channels = spec.nchannels;
+    out->pixels = pixels;
+    in->close();
+    return RT_OK;
+}
+
+// The difference of two channel values. Equal values (infinities included)
+// differ by 0, two NaNs count as equal, and a NaN against a number differs by
+// infinity, so that a NaN in one image never passes as a match.
+double channel_difference(float a, float b) {
+    if (a == b) return 0.0;
+    bool a_nan = std::isnan(a), b_nan = std::isnan(b);
+    if (a_nan && b_nan) return 0.0;
+    if (a_nan || b_nan) return INFINITY;
+    return std::fabs(static_cast<double>(a) - static_cast<double>(b));
+}
+
+rt_status compare_images(const rt_image *a, const rt_image *b, rt_image_diff *result,
+                         rt_image *diff_out, rt_error *err) {
+    if (!result)
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, nullptr, 0, 0, "result is NULL");
+    size_t count = 0, count_b = 0;
+    rt_status status = check_image(a, "first", nullptr, &count, err);
+    if (status != RT_OK) return status;
+    status = check_image(b, "second", nullptr, &count_b, err);
+    if (status != RT_OK) return status;
+    if (a->width != b->width || a->height != b->height || a->channels != b->channels)
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, nullptr, 0, 0,
+                            "images differ in size: %dx%d with %d channels against %dx%d with %d "
+                            "channels",
+                            a->width, a->height, a->channels, b->width, b->height, b->channels);
+
+    float *diff = nullptr;
+    if (diff_out) {
+        diff = static_cast<float *>(std::malloc(count * sizeof(float)));
+        if (!diff)
+            return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, nullptr, 0, 0,
+                                "no memory for the difference image");
+    }
+
+    const size_t channels = static_cast<size_t>(a->channels);
+    const size_t pixels = count / channels;
+    double max_abs = 0.0, sum_squares = 0.0;
+    uint64_t differing = 0;
+    size_t first = SIZE_MAX;
+    for (size_t p = 0; p < pixels; p++) {
+        bool pixel_differs = false;
+        for (size_t c = 0; c < channels; c++) {
+            size_t i = p * channels + c;
+            double d = channel_difference(a->pixels[i], b->pixels[i]);
+            if (d > 0.0) pixel_differs = true;
+            if (d > max_abs) max_abs = d;
+            sum_squares += d * d;
+            if (diff) diff[i] = static_cast<float>(d);
+        }
+        if (pixel_differs) {
+            if (first == SIZE_MAX) first = p;
+            differing++;
+        }
+    }
+
+    double mse = sum_squares / static_cast<double>(count);
+    result->max_abs = max_abs;
+    result->rmse = std::sqrt(mse);
+    result->psnr = mse > 0.0 ? -10.0 * std::log10(mse) : INFINITY;
+    result->differing = differing;
+    result->pixels = pixels;
+    const size_t width = static_cast<size_t>(a->width);
+    result->first_x = first == SIZE_MAX ? -1 : static_cast<int>(first % width);
+    result->first_y = first == SIZE_MAX ? -1 : static_cast<int>(first / width);
+    if (diff_out) {
+        diff_out->width = a->width;
+        diff_out->height = a->height;
+        diff_out->channels = a->channels;
+        diff_out->pixels = diff;
+    }
+    return RT_OK;
+}
+
+// A C++ exception that reached the C boundary (OIIO throws little, but the
+// standard library may).
+rt_status exception_error(rt_error *err, const char *path, const char *what) {
+    return rt_error_set(err, RT_ERROR_BACKEND, path, 0, 0, "unexpected C++ exception: %s", what);
+}
+
+} // namespace
+
+rt_status rt_image_write(const char *path, const rt_image *image, rt_error *err) {
+    if (!path || !path[0])
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, nullptr, 0, 0, "no output file name");
+    try {
+        return write_image(path, image, err);
+    } catch (const std::bad_alloc &) {
+        return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0, "out of memory");
+    } catch (const std::exception &e) {
+        return exception_error(err, path, e.what());
+    } catch (...) {
+        return exception_error(err, path, "unknown exception");
+    }
+}
+
+rt_status rt_image_read(const char *path, rt_image *out, rt_error *err) {
+    if (!out)
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0, "output image is NULL");
+    std::memset(out, 0, sizeof *out);
+    if (!path || !path[0])
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, nullptr, 0, 0, "no input file name");
+    try {
+        return read_image(path, out, err);
+    } catch (const std::bad_alloc &) {
+        return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0, "out of memory");
+    } catch (const std::exception &e) {
+        return exception_error(err, path, e.what());
+    } catch (...) {
+        return exception_error(err, path, "unknown exception");
+    }
+}
+
+void rt_image_free(rt_image *image) {
+    if (!image) return;
+    std::free(image->pixels);
+    image->pixels = nullptr;
+}
+
+rt_status rt_image_compare(const rt_image *a, const rt_image *b, rt_image_diff *result,
+                           rt_image *diff_out, rt_error *err) {
+    if (diff_out) std::memset(diff_out, 0, sizeof *diff_out);
+    try {
+        return compare_images(a, b, result, diff_out, err);
+    } catch (const std::exception &e) {
+        return exception_error(err, nullptr, e.what());
+    } catch (...) {
+        return exception_error(err, nullptr, "unknown exception");
+    }
+}

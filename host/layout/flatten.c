@@ -1,0 +1,412 @@
+/* flatten.c - scene + BVHs -> the device layout (kernels/rt_layout.h). */
+#include "layout/flatten.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+rt_flat_options rt_flat_options_default(void) {
+    rt_flat_options o;
+    o.tri_method = RT_TRI_WATERTIGHT;
+    o.max_depth = 5;
+    o.min_weight = 1.0f / 256.0f;
+    return o;
+}
+
+void rt_flat_free(rt_flat *f) {
+    if (!f) return;
+    free(f->nodes);
+    free(f->tris);
+    free(f->tri_ids);
+    free(f->tri_normals);
+    free(f->tri_mats);
+    free(f->instances);
+    free(f->inst_ids);
+    free(f->materials);
+    free(f->lights);
+    memset(f, 0, sizeof *f);
+}
+
+rt_scene_view rt_flat_view(const rt_flat *f) {
+    rt_scene_view v;
+    v.hdr = &f->hdr;
+    v.nodes = f->nodes;
+    v.tris = f->tris;
+    v.tri_ids = f->tri_ids;
+    v.tri_normals = f->tri_normals;
+    v.tri_mats = f->tri_mats;
+    v.instances = f->instances;
+    v.inst_ids = f->inst_ids;
+    v.materials = f->materials;
+    v.lights = f->lights;
+    return v;
+}
+
+int rt_transform_is_identity(const float m[16]) {
+    for (int i = 0; i < 16; i++)
+        if (m[i] != ((i % 5) == 0 ? 1.0f : 0.0f)) return 0;
+    return 1;
+}
+
+/* Depth of a BVH (the root alone is 1), without recursion. */
+static uint32_t bvh_depth(const rt_bvh *b) {
+    if (!b->node_count) return 0;
+    /* Depth-first with a cap, so that even a cyclic tree ends. */
+    size_t cap = 4 * (size_t)b->node_count + 4 * (RT_STACK_SIZE + 4);
+    uint32_t *stack = malloc(sizeof(uint32_t) * cap);
+    if (!stack) return UINT32_MAX;
+    uint32_t sp = 0, depth = 0;
+    stack[sp++] = 0;
+    stack[sp++] = 1;
+    while (sp) {
+        uint32_t d = stack[--sp], n = stack[--sp];
+        if (d > depth) depth = d;
+        const rt_node *node = &b->nodes[n];
+        if (!(node->b & RT_NODE_LEAF_FLAG) && d <= RT_STACK_SIZE && sp + 4 <= cap) {
+            stack[sp++] = node->a;
+            stack[sp++] = d + 1;
+            stack[sp++] = node->b;
+            stack[sp++] = d + 1;
+        }
+    }
+    free(stack);
+    return depth;
+}
+
+/* Checks a BVH's indices so that no backend can read out of bounds. */
+static int bvh_valid(const rt_bvh *b, uint32_t prim_limit, char *msg, size_t msg_size,
+                     const char *what) {
+    for (uint32_t i = 0; i < b->node_count; i++) {
+        const rt_node *n = &b->nodes[i];
+        if (n->b & RT_NODE_LEAF_FLAG) {
+            uint64_t end = (uint64_t)n->a + (n->b & RT_NODE_COUNT_MASK);
+            if (end > b->prim_count) {
+                snprintf(msg, msg_size, "%s BVH: leaf %u references entries past the end", what, i);
+                return 0;
+            }
+        } else if (n->a >= b->node_count || n->b >= b->node_count || n->a == i || n->b == i) {
+            snprintf(msg, msg_size, "%s BVH: node %u has bad children", what, i);
+            return 0;
+        }
+    }
+    for (uint32_t i = 0; i < b->prim_count; i++)
+        if (b->prim_indices[i] >= prim_limit) {
+            snprintf(msg, msg_size, "%s BVH: primitive index out of range", what);
+            return 0;
+        }
+    uint32_t depth = bvh_depth(b);
+    if (depth > RT_STACK_SIZE) {
+        snprintf(msg, msg_size, "%s BVH is %u levels deep; traversal supports %d", what, depth,
+                 RT_STACK_SIZE);
+        return 0;
+    }
+    return 1;
+}
+
+/* An empty tree: one leaf with no entries and an inverted box. */
+static void empty_node(rt_node *n, uint32_t first) {
+    for (int k = 0; k < 3; k++) {
+        n->bmin[k] = INFINITY;
+        n->bmax[k] = -INFINITY;
+    }
+    n->a = first;
+    n->b = RT_NODE_LEAF_FLAG;
+}
+
+/* Copies a BVH's nodes to dst with child indices moved by node_base and leaf
+ * entries by entry_base. */
+static void copy_nodes(const rt_bvh *b, rt_node *dst, uint32_t node_base, uint32_t entry_base) {
+    for (uint32_t i = 0; i < b->node_count; i++) {
+        rt_node n = b->nodes[i];
+        if (n.b & RT_NODE_LEAF_FLAG) {
+            n.a += entry_base;
+        } else {
+            n.a += node_base;
+            n.b += node_base;
+        }
+        dst[i] = n;
+    }
+}
+
+static void camera_of(const rt_camera *c, rt_scene_header *h) {
+    double f[3], r[3], u[3], up[3] = {c->up[0], c->up[1], c->up[2]};
+    for (int i = 0; i < 3; i++) f[i] = (double)c->look_at[i] - (double)c->position[i];
+    double fl = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    for (int i = 0; i < 3; i++) f[i] /= fl;
+    r[0] = f[1] * up[2] - f[2] * up[1];
+    r[1] = f[2] * up[0] - f[0] * up[2];
+    r[2] = f[0] * up[1] - f[1] * up[0];
+    double rl = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+    for (int i = 0; i < 3; i++) r[i] /= rl;
+    u[0] = r[1] * f[2] - r[2] * f[1];
+    u[1] = r[2] * f[0] - r[0] * f[2];
+    u[2] = r[0] * f[1] - r[1] * f[0];
+    double tx = tan((double)c->hfov_degrees * 3.14159265358979323846 / 360.0);
+    double ty = tx * (double)c->height / (double)c->width;
+    for (int i = 0; i < 3; i++) {
+        h->cam_pos[i] = c->position[i];
+        h->cam_forward[i] = (float)f[i];
+        h->cam_right[i] = (float)(r[i] * tx);
+        h->cam_up[i] = (float)(u[i] * ty);
+    }
+    h->width = c->width;
+    h->height = c->height;
+}
+
+/* Stores a triangle; a zero-area one (edge cross product exactly zero) as a
+ * point, which every triangle test rejects. */
+static void store_tri(const rt_mesh_data *m, uint32_t t, rt_tri *out) {
+    const uint32_t *idx = m->indices + 3 * t;
+    const float *p0 = m->positions + 3 * idx[0], *p1 = m->positions + 3 * idx[1],
+                *p2 = m->positions + 3 * idx[2];
+    float e1[3], e2[3], n[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = p1[k] - p0[k];
+        e2[k] = p2[k] - p0[k];
+    }
+    rt_cross3(e1, e2, n);
+    int degenerate = n[0] == 0.0f && n[1] == 0.0f && n[2] == 0.0f;
+    for (int k = 0; k < 3; k++) {
+        out->v0[k] = p0[k];
+        out->v1[k] = degenerate ? p0[k] : p1[k];
+        out->v2[k] = degenerate ? p0[k] : p2[k];
+    }
+}
+
+rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bvh *top,
+                     const rt_flat_options *options, rt_flat *out, char *msg, size_t msg_size) {
+    char dummy[8];
+    if (!msg) msg = dummy, msg_size = sizeof dummy;
+    msg[0] = 0;
+    memset(out, 0, sizeof *out);
+    rt_flat_options opt = options ? *options : rt_flat_options_default();
+    if (opt.tri_method > RT_TRI_BADOUEL || opt.max_depth > RT_MAX_DEPTH) {
+        snprintf(msg, msg_size, "triangle test %u or depth %u out of range", opt.tri_method,
+                 opt.max_depth);
+        return RT_ERROR_INVALID_ARGUMENT;
+    }
+    rt_scene_features feat = rt_scene_features_of(scene);
+    uint32_t nmesh = scene->mesh_count, nobj = scene->object_count;
+
+    /* Which meshes are shown, and where each goes. */
+    uint32_t *node_base = calloc(nmesh ? nmesh : 1, sizeof(uint32_t));
+    uint32_t *tri_base = calloc(nmesh ? nmesh : 1, sizeof(uint32_t));
+    uint8_t *used = calloc(nmesh ? nmesh : 1, 1);
+    if (!node_base || !tri_base || !used) goto oom;
+    for (uint32_t o = 0; o < nobj; o++) {
+        const rt_object_data *ob = &scene->objects[o];
+        used[ob->meshes[ob->selected]] = 1;
+    }
+    uint64_t nodes = 0, tris = 0;
+    int any_normals = 0, any_mats = 0;
+    for (uint32_t m = 0; m < nmesh; m++) {
+        if (!used[m]) continue;
+        const rt_mesh_data *md = &scene->meshes[m];
+        const rt_bvh *b = &mesh_bvhs[m];
+        if (md->triangle_count && (b->prim_count != md->triangle_count || !b->node_count)) {
+            snprintf(msg, msg_size, "mesh '%s': its BVH holds %u of %u triangles", md->name,
+                     b->prim_count, md->triangle_count);
+            goto fail;
+        }
+        if (md->triangle_count && !bvh_valid(b, md->triangle_count, msg, msg_size, md->name))
+            goto fail;
+        node_base[m] = (uint32_t)nodes;
+        tri_base[m] = (uint32_t)tris;
+        nodes += md->triangle_count ? b->node_count : 1;
+        tris += md->triangle_count;
+        any_normals |= md->normals != NULL;
+        any_mats |= md->tri_materials != NULL;
+    }
+    int single = nobj == 1 && rt_transform_is_identity(scene->objects[0].transform);
+    /* The object BVH may leave out objects whose mesh is empty. */
+    if (nobj > 1 || (nobj == 1 && !single)) {
+        if (!top || top->prim_count > nobj || (top->prim_count && !top->node_count)) {
+            snprintf(msg, msg_size, "the object BVH is missing or holds the wrong objects");
+            goto fail;
+        }
+        if (!bvh_valid(top, nobj, msg, msg_size, "object")) goto fail;
+    }
+    uint32_t top_root = (uint32_t)nodes;
+    if (!single && nobj) nodes += top->node_count ? top->node_count : 1;
+    if (nodes >= RT_NODE_COUNT_MASK || tris >= RT_NODE_COUNT_MASK) {
+        snprintf(msg, msg_size, "scene too large for 31-bit indices");
+        goto fail;
+    }
+
+    out->node_count = (uint32_t)nodes;
+    out->tri_count = (uint32_t)tris;
+    out->nodes = malloc(sizeof(rt_node) * (nodes ? nodes : 1));
+    out->tris = malloc(sizeof(rt_tri) * (tris ? tris : 1));
+    out->tri_ids = malloc(sizeof(uint32_t) * (tris ? tris : 1));
+    if (any_normals) out->tri_normals = calloc(9 * (tris ? tris : 1), sizeof(float));
+    if (any_mats) out->tri_mats = malloc(sizeof(uint32_t) * (tris ? tris : 1));
+    out->instances = calloc(nobj ? nobj : 1, sizeof(rt_instance));
+    out->inst_id_count = single || !nobj ? 0 : top->prim_count;
+    out->inst_ids = malloc(sizeof(uint32_t) * (out->inst_id_count ? out->inst_id_count : 1));
+    out->materials =
+        calloc(scene->material_count ? scene->material_count : 1, sizeof(rt_material_d));
+    out->lights = calloc(scene->light_count ? scene->light_count : 1, sizeof(rt_light_d));
+    if (!out->nodes || !out->tris || !out->tri_ids || (any_normals && !out->tri_normals) ||
+        (any_mats && !out->tri_mats) || !out->instances || !out->inst_ids || !out->materials ||
+        !out->lights)
+        goto oom;
+
+    for (uint32_t m = 0; m < nmesh; m++) {
+        if (!used[m]) continue;
+        const rt_mesh_data *md = &scene->meshes[m];
+        const rt_bvh *b = &mesh_bvhs[m];
+        if (!md->triangle_count) {
+            empty_node(&out->nodes[node_base[m]], tri_base[m]);
+            continue;
+        }
+        copy_nodes(b, out->nodes + node_base[m], node_base[m], tri_base[m]);
+        for (uint32_t j = 0; j < b->prim_count; j++) {
+            uint32_t t = b->prim_indices[j], e = tri_base[m] + j;
+            store_tri(md, t, &out->tris[e]);
+            out->tri_ids[e] = t;
+            if (md->normals) {
+                for (int v = 0; v < 3; v++)
+                    memcpy(out->tri_normals + 9 * (size_t)e + 3 * v,
+                           md->normals + 3 * (size_t)md->indices[3 * t + v], 3 * sizeof(float));
+            }
+            if (out->tri_mats)
+                out->tri_mats[e] = md->tri_materials ? md->tri_materials[t] : RT_NO_MATERIAL;
+        }
+    }
+    if (!single && nobj && !top->node_count) empty_node(&out->nodes[top_root], 0);
+    if (!single && nobj && top->node_count) {
+        copy_nodes(top, out->nodes + top_root, top_root, 0);
+        memcpy(out->inst_ids, top->prim_indices, sizeof(uint32_t) * top->prim_count);
+        /* World boxes come from transformed, rounded corners and rays are
+         * transformed into object space with rounding of their own: widen
+         * the object BVH's boxes by a relative 2^-20 so that no hit found in
+         * object space falls outside them. */
+        for (uint32_t i = 0; i < top->node_count; i++) {
+            rt_node *n = &out->nodes[top_root + i];
+            for (int k = 0; k < 3; k++) {
+                float pad = (fabsf(n->bmin[k]) + fabsf(n->bmax[k])) * 0x1p-20f;
+                n->bmin[k] -= pad;
+                n->bmax[k] += pad;
+            }
+        }
+    }
+
+    for (uint32_t o = 0; o < nobj; o++) {
+        const rt_object_data *ob = &scene->objects[o];
+        rt_instance *in = &out->instances[o];
+        uint32_t m = ob->meshes[ob->selected];
+        float inv[16];
+        if (!rt_mat4_affine_inverse(ob->transform, inv)) {
+            snprintf(msg, msg_size, "object %u: its transform is singular", o);
+            goto fail;
+        }
+        memcpy(in->world_to_object, inv, 12 * sizeof(float));
+        memcpy(in->object_to_world, ob->transform, 12 * sizeof(float));
+        in->root = node_base[m];
+        in->material = ob->material;
+        in->flags = (rt_transform_is_identity(ob->transform) ? RT_INST_IDENTITY : 0u) |
+                    (scene->meshes[m].normals ? RT_INST_NORMALS : 0u);
+        in->mesh = m;
+        in->tri_first = tri_base[m];
+        in->tri_count = scene->meshes[m].triangle_count;
+    }
+    for (uint32_t i = 0; i < scene->material_count; i++) {
+        const rt_material *s = &scene->materials[i];
+        rt_material_d *d = &out->materials[i];
+        memcpy(d->color, s->color, sizeof d->color);
+        d->ambient = s->ambient;
+        d->diffuse = s->diffuse;
+        d->specular = s->specular;
+        d->shininess = s->shininess;
+        d->reflectivity = s->reflectivity;
+        d->transparency = s->transparency;
+        d->ior = s->ior;
+    }
+    for (uint32_t i = 0; i < scene->light_count; i++) {
+        memcpy(out->lights[i].position, scene->lights[i].position, 3 * sizeof(float));
+        memcpy(out->lights[i].color, scene->lights[i].color, 3 * sizeof(float));
+    }
+
+    rt_scene_header *h = &out->hdr;
+    h->flags = ((feat.reflection || feat.refraction) ? RT_SCENE_SECONDARY : 0u) |
+               (single ? RT_SCENE_SINGLE : 0u) | (any_normals ? RT_SCENE_NORMALS : 0u) |
+               (any_mats ? RT_SCENE_TRI_MATS : 0u);
+    h->top_root = single ? 0 : top_root;
+    h->instance_count = nobj;
+    h->light_count = scene->light_count;
+    h->material_count = scene->material_count;
+    h->tri_method = opt.tri_method;
+    h->max_depth = opt.max_depth;
+    h->min_weight = opt.min_weight;
+    memcpy(h->ambient, scene->ambient, sizeof h->ambient);
+    memcpy(h->background, scene->background, sizeof h->background);
+    rt_camera cam;
+    rt_camera_get(scene, &cam);
+    camera_of(&cam, h);
+
+    free(node_base);
+    free(tri_base);
+    free(used);
+    return RT_OK;
+oom:
+    snprintf(msg, msg_size, "out of memory flattening the scene");
+    free(node_base);
+    free(tri_base);
+    free(used);
+    rt_flat_free(out);
+    return RT_ERROR_OUT_OF_MEMORY;
+fail:
+    free(node_base);
+    free(tri_base);
+    free(used);
+    rt_flat_free(out);
+    return RT_ERROR_INVALID_ARGUMENT;
+}
+
+void rt_mesh_tri_boxes(const rt_mesh_data *m, rt_aabb *boxes) {
+    for (uint32_t t = 0; t < m->triangle_count; t++) {
+        rt_aabb *b = &boxes[t];
+        for (int k = 0; k < 3; k++) {
+            b->bmin[k] = INFINITY;
+            b->bmax[k] = -INFINITY;
+        }
+        for (int v = 0; v < 3; v++) {
+            const float *p = m->positions + 3 * (size_t)m->indices[3 * t + v];
+            for (int k = 0; k < 3; k++) {
+                if (p[k] < b->bmin[k]) b->bmin[k] = p[k];
+                if (p[k] > b->bmax[k]) b->bmax[k] = p[k];
+            }
+        }
+    }
+}
+
+void rt_object_world_box(const rt_scene *scene, uint32_t object, rt_aabb *box) {
+    const rt_object_data *ob = &scene->objects[object];
+    const rt_mesh_data *m = &scene->meshes[ob->meshes[ob->selected]];
+    const float *M = ob->transform;
+    for (int k = 0; k < 3; k++) {
+        box->bmin[k] = INFINITY;
+        box->bmax[k] = -INFINITY;
+    }
+    /* Transforms every vertex (tighter than the 8 corners of the mesh box);
+     * then widens by a few ulps so that rounding in the ray transform cannot
+     * miss a surface on the box's edge. */
+    for (uint32_t v = 0; v < m->vertex_count; v++) {
+        const float *p = m->positions + 3 * (size_t)v;
+        for (int k = 0; k < 3; k++) {
+            float w =
+                ((M[4 * k] * p[0] + M[4 * k + 1] * p[1]) + M[4 * k + 2] * p[2]) + M[4 * k + 3];
+            if (w < box->bmin[k]) box->bmin[k] = w;
+            if (w > box->bmax[k]) box->bmax[k] = w;
+        }
+    }
+    if (!m->vertex_count)
+        for (int k = 0; k < 3; k++) box->bmin[k] = box->bmax[k] = M[4 * k + 3];
+    if (!rt_transform_is_identity(M))
+        for (int k = 0; k < 3; k++) {
+            float pad = (fabsf(box->bmin[k]) + fabsf(box->bmax[k])) * 1e-6f;
+            box->bmin[k] -= pad;
+            box->bmax[k] += pad;
+        }
+}

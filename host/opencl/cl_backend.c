@@ -1,0 +1,970 @@
+/* cl_backend.c - the OpenCL backend: device state kept with the scene,
+ * uploads of what changed, the kernel program specialised to the scene, and
+ * frames rendered in bounded tiles (kernels/rt_render.cl).
+ *
+ * The kernels compute with the CPU oracle's header, built with no contraction
+ * and correctly rounded division and sqrt, so on a device that promises both
+ * (and fp64) the results are the oracle's bits. Extra build options
+ * (rt_render_options.device_options, for the speed-versus-error study) are
+ * appended to the program's options; the results are then not promised. */
+#include <CL/cl.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "render/render_internal.h"
+#include "opencl/cl_device.h"
+#include "rt_shade.h" /* rt_wave_entry, rt_wave_record: the wavefront's buffers */
+
+/* Generated from kernels/ at build time. */
+extern const char rt_cl_source_rt_render[];
+extern const char rt_cl_source_rt_packet[];
+
+/* Tile sizes in pixels: adapted per frame so that one launch stays near
+ * RT_CL_TARGET_MS (a GPU watchdog fires after a few seconds; we keep far from
+ * it), within [RT_CL_TILE_MIN, RT_CL_TILE_MAX]. */
+#define RT_CL_TILE_MIN   1024u
+#define RT_CL_TILE_MAX   (1u << 18)
+#define RT_CL_TILE_FIRST 16384u
+#define RT_CL_TARGET_MS  50.0
+/* The wavefront keeps one rt_wave_record per node of the full shading tree
+ * (2^(max_depth + 1) - 1) per pixel of a tile: its tiles are capped so that
+ * buffer stays within this many bytes. */
+#define RT_CL_WAVE_RECORD_BYTES (64u << 20)
+
+static rt_status fail(char *msg, size_t size, rt_status st, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+static rt_status fail(char *msg, size_t size, rt_status st, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, size, fmt, ap);
+    va_end(ap);
+    return st;
+}
+
+/* ---- device state ------------------------------------------------------- */
+
+enum {
+    B_HDR,
+    B_NODES,
+    B_TRIS,
+    B_TRI_IDS,
+    B_NORMALS,
+    B_TRI_MATS,
+    B_INST,
+    B_INST_IDS,
+    B_MATS,
+    B_LIGHTS,
+    B_RAYS,
+    B_HITS,
+    B_COUNTERS,
+    B_FB,
+    B_QUEUE_A, /* the wavefront's ray queues (rt_wave_entry), alternating */
+    B_QUEUE_B,
+    B_WAVE_HITS,
+    B_RECORDS, /* per pixel of the tile: one rt_wave_record per tree slot */
+    B_QUEUE_COUNT,
+    B_COUNT
+};
+static const char *const buffer_names[B_COUNT] = {
+    "header",   "nodes",     "tris",      "tri_ids", "tri_normals", "tri_mats", "instances",
+    "inst_ids", "materials", "lights",    "rays",    "hits",        "counters", "framebuffer",
+    "queue_a",  "queue_b",   "wave_hits", "records", "queue_count"};
+
+typedef struct cl_state {
+    rt_cl_device_info dev;
+    char selector[128]; /* the --device text this state was made for */
+    cl_context ctx;
+    cl_command_queue queue;
+    cl_program program;
+    char options[768]; /* the program's build options (the cache key) */
+    char defines[192]; /* the specialisation part of options */
+    char extra[256];   /* the device_options part of options ("" for the exact build) */
+    cl_kernel k_camera, k_trace, k_shade;
+    cl_kernel k_wcam, k_wtrace, k_wshade, k_wsum; /* the wavefront */
+    cl_kernel k_packet, k_ptrace;                 /* CPU devices: rt_k_packet, rt_k_packet_trace */
+    int lanes; /* the program's packet lanes (RT_PK_LANES); 0: no packet kernel */
+    cl_mem buf[B_COUNT];
+    size_t cap[B_COUNT];
+    /* What the device holds: the mesh part (signature) and the scene version. */
+    uint32_t *mesh_sig;
+    size_t mesh_sig_len;
+    int uploaded;
+    uint32_t uploaded_version;
+    rt_scene_header uploaded_hdr; /* render options (direct_only) change it alone */
+    uint32_t tile;
+    int no_wave; /* RTCL_OPENCL_NO_WAVE set: rt_k_shade for every image (tests) */
+} cl_state;
+
+static void release_wave_kernels(cl_state *s) {
+    cl_kernel *k[6] = {&s->k_wcam, &s->k_wtrace, &s->k_wshade,
+                       &s->k_wsum, &s->k_packet, &s->k_ptrace};
+    for (int i = 0; i < 6; i++) {
+        if (*k[i]) clReleaseKernel(*k[i]);
+        *k[i] = NULL;
+    }
+}
+
+static void state_free(void *p) {
+    cl_state *s = p;
+    if (!s) return;
+    for (int i = 0; i < B_COUNT; i++)
+        if (s->buf[i]) clReleaseMemObject(s->buf[i]);
+    if (s->k_camera) clReleaseKernel(s->k_camera);
+    if (s->k_trace) clReleaseKernel(s->k_trace);
+    if (s->k_shade) clReleaseKernel(s->k_shade);
+    release_wave_kernels(s);
+    if (s->program) clReleaseProgram(s->program);
+    if (s->queue) clReleaseCommandQueue(s->queue);
+    if (s->ctx) clReleaseContext(s->ctx);
+    free(s->mesh_sig);
+    free(s);
+}
+
+/* The state for the selected device, made (or remade for another device). */
+static rt_status get_state(const rt_prepared *prep, const char *selector, cl_state **out, char *msg,
+                           size_t size) {
+    cl_state *s = *prep->backend_state;
+    const char *sel = selector ? selector : "";
+    if (s && *prep->backend_state_free == state_free && strcmp(s->selector, sel) == 0) {
+        *out = s;
+        return RT_OK;
+    }
+    if (s && *prep->backend_state_free) (*prep->backend_state_free)(s);
+    *prep->backend_state = NULL;
+    *prep->backend_state_free = NULL;
+
+    rt_cl_device_info *devs;
+    int count;
+    rt_status st = rt_cl_devices(&devs, &count, msg, size);
+    if (st != RT_OK) return st;
+    int pick = rt_cl_select(devs, count, sel, msg, size);
+    if (pick < 0) {
+        free(devs);
+        return RT_ERROR_INVALID_ARGUMENT;
+    }
+    s = calloc(1, sizeof *s);
+    if (!s) {
+        free(devs);
+        return fail(msg, size, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    }
+    s->dev = devs[pick];
+    free(devs);
+    snprintf(s->selector, sizeof s->selector, "%s", sel);
+    s->tile = RT_CL_TILE_FIRST;
+    s->no_wave = getenv("RTCL_OPENCL_NO_WAVE") != NULL;
+    cl_device_id d = s->dev.device_id;
+    cl_context_properties props[] = {CL_CONTEXT_PLATFORM, (cl_context_properties)s->dev.platform_id,
+                                     0};
+    cl_int err;
+    s->ctx = clCreateContext(props, 1, &d, NULL, NULL, &err);
+    if (!s->ctx) {
+        state_free(s);
+        return fail(msg, size, RT_ERROR_BACKEND, "OpenCL context on '%s': %s", s->dev.name,
+                    rt_cl_error_name(err));
+    }
+    s->queue = clCreateCommandQueue(s->ctx, d, CL_QUEUE_PROFILING_ENABLE, &err);
+    if (!s->queue) {
+        fail(msg, size, RT_ERROR_BACKEND, "OpenCL queue on '%s': %s", s->dev.name,
+             rt_cl_error_name(err));
+        state_free(s);
+        return RT_ERROR_BACKEND;
+    }
+    *prep->backend_state = s;
+    *prep->backend_state_free = state_free;
+    *out = s;
+    return RT_OK;
+}
+
+/* ---- the program -------------------------------------------------------- */
+
+/* The -D switches for the scene: its header flags (secondary rays, single
+ * identity instance, normals, per-triangle materials) and triangle test, so
+ * the compiler drops what the scene does not use. */
+static void scene_defines(const rt_flat *f, char *out, size_t size) {
+    uint32_t flags = f->hdr.flags;
+    uint32_t inst_set = (flags & RT_SCENE_SINGLE) ? RT_INST_IDENTITY : 0u;
+    uint32_t inst_mask = RT_INST_IDENTITY | ((flags & RT_SCENE_NORMALS) ? RT_INST_NORMALS : 0u);
+    snprintf(out, size,
+             "-DRT_STATIC_FLAGS=%uu -DRT_STATIC_INST_SET=%uu -DRT_STATIC_INST_MASK=%uu "
+             "-DRT_STATIC_TRI_METHOD=%uu",
+             flags, inst_set, inst_mask, f->hdr.tri_method);
+}
+
+static rt_status warm_up(cl_state *s, int wave, char *msg, size_t size);
+
+/* The packet kernel's lanes for this device: 16 (4x4 blocks) on CPU devices,
+ * 0 (one ray per work-item) elsewhere. Read at every frame, for tests and
+ * comparisons: RTCL_OPENCL_NO_PACKET=1 runs the one-ray kernels on a CPU device
+ * too; RTCL_OPENCL_PACKET_LANES=4|8|16 picks another block (2x2, 4x2). */
+static int packet_lanes(const cl_state *s) {
+    if (!s->dev.cpu || getenv("RTCL_OPENCL_NO_PACKET")) return 0;
+    const char *e = getenv("RTCL_OPENCL_PACKET_LANES");
+    int n = e ? atoi(e) : 16;
+    return n == 4 || n == 8 ? n : 16;
+}
+
+/* The longest device_options string taken (rt.h). */
+#define RT_CL_EXTRA_MAX 255
+
+static rt_status build_program(cl_state *s, const rt_flat *f, const char *extra, double *compile_ms,
+                               char *msg, size_t size) {
+    char defines[192], options[768];
+    scene_defines(f, defines, sizeof defines);
+    if (!extra) extra = "";
+    if (strlen(extra) > RT_CL_EXTRA_MAX)
+        return fail(msg, size, RT_ERROR_INVALID_ARGUMENT,
+                    "extra kernel build options (device_options) longer than %d characters",
+                    RT_CL_EXTRA_MAX);
+    int lanes = packet_lanes(s);
+    char packet[32] = "";
+    if (lanes) snprintf(packet, sizeof packet, " -DRT_PK_LANES=%d", lanes);
+    /* The exact build: no mad or fast-relaxed maths (they change results).
+     * Study variants append their options (device_options) after ours. */
+    snprintf(options, sizeof options, "%s%s%s%s%s",
+             s->dev.cr_div_sqrt ? "-cl-fp32-correctly-rounded-divide-sqrt " : "", defines, packet,
+             extra[0] ? " " : "", extra);
+    if (s->program && strcmp(options, s->options) == 0) return RT_OK;
+    if (s->k_camera) clReleaseKernel(s->k_camera);
+    if (s->k_trace) clReleaseKernel(s->k_trace);
+    if (s->k_shade) clReleaseKernel(s->k_shade);
+    release_wave_kernels(s);
+    if (s->program) clReleaseProgram(s->program);
+    s->k_camera = s->k_trace = s->k_shade = NULL;
+    s->program = NULL;
+    double t0 = rt_now_ms();
+    /* CPU devices get the packet kernel in the same program. */
+    const char *src[2] = {rt_cl_source_rt_render, rt_cl_source_rt_packet};
+    cl_int err;
+    s->program = clCreateProgramWithSource(s->ctx, lanes ? 2 : 1, src, NULL, &err);
+    if (!s->program)
+        return fail(msg, size, RT_ERROR_BACKEND, "OpenCL program: %s", rt_cl_error_name(err));
+    cl_device_id d = s->dev.device_id;
+    err = clBuildProgram(s->program, 1, &d, options, NULL, NULL);
+    if (err != CL_SUCCESS) {
+        char log[900] = "";
+        size_t n = 0;
+        clGetProgramBuildInfo(s->program, d, CL_PROGRAM_BUILD_LOG, sizeof log - 1, log, &n);
+        if (n == 0) clGetProgramBuildInfo(s->program, d, CL_PROGRAM_BUILD_LOG, 0, NULL, &n);
+        log[sizeof log - 1] = 0;
+        clReleaseProgram(s->program);
+        s->program = NULL;
+        return fail(msg, size, RT_ERROR_BACKEND,
+                    "OpenCL kernel build failed on '%s' (%s; options: %s); build log%s:\n%s",
+                    s->dev.name, rt_cl_error_name(err), options,
+                    n > sizeof log - 1 ? " (truncated)" : "", log);
+    }
+    s->k_camera = clCreateKernel(s->program, "rt_k_camera", &err);
+    if (s->k_camera) s->k_trace = clCreateKernel(s->program, "rt_k_trace", &err);
+    if (s->k_trace) s->k_shade = clCreateKernel(s->program, "rt_k_shade", &err);
+    if (s->k_shade) s->k_wcam = clCreateKernel(s->program, "rt_k_wave_camera", &err);
+    if (s->k_wcam) s->k_wtrace = clCreateKernel(s->program, "rt_k_wave_trace", &err);
+    if (s->k_wtrace) s->k_wshade = clCreateKernel(s->program, "rt_k_wave_shade", &err);
+    if (s->k_wshade) s->k_wsum = clCreateKernel(s->program, "rt_k_wave_sum", &err);
+    if (s->k_wsum && lanes) s->k_packet = clCreateKernel(s->program, "rt_k_packet", &err);
+    if (s->k_packet) s->k_ptrace = clCreateKernel(s->program, "rt_k_packet_trace", &err);
+    if (!s->k_wsum || (lanes && !s->k_ptrace))
+        return fail(msg, size, RT_ERROR_BACKEND, "OpenCL kernels: %s", rt_cl_error_name(err));
+    s->lanes = lanes;
+    snprintf(s->options, sizeof s->options, "%s", options);
+    snprintf(s->defines, sizeof s->defines, "%s", defines);
+    snprintf(s->extra, sizeof s->extra, "%s", extra);
+    rt_status st = warm_up(s, (f->hdr.flags & RT_SCENE_SECONDARY) != 0, msg, size);
+    *compile_ms += rt_now_ms() - t0;
+    return st;
+}
+
+/* ---- buffers and uploads ------------------------------------------------ */
+
+static int out_of_memory(cl_int err) {
+    return err == CL_MEM_OBJECT_ALLOCATION_FAILURE || err == CL_OUT_OF_RESOURCES ||
+           err == CL_OUT_OF_HOST_MEMORY || err == CL_INVALID_BUFFER_SIZE;
+}
+
+/* Makes buffer b hold at least bytes (never 0: empty arrays get a stub).
+ * Returns 1 when it was (re)made, so its contents are gone. */
+static rt_status ensure(cl_state *s, int b, size_t bytes, int *remade, char *msg, size_t size) {
+    if (bytes < 16) bytes = 16;
+    *remade = 0;
+    if (s->buf[b] && s->cap[b] >= bytes) return RT_OK;
+    if (s->buf[b]) clReleaseMemObject(s->buf[b]);
+    s->buf[b] = NULL;
+    s->cap[b] = 0;
+    if ((uint64_t)bytes > s->dev.max_alloc)
+        return fail(msg, size, RT_ERROR_OUT_OF_MEMORY,
+                    "out of device memory: buffer '%s' needs %zu bytes, more than the largest "
+                    "allocation of '%s' (%llu bytes)",
+                    buffer_names[b], bytes, s->dev.name, (unsigned long long)s->dev.max_alloc);
+    cl_int err;
+    s->buf[b] = clCreateBuffer(s->ctx, CL_MEM_READ_WRITE, bytes, NULL, &err);
+    if (!s->buf[b])
+        return fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                    "%s: buffer '%s' of %zu bytes on '%s' (%s)",
+                    out_of_memory(err) ? "out of device memory" : "cannot allocate",
+                    buffer_names[b], bytes, s->dev.name, rt_cl_error_name(err));
+    s->cap[b] = bytes;
+    *remade = 1;
+    return RT_OK;
+}
+
+static rt_status write_buf(cl_state *s, int b, size_t offset, const void *data, size_t bytes,
+                           uint64_t *uploaded, char *msg, size_t size) {
+    if (!bytes) return RT_OK;
+    cl_int err =
+        clEnqueueWriteBuffer(s->queue, s->buf[b], CL_FALSE, offset, bytes, data, 0, NULL, NULL);
+    if (err != CL_SUCCESS)
+        return fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                    "%s: writing buffer '%s' (%zu bytes) on '%s' (%s)",
+                    out_of_memory(err) ? "out of device memory" : "upload failed", buffer_names[b],
+                    bytes, s->dev.name, rt_cl_error_name(err));
+    *uploaded += bytes;
+    return RT_OK;
+}
+
+/* What identifies the mesh part of the layout (mesh BVH nodes and triangle
+ * arrays): it is unchanged while no mesh was rebuilt and every instance
+ * still points at the same place. */
+static uint32_t *mesh_signature(const rt_prepared *prep, size_t *len) {
+    const rt_flat *f = prep->flat;
+    size_t n = 5 + 3 * (size_t)f->hdr.instance_count;
+    uint32_t *sig = malloc(n * sizeof *sig);
+    if (!sig) return NULL;
+    uint32_t mesh_nodes = (f->hdr.flags & RT_SCENE_SINGLE) ? f->node_count : f->hdr.top_root;
+    sig[0] = prep->mesh_generation;
+    sig[1] = mesh_nodes;
+    sig[2] = f->tri_count;
+    sig[3] = f->hdr.flags & (RT_SCENE_NORMALS | RT_SCENE_TRI_MATS);
+    sig[4] = f->hdr.instance_count;
+    for (uint32_t i = 0; i < f->hdr.instance_count; i++) {
+        sig[5 + 3 * i] = f->instances[i].mesh;
+        sig[6 + 3 * i] = f->instances[i].root;
+        sig[7 + 3 * i] = f->instances[i].tri_first;
+    }
+    *len = n;
+    return sig;
+}
+
+/* Uploads the mesh part when it changed, and the per-frame part (object BVH,
+ * instances, header with the camera, materials, lights) when the scene
+ * changed since the last upload. */
+static rt_status upload_scene(cl_state *s, const rt_prepared *prep, uint64_t *bytes, double *ms,
+                              char *msg, size_t size) {
+    const rt_flat *f = prep->flat;
+    double t0 = rt_now_ms();
+    size_t sig_len;
+    uint32_t *sig = mesh_signature(prep, &sig_len);
+    if (!sig) return fail(msg, size, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    int mesh_same = s->uploaded && s->mesh_sig && s->mesh_sig_len == sig_len &&
+                    memcmp(s->mesh_sig, sig, sig_len * sizeof *sig) == 0;
+    if (mesh_same && s->uploaded_version == prep->flat_version &&
+        memcmp(&s->uploaded_hdr, &f->hdr, sizeof f->hdr) == 0) {
+        free(sig);
+        return RT_OK;
+    }
+    uint32_t mesh_nodes = sig[1];
+    size_t tri_n = f->tri_count;
+    struct {
+        int b;
+        const void *data;
+        size_t bytes;
+        int mesh; /* part of the mesh data */
+    } arrays[] = {
+        {B_HDR, &f->hdr, sizeof f->hdr, 0},
+        {B_NODES, f->nodes, sizeof(rt_node) * f->node_count, 0},
+        {B_TRIS, f->tris, sizeof(rt_tri) * tri_n, 1},
+        {B_TRI_IDS, f->tri_ids, sizeof(uint32_t) * tri_n, 1},
+        {B_NORMALS, f->tri_normals, f->tri_normals ? 9 * sizeof(float) * tri_n : 0, 1},
+        {B_TRI_MATS, f->tri_mats, f->tri_mats ? sizeof(uint32_t) * tri_n : 0, 1},
+        {B_INST, f->instances, sizeof(rt_instance) * f->hdr.instance_count, 0},
+        {B_INST_IDS, f->inst_ids, sizeof(uint32_t) * f->inst_id_count, 0},
+        {B_MATS, f->materials, sizeof(rt_material_d) * f->hdr.material_count, 0},
+        {B_LIGHTS, f->lights, sizeof(rt_light_d) * f->hdr.light_count, 0},
+    };
+    rt_status st = RT_OK;
+    for (size_t i = 0; i < sizeof arrays / sizeof arrays[0] && st == RT_OK; i++) {
+        int remade;
+        st = ensure(s, arrays[i].b, arrays[i].bytes, &remade, msg, size);
+        if (st != RT_OK) break;
+        int all = remade || !mesh_same;
+        if (arrays[i].b == B_NODES) {
+            /* Mesh BVH nodes first, then the object BVH: only the latter moves
+             * with the objects. */
+            size_t from = all ? 0 : sizeof(rt_node) * mesh_nodes;
+            st = write_buf(s, B_NODES, from, (const char *)f->nodes + from, arrays[i].bytes - from,
+                           bytes, msg, size);
+        } else if (!arrays[i].mesh || all) {
+            st = write_buf(s, arrays[i].b, 0, arrays[i].data, arrays[i].bytes, bytes, msg, size);
+        }
+    }
+    if (st == RT_OK) {
+        cl_int err = clFinish(s->queue);
+        if (err != CL_SUCCESS)
+            st = fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                      "upload to '%s' failed (%s)", s->dev.name, rt_cl_error_name(err));
+    }
+    if (st != RT_OK) {
+        free(sig);
+        s->uploaded = 0;
+        return st;
+    }
+    free(s->mesh_sig);
+    s->mesh_sig = sig;
+    s->mesh_sig_len = sig_len;
+    s->uploaded = 1;
+    s->uploaded_version = prep->flat_version;
+    s->uploaded_hdr = f->hdr;
+    *ms += rt_now_ms() - t0;
+    return RT_OK;
+}
+
+/* ---- launches --------------------------------------------------------------- */
+
+static rt_status set_arg(cl_kernel k, cl_uint i, size_t n, const void *v, char *msg, size_t size) {
+    cl_int err = clSetKernelArg(k, i, n, v);
+    if (err != CL_SUCCESS)
+        return fail(msg, size, RT_ERROR_BACKEND, "kernel argument %u: %s", i,
+                    rt_cl_error_name(err));
+    return RT_OK;
+}
+
+/* The ten scene arrays, arguments 0..9 of rt_k_trace and rt_k_shade. */
+static rt_status set_view(cl_state *s, cl_kernel k, char *msg, size_t size) {
+    for (int b = B_HDR; b <= B_LIGHTS; b++) {
+        rt_status st = set_arg(k, (cl_uint)b, sizeof(cl_mem), &s->buf[b], msg, size);
+        if (st != RT_OK) return st;
+    }
+    return RT_OK;
+}
+
+/* The work-group size for k: 64 work-items, a multiple of the kernel's
+ * preferred multiple (8 on PoCL's pthread device, 32 on NVIDIA), within its
+ * limit. Fixed per kernel: PoCL compiles a work-group function per local size
+ * at its first use, so a size chosen per tile would cost compiles. */
+static size_t local_size(cl_state *s, cl_kernel k) {
+    size_t local = 64, wg = 0, mult = 0;
+    cl_device_id d = s->dev.device_id;
+    if (clGetKernelWorkGroupInfo(k, d, CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE, sizeof mult,
+                                 &mult, NULL) == CL_SUCCESS &&
+        mult > local && mult <= 256)
+        local = mult;
+    if (clGetKernelWorkGroupInfo(k, d, CL_KERNEL_WORK_GROUP_SIZE, sizeof wg, &wg, NULL) ==
+            CL_SUCCESS &&
+        wg > 0 && wg < local)
+        local = wg;
+    return local;
+}
+
+/* Enqueues k over count items (the global size rounded up to the work-group
+ * size; the kernels ignore items past count) without waiting: the launches of
+ * a tile follow each other on the in-order queue, and the host waits once per
+ * tile (see finish_launches). */
+static rt_status enqueue(cl_state *s, cl_kernel k, uint32_t count, const char *name, cl_event *ev,
+                         char *msg, size_t size) {
+    size_t local = local_size(s, k);
+    size_t global = ((size_t)count + local - 1) / local * local;
+    if (global == 0) global = local;
+    cl_int err = clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, &local, 0, NULL, ev);
+    if (err != CL_SUCCESS)
+        return fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                    "kernel %s on '%s' (%u items): %s", name, s->dev.name, count,
+                    rt_cl_error_name(err));
+    return RT_OK;
+}
+
+/* Waits for n launches, adds each one's profiled time to ms[i], returns the
+ * longest in *longest, and releases the events. */
+static rt_status finish_launches(cl_state *s, cl_event *ev, int n, double *ms, double *longest,
+                                 char *msg, size_t size) {
+    cl_int err = clWaitForEvents((cl_uint)n, ev);
+    *longest = 0.0;
+    for (int i = 0; i < n; i++) {
+        cl_ulong start = 0, end = 0;
+        if (err == CL_SUCCESS &&
+            clGetEventProfilingInfo(ev[i], CL_PROFILING_COMMAND_START, sizeof start, &start,
+                                    NULL) == CL_SUCCESS &&
+            clGetEventProfilingInfo(ev[i], CL_PROFILING_COMMAND_END, sizeof end, &end, NULL) ==
+                CL_SUCCESS &&
+            end >= start) {
+            double t = (double)(end - start) * 1e-6;
+            ms[i] += t;
+            if (t > *longest) *longest = t;
+        }
+        clReleaseEvent(ev[i]);
+    }
+    if (err != CL_SUCCESS)
+        return fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                    "kernels on '%s': %s", s->dev.name, rt_cl_error_name(err));
+    return RT_OK;
+}
+
+/* Enqueues k over count items, waits, and adds its profiled time to *ms. */
+static rt_status launch(cl_state *s, cl_kernel k, uint32_t count, const char *name, double *ms,
+                        char *msg, size_t size) {
+    cl_event ev;
+    rt_status st = enqueue(s, k, count, name, &ev, msg, size);
+    if (st != RT_OK) return st;
+    double longest;
+    return finish_launches(s, &ev, 1, ms, &longest, msg, size);
+}
+
+/* One empty launch of each kernel (count 0, every item returns at once) with
+ * stub buffers, right after the build: PoCL compiles (or loads from its cache)
+ * the work-group function of a kernel at its first launch, which otherwise
+ * lands in the first frame's time (about 1 s per kernel with a cold cache). */
+static rt_status warm_up(cl_state *s, int wave, char *msg, size_t size) {
+    cl_mem stub = clCreateBuffer(s->ctx, CL_MEM_READ_WRITE, 64, NULL, NULL);
+    if (!stub) return fail(msg, size, RT_ERROR_BACKEND, "cannot allocate a stub buffer");
+    cl_uint zero = 0;
+    cl_int izero = 0;
+    cl_kernel ks[7] = {s->k_camera, s->k_trace,  s->k_shade, s->k_wcam,
+                       s->k_wtrace, s->k_wshade, s->k_wsum};
+    cl_uint nargs[7] = {4, 15, 18, 4, 14, 19, 7};
+    const char *names[7] = {"rt_k_camera",      "rt_k_trace",      "rt_k_shade",
+                            "rt_k_wave_camera", "rt_k_wave_trace", "rt_k_wave_shade",
+                            "rt_k_wave_sum"};
+    int nk = wave ? 7 : 3; /* the wavefront kernels only where the scene has secondary rays */
+    if (s->lanes) {
+        /* Frames run rt_k_packet alone; ray queries rt_k_packet_trace
+         * (closest hit) and rt_k_trace (any hit). */
+        ks[0] = s->k_packet;
+        nargs[0] = 16;
+        names[0] = "rt_k_packet";
+        ks[2] = s->k_ptrace;
+        nargs[2] = 14;
+        names[2] = "rt_k_packet_trace";
+        nk = 3;
+    }
+    rt_status st = RT_OK;
+    for (int k = 0; k < nk && st == RT_OK; k++) {
+        for (cl_uint a = 0; a < nargs[k]; a++) {
+            /* Scalars are uint/int (4 bytes), the rest buffers. */
+            cl_int err = clSetKernelArg(ks[k], a, sizeof(cl_mem), &stub);
+            if (err != CL_SUCCESS) err = clSetKernelArg(ks[k], a, sizeof zero, &zero);
+            if (err != CL_SUCCESS) err = clSetKernelArg(ks[k], a, sizeof izero, &izero);
+            if (err != CL_SUCCESS) {
+                st = fail(msg, size, RT_ERROR_BACKEND, "warm-up argument %u of %s: %s", a, names[k],
+                          rt_cl_error_name(err));
+                break;
+            }
+        }
+        /* PoCL specialises for grids up to some width ("smallgrid") and
+         * builds another function for larger ones: warm up both. */
+        size_t local = local_size(s, ks[k]);
+        size_t globals[2] = {local, RT_CL_TILE_MAX};
+        for (int g = 0; g < 2 && st == RT_OK; g++) {
+            cl_int err = clEnqueueNDRangeKernel(s->queue, ks[k], 1, NULL, &globals[g], &local, 0,
+                                                NULL, NULL);
+            if (err == CL_SUCCESS) err = clFinish(s->queue);
+            if (err != CL_SUCCESS)
+                st = fail(msg, size, RT_ERROR_BACKEND, "warm-up of %s on '%s': %s", names[k],
+                          s->dev.name, rt_cl_error_name(err));
+        }
+    }
+    clReleaseMemObject(stub);
+    return st;
+}
+
+static rt_status read_buf(cl_state *s, int b, size_t bytes, void *dst, char *msg, size_t size) {
+    cl_int err = clEnqueueReadBuffer(s->queue, s->buf[b], CL_TRUE, 0, bytes, dst, 0, NULL, NULL);
+    if (err != CL_SUCCESS)
+        return fail(msg, size, RT_ERROR_BACKEND, "reading buffer '%s' (%zu bytes) from '%s': %s",
+                    buffer_names[b], bytes, s->dev.name, rt_cl_error_name(err));
+    return RT_OK;
+}
+
+/* Per-ray buffers for tiles of up to 'tile' rays. */
+static rt_status ensure_ray_buffers(cl_state *s, uint32_t tile, char *msg, size_t size) {
+    int remade;
+    rt_status st = ensure(s, B_RAYS, sizeof(rt_ray_d) * tile, &remade, msg, size);
+    if (st == RT_OK) st = ensure(s, B_HITS, sizeof(rt_hit_d) * tile, &remade, msg, size);
+    if (st == RT_OK) st = ensure(s, B_COUNTERS, sizeof(rt_counters) * tile, &remade, msg, size);
+    return st;
+}
+
+/* The smallest tile: enough work-groups of 64 to keep every compute unit
+ * busy (PoCL's pthread device runs whole work-groups on its threads; a GPU
+ * needs many per compute unit). */
+static uint32_t tile_min(const cl_state *s) {
+    uint64_t m = (uint64_t)s->dev.compute_units * 64u * 16u;
+    if (m < RT_CL_TILE_MIN) m = RT_CL_TILE_MIN;
+    return m > RT_CL_TILE_MAX ? RT_CL_TILE_MAX : (uint32_t)m;
+}
+
+/* The next tile size from the longest launch of the last full tile: halve
+ * above the target time, double below a quarter of it. Kept in the state, so
+ * the next frame starts where this one ended. */
+static uint32_t next_tile(const cl_state *s, uint32_t tile, double longest_ms) {
+    if (longest_ms > RT_CL_TARGET_MS && tile / 2 >= tile_min(s)) return tile / 2;
+    if (longest_ms < RT_CL_TARGET_MS / 4 && tile < RT_CL_TILE_MAX) return tile * 2;
+    return tile < tile_min(s) ? tile_min(s) : tile;
+}
+
+static rt_status prepare(rt_scene *scene, const rt_prepared *prep, const char *device,
+                         const char *device_options, cl_state **out, rt_render_stats *stats,
+                         char *msg, size_t size) {
+    rt_status st = get_state(prep, device, out, msg, size);
+    if (st == RT_OK)
+        st = build_program(*out, prep->flat, device_options, &stats->compile_ms, msg, size);
+    if (st == RT_OK)
+        st = upload_scene(*out, prep, &stats->upload_bytes, &stats->upload_ms, msg, size);
+    if (st == RT_OK) {
+        snprintf(stats->device, sizeof stats->device, "%s", (*out)->dev.name);
+        snprintf(stats->specialisation, sizeof stats->specialisation, "%s", (*out)->defines);
+        snprintf(stats->device_options, sizeof stats->device_options, "%s", (*out)->extra);
+        /* Extra options (the study's variants) void the device's promise. */
+        stats->exact = (*out)->dev.exact && !(*out)->extra[0];
+    }
+    (void)scene;
+    return st;
+}
+
+/* One tile through rt_shade_hit's stack inside rt_k_shade: camera, closest
+ * hit and shading (or an AOV), back to back on the in-order queue with one
+ * wait at the end. *longest gets the longest launch (ms). */
+static rt_status direct_tile(cl_state *s, cl_uint f, cl_uint n, rt_render_stats *stats,
+                             double *longest, char *msg, size_t size) {
+    cl_kernel kc = s->k_camera, kt = s->k_trace, ks = s->k_shade;
+    rt_status st = set_arg(kc, 1, sizeof f, &f, msg, size);
+    if (st == RT_OK) st = set_arg(kc, 2, sizeof n, &n, msg, size);
+    if (st == RT_OK) st = set_arg(kt, 10, sizeof n, &n, msg, size);
+    if (st == RT_OK) st = set_arg(ks, 10, sizeof f, &f, msg, size);
+    if (st == RT_OK) st = set_arg(ks, 11, sizeof n, &n, msg, size);
+    cl_event ev[3];
+    int queued = 0;
+    if (st == RT_OK) st = enqueue(s, kc, n, "rt_k_camera", &ev[queued], msg, size);
+    if (st == RT_OK) st = enqueue(s, kt, n, "rt_k_trace", &ev[++queued], msg, size);
+    if (st == RT_OK) st = enqueue(s, ks, n, "rt_k_shade", &ev[++queued], msg, size);
+    if (st == RT_OK) queued++;
+    *longest = 0.0;
+    if (queued == 3) {
+        st = finish_launches(s, ev, 3, stats->kernel_ms, longest, msg, size);
+    } else {
+        clFinish(s->queue);
+        for (int i = 0; i < queued; i++) clReleaseEvent(ev[i]);
+    }
+    if (st == RT_OK) stats->launches += 3;
+    return st;
+}
+
+/* Blocks f .. f + n - 1 through rt_k_packet (camera, trace, shading and
+ * shadow rays in one launch); its time counts as trace. */
+static rt_status packet_tile(cl_state *s, cl_uint f, cl_uint n, rt_render_stats *stats,
+                             double *longest, char *msg, size_t size) {
+    cl_kernel k = s->k_packet;
+    rt_status st = set_arg(k, 10, sizeof f, &f, msg, size);
+    if (st == RT_OK) st = set_arg(k, 11, sizeof n, &n, msg, size);
+    double t = 0.0;
+    if (st == RT_OK) st = launch(s, k, n, "rt_k_packet", &t, msg, size);
+    stats->kernel_ms[1] += t;
+    *longest = t;
+    if (st == RT_OK) stats->launches++;
+    return st;
+}
+
+/* Launches k over count items, waits, adds the time to *ms and raises
+ * *longest. */
+static rt_status timed(cl_state *s, cl_kernel k, uint32_t count, const char *name, double *ms,
+                       double *longest, char *msg, size_t size) {
+    double t = 0.0;
+    rt_status st = launch(s, k, count, name, &t, msg, size);
+    *ms += t;
+    if (t > *longest) *longest = t;
+    return st;
+}
+
+static rt_status zero_buf(cl_state *s, int b, size_t bytes, char *msg, size_t size) {
+    cl_uint zero = 0;
+    cl_int err =
+        clEnqueueFillBuffer(s->queue, s->buf[b], &zero, sizeof zero, 0, bytes, 0, NULL, NULL);
+    if (err != CL_SUCCESS)
+        return fail(msg, size, RT_ERROR_BACKEND, "clearing buffer '%s' on '%s': %s",
+                    buffer_names[b], s->dev.name, rt_cl_error_name(err));
+    return RT_OK;
+}
+
+/* One tile of an image with secondary rays as wavefront passes (see
+ * kernels/rt_render.cl): the primary rays' queue, then per level a trace and
+ * a shade launch whose secondary rays make the next queue (its length read
+ * back between the launches), until the queue is empty; then the per-pixel
+ * sum in rt_shade_hit's order. *overflow is set (and the tile left
+ * unfinished) when a level queues more than cap rays. */
+static rt_status wave_tile(cl_state *s, cl_uint slots, cl_uint cap, cl_uint f, cl_uint n,
+                           rt_render_stats *stats, double *longest, int *overflow, char *msg,
+                           size_t size) {
+    cl_kernel kc = s->k_wcam, kt = s->k_wtrace, ks = s->k_wshade;
+    *longest = 0.0;
+    *overflow = 0;
+    rt_status st = zero_buf(s, B_COUNTERS, sizeof(rt_counters) * n, msg, size);
+    if (st == RT_OK) st = set_arg(kc, 1, sizeof f, &f, msg, size);
+    if (st == RT_OK) st = set_arg(kc, 2, sizeof n, &n, msg, size);
+    if (st == RT_OK) st = set_arg(kc, 3, sizeof(cl_mem), &s->buf[B_QUEUE_A], msg, size);
+    if (st == RT_OK)
+        st = timed(s, kc, n, "rt_k_wave_camera", &stats->kernel_ms[0], longest, msg, size);
+    if (st == RT_OK) stats->launches++;
+    cl_uint count = n;
+    int in = B_QUEUE_A, out = B_QUEUE_B;
+    while (st == RT_OK && count > 0) {
+        st = set_arg(kt, 10, sizeof count, &count, msg, size);
+        if (st == RT_OK) st = set_arg(kt, 11, sizeof(cl_mem), &s->buf[in], msg, size);
+        if (st == RT_OK) st = set_arg(ks, 10, sizeof count, &count, msg, size);
+        if (st == RT_OK) st = set_arg(ks, 11, sizeof(cl_mem), &s->buf[in], msg, size);
+        if (st == RT_OK) st = set_arg(ks, 16, sizeof(cl_mem), &s->buf[out], msg, size);
+        if (st == RT_OK)
+            st = timed(s, kt, count, "rt_k_wave_trace", &stats->kernel_ms[1], longest, msg, size);
+        if (st == RT_OK) st = zero_buf(s, B_QUEUE_COUNT, sizeof(cl_uint), msg, size);
+        if (st == RT_OK)
+            st = timed(s, ks, count, "rt_k_wave_shade", &stats->kernel_ms[2], longest, msg, size);
+        cl_uint next = 0;
+        if (st == RT_OK) st = read_buf(s, B_QUEUE_COUNT, sizeof next, &next, msg, size);
+        if (st != RT_OK) return st;
+        stats->launches += 2;
+        if (next > cap) {
+            *overflow = 1;
+            return RT_OK;
+        }
+        count = next;
+        int t = in;
+        in = out;
+        out = t;
+    }
+    cl_kernel ksum = s->k_wsum;
+    if (st == RT_OK) st = set_arg(ksum, 0, sizeof f, &f, msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 1, sizeof n, &n, msg, size);
+    if (st == RT_OK)
+        st = timed(s, ksum, n, "rt_k_wave_sum", &stats->kernel_ms[2], longest, msg, size);
+    if (st == RT_OK) stats->launches++;
+    return st;
+}
+
+/* The wavefront's largest tile: a power of two whose records fit in
+ * RT_CL_WAVE_RECORD_BYTES and the device's largest allocation. */
+static uint32_t wave_tile_max(const cl_state *s, uint32_t slots) {
+    uint64_t budget = RT_CL_WAVE_RECORD_BYTES;
+    if (s->dev.max_alloc && s->dev.max_alloc < budget) budget = s->dev.max_alloc;
+    uint64_t fit = budget / ((uint64_t)slots * sizeof(rt_wave_record));
+    uint32_t t = RT_CL_TILE_MAX;
+    while (t > 64 && t > fit) t /= 2;
+    return t;
+}
+
+/* Buffers and fixed arguments of the wavefront kernels. */
+static rt_status wave_setup(cl_state *s, cl_uint slots, uint32_t tile_max, cl_uint cap,
+                            cl_int channels, char *msg, size_t size) {
+    /* A queue holds a tile's primary rays or up to cap secondary rays. */
+    size_t entries = cap > tile_max ? cap : tile_max;
+    int remade;
+    rt_status st = ensure(s, B_QUEUE_A, sizeof(rt_wave_entry) * entries, &remade, msg, size);
+    if (st == RT_OK) st = ensure(s, B_QUEUE_B, sizeof(rt_wave_entry) * entries, &remade, msg, size);
+    if (st == RT_OK) st = ensure(s, B_WAVE_HITS, sizeof(rt_hit_d) * entries, &remade, msg, size);
+    if (st == RT_OK)
+        st = ensure(s, B_RECORDS, sizeof(rt_wave_record) * (size_t)slots * tile_max, &remade, msg,
+                    size);
+    if (st == RT_OK) st = ensure(s, B_QUEUE_COUNT, sizeof(cl_uint), &remade, msg, size);
+    if (st == RT_OK) st = set_view(s, s->k_wtrace, msg, size);
+    if (st == RT_OK) st = set_view(s, s->k_wshade, msg, size);
+    cl_kernel kc = s->k_wcam, kt = s->k_wtrace, ks = s->k_wshade, ksum = s->k_wsum;
+    if (st == RT_OK) st = set_arg(kc, 0, sizeof(cl_mem), &s->buf[B_HDR], msg, size);
+    if (st == RT_OK) st = set_arg(kt, 12, sizeof(cl_mem), &s->buf[B_WAVE_HITS], msg, size);
+    if (st == RT_OK) st = set_arg(kt, 13, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, size);
+    if (st == RT_OK) st = set_arg(ks, 12, sizeof(cl_mem), &s->buf[B_WAVE_HITS], msg, size);
+    if (st == RT_OK) st = set_arg(ks, 13, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, size);
+    if (st == RT_OK) st = set_arg(ks, 14, sizeof(cl_mem), &s->buf[B_RECORDS], msg, size);
+    cl_uint stride = tile_max; /* records are slot-major */
+    if (st == RT_OK) st = set_arg(ks, 15, sizeof stride, &stride, msg, size);
+    if (st == RT_OK) st = set_arg(ks, 17, sizeof(cl_mem), &s->buf[B_QUEUE_COUNT], msg, size);
+    if (st == RT_OK) st = set_arg(ks, 18, sizeof cap, &cap, msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 2, sizeof(cl_mem), &s->buf[B_HDR], msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 3, sizeof(cl_mem), &s->buf[B_RECORDS], msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 4, sizeof stride, &stride, msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 5, sizeof channels, &channels, msg, size);
+    if (st == RT_OK) st = set_arg(ksum, 6, sizeof(cl_mem), &s->buf[B_FB], msg, size);
+    return st;
+}
+
+static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char *device,
+                           const rt_render_options *opt, rt_framebuffer *fb,
+                           rt_render_stats *stats) {
+    char msg[1000] = "";
+    cl_state *s;
+    rt_status st = prepare(scene, prep, device, opt->device_options, &s, stats, msg, sizeof msg);
+    if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
+    const rt_scene_header *h = &prep->flat->hdr;
+    uint32_t pixels = (uint32_t)h->width * (uint32_t)h->height;
+    size_t fb_bytes = sizeof(float) * (size_t)pixels * (size_t)fb->channels;
+    int remade;
+    st = ensure(s, B_FB, fb_bytes, &remade, msg, sizeof msg);
+    if (st == RT_OK) st = ensure_ray_buffers(s, RT_CL_TILE_MAX, msg, sizeof msg);
+    if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
+
+    cl_int aov = (cl_int)opt->aov, channels = fb->channels, any = 0;
+    st = set_view(s, s->k_trace, msg, sizeof msg);
+    if (st == RT_OK) st = set_view(s, s->k_shade, msg, sizeof msg);
+    cl_kernel kc = s->k_camera, kt = s->k_trace, ks = s->k_shade;
+    if (st == RT_OK) st = set_arg(kc, 0, sizeof(cl_mem), &s->buf[B_HDR], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(kc, 3, sizeof(cl_mem), &s->buf[B_RAYS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(kt, 11, sizeof any, &any, msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(kt, 12, sizeof(cl_mem), &s->buf[B_RAYS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(kt, 13, sizeof(cl_mem), &s->buf[B_HITS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(kt, 14, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(ks, 12, sizeof aov, &aov, msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(ks, 13, sizeof channels, &channels, msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(ks, 14, sizeof(cl_mem), &s->buf[B_RAYS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(ks, 15, sizeof(cl_mem), &s->buf[B_HITS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(ks, 16, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(ks, 17, sizeof(cl_mem), &s->buf[B_FB], msg, sizeof msg);
+
+    /* Images with reflection or refraction go through the wavefront; AOVs
+     * (primary-ray values, or every ray's tests of a pixel) and scenes
+     * without secondary rays through rt_k_shade. */
+    int wave = aov == RT_AOV_NONE && (h->flags & RT_SCENE_SECONDARY) && !s->no_wave && !s->lanes;
+    cl_uint slots = (2u << h->max_depth) - 1u, cap = 0;
+    uint32_t tmax = RT_CL_TILE_MAX;
+    if (st == RT_OK && wave) {
+        tmax = wave_tile_max(s, slots);
+        cap = 2u * tmax;
+        /* Tests shrink the queues to force the overflow path. */
+        const char *cap_env = getenv("RTCL_OPENCL_WAVE_CAP");
+        if (cap_env && atoi(cap_env) > 0 && (cl_uint)atoi(cap_env) < cap)
+            cap = (cl_uint)atoi(cap_env);
+        st = wave_setup(s, slots, tmax, cap, channels, msg, sizeof msg);
+        if (s->tile > tmax) s->tile = tmax;
+    }
+    if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
+
+    /* CPU devices: rt_k_packet over blocks of lanes pixels (tiles are then
+     * ranges of blocks); elsewhere rt_k_camera/trace/shade or the wavefront
+     * over ranges of pixels. */
+    const uint32_t lanes = (uint32_t)s->lanes, bw = lanes == 4 ? 2u : 4u,
+                   bh = lanes ? lanes / bw : 1u;
+    const uint32_t units =
+        lanes ? (((uint32_t)h->width + bw - 1u) / bw) * (((uint32_t)h->height + bh - 1u) / bh)
+              : pixels;
+    if (lanes) {
+        snprintf(stats->kernels, sizeof stats->kernels, "packet %ux%u (rt_k_packet)", bw, bh);
+        cl_kernel kp = s->k_packet;
+        if (st == RT_OK) st = set_view(s, kp, msg, sizeof msg);
+        if (st == RT_OK) st = set_arg(kp, 12, sizeof aov, &aov, msg, sizeof msg);
+        if (st == RT_OK) st = set_arg(kp, 13, sizeof channels, &channels, msg, sizeof msg);
+        if (st == RT_OK) st = set_arg(kp, 14, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, sizeof msg);
+        if (st == RT_OK) st = set_arg(kp, 15, sizeof(cl_mem), &s->buf[B_FB], msg, sizeof msg);
+        if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
+    } else {
+        snprintf(stats->kernels, sizeof stats->kernels, "one ray per work-item%s",
+                 wave ? " (wavefront)" : "");
+    }
+
+    rt_counters *counts = NULL;
+    if (opt->stats) {
+        counts = malloc(sizeof(rt_counters) * RT_CL_TILE_MAX);
+        if (!counts) return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    }
+    double t_render = rt_now_ms();
+    for (uint32_t first = 0; first < units && st == RT_OK;) {
+        /* The tile in units (pixels, or blocks of lanes pixels); one entry
+         * of counters per unit. */
+        uint32_t per = lanes ? (s->tile / lanes ? s->tile / lanes : 1u) : s->tile;
+        cl_uint n = units - first < per ? units - first : per;
+        cl_uint tile_px = lanes ? n * lanes : n;
+        double longest = 0.0;
+        int overflow = 0;
+        if (lanes) {
+            st = packet_tile(s, first, n, stats, &longest, msg, sizeof msg);
+        } else if (wave) {
+            st = wave_tile(s, slots, cap, first, n, stats, &longest, &overflow, msg, sizeof msg);
+            stats->wave_tiles++;
+            if (overflow) stats->wave_fallbacks++;
+        }
+        /* A level that queued more rays than the queues hold: the tile again
+         * with the stack in the kernel (the same bits). */
+        if (st == RT_OK && (overflow || (!lanes && !wave)))
+            st = direct_tile(s, first, n, stats, &longest, msg, sizeof msg);
+        if (st != RT_OK) break;
+        if (tile_px > stats->tile_pixels) stats->tile_pixels = tile_px;
+        if (counts) {
+            double t0 = rt_now_ms();
+            st = read_buf(s, B_COUNTERS, sizeof(rt_counters) * n, counts, msg, sizeof msg);
+            stats->download_ms += rt_now_ms() - t0;
+            for (cl_uint i = 0; i < n && st == RT_OK; i++) {
+                stats->rays += counts[i].rays;
+                stats->box_tests += counts[i].box_tests;
+                stats->tri_tests += counts[i].tri_tests;
+            }
+        }
+        first += n;
+        /* Only a full tile says how long a tile takes. */
+        if (n == per) s->tile = next_tile(s, s->tile, longest);
+        if (wave && s->tile > tmax) s->tile = tmax;
+        if (opt->progress) opt->progress(opt->progress_user, (double)first / units);
+    }
+    free(counts);
+    if (st == RT_OK) {
+        double t0 = rt_now_ms();
+        st = read_buf(s, B_FB, fb_bytes, fb->pixels, msg, sizeof msg);
+        stats->download_ms += rt_now_ms() - t0;
+    }
+    if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
+    /* Wall time of the launches and their read-backs: comparable with the
+     * CPU backends' render_ms. */
+    stats->render_ms = rt_now_ms() - t_render;
+    stats->primary_rays = pixels;
+    stats->threads = (int)s->dev.compute_units;
+    return RT_OK;
+}
+
+static rt_status cl_trace(rt_scene *scene, const rt_prepared *prep, const char *device,
+                          const char *device_options, const rt_ray_d *rays, size_t count,
+                          rt_hit_d *hits, int any_hit) {
+    char msg[1000] = "";
+    rt_render_stats stats;
+    memset(&stats, 0, sizeof stats);
+    cl_state *s = NULL;
+    rt_status st = prepare(scene, prep, device, device_options, &s, &stats, msg, sizeof msg);
+    if (st == RT_OK) st = ensure_ray_buffers(s, RT_CL_TILE_MAX, msg, sizeof msg);
+    /* Closest hits on a CPU device: packets of consecutive rays
+     * (rt_k_packet_trace, the same hits); any hit: rt_k_trace, so that the
+     * hit reported is the oracle's first one, not only some hit. */
+    int packet = st == RT_OK && s->lanes && !any_hit;
+    cl_kernel k = s ? (packet ? s->k_ptrace : s->k_trace) : NULL;
+    cl_uint a = packet ? 11 : 12; /* the rays argument */
+    cl_int any = any_hit ? 1 : 0;
+    if (st == RT_OK) st = set_view(s, k, msg, sizeof msg);
+    if (st == RT_OK && !packet) st = set_arg(k, 11, sizeof any, &any, msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(k, a, sizeof(cl_mem), &s->buf[B_RAYS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(k, a + 1, sizeof(cl_mem), &s->buf[B_HITS], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(k, a + 2, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, sizeof msg);
+    for (size_t first = 0; first < count && st == RT_OK;) {
+        cl_uint n = (cl_uint)(count - first < s->tile ? count - first : s->tile);
+        uint64_t ignored = 0;
+        double ms = 0.0;
+        st = write_buf(s, B_RAYS, 0, rays + first, sizeof(rt_ray_d) * n, &ignored, msg, sizeof msg);
+        if (st == RT_OK) st = set_arg(k, 10, sizeof n, &n, msg, sizeof msg);
+        if (st == RT_OK)
+            st = launch(s, k, packet ? (n + (cl_uint)s->lanes - 1) / (cl_uint)s->lanes : n,
+                        packet ? "rt_k_packet_trace" : "rt_k_trace", &ms, msg, sizeof msg);
+        if (st == RT_OK) {
+            cl_int err = clEnqueueReadBuffer(s->queue, s->buf[B_HITS], CL_TRUE, 0,
+                                             sizeof(rt_hit_d) * n, hits + first, 0, NULL, NULL);
+            if (err != CL_SUCCESS)
+                st = fail(msg, sizeof msg, RT_ERROR_BACKEND, "reading hits: %s",
+                          rt_cl_error_name(err));
+        }
+        first += n;
+        if (n == s->tile) s->tile = next_tile(s, s->tile, ms);
+    }
+    if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
+    return RT_OK;
+}
+
+static int cl_available(char *msg, size_t size) {
+    rt_cl_device_info *devs;
+    int count;
+    if (rt_cl_devices(&devs, &count, msg, size) != RT_OK) return 0;
+    free(devs);
+    return 1;
+}
+
+const rt_backend_ops rt_opencl_backend = {"opencl", cl_render, cl_trace, cl_available, state_free};

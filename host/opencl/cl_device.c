@@ -1,0 +1,206 @@
+/* cl_device.c - OpenCL platforms and devices through the ICD loader. */
+#include "opencl/cl_device.h"
+
+#include <CL/cl.h>
+#include <ctype.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *rt_cl_error_name(int code) {
+    switch (code) {
+    case CL_SUCCESS:
+        return "CL_SUCCESS";
+    case CL_DEVICE_NOT_FOUND:
+        return "CL_DEVICE_NOT_FOUND";
+    case CL_DEVICE_NOT_AVAILABLE:
+        return "CL_DEVICE_NOT_AVAILABLE";
+    case CL_COMPILER_NOT_AVAILABLE:
+        return "CL_COMPILER_NOT_AVAILABLE";
+    case CL_MEM_OBJECT_ALLOCATION_FAILURE:
+        return "CL_MEM_OBJECT_ALLOCATION_FAILURE";
+    case CL_OUT_OF_RESOURCES:
+        return "CL_OUT_OF_RESOURCES";
+    case CL_OUT_OF_HOST_MEMORY:
+        return "CL_OUT_OF_HOST_MEMORY";
+    case CL_BUILD_PROGRAM_FAILURE:
+        return "CL_BUILD_PROGRAM_FAILURE";
+    case CL_INVALID_VALUE:
+        return "CL_INVALID_VALUE";
+    case CL_INVALID_BUFFER_SIZE:
+        return "CL_INVALID_BUFFER_SIZE";
+    case CL_INVALID_BUILD_OPTIONS:
+        return "CL_INVALID_BUILD_OPTIONS";
+    case CL_INVALID_KERNEL_ARGS:
+        return "CL_INVALID_KERNEL_ARGS";
+    case CL_INVALID_WORK_GROUP_SIZE:
+        return "CL_INVALID_WORK_GROUP_SIZE";
+    case CL_INVALID_ARG_SIZE:
+        return "CL_INVALID_ARG_SIZE";
+    case CL_INVALID_ARG_VALUE:
+        return "CL_INVALID_ARG_VALUE";
+    case -1001:
+        return "CL_PLATFORM_NOT_FOUND_KHR";
+    default:
+        return "an OpenCL error";
+    }
+}
+
+static void get_string(cl_device_id d, cl_device_info what, char *out, size_t size) {
+    out[0] = 0;
+    if (clGetDeviceInfo(d, what, size, out, NULL) != CL_SUCCESS) out[0] = 0;
+    out[size - 1] = 0;
+}
+
+static void describe(cl_platform_id p, cl_device_id d, rt_cl_device_info *info) {
+    memset(info, 0, sizeof *info);
+    info->platform_id = p;
+    info->device_id = d;
+    if (clGetPlatformInfo(p, CL_PLATFORM_NAME, sizeof info->platform, info->platform, NULL) !=
+        CL_SUCCESS)
+        info->platform[0] = 0;
+    info->platform[sizeof info->platform - 1] = 0;
+    get_string(d, CL_DEVICE_NAME, info->name, sizeof info->name);
+    get_string(d, CL_DEVICE_VENDOR, info->vendor, sizeof info->vendor);
+    get_string(d, CL_DEVICE_VERSION, info->version, sizeof info->version);
+    get_string(d, CL_DRIVER_VERSION, info->driver, sizeof info->driver);
+    cl_uint cu = 0;
+    cl_ulong mem = 0, alloc = 0;
+    cl_device_fp_config fp = 0, dp = 0;
+    cl_device_type type = 0;
+    clGetDeviceInfo(d, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof cu, &cu, NULL);
+    clGetDeviceInfo(d, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof mem, &mem, NULL);
+    clGetDeviceInfo(d, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof alloc, &alloc, NULL);
+    clGetDeviceInfo(d, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp, &fp, NULL);
+    if (clGetDeviceInfo(d, CL_DEVICE_TYPE, sizeof type, &type, NULL) != CL_SUCCESS) type = 0;
+    info->cpu = (type & CL_DEVICE_TYPE_CPU) != 0;
+    if (clGetDeviceInfo(d, CL_DEVICE_DOUBLE_FP_CONFIG, sizeof dp, &dp, NULL) != CL_SUCCESS) dp = 0;
+    info->compute_units = cu;
+    info->global_mem = mem;
+    info->max_alloc = alloc;
+    info->cr_div_sqrt = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
+    info->fma = (fp & CL_FP_FMA) != 0;
+    /* fp64: the extension string is the promise OpenCL C's cl_khr_fp64 macro
+     * follows; a non-zero double config says the same on 1.2+ devices. */
+    size_t ext_size = 0;
+    if (clGetDeviceInfo(d, CL_DEVICE_EXTENSIONS, 0, NULL, &ext_size) == CL_SUCCESS && ext_size) {
+        char *ext = malloc(ext_size + 1);
+        if (ext && clGetDeviceInfo(d, CL_DEVICE_EXTENSIONS, ext_size, ext, NULL) == CL_SUCCESS) {
+            ext[ext_size] = 0;
+            info->fp64 = strstr(ext, "cl_khr_fp64") != NULL;
+        }
+        free(ext);
+    }
+    if (dp == 0) info->fp64 = 0;
+    info->exact = info->cr_div_sqrt && info->fp64;
+}
+
+rt_status rt_cl_devices(rt_cl_device_info **out, int *count, char *msg, size_t msg_size) {
+    *out = NULL;
+    *count = 0;
+    cl_uint np = 0;
+    cl_int err = clGetPlatformIDs(0, NULL, &np);
+    if (err != CL_SUCCESS || np == 0) {
+        snprintf(msg, msg_size,
+                 "no OpenCL platform found (%s): the ICD loader lists no driver in "
+                 "/etc/OpenCL/vendors (install one, e.g. pocl-opencl-icd)",
+                 err != CL_SUCCESS ? rt_cl_error_name(err) : "none installed");
+        return RT_ERROR_UNSUPPORTED;
+    }
+    cl_platform_id *plats = calloc(np, sizeof *plats);
+    if (!plats || clGetPlatformIDs(np, plats, NULL) != CL_SUCCESS) {
+        free(plats);
+        snprintf(msg, msg_size, "cannot list OpenCL platforms");
+        return RT_ERROR_BACKEND;
+    }
+    rt_cl_device_info *list = NULL;
+    int n = 0;
+    for (cl_uint p = 0; p < np; p++) {
+        cl_uint nd = 0;
+        if (clGetDeviceIDs(plats[p], CL_DEVICE_TYPE_ALL, 0, NULL, &nd) != CL_SUCCESS || !nd)
+            continue;
+        cl_device_id *ids = calloc(nd, sizeof *ids);
+        rt_cl_device_info *grown = realloc(list, sizeof *list * (size_t)(n + (int)nd));
+        if (!ids || !grown) {
+            free(ids);
+            free(grown ? grown : list);
+            free(plats);
+            snprintf(msg, msg_size, "out of memory");
+            return RT_ERROR_OUT_OF_MEMORY;
+        }
+        list = grown;
+        if (clGetDeviceIDs(plats[p], CL_DEVICE_TYPE_ALL, nd, ids, NULL) == CL_SUCCESS) {
+            for (cl_uint d = 0; d < nd; d++) {
+                describe(plats[p], ids[d], &list[n]);
+                list[n].index = n;
+                list[n].platform_index = (int)p;
+                n++;
+            }
+        }
+        free(ids);
+    }
+    free(plats);
+    if (n == 0) {
+        free(list);
+        snprintf(msg, msg_size, "no OpenCL device found (%u platform%s, none with a device)", np,
+                 np == 1 ? "" : "s");
+        return RT_ERROR_UNSUPPORTED;
+    }
+    *out = list;
+    *count = n;
+    return RT_OK;
+}
+
+static int contains_nocase(const char *hay, const char *needle) {
+    size_t n = strlen(needle);
+    for (; *hay; hay++) {
+        size_t i = 0;
+        while (i < n && hay[i] &&
+               tolower((unsigned char)hay[i]) == tolower((unsigned char)needle[i]))
+            i++;
+        if (i == n) return 1;
+    }
+    return n == 0;
+}
+
+int rt_cl_select(const rt_cl_device_info *devs, int count, const char *sel, char *msg,
+                 size_t msg_size) {
+    if (!sel || !*sel) {
+        for (int i = 0; i < count; i++)
+            if (devs[i].exact) return i;
+        return count > 0 ? 0 : -1;
+    }
+    char *end;
+    long idx = strtol(sel, &end, 10);
+    if (end != sel && *end == 0) {
+        if (idx >= 0 && idx < count) return (int)idx;
+        snprintf(msg, msg_size, "no OpenCL device %ld (there %s %d: 0..%d, see 'rtcl devices')",
+                 idx, count == 1 ? "is" : "are", count, count - 1);
+        return -1;
+    }
+    for (int i = 0; i < count; i++)
+        if (contains_nocase(devs[i].name, sel)) return i;
+    snprintf(msg, msg_size, "no OpenCL device named like '%s' (see 'rtcl devices')", sel);
+    return -1;
+}
+
+const char *rt_cl_exactness_note(const rt_cl_device_info *d) {
+    if (d->exact)
+        return "bit-exact with the CPU oracle (correctly rounded divide/sqrt, fp64 for the "
+               "watertight re-check)";
+    if (!d->cr_div_sqrt && !d->fp64)
+        return "exactness NOT promised: no correctly rounded float divide/sqrt, no fp64 "
+               "(watertight re-check of zero edge functions is skipped)";
+    if (!d->cr_div_sqrt)
+        return "exactness NOT promised: float divide/sqrt are not correctly rounded";
+    return "exactness NOT promised: no cl_khr_fp64, so zero edge functions of the watertight "
+           "test are not re-checked in double (rare sliver-triangle hits may differ)";
+}
+
+const char *rt_cl_kernels_note(const rt_cl_device_info *d) {
+    if (d->cpu)
+        return "packet: a CPU device, so each work-item traces a 4x4 block of rays as float16 "
+               "vectors (kernels/rt_packet.cl)";
+    return "one ray per work-item (kernels/rt_render.cl; wavefront passes for reflection and "
+           "refraction)";
+}

@@ -1,0 +1,556 @@
+/* scene.c - the scene model and the rt.h operations that edit it. */
+#include "scene/scene.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/error.h"
+
+/* ---- small helpers ---------------------------------------------------- */
+
+rt_status rt_scene_fail(rt_scene *scene, rt_status status, const char *fmt, ...) {
+    va_list args;
+    va_start(args, fmt);
+    rt_error_setv(&scene->error, status, NULL, 0, 0, fmt, args);
+    va_end(args);
+    return status;
+}
+
+/* Grows *array (of elem bytes each) so that it holds at least need elements. */
+static int grow(void **array, uint32_t *capacity, uint32_t need, size_t elem) {
+    if (need <= *capacity) return 1;
+    uint64_t cap = *capacity ? *capacity : 8;
+    while (cap < need) cap *= 2;
+    if (cap > UINT32_MAX) cap = UINT32_MAX;
+    if (cap * elem > SIZE_MAX / 2) return 0;
+    void *p = realloc(*array, (size_t)cap * elem);
+    if (!p) return 0;
+    *array = p;
+    *capacity = (uint32_t)cap;
+    return 1;
+}
+
+static int finite3(const float v[3]) {
+    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
+}
+
+void rt_mat4_identity(float m[16]) {
+    memset(m, 0, 16 * sizeof(float));
+    m[0] = m[5] = m[10] = m[15] = 1.0f;
+}
+
+void rt_mat4_mul(const float a[16], const float b[16], float out[16]) {
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++) {
+            float s = 0.0f;
+            for (int k = 0; k < 4; k++) s += a[r * 4 + k] * b[k * 4 + c];
+            out[r * 4 + c] = s;
+        }
+}
+
+int rt_mat4_affine_inverse(const float m[16], float out[16]) {
+    /* Inverse of the 3x3 part by cofactors, in double, then the translation. */
+    double a = m[0], b = m[1], c = m[2], d = m[4], e = m[5], f = m[6], g = m[8], h = m[9],
+           i = m[10];
+    double A = e * i - f * h, B = -(d * i - f * g), C = d * h - e * g;
+    double det = a * A + b * B + c * C;
+    if (det == 0.0 || !isfinite(det)) return 0;
+    double inv[9] = {A / det, -(b * i - c * h) / det, (b * f - c * e) / det,
+                     B / det, (a * i - c * g) / det,  -(a * f - c * d) / det,
+                     C / det, -(a * h - b * g) / det, (a * e - b * d) / det};
+    for (int r = 0; r < 3; r++) {
+        double t = 0.0;
+        for (int k = 0; k < 3; k++) {
+            out[r * 4 + k] = (float)inv[r * 3 + k];
+            t -= inv[r * 3 + k] * m[k * 4 + 3];
+        }
+        out[r * 4 + 3] = (float)t;
+    }
+    out[12] = out[13] = out[14] = 0.0f;
+    out[15] = 1.0f;
+    return 1;
+}
+
+/* ---- lifetime --------------------------------------------------------- */
+
+rt_material rt_material_default(void) {
+    rt_material m = {{1.0f, 1.0f, 1.0f}, 1.0f, 1.0f, 0.0f, 1, 0.0f, 0.0f, 1.0f};
+    return m;
+}
+
+rt_status rt_scene_create(rt_scene **out) {
+    if (!out) return RT_ERROR_INVALID_ARGUMENT;
+    rt_scene *s = calloc(1, sizeof *s);
+    *out = s;
+    if (!s) return RT_ERROR_OUT_OF_MEMORY;
+    s->ambient[0] = s->ambient[1] = s->ambient[2] = 0.1f;
+    /* A camera at +z looking at the origin until one is set. */
+    rt_camera cam = {{0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 60.0f, 1024, 576};
+    s->camera = cam;
+    return RT_OK;
+}
+
+void rt_scene_destroy(rt_scene *scene) {
+    if (!scene) return;
+    for (uint32_t i = 0; i < scene->mesh_count; i++) {
+        free(scene->meshes[i].positions);
+        free(scene->meshes[i].normals);
+        free(scene->meshes[i].indices);
+        free(scene->meshes[i].tri_materials);
+    }
+    for (uint32_t i = 0; i < scene->object_count; i++) free(scene->objects[i].meshes);
+    free(scene->meshes);
+    free(scene->materials);
+    free(scene->lights);
+    free(scene->objects);
+    rt_render_cache_free(scene->render_cache);
+    free(scene);
+}
+
+const char *rt_scene_error(const rt_scene *scene) {
+    return scene ? scene->error.message : "";
+}
+
+/* ---- meshes ----------------------------------------------------------- */
+
+rt_status rt_mesh_create(rt_scene *scene, uint32_t *mesh_id) {
+    if (!scene || !mesh_id) return RT_ERROR_INVALID_ARGUMENT;
+    if (!grow((void **)&scene->meshes, &scene->mesh_capacity, scene->mesh_count + 1,
+              sizeof(rt_mesh_data)))
+        return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory creating a mesh");
+    memset(&scene->meshes[scene->mesh_count], 0, sizeof(rt_mesh_data));
+    *mesh_id = scene->mesh_count++;
+    scene->version++;
+    return RT_OK;
+}
+
+rt_status rt_mesh_add_triangles(rt_scene *scene, uint32_t mesh_id, const float *positions,
+                                const float *normals, uint32_t vertex_count,
+                                const uint32_t *indices, uint32_t triangle_count) {
+    if (!scene) return RT_ERROR_INVALID_ARGUMENT;
+    if (mesh_id >= scene->mesh_count)
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "mesh %u does not exist", mesh_id);
+    if ((vertex_count && !positions) || (triangle_count && !indices))
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "null positions or indices");
+    rt_mesh_data *m = &scene->meshes[mesh_id];
+    if (m->vertex_count && ((m->normals != NULL) != (normals != NULL)))
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "mesh %u: normals must be given for all vertices or for none",
+                             mesh_id);
+    for (uint32_t v = 0; v < vertex_count; v++) {
+        if (!finite3(positions + 3 * (size_t)v))
+            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                                 "mesh %u: vertex %u has a NaN or infinite coordinate", mesh_id, v);
+        if (normals && !finite3(normals + 3 * (size_t)v))
+            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                                 "mesh %u: normal %u has a NaN or infinite component", mesh_id, v);
+    }
+    for (uint64_t i = 0; i < 3 * (uint64_t)triangle_count; i++)
+        if (indices[i] >= vertex_count)
+            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                                 "mesh %u: triangle %llu refers to vertex %u of %u", mesh_id,
+                                 (unsigned long long)(i / 3), indices[i], vertex_count);
+    if ((uint64_t)m->vertex_count + vertex_count > UINT32_MAX / 3 ||
+        (uint64_t)m->triangle_count + triangle_count > UINT32_MAX / 3)
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "mesh %u: too many triangles",
+                             mesh_id);
+
+    if (vertex_count == 0 && triangle_count == 0) return RT_OK; /* nothing to add */
+    uint32_t v0 = m->vertex_count, t0 = m->triangle_count;
+    uint32_t vcap = m->vertex_capacity, tcap = m->triangle_capacity;
+    /* Grow every array first, so that a failure leaves the mesh as it was. */
+    if (!grow((void **)&m->positions, &vcap, v0 + vertex_count, 3 * sizeof(float))) goto oom;
+    if (normals) {
+        uint32_t ncap = m->vertex_capacity;
+        if (!grow((void **)&m->normals, &ncap, v0 + vertex_count, 3 * sizeof(float))) goto oom;
+        if (ncap != vcap) {
+            float *p = realloc(m->normals, (size_t)vcap * 3 * sizeof(float));
+            if (!p) goto oom;
+            m->normals = p;
+        }
+    }
+    m->vertex_capacity = vcap;
+    if (!grow((void **)&m->indices, &tcap, t0 + triangle_count, 3 * sizeof(uint32_t))) goto oom;
+    if (m->tri_materials) {
+        uint32_t mcap = m->triangle_capacity;
+        if (!grow((void **)&m->tri_materials, &mcap, t0 + triangle_count, sizeof(uint32_t)))
+            goto oom;
+        if (mcap != tcap) {
+            uint32_t *p = realloc(m->tri_materials, (size_t)tcap * sizeof(uint32_t));
+            if (!p) goto oom;
+            m->tri_materials = p;
+        }
+        for (uint32_t t = 0; t < triangle_count; t++) m->tri_materials[t0 + t] = UINT32_MAX;
+    }
+    m->triangle_capacity = tcap;
+
+    memcpy(m->positions + 3 * (size_t)v0, positions, 3 * sizeof(float) * (size_t)vertex_count);
+    if (normals)
+        memcpy(m->normals + 3 * (size_t)v0, normals, 3 * sizeof(float) * (size_t)vertex_count);
+    for (uint64_t i = 0; i < 3 * (uint64_t)triangle_count; i++)
+        m->indices[3 * (size_t)t0 + i] = indices[i] + v0;
+    m->vertex_count += vertex_count;
+    m->triangle_count += triangle_count;
+    scene->version++;
+    return RT_OK;
+oom:
+    return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY,
+                         "mesh %u: out of memory adding %u triangles", mesh_id, triangle_count);
+}
+
+/* ---- materials and lights ---------------------------------------------- */
+
+rt_status rt_material_add(rt_scene *scene, const rt_material *mat, uint32_t *material_id) {
+    if (!scene || !mat || !material_id) return RT_ERROR_INVALID_ARGUMENT;
+    const float coeffs[6] = {mat->ambient,      mat->diffuse,      mat->specular,
+                             mat->reflectivity, mat->transparency, mat->ior};
+    for (int i = 0; i < 6; i++)
+        if (!isfinite(coeffs[i]) || coeffs[i] < 0.0f)
+            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                                 "material: coefficients must be finite and >= 0");
+    if (!finite3(mat->color) || mat->color[0] < 0 || mat->color[1] < 0 || mat->color[2] < 0)
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "material: colour must be finite and >= 0");
+    if (mat->shininess < 0 || mat->shininess > 100000)
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "material: shininess %d is outside 0..100000", mat->shininess);
+    if (mat->ior <= 0.0f)
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "material: ior must be > 0");
+    if (mat->reflectivity + mat->transparency > 1.0f)
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "material: reflectivity + transparency must not exceed 1");
+    if (!grow((void **)&scene->materials, &scene->material_capacity, scene->material_count + 1,
+              sizeof(rt_material)))
+        return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory adding a material");
+    scene->materials[scene->material_count] = *mat;
+    *material_id = scene->material_count++;
+    scene->version++;
+    return RT_OK;
+}
+
+rt_status rt_light_add(rt_scene *scene, const float position[3], const float color[3],
+                       uint32_t *light_id) {
+    if (!scene || !position || !color || !light_id) return RT_ERROR_INVALID_ARGUMENT;
+    if (!finite3(position) || !finite3(color))
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "light: position and colour must be finite");
+    if (!grow((void **)&scene->lights, &scene->light_capacity, scene->light_count + 1,
+              sizeof(rt_light_data)))
+        return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory adding a light");
+    rt_light_data *l = &scene->lights[scene->light_count];
+    memcpy(l->position, position, sizeof l->position);
+    memcpy(l->color, color, sizeof l->color);
+    *light_id = scene->light_count++;
+    scene->version++;
+    return RT_OK;
+}
+
+static rt_status set_color(rt_scene *scene, float dst[3], const float color[3], const char *what) {
+    if (!scene || !color) return RT_ERROR_INVALID_ARGUMENT;
+    if (!finite3(color))
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "%s must be finite", what);
+    memcpy(dst, color, 3 * sizeof(float));
+    scene->version++;
+    return RT_OK;
+}
+
+rt_status rt_scene_set_ambient(rt_scene *scene, const float color[3]) {
+    return set_color(scene, scene ? scene->ambient : NULL, color, "ambient light");
+}
+
+rt_status rt_scene_set_background(rt_scene *scene, const float color[3]) {
+    return set_color(scene, scene ? scene->background : NULL, color, "background colour");
+}
+
+/* ---- objects ------------------------------------------------------------ */
+
+static rt_object_data *object_at(rt_scene *scene, uint32_t id) {
+    if (id >= scene->object_count) {
+        rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "object %u does not exist", id);
+        return NULL;
+    }
+    return &scene->objects[id];
+}
+
+rt_status rt_object_create(rt_scene *scene, uint32_t material_id, uint32_t *object_id) {
+    if (!scene || !object_id) return RT_ERROR_INVALID_ARGUMENT;
+    if (material_id >= scene->material_count)
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "material %u does not exist",
+                             material_id);
+    if (!grow((void **)&scene->objects, &scene->object_capacity, scene->object_count + 1,
+              sizeof(rt_object_data)))
+        return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory creating an object");
+    rt_object_data *o = &scene->objects[scene->object_count];
+    memset(o, 0, sizeof *o);
+    o->material = material_id;
+    rt_mat4_identity(o->transform);
+    rt_mat4_identity(o->pending);
+    *object_id = scene->object_count++;
+    scene->version++;
+    return RT_OK;
+}
+
+rt_status rt_object_add_mesh(rt_scene *scene, uint32_t object_id, uint32_t mesh_id) {
+    if (!scene) return RT_ERROR_INVALID_ARGUMENT;
+    rt_object_data *o = object_at(scene, object_id);
+    if (!o) return RT_ERROR_INVALID_ARGUMENT;
+    if (mesh_id >= scene->mesh_count)
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "mesh %u does not exist", mesh_id);
+    if (!grow((void **)&o->meshes, &o->mesh_capacity, o->mesh_count + 1, sizeof(uint32_t)))
+        return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory adding a keyframe");
+    o->meshes[o->mesh_count++] = mesh_id;
+    scene->version++;
+    return RT_OK;
+}
+
+rt_status rt_object_select_mesh(rt_scene *scene, uint32_t object_id, uint32_t keyframe) {
+    if (!scene) return RT_ERROR_INVALID_ARGUMENT;
+    rt_object_data *o = object_at(scene, object_id);
+    if (!o) return RT_ERROR_INVALID_ARGUMENT;
+    if (keyframe >= o->mesh_count)
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "object %u has %u keyframes; %u does not exist", object_id,
+                             o->mesh_count, keyframe);
+    o->selected = keyframe;
+    scene->version++;
+    return RT_OK;
+}
+
+rt_status rt_object_transform(rt_scene *scene, uint32_t object_id, const float matrix[16]) {
+    if (!scene || !matrix) return RT_ERROR_INVALID_ARGUMENT;
+    rt_object_data *o = object_at(scene, object_id);
+    if (!o) return RT_ERROR_INVALID_ARGUMENT;
+    for (int i = 0; i < 16; i++)
+        if (!isfinite(matrix[i]))
+            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                                 "object %u: transform element %d is not finite", object_id, i);
+    if (matrix[12] != 0.0f || matrix[13] != 0.0f || matrix[14] != 0.0f || matrix[15] != 1.0f)
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "object %u: the last row of a transform must be 0 0 0 1", object_id);
+    float inv[16];
+    if (!rt_mat4_affine_inverse(matrix, inv))
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "object %u: the transform is singular", object_id);
+    float composed[16];
+    rt_mat4_mul(matrix, o->pending, composed);
+    memcpy(o->pending, composed, sizeof composed);
+    o->has_pending = 1;
+    return RT_OK;
+}
+
+rt_status rt_scene_commit(rt_scene *scene) {
+    if (!scene) return RT_ERROR_INVALID_ARGUMENT;
+    for (uint32_t i = 0; i < scene->object_count; i++) {
+        rt_object_data *o = &scene->objects[i];
+        if (!o->has_pending) continue;
+        float composed[16];
+        rt_mat4_mul(o->pending, o->transform, composed);
+        memcpy(o->transform, composed, sizeof composed);
+        rt_mat4_identity(o->pending);
+        o->has_pending = 0;
+        scene->version++;
+    }
+    return RT_OK;
+}
+
+/* ---- camera --------------------------------------------------------------- */
+
+static float dot3(const float a[3], const float b[3]) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void cross3(const float a[3], const float b[3], float out[3]) {
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static int normalize3(float v[3]) {
+    float len = sqrtf(dot3(v, v));
+    if (!(len > 0.0f) || !isfinite(len)) return 0;
+    v[0] /= len, v[1] /= len, v[2] /= len;
+    return 1;
+}
+
+rt_status rt_camera_set(rt_scene *scene, const rt_camera *cam) {
+    if (!scene || !cam) return RT_ERROR_INVALID_ARGUMENT;
+    if (!finite3(cam->position) || !finite3(cam->look_at) || !finite3(cam->up))
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "camera: vectors must be finite");
+    float fwd[3] = {cam->look_at[0] - cam->position[0], cam->look_at[1] - cam->position[1],
+                    cam->look_at[2] - cam->position[2]};
+    float up[3] = {cam->up[0], cam->up[1], cam->up[2]}, side[3];
+    if (!normalize3(fwd))
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "camera: look-at point equals the position");
+    cross3(fwd, up, side);
+    if (!normalize3(side))
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "camera: up is zero or parallel to the view direction");
+    if (!(cam->hfov_degrees > 0.0f && cam->hfov_degrees < 180.0f))
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "camera: field of view %g is outside (0, 180) degrees",
+                             (double)cam->hfov_degrees);
+    if (cam->width < 1 || cam->height < 1 || cam->width > 32768 || cam->height > 32768)
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "camera: resolution %dx%d is outside 1..32768", cam->width,
+                             cam->height);
+    scene->camera = *cam;
+    scene->has_camera = 1;
+    scene->version++;
+    return RT_OK;
+}
+
+rt_status rt_camera_get(const rt_scene *scene, rt_camera *camera) {
+    if (!scene || !camera) return RT_ERROR_INVALID_ARGUMENT;
+    *camera = scene->camera;
+    return RT_OK;
+}
+
+/* The camera's orthonormal frame: forward, right, up. */
+static void camera_frame(const rt_camera *c, float fwd[3], float right[3], float up[3]) {
+    for (int i = 0; i < 3; i++) fwd[i] = c->look_at[i] - c->position[i];
+    normalize3(fwd);
+    cross3(fwd, c->up, right);
+    normalize3(right);
+    cross3(right, fwd, up);
+}
+
+rt_status rt_camera_move(rt_scene *scene, float right, float up, float forward) {
+    if (!scene) return RT_ERROR_INVALID_ARGUMENT;
+    if (!isfinite(right) || !isfinite(up) || !isfinite(forward))
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "camera move must be finite");
+    float f[3], r[3], u[3];
+    camera_frame(&scene->camera, f, r, u);
+    rt_camera c = scene->camera;
+    for (int i = 0; i < 3; i++) {
+        float d = right * r[i] + up * u[i] + forward * f[i];
+        c.position[i] += d;
+        c.look_at[i] += d;
+    }
+    return rt_camera_set(scene, &c);
+}
+
+rt_status rt_camera_rotate(rt_scene *scene, float yaw_degrees, float pitch_degrees) {
+    if (!scene) return RT_ERROR_INVALID_ARGUMENT;
+    if (!isfinite(yaw_degrees) || !isfinite(pitch_degrees))
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "camera rotation must be finite");
+    const float deg = 3.14159265358979f / 180.0f;
+    float f[3], r[3], u[3];
+    camera_frame(&scene->camera, f, r, u);
+    rt_camera c = scene->camera;
+    float dist = 0.0f;
+    for (int i = 0; i < 3; i++) dist += (c.look_at[i] - c.position[i]) * f[i];
+    float cy = cosf(yaw_degrees * deg), sy = sinf(yaw_degrees * deg);
+    float cp = cosf(pitch_degrees * deg), sp = sinf(pitch_degrees * deg);
+    /* Yaw turns forward towards -right (a positive yaw looks left), then
+     * pitch turns it towards up. */
+    float f1[3], r1[3];
+    for (int i = 0; i < 3; i++) {
+        f1[i] = cy * f[i] - sy * r[i];
+        r1[i] = cy * r[i] + sy * f[i];
+    }
+    float f2[3];
+    for (int i = 0; i < 3; i++) f2[i] = cp * f1[i] + sp * u[i];
+    normalize3(f2);
+    (void)r1;
+    for (int i = 0; i < 3; i++) c.look_at[i] = c.position[i] + dist * f2[i];
+    return rt_camera_set(scene, &c);
+}
+
+/* ---- queries ---------------------------------------------------------------- */
+
+uint64_t rt_scene_triangle_count(const rt_scene *scene) {
+    uint64_t n = 0;
+    for (uint32_t i = 0; i < scene->object_count; i++) {
+        const rt_object_data *o = &scene->objects[i];
+        if (o->mesh_count) n += scene->meshes[o->meshes[o->selected]].triangle_count;
+    }
+    return n;
+}
+
+static void transform_point(const float m[16], const float p[3], float out[3]) {
+    for (int r = 0; r < 3; r++)
+        out[r] = m[r * 4 + 0] * p[0] + m[r * 4 + 1] * p[1] + m[r * 4 + 2] * p[2] + m[r * 4 + 3];
+}
+
+int rt_scene_bounds(const rt_scene *scene, float bmin[3], float bmax[3]) {
+    int any = 0;
+    for (int k = 0; k < 3; k++) bmin[k] = INFINITY, bmax[k] = -INFINITY;
+    for (uint32_t i = 0; i < scene->object_count; i++) {
+        const rt_object_data *o = &scene->objects[i];
+        if (!o->mesh_count) continue;
+        const rt_mesh_data *m = &scene->meshes[o->meshes[o->selected]];
+        /* Only vertices that triangles use count: unused ones would move the
+         * default camera away from the model. */
+        for (uint64_t t = 0; t < 3 * (uint64_t)m->triangle_count; t++) {
+            float p[3];
+            transform_point(o->transform, m->positions + 3 * (size_t)m->indices[t], p);
+            for (int k = 0; k < 3; k++) {
+                if (p[k] < bmin[k]) bmin[k] = p[k];
+                if (p[k] > bmax[k]) bmax[k] = p[k];
+            }
+            any = 1;
+        }
+    }
+    return any;
+}
+
+rt_status rt_scene_apply_default_view(rt_scene *scene, int width, int height) {
+    float bmin[3], bmax[3];
+    if (!rt_scene_bounds(scene, bmin, bmax))
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "the scene has no triangles");
+    float c[3], ext[3];
+    for (int k = 0; k < 3; k++) c[k] = 0.5f * (bmin[k] + bmax[k]), ext[k] = bmax[k] - bmin[k];
+    float d = sqrtf(dot3(ext, ext));
+    if (!(d > 0.0f)) d = 1.0f; /* a single point: any distance will do */
+    float dir[3] = {0.3f, 0.35f, 1.0f};
+    normalize3(dir);
+    rt_camera cam;
+    for (int k = 0; k < 3; k++) {
+        cam.position[k] = c[k] + dir[k] * 0.9f * d;
+        cam.look_at[k] = c[k];
+    }
+    cam.up[0] = 0.0f, cam.up[1] = 1.0f, cam.up[2] = 0.0f;
+    cam.hfov_degrees = 60.0f;
+    cam.width = width > 0 ? width : 1024;
+    cam.height = height > 0 ? height : 576;
+    rt_status st = rt_camera_set(scene, &cam);
+    if (st != RT_OK) return st;
+    const float offset[3] = {0.25f, 0.6f, 0.3f}, white[3] = {1.0f, 1.0f, 1.0f};
+    float light[3];
+    for (int k = 0; k < 3; k++) light[k] = c[k] + offset[k] * d;
+    uint32_t id;
+    st = rt_light_add(scene, light, white, &id);
+    if (st != RT_OK) return st;
+    const float ambient[3] = {0.1f, 0.1f, 0.1f};
+    return rt_scene_set_ambient(scene, ambient);
+}
+
+static int is_identity(const float m[16]) {
+    float id[16];
+    rt_mat4_identity(id);
+    return memcmp(m, id, sizeof id) == 0;
+}
+
+rt_scene_features rt_scene_features_of(const rt_scene *scene) {
+    rt_scene_features f;
+    memset(&f, 0, sizeof f);
+    for (uint32_t i = 0; i < scene->material_count; i++) {
+        if (scene->materials[i].reflectivity > 0.0f) f.reflection = 1;
+        if (scene->materials[i].transparency > 0.0f) f.refraction = 1;
+    }
+    f.instancing = scene->object_count > 1;
+    for (uint32_t i = 0; i < scene->object_count; i++) {
+        const rt_object_data *o = &scene->objects[i];
+        if (!is_identity(o->transform) || o->has_pending) f.instancing = 1;
+        if (o->mesh_count > 1) f.keyframes = 1;
+    }
+    for (uint32_t i = 0; i < scene->mesh_count; i++) {
+        if (scene->meshes[i].normals) f.normals = 1;
+        if (scene->meshes[i].tri_materials) f.tri_materials = 1;
+    }
+    return f;
+}
