@@ -37,6 +37,8 @@
 
 #include "bench_util.h"
 #include "accel/bvh.h"
+#include "accel/scene_boxes.h"
+#include "base/error.h"
 #include "base/clock.h"
 #include "cpu_render.h"
 #include "layout/flatten.h"
@@ -121,7 +123,7 @@ typedef struct bench {
 } bench;
 
 /* Builds every shown mesh's BVH with the setup; *ms is the build time. */
-static int build_all(bench *b, setup *s, double *ms, char *msg, size_t msg_size) {
+static int build_all(bench *b, setup *s, double *ms, rt_error *msg) {
     const rt_scene *sc = b->scene;
     *ms = 0.0;
     for (uint32_t m = 0; m < sc->mesh_count; m++) {
@@ -132,18 +134,17 @@ static int build_all(bench *b, setup *s, double *ms, char *msg, size_t msg_size)
         if (s->embree) {
 #ifdef RT_HAVE_EMBREE
             double t = 0.0;
-            st = rt_embree_build_bvh(b->em, b->boxes[m], n, &s->o, &b->bvhs[m], &t, msg, msg_size);
+            st = rt_embree_build_bvh(b->em, b->boxes[m], n, &s->o, &b->bvhs[m], &t, msg);
             *ms += t;
 #else
-            snprintf(msg, msg_size, "this build has no Embree");
-            st = RT_ERROR_UNSUPPORTED;
+            st = rt_fail(msg, RT_ERROR_UNSUPPORTED, "this build has no Embree");
 #endif
         } else {
             rt_build_options o = s->o;
             o.threads = single_threaded(s) ? 1 : b->threads;
             double t0 = rt_now_ms();
             st = rt_bvh_build(b->boxes[m], n, &o, single_threaded(s) ? NULL : b->pool, &b->bvhs[m],
-                              msg, msg_size);
+                              msg);
             *ms += rt_now_ms() - t0;
         }
         if (st != RT_OK) return 0;
@@ -152,18 +153,21 @@ static int build_all(bench *b, setup *s, double *ms, char *msg, size_t msg_size)
 }
 
 /* The frame through the current trees: *ms is the render time. */
-static int trace_frame(bench *b, double *ms, uint64_t *rays, char *msg, size_t msg_size) {
+static int trace_frame(bench *b, double *ms, uint64_t *rays, rt_error *msg) {
     rt_bvh top;
-    if (rt_tlas_build(b->scene, b->bvhs, NULL, b->pool, &top, msg, msg_size) != RT_OK) return 0;
+    if (rt_tlas_build(b->scene, b->bvhs, NULL, b->pool, &top, msg) != RT_OK) return 0;
     rt_flat flat;
-    rt_status st = rt_flatten(b->scene, b->bvhs, &top, NULL, &flat, msg, msg_size);
+    rt_status st = rt_flatten(b->scene, b->bvhs, &top, NULL, &flat, msg);
     rt_bvh_free(&top);
     if (st != RT_OK) return 0;
     flat.hdr.flags &= ~(uint32_t)RT_SCENE_SECONDARY; /* direct_only */
-    rt_cpu_frame frame = {&flat, NULL, RT_AOV_NONE, b->image, 3, NULL, NULL};
+    rt_cpu_frame frame = {&flat, NULL, NULL, RT_AOV_NONE, b->image, 3, NULL, NULL};
     rt_cpu_counts counts;
     double t0 = rt_now_ms();
-    rt_cpu_render(&frame, b->pool, &counts);
+    if (rt_cpu_render(&frame, b->pool, &counts) != RT_OK) {
+        rt_flat_free(&flat);
+        return rt_fail(msg, RT_ERROR_OUT_OF_MEMORY, "out of memory"), 0;
+    }
     *ms = rt_now_ms() - t0;
     *rays = counts.rays;
     rt_flat_free(&flat);
@@ -235,33 +239,42 @@ int main(int argc, char **argv) {
         tris += md->triangle_count;
     }
 #ifdef RT_HAVE_EMBREE
-    char emsg[256] = "";
-    if (rt_embree_create(threads, &b.em, emsg, sizeof emsg) != RT_OK) b.em = NULL;
+    rt_error emsg;
+    memset(&emsg, 0, sizeof emsg);
+    if (rt_embree_create(threads, &b.em, &emsg) != RT_OK) b.em = NULL;
 #endif
     /* The library's own frame (default builder): what every tree must give. */
-    rt_render_options ro = rt_render_options_default();
-    ro.threads = threads;
-    ro.direct_only = 1;
-    rt_framebuffer ref;
-    if (rt_render(sc, &ro, &ref) != RT_OK) {
-        fprintf(stderr, "%s\n", rt_scene_error(sc));
+    rt_renderer_options rop = rt_renderer_options_default();
+    rop.threads = threads;
+    rt_renderer *renderer = NULL;
+    rt_error rerr;
+    if (rt_renderer_create(&rop, &renderer, &rerr) != RT_OK) {
+        fprintf(stderr, "%s\n", rerr.message);
         return 1;
     }
+    rt_render_options ro = rt_render_options_default();
+    ro.direct_only = 1;
+    rt_framebuffer ref;
+    if (rt_render(renderer, sc, &ro, &ref) != RT_OK) {
+        fprintf(stderr, "%s\n", rt_renderer_error(renderer));
+        return 1;
+    }
+    rt_renderer_destroy(renderer);
     for (int r = -1; r < reps; r++) /* r = -1: warm-up, not counted */
         for (int k = 0; k < count; k++) {
             setup *s = &setups[k];
-            char msg[256] = "";
+            rt_error msg;
+            memset(&msg, 0, sizeof msg);
             double bms, tms;
             uint64_t rays;
 #ifdef RT_HAVE_EMBREE
             if (s->embree && !b.em) {
-                fprintf(stderr, "bench_builders: %s: %s\n", s->text, emsg);
+                fprintf(stderr, "bench_builders: %s: %s\n", s->text, emsg.message);
                 return 1;
             }
 #endif
-            if (!build_all(&b, s, &bms, msg, sizeof msg) ||
-                !trace_frame(&b, &tms, &rays, msg, sizeof msg)) {
-                fprintf(stderr, "bench_builders: %s: %s\n", s->text, msg);
+            if (!build_all(&b, s, &bms, &msg) || !trace_frame(&b, &tms, &rays, &msg)) {
+                fprintf(stderr, "bench_builders: %s: %s\n", s->text, msg.message);
                 return 1;
             }
             if (r < 0) {

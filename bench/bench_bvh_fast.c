@@ -93,12 +93,13 @@ int main(int argc, char **argv) {
     rt_bvh_quality q = {0};
     for (int i = 0; i < reps && times; i++) {
         rt_bvh bvh;
-        char msg[160] = "";
+        rt_error msg;
+        memset(&msg, 0, sizeof msg);
         double t0 = rt_now_ms();
-        rt_status st = rt_bvh_build_fast(boxes, count, &o, pool, neon, &bvh, msg, sizeof msg);
+        rt_status st = rt_bvh_build_fast(boxes, count, &o, pool, neon, &bvh, &msg);
         times[i] = rt_now_ms() - t0;
         if (st != RT_OK) {
-            fprintf(stderr, "bench_bvh_fast: %s\n", msg);
+            fprintf(stderr, "bench_bvh_fast: %s\n", msg.message);
             return 1;
         }
         if (i == 0) {

@@ -33,6 +33,7 @@ typedef struct variant {
     char name[16];
     const char *options; /* NULL for the oracle */
     rt_scene *scene;
+    rt_renderer *renderer; /* one per variant: the options are the renderer's */
     double ms[MAX_FRAMES];
     double compile_ms;
     int exact;
@@ -41,17 +42,14 @@ typedef struct variant {
     rt_framebuffer fb;
 } variant;
 
-static int render(variant *v, const char *backend, int threads, double *ms) {
+static int render(variant *v, double *ms) {
     rt_render_options o = rt_render_options_default();
     rt_render_stats st;
-    o.backend = v->options ? backend : "cpu";
-    o.threads = threads;
-    o.device_options = v->options;
     o.stats = &st;
     rt_framebuffer_free(&v->fb);
-    if (rt_render(v->scene, &o, &v->fb) != RT_OK) {
+    if (rt_render(v->renderer, v->scene, &o, &v->fb) != RT_OK) {
         fprintf(stderr, "bench_cl_options: %s (%s): %s\n", v->name,
-                v->options ? v->options : "cpu oracle", rt_scene_error(v->scene));
+                v->options ? v->options : "cpu oracle", rt_renderer_error(v->renderer));
         return 0;
     }
     v->compile_ms += st.compile_ms;
@@ -113,11 +111,19 @@ int main(int argc, char **argv) {
         if (w) cam.width = w;
         if (h) cam.height = h;
         if (rt_camera_set(vs[k].scene, &cam) != RT_OK) return 1;
+        rt_renderer_options ro = rt_renderer_options_default();
+        ro.backend = vs[k].options ? backend : "cpu";
+        ro.threads = threads;
+        ro.device_options = vs[k].options;
+        if (rt_renderer_create(&ro, &vs[k].renderer, &err) != RT_OK) {
+            fprintf(stderr, "bench_cl_options: %s\n", err.message);
+            return 1;
+        }
     }
     for (int f = -1; f < frames; f++) /* f = -1: the warm-up frame, not counted */
         for (int k = 0; k < count; k++) {
             double ms;
-            if (!render(&vs[k], backend, threads, &ms)) return 1;
+            if (!render(&vs[k], &ms)) return 1;
             if (f >= 0) vs[k].ms[f] = ms;
         }
     printf("name\toptions\texact\tcompile_ms\tmin_ms\tmedian_ms\trays\tdevice\n");
@@ -144,6 +150,7 @@ int main(int argc, char **argv) {
                v->options ? (v->options[0] ? v->options : "(exact build)") : "(cpu oracle)",
                v->exact, v->compile_ms, min, med, (unsigned long long)v->rays, v->device);
         rt_framebuffer_free(&v->fb);
+        rt_renderer_destroy(v->renderer);
         rt_scene_destroy(v->scene);
     }
     return 0;

@@ -235,16 +235,22 @@ int main(int argc, char **argv) {
     }
     bench_primary_rays(&cam, w, h, rays);
 
-    rt_render_options opt = rt_render_options_default();
-    opt.backend = "cpu";
-    opt.threads = threads;
+    rt_renderer_options ro = rt_renderer_options_default();
+    ro.threads = threads;
+    rt_renderer *renderer = NULL;
+    rt_error rerr;
+    if (rt_renderer_create(&ro, &renderer, &rerr) != RT_OK) {
+        fprintf(stderr, "%s\n", rerr.message);
+        return 1;
+    }
+    rt_trace_options opt = {0, RT_TRI_TEST_WATERTIGHT};
     static double ms[TESTS][MAX_RUNS];
     for (int r = -1; r < runs; r++) /* r = -1: the warm-up pass, not counted */
         for (int m = 0; m < TESTS; m++) {
             opt.tri_test = (rt_triangle_test)m;
             double t0 = rt_now_ms();
-            if (rt_trace_rays_with(scene, rays, n, hits[m], 0, &opt) != RT_OK) {
-                fprintf(stderr, "%s\n", rt_scene_error(scene));
+            if (rt_trace_rays(renderer, scene, rays, n, hits[m], &opt) != RT_OK) {
+                fprintf(stderr, "%s\n", rt_renderer_error(renderer));
                 return 1;
             }
             if (r >= 0) ms[m][r] = rt_now_ms() - t0;

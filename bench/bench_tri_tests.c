@@ -42,18 +42,25 @@ int main(int argc, char **argv) {
     static const char *names[] = {"watertight", "mt", "pluecker", "badouel"};
     double ms[4][100];
     size_t hit_count[4] = {0};
-    rt_render_options opt = rt_render_options_default();
-    opt.backend = backend;
+    rt_renderer_options ro = rt_renderer_options_default();
+    ro.backend = backend;
+    rt_renderer *renderer = NULL;
+    rt_error rerr;
+    if (rt_renderer_create(&ro, &renderer, &rerr) != RT_OK) {
+        fprintf(stderr, "%s\n", rerr.message);
+        return 1;
+    }
+    rt_trace_options opt = {0, RT_TRI_TEST_WATERTIGHT};
     /* One untimed pass builds the BVH and layout. */
-    if (rt_trace_rays_with(scene, rays, n, hits, 0, &opt) != RT_OK) {
-        fprintf(stderr, "%s\n", rt_scene_error(scene));
+    if (rt_trace_rays(renderer, scene, rays, n, hits, &opt) != RT_OK) {
+        fprintf(stderr, "%s\n", rt_renderer_error(renderer));
         return 1;
     }
     for (int r = 0; r < runs; r++)
         for (int m = 0; m < 4; m++) {
             opt.tri_test = (rt_triangle_test)m;
             double t0 = rt_now_ms();
-            rt_trace_rays_with(scene, rays, n, hits, 0, &opt);
+            rt_trace_rays(renderer, scene, rays, n, hits, &opt);
             ms[m][r] = rt_now_ms() - t0;
             if (r == 0)
                 for (size_t i = 0; i < n; i++) hit_count[m] += hits[i].hit != 0;

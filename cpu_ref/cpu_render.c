@@ -72,9 +72,9 @@ static void cpu_rows(void *ctx, int worker, int workers) {
     }
 }
 
-void rt_cpu_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *counts) {
+rt_status rt_cpu_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *counts) {
     cpu_job *job = calloc(1, sizeof *job);
-    if (!job) return;
+    if (!job) return RT_ERROR_OUT_OF_MEMORY;
     job->frame = frame;
     if (pool && rt_pool_size(pool) <= 256)
         rt_pool_run(pool, cpu_rows, job);
@@ -88,6 +88,7 @@ void rt_cpu_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *coun
         counts->tri_tests += job->per_worker[i].tri_tests;
     }
     free(job);
+    return RT_OK;
 }
 
 void rt_cpu_trace_rays(const rt_flat *flat, const rt_ray_d *rays, size_t n, rt_hit_d *hits,

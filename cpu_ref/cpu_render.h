@@ -6,11 +6,12 @@
 
 #include <stdint.h>
 
-#include "layout/flatten.h"
+#include "base/thread_pool.h"
+#include "layout/flat.h"
+#include "packet_trace.h"
 #include "packet_wide.h"
 #include "rt.h"
 #include "rt_shade.h"
-#include "base/thread_pool.h"
 
 typedef struct rt_cpu_counts {
     uint64_t rays, primary_rays, box_tests, tri_tests;
@@ -19,7 +20,8 @@ typedef struct rt_cpu_counts {
 
 typedef struct rt_cpu_frame {
     const rt_flat *flat;
-    const rt_pk_wide *wide; /* the packet backend's wide BVHs of flat */
+    const rt_pk_wide *wide;   /* the packet backend's wide BVHs of flat ... */
+    const rt_pk_variant *isa; /* ... and the build of its tracer that runs */
     rt_aov aov;
     float *pixels; /* width * height * channels */
     int channels;  /* 3 for the image and normals, else 1 */
@@ -27,13 +29,14 @@ typedef struct rt_cpu_frame {
     void *progress_user;
 } rt_cpu_frame;
 
-/* Renders with the scalar oracle on the pool's workers (interleaved rows). */
-void rt_cpu_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *counts);
+/* Renders with the scalar oracle on the pool's workers (interleaved rows).
+ * RT_ERROR_OUT_OF_MEMORY when its bookkeeping cannot be allocated. */
+rt_status rt_cpu_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *counts);
 
 /* Renders with packets of RT_PACKET_TILE_W x RT_PACKET_TILE_H pixels (one
  * per tile) on the pool's workers, which take rows of tiles in turn. */
 enum { RT_PACKET_TILE_W = 8, RT_PACKET_TILE_H = 8 };
-void rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *counts);
+rt_status rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *counts);
 
 /* Finishes one pixel whose primary ray and hit are known: shading (or the
  * AOV) into the frame. Both backends call it. */
@@ -44,7 +47,8 @@ void rt_cpu_finish_pixel(const rt_cpu_frame *frame, const rt_scene_view *view, i
  * (consecutive rays together); misses get prim = RT_NO_HIT. */
 void rt_cpu_trace_rays(const rt_flat *flat, const rt_ray_d *rays, size_t n, rt_hit_d *hits,
                        int any_hit, rt_counters *c);
-void rt_packet_trace_rays(const rt_flat *flat, const rt_pk_wide *wide, const rt_ray_d *rays,
-                          size_t n, rt_hit_d *hits, int any_hit, rt_counters *c);
+void rt_packet_trace_rays(const rt_flat *flat, const rt_pk_wide *wide, const rt_pk_variant *isa,
+                          const rt_ray_d *rays, size_t n, rt_hit_d *hits, int any_hit,
+                          rt_counters *c);
 
 #endif /* RT_CPU_RENDER_H */

@@ -4,9 +4,8 @@
  * ("generic": NEON on ARM, SSE2 on x86-64) and, on x86-64, also with AVX2 and
  * with AVX-512 (CMakeLists.txt); the widest one the CPU supports is taken.
  * All of them give the same bits (tests/test_core_packet.c checks each one
- * the machine can run); they differ in speed only. RTCL_PACKET_ISA=NAME in the
- * environment, or rt_pk_select, picks one by name. */
-#include <stdatomic.h>
+ * the machine can run); they differ in speed only. The caller picks one by
+ * name (rt_renderer_options.packet_isa); nothing here is global state. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -24,12 +23,12 @@ void rt_pk_trace_avx512(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk
                         int any_hit, rt_pk_hits *hits, rt_pk_counts *counts);
 #endif
 
-typedef struct pk_variant {
+struct rt_pk_variant {
     const char *name;
     int lanes;
     pk_trace_fn fn;
     int (*supported)(void);
-} pk_variant;
+};
 
 static int always(void) {
     return 1;
@@ -44,7 +43,7 @@ static int has_avx512(void) {
 #endif
 
 /* Widest first. */
-static const pk_variant variants[] = {
+static const rt_pk_variant variants[] = {
 #ifdef RT_PK_X86_VARIANTS
     {"avx512", 16, rt_pk_trace_avx512, has_avx512},
     {"avx2", 8, rt_pk_trace_avx2, has_avx2},
@@ -53,45 +52,27 @@ static const pk_variant variants[] = {
 };
 enum { VARIANTS = sizeof variants / sizeof variants[0] };
 
-static _Atomic(const pk_variant *) chosen;
-
-static const pk_variant *find(const char *name) {
+const rt_pk_variant *rt_pk_variant_find(const char *name) {
+    int widest = !name || !*name;
     for (int i = 0; i < VARIANTS; i++)
-        if ((!name || strcmp(name, variants[i].name) == 0) && variants[i].supported())
+        if ((widest || strcmp(name, variants[i].name) == 0) && variants[i].supported())
             return &variants[i];
     return NULL;
 }
 
-static const pk_variant *current(void) {
-    const pk_variant *v = atomic_load_explicit(&chosen, memory_order_acquire);
-    if (v) return v;
-    const char *env = getenv("RTCL_PACKET_ISA");
-    v = env && *env ? find(env) : NULL;
-    if (!v) v = find(NULL);
-    atomic_store_explicit(&chosen, v, memory_order_release);
-    return v;
+const char *rt_pk_variant_name(const rt_pk_variant *v) {
+    return v->name;
 }
 
-int rt_pk_select(const char *name) {
-    const pk_variant *v = find(name);
-    if (!v) return 0;
-    atomic_store_explicit(&chosen, v, memory_order_release);
-    return 1;
-}
-
-const char *rt_pk_isa(void) {
-    return current()->name;
-}
-
-int rt_pk_isa_lanes(void) {
-    return current()->lanes;
+int rt_pk_variant_lanes(const rt_pk_variant *v) {
+    return v->lanes;
 }
 
 const char *rt_pk_isa_name(int i) {
     return i >= 0 && i < VARIANTS ? variants[i].name : NULL;
 }
 
-void rt_pk_trace(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *rays, int any_hit,
-                 rt_pk_hits *hits, rt_pk_counts *counts) {
-    current()->fn(s, w, rays, any_hit, hits, counts);
+void rt_pk_trace(const rt_pk_variant *isa, const rt_scene_view *s, const rt_pk_wide *w,
+                 const rt_pk_rays *rays, int any_hit, rt_pk_hits *hits, rt_pk_counts *counts) {
+    isa->fn(s, w, rays, any_hit, hits, counts);
 }

@@ -73,7 +73,7 @@ static void shade_tile(const rt_cpu_frame *f, const rt_scene_view *v, const rt_p
             }
         }
         if (!shadow.valid) continue;
-        rt_pk_trace(v, f->wide, &shadow, 1, &occluder, pc);
+        rt_pk_trace(f->isa, v, f->wide, &shadow, 1, &occluder, pc);
         for (rt_pk_mask m = shadow.valid; m; m &= m - 1) {
             int l = __builtin_ctzll(m);
             if (occluder.prim[l] == RT_NO_HIT)
@@ -125,7 +125,7 @@ static void render_tile(const rt_cpu_frame *f, const rt_scene_view *v, int x0, i
         rt_camera_ray_at(h, sx[px[l] - x0], sy[py[l] - y0], &r);
         rt_pk_set_ray(&primary, l, &r);
     }
-    rt_pk_trace(v, f->wide, &primary, 0, &hit, &pc);
+    rt_pk_trace(f->isa, v, f->wide, &primary, 0, &hit, &pc);
     if (f->aov == RT_AOV_NONE || f->aov == RT_AOV_BOX_TESTS || f->aov == RT_AOV_TRI_TESTS) {
         shade_tile(f, v, &primary, &hit, &pc, px, py);
     } else {
@@ -176,14 +176,14 @@ static void packet_blocks(void *ctx, int worker, int workers) {
     }
 }
 
-void rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *counts) {
+rt_status rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *counts) {
     int workers = pool ? rt_pool_size(pool) : 1;
     packet_job job;
     job.frame = frame;
     job.per_worker = calloc((size_t)workers, sizeof(rt_cpu_counts));
     atomic_init(&job.next_block, 0);
     memset(counts, 0, sizeof *counts);
-    if (!job.per_worker) return;
+    if (!job.per_worker) return RT_ERROR_OUT_OF_MEMORY;
     if (pool)
         rt_pool_run(pool, packet_blocks, &job);
     else
@@ -198,10 +198,12 @@ void rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts *c
         counts->packet_tri_tests += job.per_worker[i].packet_tri_tests;
     }
     free(job.per_worker);
+    return RT_OK;
 }
 
-void rt_packet_trace_rays(const rt_flat *flat, const rt_pk_wide *wide, const rt_ray_d *rays,
-                          size_t n, rt_hit_d *hits, int any_hit, rt_counters *c) {
+void rt_packet_trace_rays(const rt_flat *flat, const rt_pk_wide *wide, const rt_pk_variant *isa,
+                          const rt_ray_d *rays, size_t n, rt_hit_d *hits, int any_hit,
+                          rt_counters *c) {
     rt_scene_view v = rt_flat_view(flat);
     for (size_t i = 0; i < n; i += RT_PK_LANES) {
         rt_pk_rays p;
@@ -212,7 +214,7 @@ void rt_packet_trace_rays(const rt_flat *flat, const rt_pk_wide *wide, const rt_
         size_t count = n - i < RT_PK_LANES ? n - i : RT_PK_LANES;
         p.valid = RT_PK_ALL >> (RT_PK_LANES - count);
         for (size_t l = 0; l < count; l++) rt_pk_set_ray(&p, (int)l, &rays[i + l]);
-        rt_pk_trace(&v, wide, &p, any_hit, &h, &pc);
+        rt_pk_trace(isa, &v, wide, &p, any_hit, &h, &pc);
         for (size_t l = 0; l < count; l++) rt_pk_get_hit(&h, (int)l, &hits[i + l]);
         c->rays += (rt_u32)pc.rays;
         c->box_tests += (rt_u32)pc.box_tests;

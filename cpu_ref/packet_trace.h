@@ -85,21 +85,22 @@ typedef struct rt_pk_counts {
     uint64_t group_box_tests, group_tri_tests;
 } rt_pk_counts;
 
+/* The packet tracer is built for several instruction sets where the target
+ * has them (cpu_ref/packet_dispatch.c). rt_pk_variant_find returns the build
+ * named name ("generic", "avx2", "avx512"), or the widest the CPU runs for
+ * NULL or "", and NULL when this build or CPU lacks it; rt_pk_isa_name(i)
+ * names the build's i-th one (NULL past the last). */
+typedef struct rt_pk_variant rt_pk_variant;
+const rt_pk_variant *rt_pk_variant_find(const char *name);
+const char *rt_pk_variant_name(const rt_pk_variant *isa);
+int rt_pk_variant_lanes(const rt_pk_variant *isa); /* lanes per vector of that build */
+const char *rt_pk_isa_name(int i);
+
 /* Traces the valid lanes (closest hit, or any hit when any_hit is set)
  * through the layout s with its wide BVHs w (rt_pk_wide_build of the same
- * layout) into *hits; invalid lanes get a miss at t = inf. The tests are
- * added to *counts. */
-void rt_pk_trace(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *rays, int any_hit,
-                 rt_pk_hits *hits, rt_pk_counts *counts);
-
-/* The packet tracer is built for several instruction sets where the target
- * has them (cpu_ref/packet_dispatch.c): rt_pk_isa names the one in use (the
- * widest the CPU supports, or RTCL_PACKET_ISA's), rt_pk_isa_name(i) the
- * build's i-th one (NULL past the last), and rt_pk_select switches to one by
- * name (0 when this build or CPU lacks it). */
-const char *rt_pk_isa(void);
-int rt_pk_isa_lanes(void); /* lanes per vector of that build */
-const char *rt_pk_isa_name(int i);
-int rt_pk_select(const char *name);
+ * layout) into *hits, with the build isa; invalid lanes get a miss at
+ * t = inf. The tests are added to *counts. */
+void rt_pk_trace(const rt_pk_variant *isa, const rt_scene_view *s, const rt_pk_wide *w,
+                 const rt_pk_rays *rays, int any_hit, rt_pk_hits *hits, rt_pk_counts *counts);
 
 #endif /* RT_PACKET_TRACE_H */

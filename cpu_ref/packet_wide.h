@@ -15,7 +15,7 @@
 
 #include <stdint.h>
 
-#include "layout/flatten.h"
+#include "layout/flat.h"
 
 #define RT_PK_NO_CHILD 0xffffffffu
 

@@ -4,10 +4,19 @@
  * triangles, objects that reference one or more meshes (keyframes) with a
  * material and a rigid transform, point lights, a camera, and render.
  *
+ * Two objects: the scene (rt_scene), pure data that names nothing of
+ * rendering, and the renderer (rt_renderer, the thesis's RayTracerContext),
+ * which the caller creates with a backend and owns: it keeps the BVHs, the
+ * flattened layout, the worker threads and the device state between frames,
+ * and renders or traces any scene given to it.
+ *
  * Conventions
- * - Every function that can fail returns an rt_status. On failure the scene
- *   keeps a message with context (file, line, column, reason where they
- *   apply); rt_scene_error() returns it. The library never prints.
+ * - Every function that can fail returns an rt_status and fills one error
+ *   struct (rt_error) with context (file, line, column, reason where they
+ *   apply): a scene keeps the last error of the calls that edit it
+ *   (rt_scene_error), a renderer the last error of its calls
+ *   (rt_renderer_error), and loaders fill the rt_error the caller passes.
+ *   The library never prints.
  * - Ids are dense 0-based indices in creation order.
  * - Matrices are 4x4, row-major, acting on column vectors: p' = M p, so the
  *   translation is in elements 3, 7 and 11.
@@ -194,6 +203,66 @@ typedef struct rt_render_stats {
     char kernels[48];
 } rt_render_stats;
 
+/* ---- the renderer ------------------------------------------------------ */
+
+typedef struct rt_renderer rt_renderer;
+
+/* Kernel choices of the OpenCL backend, for tests and comparisons (all give
+ * the same bits; docs/OPENCL.md). Zero-initialised: the defaults. */
+typedef struct rt_opencl_tuning {
+    /* 0: a CPU device traces blocks of rays per work-item (rt_k_packet), other
+     * devices one ray per work-item; 1: one ray per work-item everywhere. */
+    int one_ray_kernels;
+    int packet_lanes; /* 0: 16 (4x4 blocks); 4 (2x2) or 8 (4x2) */
+    /* 0: images with reflection or refraction are shaded as wavefront passes
+     * on one-ray devices; 1: every image through rt_k_shade's stack. */
+    int no_wavefront;
+    /* 0: the wavefront's queues are sized to the tile; N > 0: at most N rays
+     * (a smaller queue overflows sooner: the overflow path is tested so). */
+    uint32_t wave_queue_cap;
+} rt_opencl_tuning;
+
+typedef struct rt_renderer_options {
+    /* "cpu" (the scalar oracle, the default), "packet", "opencl" (or
+     * "opencl:DEVICE", a device index or a part of its name), "auto" (a device
+     * backend when one is built and a device exists, else cpu, with
+     * rt_render_stats.notice saying why). */
+    const char *backend;
+    int threads; /* worker threads of the CPU backends and builders; <= 0: all cores */
+    /* Extra OpenCL C compiler options for the speed-versus-error study
+     * ("-cl-mad-enable", "-cl-fast-relaxed-math", "-DRT_NATIVE_MATH", ...),
+     * appended to the program's build options. They may change results: with
+     * any set, stats->exact is 0. NULL or "": the exact build. At most 255
+     * characters. Ignored by the CPU backends. */
+    const char *device_options;
+    /* The packet backend's instruction set: NULL or "" for the widest the CPU
+     * runs, else "generic", "avx2" or "avx512" (x86-64); one the build or CPU
+     * lacks is RT_ERROR_UNSUPPORTED. All give the same bits. */
+    const char *packet_isa;
+    rt_opencl_tuning opencl;
+} rt_renderer_options;
+
+/* cpu, all cores, no device options. */
+rt_renderer_options rt_renderer_options_default(void);
+
+/* Creates a renderer. An unknown backend, or one this build or machine lacks,
+ * is RT_ERROR_UNSUPPORTED with the reason in err (err may be NULL); *out is
+ * then NULL. Devices are opened at the first frame. */
+rt_status rt_renderer_create(const rt_renderer_options *options, rt_renderer **out, rt_error *err);
+void rt_renderer_destroy(rt_renderer *renderer);
+
+/* The last error's message, "" when none. */
+const char *rt_renderer_error(const rt_renderer *renderer);
+
+/* Switches to another backend ("cpu", "packet", "opencl[:DEVICE]", "auto")
+ * for the next frames. The BVHs and the layout are kept; so is the state of
+ * a device backend used before (switching back does not recompile). On
+ * failure the renderer keeps its backend. */
+rt_status rt_renderer_set_backend(rt_renderer *renderer, const char *backend);
+
+/* The backend that renders now ("cpu", "packet", "opencl"). */
+const char *rt_renderer_backend(const rt_renderer *renderer);
+
 /* Ray/triangle tests (rt_render_options.tri_test). Watertight is the default;
  * the others exist for the speed-versus-error study (docs/ROBUSTNESS.md). */
 typedef enum rt_triangle_test {
@@ -203,13 +272,9 @@ typedef enum rt_triangle_test {
     RT_TRI_TEST_BADOUEL         /* plane hit, then a 2D test (Badouel; Wald) */
 } rt_triangle_test;
 
+/* What one frame asks for. */
 typedef struct rt_render_options {
-    /* "cpu" (default), "packet", "opencl" (or "opencl:DEVICE", a device index
-     * or a part of its name), "auto" (opencl when a device exists, else cpu
-     * with stats->notice set). */
-    const char *backend;
     rt_render_stats *stats; /* filled when not NULL */
-    int threads;            /* <= 0: all cores */
     rt_aov aov;             /* RT_AOV_NONE: the shaded image */
     /* Progress in [0, 1] for long renders; may be NULL. */
     void (*progress)(void *user, double done);
@@ -218,14 +283,6 @@ typedef struct rt_render_options {
     /* 1: primary and shadow rays only, no reflection or refraction rays (the
      * thesis's benchmark set-up: one light, Phong, shadows). 0: Whitted. */
     int direct_only;
-    /* Extra OpenCL C compiler options for the speed-versus-error study
-     * (study options such as "-cl-mad-enable", "-cl-fast-relaxed-math",
-     * "-DRT_NATIVE_MATH").
-     * They are appended to the program's build options (the program cache
-     * keys on them) and may change results: with any set, stats->exact is 0
-     * and stats->device_options repeats them. NULL or "": none (the exact
-     * build). At most 255 characters. Ignored by the CPU backends. */
-    const char *device_options;
     /* 1: *fb holds a framebuffer of an earlier rt_render (or pixels NULL),
      * and when its size and channels match, its memory is reused, so that
      * a frame loop touches no fresh pages (every pixel is written anew). 0:
@@ -233,11 +290,14 @@ typedef struct rt_render_options {
     int reuse_framebuffer;
 } rt_render_options;
 
+/* The shaded image, Whitted, watertight test, no statistics. */
 rt_render_options rt_render_options_default(void);
 
-/* Renders one frame of width x height (the camera's resolution) into fb,
- * after applying queued transforms. */
-rt_status rt_render(rt_scene *scene, const rt_render_options *options, rt_framebuffer *fb);
+/* Renders one frame of scene (the camera's resolution) into fb, after
+ * applying its queued transforms; BVHs of meshes that changed are rebuilt,
+ * the rest reused. options NULL: the defaults. */
+rt_status rt_render(rt_renderer *renderer, rt_scene *scene, const rt_render_options *options,
+                    rt_framebuffer *fb);
 
 void rt_framebuffer_free(rt_framebuffer *fb);
 
@@ -262,17 +322,17 @@ typedef struct rt_hit {
     int hit;
 } rt_hit;
 
-/* Traces count rays through the scene (after applying queued transforms) with
- * a backend ("cpu" or NULL: the scalar oracle; "packet": ray packets;
- * "opencl[:DEVICE]" where built; all give identical closest hits). A ray with a NaN or infinite
- * component, or a zero direction, is a miss. */
-rt_status rt_trace_rays(rt_scene *scene, const rt_ray *rays, size_t count, rt_hit *hits,
-                        int any_hit, const char *backend);
+typedef struct rt_trace_options {
+    int any_hit;               /* 1: any hit in range (occlusion), 0: the closest */
+    rt_triangle_test tri_test; /* RT_TRI_TEST_WATERTIGHT (0) unless set */
+} rt_trace_options;
 
-/* rt_trace_rays with options: backend, threads, tri_test and device_options
- * are read (NULL: the defaults); stats, aov and progress are ignored. */
-rt_status rt_trace_rays_with(rt_scene *scene, const rt_ray *rays, size_t count, rt_hit *hits,
-                             int any_hit, const rt_render_options *options);
+/* Traces count rays through scene (after applying its queued transforms) on
+ * the renderer's backend; every backend gives identical closest hits. A ray
+ * with a NaN or infinite component, or a zero direction, is a miss. options
+ * NULL: closest hits, watertight test. */
+rt_status rt_trace_rays(rt_renderer *renderer, rt_scene *scene, const rt_ray *rays, size_t count,
+                        rt_hit *hits, const rt_trace_options *options);
 
 #ifdef __cplusplus
 }

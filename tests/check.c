@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "render/renderer_internal.h"
 #include "rt.h"
 #include "scene/scene_builtin.h"
 
@@ -64,4 +65,62 @@ rt_scene *test_builtin_scene(const char *name, int width, int height) {
     cam.height = height;
     CHECK_MSG(rt_camera_set(s, &cam) == RT_OK, "%s", rt_scene_error(s));
     return s;
+}
+
+enum { TEST_RENDERERS = 32 };
+static struct {
+    char backend[64];
+    int threads;
+    rt_renderer *r;
+} test_renderers[TEST_RENDERERS];
+static int test_renderer_count;
+
+static void destroy_renderers(void) {
+    for (int i = 0; i < test_renderer_count; i++) rt_renderer_destroy(test_renderers[i].r);
+    test_renderer_count = 0;
+}
+
+static rt_renderer *keep(const char *backend, int threads, rt_renderer *r) {
+    if (test_renderer_count == 0) atexit(destroy_renderers);
+    if (test_renderer_count == TEST_RENDERERS) {
+        fprintf(stderr, "check.c: more than %d renderers\n", TEST_RENDERERS);
+        exit(1);
+    }
+    snprintf(test_renderers[test_renderer_count].backend, sizeof test_renderers[0].backend, "%s",
+             backend ? backend : "");
+    test_renderers[test_renderer_count].threads = threads;
+    test_renderers[test_renderer_count++].r = r;
+    return r;
+}
+
+rt_renderer *test_renderer(const char *backend, int threads) {
+    for (int i = 0; i < test_renderer_count; i++)
+        if (test_renderers[i].threads == threads && strcmp(test_renderers[i].backend, backend) == 0)
+            return test_renderers[i].r;
+    rt_renderer_options o = rt_renderer_options_default();
+    o.backend = backend;
+    o.threads = threads;
+    rt_renderer *r = NULL;
+    rt_error err;
+    if (rt_renderer_create(&o, &r, &err) != RT_OK) {
+        CHECK_MSG(0, "renderer '%s': %s", backend, err.message);
+        return NULL;
+    }
+    return keep(backend, threads, r);
+}
+
+rt_renderer *test_renderer_with(const rt_renderer_options *options, rt_error *err) {
+    rt_renderer *r = NULL;
+    if (rt_renderer_create(options, &r, err) != RT_OK) return NULL;
+    return keep("", -1, r); /* never found by test_renderer */
+}
+
+const struct rt_flat *test_layout(rt_scene *s, int threads) {
+    rt_renderer *r = test_renderer("cpu", threads);
+    if (!r) return NULL;
+    rt_backend_layout layout;
+    double build_ms, sah;
+    rt_status st = rt_renderer_layout(r, s, &layout, &build_ms, &sah);
+    CHECK_MSG(st == RT_OK, "layout: %s", rt_renderer_error(r));
+    return st == RT_OK ? layout.flat : NULL;
 }

@@ -10,6 +10,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "rt.h"
+
 extern int test_failures;
 extern int test_checks;
 
@@ -47,6 +49,21 @@ extern int test_checks;
 #define TEST_END() test_report(__FILE__)
 
 int test_report(const char *name);
+
+/* A renderer on backend with threads (0: all cores), made at the first call
+ * with these two and kept (with its BVHs) until the program exits. Fails the
+ * test and returns NULL when it cannot be made. */
+rt_renderer *test_renderer(const char *backend, int threads);
+
+/* A new renderer with these options, freed when the program exits; NULL
+ * (with the reason in err) when it cannot be made. */
+rt_renderer *test_renderer_with(const rt_renderer_options *options, rt_error *err);
+
+/* The flattened layout (layout/flat.h) a cpu renderer on threads threads
+ * (test_renderer) makes of s, valid until that renderer renders again; NULL
+ * (and a failed check) on failure. Tests of the shared maths read it. */
+struct rt_flat;
+const struct rt_flat *test_layout(rt_scene *s, int threads);
 
 /* Prints "skipped: reason" and exits 77. */
 void test_skip(const char *reason);

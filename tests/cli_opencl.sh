@@ -34,7 +34,7 @@ for direct in "" --direct; do
     expect 0 'wrote' -- "$RTCL" render builtin:cornell --width 61 --height 37 $direct -o "$tmp/cpu.png"
     expect 0 "kernel path +$path" -- "$RTCL" render builtin:cornell --width 61 --height 37 $direct \
         --backend opencl --stats -o "$tmp/cl.png"
-    RTCL_OPENCL_NO_PACKET=1 expect 0 'kernel path +one ray per work-item' -- "$RTCL" render \
+    expect 0 'kernel path +one ray per work-item' -- "$RTCL" render --cl-one-ray \
         builtin:cornell --width 61 --height 37 $direct --backend opencl --stats -o "$tmp/cl1.png"
     for f in cl cl1; do
         checks=$((checks + 1))
@@ -44,12 +44,10 @@ done
 # Reflection and refraction as wavefront passes (cornell has a mirror and a
 # glass sphere; the one-ray kernels, as on a GPU), and with one-entry queues
 # every tile redone in one kernel: the same PNG both ways.
-export RTCL_OPENCL_NO_PACKET=1
 expect 0 'wavefront +[1-9][0-9]* tiles \(0 redone' -- "$RTCL" render builtin:cornell --width 160 \
-    --height 90 --backend opencl --stats -o "$tmp/wave.png"
-RTCL_OPENCL_WAVE_CAP=1 expect 0 'wavefront +([0-9]+) tiles \(\1 redone' -- "$RTCL" render \
+    --height 90 --backend opencl --cl-one-ray --stats -o "$tmp/wave.png"
+expect 0 'wavefront +([0-9]+) tiles \(\1 redone' -- "$RTCL" render --cl-wave-cap 1 --cl-one-ray \
     builtin:cornell --width 160 --height 90 --backend opencl --stats -o "$tmp/wave1.png"
-unset RTCL_OPENCL_NO_PACKET
 expect 0 'wrote' -- "$RTCL" render builtin:cornell --width 160 --height 90 -o "$tmp/cpu.png"
 for f in wave wave1; do
     checks=$((checks + 1))
@@ -85,6 +83,6 @@ export OCL_ICD_VENDORS="$tmp/no_vendors"
 expect 2 'no OpenCL platform' -- "$RTCL" devices
 expect 2 'opencl: no OpenCL platform' -- "$RTCL" render builtin:cornell --width 32 --height 18 --backend opencl -o "$tmp/x.png"
 expect 2 'opencl: no OpenCL platform' -- "$RTCL" trace builtin:cornell --rays "$tmp/rays.txt" --out "$tmp/x.txt" --backend opencl
-expect 0 'notice: OpenCL not available \(no OpenCL platform' -- "$RTCL" render builtin:cornell --width 32 --height 18 --backend auto -o "$tmp/x.png"
+expect 0 'notice: opencl not available \(no OpenCL platform' -- "$RTCL" render builtin:cornell --width 32 --height 18 --backend auto -o "$tmp/x.png"
 unset OCL_ICD_VENDORS
 finish

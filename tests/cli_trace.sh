@@ -47,7 +47,7 @@ expect 2 'bad.txt:2: expected 8 numbers' -- "$RTCL" trace builtin:cornell --rays
 printf '0 0 0 1 0 0 0 inf x\n' > "$tmp/bad2.txt"
 expect 2 'bad2.txt:1: .*found: x' -- "$RTCL" trace builtin:cornell --rays "$tmp/bad2.txt" --out "$tmp/x.txt"
 expect 2 'cannot open' -- "$RTCL" trace builtin:cornell --rays "$tmp/missing.txt" --out "$tmp/x.txt"
-expect 2 "unknown or unavailable backend 'warp'" -- "$RTCL" trace builtin:cornell --rays "$rays" --out "$tmp/x.txt" --backend warp
+expect 2 "unknown backend 'warp'" -- "$RTCL" trace builtin:cornell --rays "$rays" --out "$tmp/x.txt" --backend warp
 expect 2 'need SCENE' -- "$RTCL" trace builtin:cornell --rays "$rays"
 expect 0 'usage: rtcl trace' -- "$RTCL" trace --help
 finish

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "accel/scene_boxes.h"
 #include "accel/bvh_internal.h"
 #include "bvh_validate.h"
 #include "check.h"
@@ -13,6 +14,9 @@
 #include "oracle_util.h"
 #include "scene/scene.h"
 #include "base/thread_pool.h"
+
+/* The library's error of the last call a check prints. */
+static rt_error lib_err;
 
 /* A triangle soup: n random small triangles in a cube, plus a dense cluster
  * so that the tree is not uniform. */
@@ -39,10 +43,9 @@ static rt_build_options opts(int threads) {
 static int build(const rt_aabb *boxes, uint32_t n, int threads, int neon, rt_bvh *out) {
     rt_build_options o = opts(threads);
     rt_pool *pool = threads > 1 ? rt_pool_create(threads) : NULL;
-    char msg[256] = "";
-    rt_status st = rt_bvh_build_fast(boxes, n, &o, pool, neon, out, msg, sizeof msg);
+    rt_status st = rt_bvh_build_fast(boxes, n, &o, pool, neon, out, &lib_err);
     rt_pool_destroy(pool);
-    CHECK_MSG(st == RT_OK, "build of %u boxes with %d threads: %s", n, threads, msg);
+    CHECK_MSG(st == RT_OK, "build of %u boxes with %d threads: %s", n, threads, lib_err.message);
     return st == RT_OK;
 }
 
@@ -80,7 +83,7 @@ static void test_determinism(void) {
     /* Through the public entry point, with no pool given. */
     rt_build_options o = opts(2);
     rt_bvh pub;
-    CHECK(rt_bvh_build(boxes, n, &o, NULL, &pub, NULL, 0) == RT_OK);
+    CHECK(rt_bvh_build(boxes, n, &o, NULL, &pub, NULL) == RT_OK);
     CHECK(same_bvh(&ref, &pub));
     rt_bvh_free(&pub);
     rt_bvh_free(&ref);
@@ -96,7 +99,7 @@ static void test_sah_leaves(void) {
     rt_build_options o = opts(1);
     o.leaf_size = 64;
     rt_bvh bvh;
-    CHECK(rt_bvh_build_fast(boxes, n, &o, NULL, 1, &bvh, NULL, 0) == RT_OK);
+    CHECK(rt_bvh_build_fast(boxes, n, &o, NULL, 1, &bvh, NULL) == RT_OK);
     check_valid(&bvh, boxes, n, 64, "leaf size 64");
     uint32_t leaves = 0, biggest = 0;
     for (uint32_t i = 0; i < bvh.node_count; i++) {
@@ -167,14 +170,11 @@ static void test_bad_input(void) {
     rt_aabb boxes[3] = {{{0, 0, 0}, {1, 1, 1}}, {{0, NAN, 0}, {1, 1, 1}}, {{0, 0, 0}, {1, 1, 1}}};
     rt_build_options o = opts(1);
     rt_bvh bvh;
-    char msg[200] = "";
-    CHECK(rt_bvh_build_fast(boxes, 3, &o, NULL, 1, &bvh, msg, sizeof msg) ==
-          RT_ERROR_INVALID_ARGUMENT);
-    CHECK_CONTAINS(msg, "finite");
+    CHECK(rt_bvh_build_fast(boxes, 3, &o, NULL, 1, &bvh, &lib_err) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK_CONTAINS(lib_err.message, "finite");
     CHECK(bvh.nodes == NULL && bvh.node_count == 0);
     boxes[1] = (rt_aabb){{2, 0, 0}, {1, 1, 1}}; /* min > max */
-    CHECK(rt_bvh_build_fast(boxes, 3, &o, NULL, 0, &bvh, msg, sizeof msg) ==
-          RT_ERROR_INVALID_ARGUMENT);
+    CHECK(rt_bvh_build_fast(boxes, 3, &o, NULL, 0, &bvh, &lib_err) == RT_ERROR_INVALID_ARGUMENT);
 }
 
 /* The scratch memory kept between builds: a smaller build in between, and a
@@ -229,9 +229,8 @@ static void test_parameter_ranges(void) {
             o.bins = bins[b];
             o.leaf_size = leaves[l];
             rt_bvh one, three;
-            char msg[256] = "";
-            rt_status st = rt_bvh_build_fast(boxes, n, &o, NULL, 0, &one, msg, sizeof msg);
-            CHECK_MSG(st == RT_OK, "bins %d leaf %d: %s", bins[b], leaves[l], msg);
+            rt_status st = rt_bvh_build_fast(boxes, n, &o, NULL, 0, &one, &lib_err);
+            CHECK_MSG(st == RT_OK, "bins %d leaf %d: %s", bins[b], leaves[l], lib_err.message);
             if (st != RT_OK) continue;
             char what[64];
             snprintf(what, sizeof what, "bins %d, leaf size %d", bins[b], leaves[l]);
@@ -240,7 +239,7 @@ static void test_parameter_ranges(void) {
                       largest_leaf(&one));
             o.threads = 3;
             rt_pool *pool = rt_pool_create(3);
-            CHECK(rt_bvh_build_fast(boxes, n, &o, pool, 1, &three, msg, sizeof msg) == RT_OK);
+            CHECK(rt_bvh_build_fast(boxes, n, &o, pool, 1, &three, &lib_err) == RT_OK);
             rt_pool_destroy(pool);
             CHECK_MSG(same_bvh(&one, &three), "%s: 3 threads NEON differ from 1 thread scalar",
                       what);
@@ -290,7 +289,7 @@ static void test_leaf_sizes_used(void) {
         rt_build_options o = opts(1);
         o.leaf_size = leaf;
         rt_bvh bvh;
-        CHECK(rt_bvh_build_fast(boxes, n, &o, NULL, 1, &bvh, NULL, 0) == RT_OK);
+        CHECK(rt_bvh_build_fast(boxes, n, &o, NULL, 1, &bvh, NULL) == RT_OK);
         char what[64];
         snprintf(what, sizeof what, "clusters, leaf size %d", leaf);
         check_valid(&bvh, boxes, n, (uint32_t)leaf, what);
@@ -344,11 +343,11 @@ static void test_ranges_traverse(void) {
         o.leaf_size = settings[k][1];
         rt_bvh bvh;
         char msg[256] = "";
-        CHECK_MSG(rt_bvh_build(boxes, md->triangle_count, &o, NULL, &bvh, msg, sizeof msg) == RT_OK,
-                  "%s", msg);
+        CHECK_MSG(rt_bvh_build(boxes, md->triangle_count, &o, NULL, &bvh, &lib_err) == RT_OK, "%s",
+                  msg);
         rt_flat flat;
-        rt_status st = rt_flatten(s, &bvh, NULL, NULL, &flat, msg, sizeof msg);
-        CHECK_MSG(st == RT_OK, "flatten: %s", msg);
+        rt_status st = rt_flatten(s, &bvh, NULL, NULL, &flat, &lib_err);
+        CHECK_MSG(st == RT_OK, "flatten: %s", lib_err.message);
         rt_bvh_free(&bvh);
         if (st != RT_OK) continue;
         rt_scene_view v = rt_flat_view(&flat);

@@ -19,6 +19,9 @@
 #include "bvh_validate.h"
 #include "check.h"
 
+/* The library's error of the last call a check prints. */
+static rt_error lib_err;
+
 static const rt_builder setups[3] = {RT_BUILDER_THESIS_SCALAR, RT_BUILDER_THESIS_NEON,
                                      RT_BUILDER_THESIS_MT};
 
@@ -47,8 +50,8 @@ static rt_bvh_quality check_all_setups(const char *what, const rt_aabb *boxes, u
     rt_build_options o = thesis_options(RT_BUILDER_THESIS_SCALAR, 1);
     o.bins = bins;
     o.leaf_size = leaf_size;
-    rt_status st = rt_bvh_build(boxes, n, &o, NULL, &ref, msg, sizeof msg);
-    CHECK_MSG(st == RT_OK, "%s: scalar build failed: %s", what, msg);
+    rt_status st = rt_bvh_build(boxes, n, &o, NULL, &ref, &lib_err);
+    CHECK_MSG(st == RT_OK, "%s: scalar build failed: %s", what, lib_err.message);
     rt_bvh_quality q = rt_bvh_measure(&ref, o.cost_box, o.cost_tri);
     if (st != RT_OK) return q;
     CHECK_MSG(bvh_validate(&ref, boxes, n, (uint32_t)leaf_size, 0, msg, sizeof msg), "%s: %s", what,
@@ -67,8 +70,9 @@ static rt_bvh_quality check_all_setups(const char *what, const rt_aabb *boxes, u
         ok.builder = others[k].b;
         ok.threads = others[k].threads;
         rt_bvh t;
-        st = rt_bvh_build(boxes, n, &ok, NULL, &t, msg, sizeof msg);
-        CHECK_MSG(st == RT_OK, "%s: %s build failed: %s", what, rt_builder_name(ok.builder), msg);
+        st = rt_bvh_build(boxes, n, &ok, NULL, &t, &lib_err);
+        CHECK_MSG(st == RT_OK, "%s: %s build failed: %s", what, rt_builder_name(ok.builder),
+                  lib_err.message);
         if (st != RT_OK) continue;
         CHECK_MSG(bvh_validate(&t, boxes, n, (uint32_t)leaf_size, 0, msg, sizeof msg),
                   "%s/%s/%d threads: %s", what, rt_builder_name(ok.builder), ok.threads, msg);
@@ -133,7 +137,7 @@ static void test_degenerate(void) {
     /* Empty input: the empty tree (node_count 0). */
     for (int s = 0; s < 3; s++) {
         rt_build_options o = thesis_options(setups[s], 2);
-        CHECK(rt_bvh_build(NULL, 0, &o, NULL, &t, msg, sizeof msg) == RT_OK);
+        CHECK(rt_bvh_build(NULL, 0, &o, NULL, &t, &lib_err) == RT_OK);
         CHECK_EQ_INT(t.node_count, 0);
         CHECK_EQ_INT(t.prim_count, 0);
         CHECK(bvh_validate(&t, NULL, 0, 10, 0, msg, sizeof msg));
@@ -143,7 +147,7 @@ static void test_degenerate(void) {
     rt_aabb one = {{1, 2, 3}, {4, 5, 6}};
     check_all_setups("one box", &one, 1, 16, 10);
     rt_build_options o = thesis_options(RT_BUILDER_THESIS_SCALAR, 1);
-    CHECK(rt_bvh_build(&one, 1, &o, NULL, &t, msg, sizeof msg) == RT_OK);
+    CHECK(rt_bvh_build(&one, 1, &o, NULL, &t, &lib_err) == RT_OK);
     CHECK_EQ_INT(t.node_count, 1);
     CHECK(t.nodes[0].b == (1u | RT_NODE_LEAF_FLAG) && t.nodes[0].a == 0);
     CHECK(memcmp(t.nodes[0].bmin, one.bmin, 12) == 0 && memcmp(t.nodes[0].bmax, one.bmax, 12) == 0);
@@ -211,13 +215,13 @@ static void test_degenerate(void) {
     for (int s = 0; s < 3; s++) {
         rt_build_options ob = thesis_options(setups[s], 2);
         msg[0] = 0;
-        CHECK(rt_bvh_build(bad, 3, &ob, NULL, &t, msg, sizeof msg) == RT_ERROR_INVALID_ARGUMENT);
-        CHECK_CONTAINS(msg, "primitive 1");
+        CHECK(rt_bvh_build(bad, 3, &ob, NULL, &t, &lib_err) == RT_ERROR_INVALID_ARGUMENT);
+        CHECK_CONTAINS(lib_err.message, "primitive 1");
         CHECK(t.node_count == 0 && t.nodes == NULL);
     }
     bad[1].bmin[0] = -INFINITY;
     bad[1].bmax[1] = 1;
-    CHECK(rt_bvh_build(bad, 3, &o, NULL, &t, msg, sizeof msg) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK(rt_bvh_build(bad, 3, &o, NULL, &t, &lib_err) == RT_ERROR_INVALID_ARGUMENT);
 }
 
 /* ---- shared scenes ---------------------------------------------------------- */
@@ -296,8 +300,8 @@ static void scene_figures(const char *rel, int reps) {
         rt_build_options o = thesis_options(setups[s], 0);
         char msg[256];
         rt_bvh t;
-        rt_status st = rt_bvh_build(boxes, n, &o, NULL, &t, msg, sizeof msg);
-        CHECK_MSG(st == RT_OK, "%s: %s", rel, msg);
+        rt_status st = rt_bvh_build(boxes, n, &o, NULL, &t, &lib_err);
+        CHECK_MSG(st == RT_OK, "%s: %s", rel, lib_err.message);
         if (st != RT_OK) continue;
         CHECK_MSG(bvh_validate(&t, boxes, n, 10, 0, msg, sizeof msg), "%s: %s", rel, msg);
         rt_bvh_quality q = rt_bvh_measure(&t, o.cost_box, o.cost_tri);
@@ -314,7 +318,7 @@ static void scene_figures(const char *rel, int reps) {
             double *ms = malloc(sizeof(double) * (size_t)reps);
             for (int r = 0; r < reps; r++) {
                 double t0 = now_ms();
-                rt_bvh_build(boxes, n, &o, NULL, &t, msg, sizeof msg);
+                rt_bvh_build(boxes, n, &o, NULL, &t, &lib_err);
                 ms[r] = now_ms() - t0;
                 rt_bvh_free(&t);
             }

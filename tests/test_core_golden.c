@@ -48,9 +48,8 @@ int main(void) {
         const char *name = rt_builtin_scene_names[i];
         rt_scene *s = test_builtin_scene(name, 512, 288);
         if (!s) continue;
-        rt_render_options o = rt_render_options_default();
         rt_framebuffer fb;
-        CHECK(rt_render(s, &o, &fb) == RT_OK);
+        CHECK(rt_render(test_renderer("cpu", 0), s, NULL, &fb) == RT_OK);
         uint64_t h = fnv1a_bits(fb.pixels, (size_t)fb.width * fb.height * fb.channels);
         char path[4096];
         if (update) {

@@ -9,7 +9,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "render/render_internal.h"
+#include "layout/flat.h"
+#include "scene/scene.h"
 #include "rt_shade.h"
 #include "scene/scene_builtin.h"
 
@@ -47,14 +48,13 @@ static void lit_plane(float offset) {
     rt_camera cam = {{o, o + 3.0f, o + 9.0f}, {o, o, o}, {0, 1, 0}, 70.0f, 160, 90};
     rt_camera_set(s, &cam);
     rt_render_options opt = rt_render_options_default();
-    opt.threads = 2;
     const char *backends[] = {"cpu", "packet"};
     for (int b = 0; b < 2; b++) {
-        opt.backend = backends[b];
+        rt_renderer *r = test_renderer(backends[b], 2);
         rt_framebuffer fb, depth;
-        CHECK(rt_render(s, &opt, &fb) == RT_OK);
+        CHECK(rt_render(r, s, &opt, &fb) == RT_OK);
         opt.aov = RT_AOV_DEPTH;
-        CHECK(rt_render(s, &opt, &depth) == RT_OK);
+        CHECK(rt_render(r, s, &opt, &depth) == RT_OK);
         opt.aov = RT_AOV_NONE;
         int seen = 0, dark = 0;
         for (int i = 0; i < fb.width * fb.height; i++) {
@@ -93,9 +93,12 @@ static void self_hits(const char *name, float offset) {
     cam.width = 256;
     cam.height = 144;
     rt_camera_set(s, &cam);
-    rt_prepared prep;
-    CHECK(rt_render_prepare(s, 1, &prep) == RT_OK);
-    rt_scene_view v = rt_flat_view(prep.flat);
+    const rt_flat *flat = test_layout(s, 1);
+    if (!flat) {
+        rt_scene_destroy(s);
+        return;
+    }
+    rt_scene_view v = rt_flat_view(flat);
     int tested = 0, acne = 0;
     for (int y = 0; y < cam.height; y++)
         for (int x = 0; x < cam.width; x++) {

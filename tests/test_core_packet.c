@@ -13,25 +13,32 @@
 #include "rt.h"
 #include "scene/scene_builtin.h"
 
+/* The packet renderers of the instruction-set build under test. */
+static rt_renderer *packet_renderer[2]; /* 3 threads, 2 threads */
+
+/* "cpu" on threads threads, or "packet" of the build under test. */
+static rt_renderer *renderer_for(const char *backend, int threads) {
+    if (strcmp(backend, "packet") == 0) return packet_renderer[threads == 3 ? 0 : 1];
+    return test_renderer(backend, threads);
+}
+
 static int render(rt_scene *s, const char *backend, rt_aov aov, int threads, rt_framebuffer *fb,
                   rt_render_stats *st) {
     rt_render_options o = rt_render_options_default();
-    o.backend = backend;
     o.aov = aov;
-    o.threads = threads;
     o.stats = st;
-    rt_status status = rt_render(s, &o, fb);
-    CHECK_MSG(status == RT_OK, "%s: %s", backend, rt_scene_error(s));
+    rt_renderer *r = renderer_for(backend, threads);
+    rt_status status = rt_render(r, s, &o, fb);
+    CHECK_MSG(status == RT_OK, "%s: %s", backend, rt_renderer_error(r));
     return status == RT_OK;
 }
 
 static int render_direct(rt_scene *s, const char *backend, rt_framebuffer *fb) {
     rt_render_options o = rt_render_options_default();
-    o.backend = backend;
     o.direct_only = 1;
-    o.threads = 2;
-    rt_status status = rt_render(s, &o, fb);
-    CHECK_MSG(status == RT_OK, "%s: %s", backend, rt_scene_error(s));
+    rt_renderer *r = renderer_for(backend, 2);
+    rt_status status = rt_render(r, s, &o, fb);
+    CHECK_MSG(status == RT_OK, "%s: %s", backend, rt_renderer_error(r));
     return status == RT_OK;
 }
 
@@ -89,25 +96,47 @@ int main(void) {
     /* Each instruction-set build of the packet tracer this CPU runs. */
     int tested = 0;
     for (int k = 0; rt_pk_isa_name(k); k++) {
-        if (!rt_pk_select(rt_pk_isa_name(k))) {
+        if (!rt_pk_variant_find(rt_pk_isa_name(k))) {
             printf("packet build %s: not run, this CPU lacks it\n", rt_pk_isa_name(k));
             continue;
         }
+        rt_renderer_options ro = rt_renderer_options_default();
+        ro.backend = "packet";
+        ro.packet_isa = rt_pk_isa_name(k);
+        rt_error err;
+        for (int t = 0; t < 2; t++) {
+            ro.threads = t == 0 ? 3 : 2;
+            packet_renderer[t] = test_renderer_with(&ro, &err);
+            CHECK_MSG(packet_renderer[t] != NULL, "packet %s: %s", ro.packet_isa, err.message);
+        }
+        if (!packet_renderer[0] || !packet_renderer[1]) continue;
         printf("packet build %s\n", rt_pk_isa_name(k));
         check_scenes(rt_pk_isa_name(k));
         tested++;
     }
     CHECK(tested > 0);
-    rt_pk_select(NULL);
-    /* An unknown backend is refused with a clear message. */
-    rt_scene *s;
+    /* An unknown backend or instruction set is refused with a clear message,
+     * and so is a device for a CPU backend. */
+    rt_renderer_options o = rt_renderer_options_default();
+    rt_renderer *r = NULL;
     rt_error err;
-    rt_scene_builtin("cornell", &s, &err);
-    rt_render_options o = rt_render_options_default();
     o.backend = "warp";
-    rt_framebuffer fb;
-    CHECK(rt_render(s, &o, &fb) == RT_ERROR_UNSUPPORTED);
-    CHECK_CONTAINS(rt_scene_error(s), "backend 'warp'");
-    rt_scene_destroy(s);
+    CHECK(rt_renderer_create(&o, &r, &err) == RT_ERROR_UNSUPPORTED && r == NULL);
+    CHECK_CONTAINS(err.message, "backend 'warp'");
+    o.backend = "packet";
+    o.packet_isa = "mmx";
+    CHECK(rt_renderer_create(&o, &r, &err) == RT_ERROR_UNSUPPORTED && r == NULL);
+    CHECK_CONTAINS(err.message, "'mmx'");
+    o.backend = "cpu:1";
+    o.packet_isa = NULL;
+    CHECK(rt_renderer_create(&o, &r, &err) == RT_ERROR_UNSUPPORTED && r == NULL);
+    CHECK_CONTAINS(err.message, "takes no device");
+    /* A failed switch keeps the backend. */
+    o.backend = "packet";
+    CHECK(rt_renderer_create(&o, &r, &err) == RT_OK);
+    CHECK(rt_renderer_set_backend(r, "warp") == RT_ERROR_UNSUPPORTED);
+    CHECK_CONTAINS(rt_renderer_error(r), "backend 'warp'");
+    CHECK(strcmp(rt_renderer_backend(r), "packet") == 0);
+    rt_renderer_destroy(r);
     return TEST_END();
 }

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "accel/scene_boxes.h"
 #include "check.h"
 #include "layout/flatten.h"
 #include "rt_shared.h"
@@ -15,6 +16,9 @@
 #include "scene/scene_builtin.h"
 #include "oracle_util.h"
 #include "test_bvh_simple.h"
+
+/* The library's error of the last call a check prints. */
+static rt_error lib_err;
 
 /* Builds every mesh BVH and the object BVH with the test builder. */
 static int build_flat(const rt_scene *scene, int leaf_size, uint32_t method, rt_flat *flat) {
@@ -37,9 +41,8 @@ static int build_flat(const rt_scene *scene, int leaf_size, uint32_t method, rt_
     }
     rt_flat_options opt = rt_flat_options_default();
     opt.tri_method = method;
-    char msg[256];
-    rt_status st = rt_flatten(scene, bvhs, &top, &opt, flat, msg, sizeof msg);
-    CHECK_MSG(st == RT_OK, "flatten: %s", msg);
+    rt_status st = rt_flatten(scene, bvhs, &top, &opt, flat, &lib_err);
+    CHECK_MSG(st == RT_OK, "flatten: %s", lib_err.message);
     for (uint32_t m = 0; m < scene->mesh_count; m++) rt_bvh_free(&bvhs[m]);
     free(bvhs);
     rt_bvh_free(&top);

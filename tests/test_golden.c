@@ -17,9 +17,8 @@ int main(void) {
         rt_scene *s = test_builtin_scene(name, 512, 288);
         rt_error err;
         if (!s) continue;
-        rt_render_options o = rt_render_options_default();
         rt_framebuffer fb;
-        CHECK(rt_render(s, &o, &fb) == RT_OK);
+        CHECK(rt_render(test_renderer("cpu", 0), s, NULL, &fb) == RT_OK);
         char rel[256];
         snprintf(rel, sizeof rel, "%s.png", name);
         rt_image img = {fb.width, fb.height, fb.channels, fb.pixels};

@@ -16,7 +16,7 @@
  * images and AOVs are checked in Whitted and direct mode, at an odd size
  * (partial blocks), with every triangle test and every block size; its test
  * counters count per lane (they differ from the oracle's), so they are
- * checked for consistency instead, and exactly with RTCL_OPENCL_NO_PACKET=1
+ * checked for consistency instead, and exactly with the one-ray kernels (rt_opencl_tuning)
  * (the one-ray kernels, which must stay exact too). */
 #define _POSIX_C_SOURCE 200809L /* setenv */
 #include <math.h>
@@ -32,7 +32,11 @@
 #include "opencl/cl_device.h"
 #include "formats/image.h"
 #include "oracle_util.h"
-#include "render/render_internal.h"
+#include "layout/flat.h"
+#include "scene/scene.h"
+
+/* The library's error of the last call a check prints. */
+static rt_error lib_err;
 
 static const char *const aov_names[] = {"image",  "depth",    "primid",  "instid",
                                         "normal", "boxtests", "tritests"};
@@ -45,16 +49,49 @@ typedef struct mode {
 } mode;
 static const mode whitted = {0, RT_TRI_TEST_WATERTIGHT};
 
+/* The OpenCL kernel choices the checks run with now (rt_opencl_tuning). */
+static rt_opencl_tuning cl_tune;
+
+/* The renderer of a backend: "cpu", or "opencl" with the current kernel
+ * choices (one renderer per choice, kept: its device state is reused). */
+static rt_renderer *renderer_for(const char *backend) {
+    if (strcmp(backend, "opencl") != 0) return test_renderer(backend, 0);
+    static struct {
+        rt_opencl_tuning tune;
+        rt_renderer *r;
+    } made[8];
+    static int count;
+    for (int i = 0; i < count; i++)
+        if (memcmp(&made[i].tune, &cl_tune, sizeof cl_tune) == 0) return made[i].r;
+    rt_renderer_options o = rt_renderer_options_default();
+    o.backend = "opencl";
+    o.opencl = cl_tune;
+    rt_error err;
+    rt_renderer *r = count < 8 ? test_renderer_with(&o, &err) : NULL;
+    CHECK_MSG(r != NULL, "opencl renderer: %s", count < 8 ? err.message : "too many");
+    if (r) {
+        made[count].tune = cl_tune;
+        made[count++].r = r;
+    }
+    return r;
+}
+
+/* The last error of the renderer of a backend. */
+static const char *error_of(const char *backend) {
+    rt_renderer *r = renderer_for(backend);
+    return r ? rt_renderer_error(r) : "no renderer";
+}
+
 /* Renders with a backend at a small size; returns the status. */
 static rt_status render_mode(rt_scene *s, const char *backend, rt_aov aov, mode m,
                              rt_framebuffer *fb, rt_render_stats *stats) {
     rt_render_options o = rt_render_options_default();
-    o.backend = backend;
     o.aov = aov;
     o.stats = stats;
     o.direct_only = m.direct;
     o.tri_test = m.tri;
-    return rt_render(s, &o, fb);
+    rt_renderer *r = renderer_for(backend);
+    return r ? rt_render(r, s, &o, fb) : RT_ERROR_BACKEND;
 }
 
 static rt_status render(rt_scene *s, const char *backend, rt_aov aov, rt_framebuffer *fb,
@@ -62,22 +99,21 @@ static rt_status render(rt_scene *s, const char *backend, rt_aov aov, rt_framebu
     return render_mode(s, backend, aov, whitted, fb, stats);
 }
 
-/* The kernels this process renders with on the default device: the packet
- * kernel on a CPU device unless RTCL_OPENCL_NO_PACKET is set. */
+/* The kernels the checks render with on the default device: the packet
+ * kernel on a CPU device unless the one-ray kernels are chosen. */
 static int expect_packet(void) {
     static int cpu = -1;
     if (cpu < 0) {
         rt_cl_device_info *devs;
         int count;
-        char msg[256];
         cpu = 0;
-        if (rt_cl_devices(&devs, &count, msg, sizeof msg) == RT_OK) {
-            int pick = rt_cl_select(devs, count, NULL, msg, sizeof msg);
+        if (rt_cl_devices(&devs, &count, &lib_err) == RT_OK) {
+            int pick = rt_cl_select(devs, count, NULL, &lib_err);
             cpu = pick >= 0 && devs[pick].cpu;
             free(devs);
         }
     }
-    return cpu && !getenv("RTCL_OPENCL_NO_PACKET");
+    return cpu && !cl_tune.one_ray_kernels;
 }
 
 /* Bitwise comparison of two framebuffers; reports the first difference. */
@@ -142,7 +178,7 @@ static void check_images_mode(const char *name, rt_scene *s, mode m) {
         rt_render_stats st, cs;
         CHECK(render_mode(s, "cpu", (rt_aov)aov, m, &cpu, &cs) == RT_OK);
         rt_status status = render_mode(s, "opencl", (rt_aov)aov, m, &cl, &st);
-        CHECK_MSG(status == RT_OK, "%s: %s", name, rt_scene_error(s));
+        CHECK_MSG(status == RT_OK, "%s: %s", name, error_of("opencl"));
         if (status != RT_OK) {
             rt_framebuffer_free(&cpu);
             continue;
@@ -190,14 +226,12 @@ static void check_image_mode(const char *name, rt_scene *s, mode m) {
         rt_framebuffer cpu, cl;
         CHECK(render_mode(s, "cpu", (rt_aov)aov, m, &cpu, NULL) == RT_OK);
         rt_status status = render_mode(s, "opencl", (rt_aov)aov, m, &cl, NULL);
-        CHECK_MSG(status == RT_OK, "%s: %s", name, rt_scene_error(s));
+        CHECK_MSG(status == RT_OK, "%s: %s", name, error_of("opencl"));
         if (status == RT_OK) {
             char label[160];
-            snprintf(label, sizeof label, "%s (%s, %dx%d, %s, RTCL_OPENCL_PACKET_LANES=%s)",
-                     aov_names[aov], m.direct ? "direct" : "Whitted", cpu.width, cpu.height,
-                     tri_names[m.tri],
-                     getenv("RTCL_OPENCL_PACKET_LANES") ? getenv("RTCL_OPENCL_PACKET_LANES")
-                                                        : "default");
+            snprintf(label, sizeof label, "%s (%s, %dx%d, %s, packet lanes %d)", aov_names[aov],
+                     m.direct ? "direct" : "Whitted", cpu.width, cpu.height, tri_names[m.tri],
+                     cl_tune.packet_lanes);
             same_pixels(name, label, &cpu, &cl);
             rt_framebuffer_free(&cl);
         }
@@ -209,7 +243,7 @@ static void check_image_mode(const char *name, rt_scene *s, mode m) {
  * at the right and bottom edges), with an object turned about an oblique
  * axis and a second, coloured light: every AOV in direct mode; image and depth
  * with every triangle test, both modes; every block size (4, 8, 16 lanes).
- * Then the one-ray kernels (RTCL_OPENCL_NO_PACKET=1): every AOV including
+ * Then the one-ray kernels (rt_opencl_tuning.one_ray_kernels): every AOV including
  * the counters exactly, both modes. */
 /* Turns object obj by 0.5 rad about the oblique axis (1, 2, 3) through c: an
  * instance transform with no zero entry (so a sum in another order shows). */
@@ -265,18 +299,18 @@ static void check_packet(const char *name, rt_scene *s) {
     check_images_mode(name, s, whitted);
     for (int t = RT_TRI_TEST_MOLLER; t <= RT_TRI_TEST_BADOUEL; t++)
         for (int d = 0; d < 2; d++) check_image_mode(name, s, (mode){d, (rt_triangle_test)t});
-    static const char *const lanes[] = {"4", "8"};
+    static const int lanes[] = {4, 8};
     for (int i = 0; i < 2; i++) {
-        setenv("RTCL_OPENCL_PACKET_LANES", lanes[i], 1);
+        cl_tune.packet_lanes = lanes[i];
         check_image_mode(name, s, direct);
         check_image_mode(name, s, whitted);
-        unsetenv("RTCL_OPENCL_PACKET_LANES");
+        cl_tune.packet_lanes = 0;
     }
     if (expect_packet()) {
-        setenv("RTCL_OPENCL_NO_PACKET", "1", 1);
+        cl_tune.one_ray_kernels = 1;
         check_images_mode(name, s, direct);
         check_images_mode(name, s, whitted);
-        unsetenv("RTCL_OPENCL_NO_PACKET");
+        cl_tune.one_ray_kernels = 0;
     }
     CHECK(rt_camera_set(s, &cam) == RT_OK);
 }
@@ -289,13 +323,13 @@ static void check_wavefront(rt_scene *s) {
     rt_framebuffer cpu, cl;
     rt_render_stats cs, st;
     /* A CPU device runs the packet kernel, not the wavefront: force it. */
-    setenv("RTCL_OPENCL_NO_PACKET", "1", 1);
+    cl_tune.one_ray_kernels = 1;
     CHECK(render(s, "cpu", RT_AOV_NONE, &cpu, &cs) == RT_OK);
     for (int forced = 0; forced < 2; forced++) {
-        if (forced) setenv("RTCL_OPENCL_WAVE_CAP", "1", 1);
+        if (forced) cl_tune.wave_queue_cap = 1;
         rt_status status = render(s, "opencl", RT_AOV_NONE, &cl, &st);
-        unsetenv("RTCL_OPENCL_WAVE_CAP");
-        CHECK_MSG(status == RT_OK, "wavefront: %s", rt_scene_error(s));
+        CHECK_MSG(status == RT_OK, "wavefront: %s", error_of("opencl"));
+        cl_tune.wave_queue_cap = 0;
         if (status != RT_OK) continue;
         CHECK_MSG(st.wave_tiles > 0, "cornell: the image did not use the wavefront");
         if (forced)
@@ -310,13 +344,13 @@ static void check_wavefront(rt_scene *s) {
         rt_framebuffer_free(&cl);
     }
     rt_framebuffer_free(&cpu);
-    unsetenv("RTCL_OPENCL_NO_PACKET");
+    cl_tune.one_ray_kernels = 0;
 }
 
 static void check_hits(const char *name, rt_scene *s) {
-    rt_prepared prep;
-    CHECK(rt_render_prepare(s, 0, &prep) == RT_OK);
-    const rt_scene_header *h = &prep.flat->hdr;
+    const rt_flat *flat = test_layout(s, 0);
+    if (!flat) return;
+    const rt_scene_header *h = &flat->hdr;
     float lo[3], hi[3];
     CHECK(rt_scene_bounds(s, lo, hi));
     enum { N = 20000 };
@@ -331,9 +365,10 @@ static void check_hits(const char *name, rt_scene *s) {
         rays[i].tmax = r.tmax;
     }
     for (int any = 0; any <= 1; any++) {
-        CHECK(rt_trace_rays(s, rays, N, a, any, "cpu") == RT_OK);
-        rt_status st = rt_trace_rays(s, rays, N, b, any, "opencl");
-        CHECK_MSG(st == RT_OK, "%s", rt_scene_error(s));
+        rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT};
+        CHECK(rt_trace_rays(renderer_for("cpu"), s, rays, N, a, &q) == RT_OK);
+        rt_status st = rt_trace_rays(renderer_for("opencl"), s, rays, N, b, &q);
+        CHECK_MSG(st == RT_OK, "%s", error_of("opencl"));
         int hits = 0;
         for (int i = 0; i < N && st == RT_OK; i++) {
             hits += a[i].hit;
@@ -368,11 +403,16 @@ static void check_device_options(void) {
     rt_render_stats st;
     CHECK(render(s, "cpu", RT_AOV_NONE, &cpu, NULL) == RT_OK);
     rt_render_options o = rt_render_options_default();
-    o.backend = "opencl";
     o.stats = &st;
-    o.device_options = "-cl-fast-relaxed-math"; /* a study variant's option */
-    rt_status status = rt_render(s, &o, &fast);
-    CHECK_MSG(status == RT_OK, "fast-relaxed-math option: %s", rt_scene_error(s));
+    rt_renderer_options ro = rt_renderer_options_default();
+    ro.backend = "opencl";
+    ro.device_options = "-cl-fast-relaxed-math"; /* a study variant's option */
+    rt_error err;
+    rt_renderer *variant = test_renderer_with(&ro, &err);
+    CHECK_MSG(variant != NULL, "%s", err.message);
+    rt_status status = variant ? rt_render(variant, s, &o, &fast) : RT_ERROR_BACKEND;
+    CHECK_MSG(status == RT_OK, "fast-relaxed-math option: %s",
+              variant ? rt_renderer_error(variant) : "");
     if (status != RT_OK) {
         rt_framebuffer_free(&cpu);
         rt_scene_destroy(s);
@@ -385,32 +425,33 @@ static void check_device_options(void) {
     if (!differ) printf("note: this device's fast-relaxed-math build gives the oracle's bits\n");
     if (strstr(st.device, "pthread") || strstr(st.device, "cpu"))
         CHECK_MSG(differ > 0, "PoCL: the fast-relaxed-math option changed no channel");
-    /* The exact build again: the cache must not hand back the variant. */
-    o.device_options = NULL;
-    CHECK(rt_render(s, &o, &exact) == RT_OK);
+    /* The exact build again, after the variant on the same device: PoCL's
+     * program cache must not hand back the variant. */
+    CHECK(rt_render(renderer_for("opencl"), s, &o, &exact) == RT_OK);
     CHECK(st.exact == 1 && st.device_options[0] == 0);
     same_pixels("cornell", "image (exact build after a study option variant)", &cpu, &exact);
     /* The options reach the compiler: an unknown one fails with its name. */
-    o.device_options = "-DRT_STUDY_OPTION=1 -cl-no-such-option";
-    CHECK(rt_render(s, &o, &bad) == RT_ERROR_BACKEND);
-    CHECK_CONTAINS(rt_scene_error(s), "-cl-no-such-option");
-    rt_ray ray = {{0, 1, 3}, {0, 0, -1}, 0, INFINITY};
-    rt_hit hit;
-    rt_render_options q = rt_render_options_default();
-    q.backend = "opencl";
-    q.device_options = o.device_options;
-    CHECK(rt_trace_rays_with(s, &ray, 1, &hit, 0, &q) == RT_ERROR_BACKEND);
-    CHECK_CONTAINS(rt_scene_error(s), "-cl-no-such-option");
-    q.device_options = NULL;
-    CHECK(rt_trace_rays_with(s, &ray, 1, &hit, 0, &q) == RT_OK && hit.hit);
+    ro.device_options = "-DRT_STUDY_OPTION=1 -cl-no-such-option";
+    rt_renderer *broken = test_renderer_with(&ro, &err);
+    CHECK_MSG(broken != NULL, "%s", err.message);
+    if (broken) {
+        CHECK(rt_render(broken, s, &o, &bad) == RT_ERROR_BACKEND);
+        CHECK_CONTAINS(rt_renderer_error(broken), "-cl-no-such-option");
+        rt_ray ray = {{0, 1, 3}, {0, 0, -1}, 0, INFINITY};
+        rt_hit hit;
+        CHECK(rt_trace_rays(broken, s, &ray, 1, &hit, NULL) == RT_ERROR_BACKEND);
+        CHECK_CONTAINS(rt_renderer_error(broken), "-cl-no-such-option");
+        CHECK(rt_trace_rays(renderer_for("opencl"), s, &ray, 1, &hit, NULL) == RT_OK && hit.hit);
+    }
     /* Too long an option string is refused before any build. */
     char lengthy[400];
     memset(lengthy, 'x', sizeof lengthy - 1);
     lengthy[0] = '-';
     lengthy[sizeof lengthy - 1] = 0;
-    o.device_options = lengthy;
-    CHECK(rt_render(s, &o, &bad) == RT_ERROR_INVALID_ARGUMENT);
-    CHECK_CONTAINS(rt_scene_error(s), "longer than");
+    ro.device_options = lengthy;
+    rt_renderer *refused = NULL;
+    CHECK(rt_renderer_create(&ro, &refused, &err) == RT_ERROR_INVALID_ARGUMENT && !refused);
+    CHECK_CONTAINS(err.message, "longer than");
     rt_framebuffer_free(&cpu);
     rt_framebuffer_free(&fast);
     rt_framebuffer_free(&exact);
@@ -456,8 +497,7 @@ int main(void) {
 #else
     rt_cl_device_info *devs;
     int count;
-    char msg[512];
-    if (rt_cl_devices(&devs, &count, msg, sizeof msg) != RT_OK) test_skip(msg);
+    if (rt_cl_devices(&devs, &count, &lib_err) != RT_OK) test_skip(lib_err.message);
     free(devs);
     for (int i = 0; rt_builtin_scene_names[i]; i++) {
         const char *name = rt_builtin_scene_names[i];
@@ -483,7 +523,7 @@ int main(void) {
     CHECK(rt_scene_builtin("cornell", &s, &err) == RT_OK);
     rt_framebuffer fb;
     CHECK(render(s, "opencl:99", RT_AOV_NONE, &fb, NULL) == RT_ERROR_INVALID_ARGUMENT);
-    CHECK_CONTAINS(rt_scene_error(s), "no OpenCL device 99");
+    CHECK_CONTAINS(error_of("opencl:99"), "no OpenCL device 99");
     rt_scene_destroy(s);
     return TEST_END();
 #endif

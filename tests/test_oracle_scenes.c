@@ -11,7 +11,8 @@
 #include "cpu_render.h"
 #include "oracle_util.h"
 #include "packet_trace.h"
-#include "render/render_internal.h"
+#include "layout/flat.h"
+#include "scene/scene.h"
 #include "scene/scene_builtin.h"
 
 #if defined(__SANITIZE_ADDRESS__) || !defined(__OPTIMIZE__)
@@ -23,12 +24,10 @@
 #endif
 
 static void check_scene(const char *name, rt_scene *scene) {
-    rt_prepared prep;
-    rt_status st = rt_render_prepare(scene, 0, &prep);
-    CHECK_MSG(st == RT_OK, "%s: %s", name, rt_scene_error(scene));
-    if (st != RT_OK) return;
-    rt_scene_view v = rt_flat_view(prep.flat);
-    double tris = (double)prep.flat->tri_count + 1.0;
+    const rt_flat *flat = test_layout(scene, 0);
+    if (!flat) return;
+    rt_scene_view v = rt_flat_view(flat);
+    double tris = (double)flat->tri_count + 1.0;
     int rays = (int)(TRI_TEST_BUDGET / tris);
     if (rays > 3000) rays = 3000;
     if (rays < 16) rays = 16;
@@ -38,11 +37,11 @@ static void check_scene(const char *name, rt_scene *scene) {
     rt_hit_d *scalar = malloc(sizeof(rt_hit_d) * (size_t)rays);
     rt_hit_d *packet = malloc(sizeof(rt_hit_d) * (size_t)rays);
     rt_hit_d *any = malloc(sizeof(rt_hit_d) * (size_t)rays);
-    for (int i = 0; i < rays; i++) oracle_ray(&prep.flat->hdr, lo, hi, i, &r[i]);
-    const rt_pk_wide *wide = NULL;
-    CHECK(rt_render_wide(scene, &prep, &wide) == RT_OK);
+    for (int i = 0; i < rays; i++) oracle_ray(&flat->hdr, lo, hi, i, &r[i]);
+    rt_pk_wide wide;
+    CHECK(rt_pk_wide_build(flat, &wide) == RT_OK);
     rt_counters c = {0, 0, 0};
-    rt_cpu_trace_rays(prep.flat, r, (size_t)rays, scalar, 0, &c);
+    rt_cpu_trace_rays(flat, r, (size_t)rays, scalar, 0, &c);
     rt_hit_d *b = malloc(sizeof(rt_hit_d) * (size_t)rays);
     int bad = 0, hits = 0;
     for (int i = 0; i < rays; i++) {
@@ -57,14 +56,15 @@ static void check_scene(const char *name, rt_scene *scene) {
             bad++;
         }
     }
-    printf("%s: %d rays, %d hits, %u triangles\n", name, rays, hits, prep.flat->tri_count);
+    printf("%s: %d rays, %d hits, %u triangles\n", name, rays, hits, flat->tri_count);
     CHECK_MSG(bad == 0, "%s: %d of %d scalar hits differ from brute force", name, bad, rays);
     CHECK_MSG(hits > 0, "%s: no ray hit anything", name);
     for (int k = 0; rt_pk_isa_name(k); k++) {
         const char *isa = rt_pk_isa_name(k);
-        if (!rt_pk_select(isa)) continue;
-        rt_packet_trace_rays(prep.flat, wide, r, (size_t)rays, packet, 0, &c);
-        rt_packet_trace_rays(prep.flat, wide, r, (size_t)rays, any, 1, &c);
+        const rt_pk_variant *variant = rt_pk_variant_find(isa);
+        if (!variant) continue;
+        rt_packet_trace_rays(flat, &wide, variant, r, (size_t)rays, packet, 0, &c);
+        rt_packet_trace_rays(flat, &wide, variant, r, (size_t)rays, any, 1, &c);
         int bad_packet = 0, bad_any = 0;
         for (int i = 0; i < rays; i++) {
             bad_packet += !oracle_same_hit(&packet[i], &b[i]);
@@ -75,7 +75,7 @@ static void check_scene(const char *name, rt_scene *scene) {
         CHECK_MSG(bad_any == 0, "%s: %d of %d any-hit (%s) results differ", name, bad_any, rays,
                   isa);
     }
-    rt_pk_select(NULL);
+    rt_pk_wide_free(&wide);
     free(b);
     free(r);
     free(scalar);

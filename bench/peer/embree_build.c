@@ -6,6 +6,7 @@
 #include <embree3/rtcore.h>
 
 #include "base/clock.h"
+#include "base/error.h"
 #include "embree_peer.h"
 
 struct rt_embree {
@@ -30,31 +31,27 @@ typedef struct em_leaf {
     uint32_t prims[]; /* primitive ids */
 } em_leaf;
 
-static rt_status fail(char *msg, size_t msg_size, rt_status st, const char *what,
-                      RTCDevice device) {
-    if (msg && msg_size) {
-        int code = device ? (int)rtcGetDeviceError(device) : 0;
-        snprintf(msg, msg_size, "embree: %s (error %d)", what, code);
-    }
-    return st;
+rt_status rt_embree_fail(rt_error *err, rt_status st, const char *what, void *device) {
+    int code = device ? (int)rtcGetDeviceError((RTCDevice)device) : 0;
+    return rt_fail(err, st, "embree: %s (error %d)", what, code);
 }
 
-rt_status rt_embree_create(int threads, rt_embree **out, char *msg, size_t msg_size) {
+rt_status rt_embree_create(int threads, rt_embree **out, rt_error *err) {
     *out = NULL;
     char config[64] = "";
     if (threads > 0) snprintf(config, sizeof config, "threads=%d", threads);
     rt_embree *em = calloc(1, sizeof *em);
-    if (!em) return fail(msg, msg_size, RT_ERROR_OUT_OF_MEMORY, "out of memory", NULL);
+    if (!em) return rt_embree_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory", NULL);
     em->device = rtcNewDevice(config);
     if (!em->device) {
         free(em);
-        return fail(msg, msg_size, RT_ERROR_BACKEND, "cannot create a device", NULL);
+        return rt_embree_fail(err, RT_ERROR_BACKEND, "cannot create a device", NULL);
     }
     em->bvh = rtcNewBVH(em->device);
     if (!em->bvh) {
         rtcReleaseDevice(em->device);
         free(em);
-        return fail(msg, msg_size, RT_ERROR_BACKEND, "cannot create a BVH", NULL);
+        return rt_embree_fail(err, RT_ERROR_BACKEND, "cannot create a BVH", NULL);
     }
     *out = em;
     return RT_OK;
@@ -179,13 +176,13 @@ static int add_node(conv *cv, const em_node *node, const float lo[3], const floa
 }
 
 rt_status rt_embree_build_bvh(rt_embree *em, const rt_aabb *boxes, uint32_t count,
-                              const rt_build_options *options, rt_bvh *out, double *ms, char *msg,
-                              size_t msg_size) {
+                              const rt_build_options *options, rt_bvh *out, double *ms,
+                              rt_error *err) {
     memset(out, 0, sizeof *out);
     *ms = 0.0;
-    if (count == 0) return fail(msg, msg_size, RT_ERROR_INVALID_ARGUMENT, "no primitives", NULL);
+    if (count == 0) return rt_embree_fail(err, RT_ERROR_INVALID_ARGUMENT, "no primitives", NULL);
     struct RTCBuildPrimitive *prims = aligned_alloc(32, sizeof *prims * count);
-    if (!prims) return fail(msg, msg_size, RT_ERROR_OUT_OF_MEMORY, "out of memory", NULL);
+    if (!prims) return rt_embree_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory", NULL);
     float lo[3] = {boxes[0].bmin[0], boxes[0].bmin[1], boxes[0].bmin[2]};
     float hi[3] = {boxes[0].bmax[0], boxes[0].bmax[1], boxes[0].bmax[2]};
     for (uint32_t i = 0; i < count; i++) {
@@ -226,35 +223,35 @@ rt_status rt_embree_build_bvh(rt_embree *em, const rt_aabb *boxes, uint32_t coun
     const em_node *root = rtcBuildBVH(&args);
     *ms = rt_now_ms() - t0;
     free(prims);
-    if (!root) return fail(msg, msg_size, RT_ERROR_BACKEND, "rtcBuildBVH failed", em->device);
+    if (!root) return rt_embree_fail(err, RT_ERROR_BACKEND, "rtcBuildBVH failed", em->device);
 
     conv cv = {out, boxes, 0, 0};
     out->prim_indices = malloc(sizeof(uint32_t) * count);
     out->prim_count = count;
     if (!out->prim_indices || !add_node(&cv, root, lo, hi)) {
         rt_bvh_free(out);
-        return fail(msg, msg_size, RT_ERROR_OUT_OF_MEMORY, "out of memory", NULL);
+        return rt_embree_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory", NULL);
     }
     if (cv.next_prim != count) {
         rt_bvh_free(out);
-        return fail(msg, msg_size, RT_ERROR_BACKEND, "the tree does not hold every primitive",
-                    NULL);
+        return rt_embree_fail(err, RT_ERROR_BACKEND, "the tree does not hold every primitive",
+                              NULL);
     }
     return RT_OK;
 }
 
 rt_status rt_embree_commit_ms(rt_embree *em, const float *positions, uint32_t vertex_count,
                               const uint32_t *indices, uint32_t triangle_count, int quality,
-                              double *ms, char *msg, size_t msg_size) {
+                              double *ms, rt_error *err) {
     *ms = 0.0;
     enum RTCBuildQuality q = quality ? RTC_BUILD_QUALITY_MEDIUM : RTC_BUILD_QUALITY_LOW;
     RTCScene scene = rtcNewScene(em->device);
-    if (!scene) return fail(msg, msg_size, RT_ERROR_BACKEND, "cannot create a scene", em->device);
+    if (!scene) return rt_embree_fail(err, RT_ERROR_BACKEND, "cannot create a scene", em->device);
     rtcSetSceneBuildQuality(scene, q);
     RTCGeometry geom = rtcNewGeometry(em->device, RTC_GEOMETRY_TYPE_TRIANGLE);
     if (!geom) {
         rtcReleaseScene(scene);
-        return fail(msg, msg_size, RT_ERROR_BACKEND, "cannot create a geometry", em->device);
+        return rt_embree_fail(err, RT_ERROR_BACKEND, "cannot create a geometry", em->device);
     }
     rtcSetGeometryBuildQuality(geom, q);
     /* Embree's own buffers are padded for its 16-byte loads. */
@@ -264,7 +261,7 @@ rt_status rt_embree_commit_ms(rt_embree *em, const float *positions, uint32_t ve
                                            3 * sizeof(unsigned), triangle_count);
     rt_status st = RT_OK;
     if (!v || !ix) {
-        st = fail(msg, msg_size, RT_ERROR_OUT_OF_MEMORY, "cannot allocate buffers", em->device);
+        st = rt_embree_fail(err, RT_ERROR_OUT_OF_MEMORY, "cannot allocate buffers", em->device);
     } else {
         memcpy(v, positions, sizeof(float) * 3 * vertex_count);
         memcpy(ix, indices, sizeof(unsigned) * 3 * triangle_count);
@@ -274,7 +271,7 @@ rt_status rt_embree_commit_ms(rt_embree *em, const float *positions, uint32_t ve
         rtcCommitScene(scene);
         *ms = rt_now_ms() - t0;
         if (rtcGetDeviceError(em->device) != RTC_ERROR_NONE)
-            st = fail(msg, msg_size, RT_ERROR_BACKEND, "rtcCommitScene failed", em->device);
+            st = rt_embree_fail(err, RT_ERROR_BACKEND, "rtcCommitScene failed", em->device);
     }
     rtcReleaseGeometry(geom);
     rtcReleaseScene(scene);

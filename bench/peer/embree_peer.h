@@ -13,13 +13,16 @@
 #include <stdint.h>
 
 #include "accel/bvh.h"
-#include "layout/flatten.h"
+#include "layout/flat.h"
 #include "base/thread_pool.h"
+
+/* The peer's errors: "embree: WHAT (error N)", N from the device if any. */
+rt_status rt_embree_fail(rt_error *err, rt_status st, const char *what, void *device);
 
 typedef struct rt_embree rt_embree;
 
 /* A device with the given thread count (<= 0: Embree's default, all cores). */
-rt_status rt_embree_create(int threads, rt_embree **out, char *msg, size_t msg_size);
+rt_status rt_embree_create(int threads, rt_embree **out, rt_error *err);
 void rt_embree_destroy(rt_embree *em);
 
 /* rtcBuildBVH at RTC_BUILD_QUALITY_MEDIUM, branching factor 2, leaf size
@@ -28,15 +31,15 @@ void rt_embree_destroy(rt_embree *em);
  * build primitives, which Embree consumes, and the conversion into *out are
  * not timed). */
 rt_status rt_embree_build_bvh(rt_embree *em, const rt_aabb *boxes, uint32_t count,
-                              const rt_build_options *options, rt_bvh *out, double *ms, char *msg,
-                              size_t msg_size);
+                              const rt_build_options *options, rt_bvh *out, double *ms,
+                              rt_error *err);
 
 /* Time of rtcCommitScene for one triangle geometry (3 floats per vertex, 3
  * indices per triangle) at low (quality 0) or medium (quality 1) build
  * quality. Buffer setup is not timed. */
 rt_status rt_embree_commit_ms(rt_embree *em, const float *positions, uint32_t vertex_count,
                               const uint32_t *indices, uint32_t triangle_count, int quality,
-                              double *ms, char *msg, size_t msg_size);
+                              double *ms, rt_error *err);
 
 /* The RTCDevice (as void *, so that this header needs no Embree header). */
 void *rt_embree_device(rt_embree *em);
@@ -50,7 +53,7 @@ typedef struct rt_embree_scene rt_embree_scene;
  * fastest case), committed at Embree's default (medium) quality. flat must
  * outlive the scene. *ms: the whole set-up, rtcCommitScene included. */
 rt_status rt_embree_scene_create(rt_embree *em, const rt_flat *flat, rt_embree_scene **out,
-                                 double *ms, char *msg, size_t msg_size);
+                                 double *ms, rt_error *err);
 void rt_embree_scene_destroy(rt_embree_scene *es);
 
 /* One frame of the thesis set-up, as rt_render with direct_only renders it:

@@ -31,15 +31,6 @@ struct rt_embree_scene {
     rt_scene_view view;
 };
 
-static rt_status fail(char *msg, size_t msg_size, rt_status st, const char *what,
-                      RTCDevice device) {
-    if (msg && msg_size) {
-        int code = device ? (int)rtcGetDeviceError(device) : 0;
-        snprintf(msg, msg_size, "embree: %s (error %d)", what, code);
-    }
-    return st;
-}
-
 /* One triangle geometry per instance, in world space, so that geomID is the
  * instance and primID + tri_first the layout's entry. Instances flattened
  * into world space (no Embree instancing) are the peer's fastest case. */
@@ -79,21 +70,21 @@ static int add_instance(RTCDevice dev, RTCScene scene, const rt_flat *flat, uint
 }
 
 rt_status rt_embree_scene_create(rt_embree *em, const rt_flat *flat, rt_embree_scene **out,
-                                 double *ms, char *msg, size_t msg_size) {
+                                 double *ms, rt_error *err) {
     *out = NULL;
     RTCDevice dev = (RTCDevice)rt_embree_device(em);
     rt_embree_scene *es = calloc(1, sizeof *es);
-    if (!es) return fail(msg, msg_size, RT_ERROR_OUT_OF_MEMORY, "out of memory", NULL);
+    if (!es) return rt_embree_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory", NULL);
     double t0 = rt_now_ms();
     es->scene = rtcNewScene(dev);
     if (!es->scene) {
         free(es);
-        return fail(msg, msg_size, RT_ERROR_BACKEND, "cannot create a scene", dev);
+        return rt_embree_fail(err, RT_ERROR_BACKEND, "cannot create a scene", dev);
     }
     for (uint32_t i = 0; i < flat->hdr.instance_count; i++)
         if (!add_instance(dev, es->scene, flat, i)) {
             rt_embree_scene_destroy(es);
-            return fail(msg, msg_size, RT_ERROR_BACKEND, "cannot add a geometry", dev);
+            return rt_embree_fail(err, RT_ERROR_BACKEND, "cannot add a geometry", dev);
         }
     rtcCommitScene(es->scene);
     *ms = rt_now_ms() - t0;

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "accel/bvh_internal.h"
+#include "base/error.h"
 
 rt_build_options rt_build_options_default(void) {
     rt_build_options o;
@@ -32,23 +33,15 @@ const char *rt_builder_name(rt_builder builder) {
     return "unknown";
 }
 
-void rt_bvh_free(rt_bvh *bvh) {
-    if (!bvh) return;
-    free(bvh->nodes);
-    free(bvh->prim_indices);
-    memset(bvh, 0, sizeof *bvh);
-}
-
 rt_status rt_bvh_build(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
-                       rt_pool *pool, rt_bvh *out, char *msg, size_t msg_size) {
+                       rt_pool *pool, rt_bvh *out, rt_error *err) {
     if (!out || (!boxes && count)) return RT_ERROR_INVALID_ARGUMENT;
     memset(out, 0, sizeof *out);
     rt_build_options o = options ? *options : rt_build_options_default();
     if (o.bins < 2 || o.bins > 256 || o.leaf_size < 1 || o.leaf_size > 1 << 20) {
-        if (msg) snprintf(msg, msg_size, "bins must be 2..256 and leaf size >= 1");
+        rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "bins must be 2..256 and leaf size >= 1");
         return RT_ERROR_INVALID_ARGUMENT;
     }
-    if (o.builder == RT_BUILDER_FAST)
-        return rt_bvh_build_fast(boxes, count, &o, pool, 1, out, msg, msg_size);
-    return rt_bvh_build_thesis(boxes, count, &o, pool, out, msg, msg_size);
+    if (o.builder == RT_BUILDER_FAST) return rt_bvh_build_fast(boxes, count, &o, pool, 1, out, err);
+    return rt_bvh_build_thesis(boxes, count, &o, pool, out, err);
 }

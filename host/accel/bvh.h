@@ -54,12 +54,12 @@ typedef struct rt_bvh {
 
 /* Builds a BVH over count boxes. pool may be NULL (the builder then uses a
  * pool of its own where it needs threads). On failure *out is left empty and
- * msg (if not NULL) holds the reason; a box with a NaN or infinite coordinate
+ * err (if not NULL) holds the reason; a box with a NaN or infinite coordinate
  * is refused (RT_ERROR_INVALID_ARGUMENT).
  * count 0 gives the empty tree: node_count 0, nodes NULL, prim_count 0 (a
  * traversal must check node_count before reading the root). */
 rt_status rt_bvh_build(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
-                       rt_pool *pool, rt_bvh *out, char *msg, size_t msg_size);
+                       rt_pool *pool, rt_bvh *out, rt_error *err);
 
 void rt_bvh_free(rt_bvh *bvh);
 

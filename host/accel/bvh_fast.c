@@ -36,6 +36,7 @@
 
 #include "accel/bvh_fast_kernels.h"
 #include "accel/bvh_internal.h"
+#include "base/error.h"
 #include "base/thread_pool.h"
 
 enum {
@@ -731,18 +732,17 @@ static void free_ctx(build_ctx *c) {
     free(c->slot_tasks);
 }
 
-static rt_status fail(char *msg, size_t msg_size, rt_status st, const char *text) {
-    if (msg && msg_size) snprintf(msg, msg_size, "fast BVH builder: %s", text);
+static rt_status fail(rt_error *err, rt_status st, const char *text) {
+    rt_fail(err, st, "fast BVH builder: %s", text);
     return st;
 }
 
-static rt_status run_build(build_ctx *c, rt_pool *pool, rt_bvh *out, char *msg, size_t msg_size) {
+static rt_status run_build(build_ctx *c, rt_pool *pool, rt_bvh *out, rt_error *err) {
     const uint32_t N = c->count;
     const int W = c->workers;
     rt_pool_run(pool, setup_job, c);
     if (atomic_load(&c->bad_input))
-        return fail(msg, msg_size, RT_ERROR_INVALID_ARGUMENT,
-                    "a box is not finite or has min > max");
+        return fail(err, RT_ERROR_INVALID_ARGUMENT, "a box is not finite or has min > max");
     task root = {0};
     root.end = N;
     {
@@ -770,14 +770,12 @@ static rt_status run_build(build_ctx *c, rt_pool *pool, rt_bvh *out, char *msg, 
     while (top) {
         task t = big_stack[--top], ch[2];
         if (t.end - t.begin < big) {
-            if (!push_task(c, &t))
-                return fail(msg, msg_size, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+            if (!push_task(c, &t)) return fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
             continue;
         }
         top_nodes++; /* split_parallel writes one node, inner or leaf */
         if (!split_parallel(c, pool, &t, &ch[0], &ch[1])) continue;
-        if (top + 2 > STACK_SIZE)
-            return fail(msg, msg_size, RT_ERROR_INVALID_ARGUMENT, "tree too deep");
+        if (top + 2 > STACK_SIZE) return fail(err, RT_ERROR_INVALID_ARGUMENT, "tree too deep");
         big_stack[top++] = ch[1];
         big_stack[top++] = ch[0];
     }
@@ -786,21 +784,20 @@ static rt_status run_build(build_ctx *c, rt_pool *pool, rt_bvh *out, char *msg, 
     c->task_base = malloc((size_t)c->task_count * sizeof *c->task_base);
     c->slot_tasks = malloc((size_t)c->task_count * sizeof *c->slot_tasks);
     if (!c->task_nodes || !c->task_base || !c->slot_tasks)
-        return fail(msg, msg_size, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+        return fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
     for (uint32_t i = 0; i < c->task_count; i++)
         c->slot_tasks[i] = (slot_task){c->tasks[i].slot, i};
     qsort(c->slot_tasks, c->task_count, sizeof *c->slot_tasks, slot_task_order);
     atomic_store(&c->next_task, 0);
     rt_pool_run(pool, task_phase_job, c);
-    if (atomic_load(&c->task_failed))
-        return fail(msg, msg_size, RT_ERROR_INVALID_ARGUMENT, "tree too deep");
+    if (atomic_load(&c->task_failed)) return fail(err, RT_ERROR_INVALID_ARGUMENT, "tree too deep");
 
     /* Compaction: the few top nodes serially (which also gives every task
      * subtree its first index), then the task subtrees in parallel. */
     uint32_t nodes = top_nodes;
     for (uint32_t i = 0; i < c->task_count; i++) nodes += c->task_nodes[i];
     out->nodes = malloc((size_t)nodes * sizeof *out->nodes);
-    if (!out->nodes) return fail(msg, msg_size, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    if (!out->nodes) return fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
     c->out_nodes = out->nodes;
     compact(c, 0, 0, out->nodes, 1);
     atomic_store(&c->next_task, 0);
@@ -813,14 +810,13 @@ static rt_status run_build(build_ctx *c, rt_pool *pool, rt_bvh *out, char *msg, 
 }
 
 rt_status rt_bvh_build_fast(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
-                            rt_pool *pool, int use_neon, rt_bvh *out, char *msg, size_t msg_size) {
+                            rt_pool *pool, int use_neon, rt_bvh *out, rt_error *err) {
     if (!out || !options || (!boxes && count)) return RT_ERROR_INVALID_ARGUMENT;
     memset(out, 0, sizeof *out);
     if (options->bins < 2 || options->bins > FAST_MAX_BINS || options->leaf_size < 1)
-        return fail(msg, msg_size, RT_ERROR_INVALID_ARGUMENT,
-                    "bins must be 2..256, leaf size >= 1");
+        return fail(err, RT_ERROR_INVALID_ARGUMENT, "bins must be 2..256, leaf size >= 1");
     if (count > RT_NODE_COUNT_MASK / 2)
-        return fail(msg, msg_size, RT_ERROR_INVALID_ARGUMENT, "too many primitives");
+        return fail(err, RT_ERROR_INVALID_ARGUMENT, "too many primitives");
     if (count == 0) return RT_OK; /* the empty tree (bvh.h): no nodes */
 
     /* Worker count: the given pool's, or options->threads (a pool of our own
@@ -832,7 +828,7 @@ rt_status rt_bvh_build_fast(const rt_aabb *boxes, uint32_t count, const rt_build
     rt_pool *own = NULL;
     if (threads > 1 && (!pool || rt_pool_size(pool) != threads)) {
         own = rt_pool_create(threads);
-        if (!own) return fail(msg, msg_size, RT_ERROR_OUT_OF_MEMORY, "cannot create threads");
+        if (!own) return fail(err, RT_ERROR_OUT_OF_MEMORY, "cannot create threads");
         pool = own;
     }
     if (threads == 1) pool = NULL;
@@ -864,9 +860,9 @@ rt_status rt_bvh_build_fast(const rt_aabb *boxes, uint32_t count, const rt_build
     rt_status st;
     if (!c.refs[0] || !c.refs[1] || !c.slots || !c.prim_indices || !c.worker_bins ||
         !c.merged_bins || !c.worker_cb || !c.job_left)
-        st = fail(msg, msg_size, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+        st = fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
     else
-        st = run_build(&c, pool, out, msg, msg_size);
+        st = run_build(&c, pool, out, err);
     free(c.prim_indices);
     free_ctx(&c);
     scratch_give_back(mem);

@@ -6,12 +6,12 @@
 
 /* The thesis builder (bvh_thesis.c): setups RT_BUILDER_THESIS_SCALAR, _NEON, _MT. */
 rt_status rt_bvh_build_thesis(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
-                              rt_pool *pool, rt_bvh *out, char *msg, size_t msg_size);
+                              rt_pool *pool, rt_bvh *out, rt_error *err);
 
 /* The fast builder (bvh_fast.c). use_neon selects the NEON binning path; the
  * output is identical either way and for any thread count. */
 rt_status rt_bvh_build_fast(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
-                            rt_pool *pool, int use_neon, rt_bvh *out, char *msg, size_t msg_size);
+                            rt_pool *pool, int use_neon, rt_bvh *out, rt_error *err);
 
 /* The fast builder keeps its scratch memory (up to 64 MiB) between builds;
  * this frees it now (it is otherwise reused or held until exit). */

@@ -48,6 +48,7 @@
 #include <unistd.h>
 
 #include "accel/bvh_internal.h"
+#include "base/error.h"
 #include "accel/bvh_thesis_kernels.h"
 
 #define SUBTREE_SPLIT_FACTOR 8 /* n_S of the thesis's second phase */
@@ -329,15 +330,15 @@ static uint32_t lay_out_like_scalar(const build_ctx *c, rt_node *out, uint32_t c
 }
 
 static rt_status run_mt(build_ctx *c, const rt_build_options *o, uint32_t *node_count,
-                        rt_node **final_nodes, range_item *stack0, char *msg, size_t msg_size) {
+                        rt_node **final_nodes, range_item *stack0, rt_error *err) {
     uint32_t n = c->count;
     c->defer_below = n / SUBTREE_SPLIT_FACTOR;
     c->tasks = malloc(sizeof(subtree_task) * (n / (c->leaf_size + 1) + 1));
     if (!c->tasks) return RT_ERROR_OUT_OF_MEMORY;
     uint32_t next = 1;
     if (build_subtree(c, (range_item){0, 0, n, 1}, &next, 2 * n - 1, stack0)) {
-        if (msg) snprintf(msg, msg_size, "thesis builder: node pool or stack overflow");
-        return RT_ERROR_INVALID_ARGUMENT;
+        return rt_fail(err, RT_ERROR_INVALID_ARGUMENT,
+                       "thesis builder: node pool or stack overflow");
     }
     c->defer_below = 0;
     uint32_t first_phase_nodes = next;
@@ -376,8 +377,8 @@ static rt_status run_mt(build_ctx *c, const rt_build_options *o, uint32_t *node_
     for (int w = 1; w <= started; w++) pthread_join(threads[w], NULL);
     for (int w = 1; w < workers; w++) free(stacks[w]);
     if (atomic_load(&shared.failed)) {
-        if (msg) snprintf(msg, msg_size, "thesis builder: node pool or stack overflow");
-        return RT_ERROR_INVALID_ARGUMENT;
+        return rt_fail(err, RT_ERROR_INVALID_ARGUMENT,
+                       "thesis builder: node pool or stack overflow");
     }
 
     uint32_t total = first_phase_nodes;
@@ -387,8 +388,7 @@ static rt_status run_mt(build_ctx *c, const rt_build_options *o, uint32_t *node_
     uint32_t written = lay_out_like_scalar(c, out, total, stack0);
     if (written != total) {
         free(out);
-        if (msg) snprintf(msg, msg_size, "thesis builder: subtree layout mismatch");
-        return RT_ERROR_INVALID_ARGUMENT;
+        return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "thesis builder: subtree layout mismatch");
     }
     *final_nodes = out;
     *node_count = total;
@@ -398,18 +398,18 @@ static rt_status run_mt(build_ctx *c, const rt_build_options *o, uint32_t *node_
 /* ---- entry point -------------------------------------------------------------- */
 
 rt_status rt_bvh_build_thesis(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
-                              rt_pool *pool, rt_bvh *out, char *msg, size_t msg_size) {
+                              rt_pool *pool, rt_bvh *out, rt_error *err) {
     memset(out, 0, sizeof *out);
     if (count == 0) return RT_OK;
     if (count > (1u << 30)) {
-        if (msg) snprintf(msg, msg_size, "thesis builder: %u primitives is too many", count);
-        return RT_ERROR_INVALID_ARGUMENT;
+        return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "thesis builder: %u primitives is too many",
+                       count);
     }
     for (uint32_t i = 0; i < count; i++)
         for (int k = 0; k < 3; k++)
             if (!isfinite(boxes[i].bmin[k]) || !isfinite(boxes[i].bmax[k])) {
-                if (msg)
-                    snprintf(msg, msg_size, "thesis builder: primitive %u has a non-finite box", i);
+                rt_fail(err, RT_ERROR_INVALID_ARGUMENT,
+                        "thesis builder: primitive %u has a non-finite box", i);
                 return RT_ERROR_INVALID_ARGUMENT;
             }
 
@@ -447,14 +447,14 @@ rt_status rt_bvh_build_thesis(const rt_aabb *boxes, uint32_t count, const rt_bui
 
     if (options->builder == RT_BUILDER_THESIS_MT) {
         rt_node *final_nodes = NULL;
-        status = run_mt(&c, options, &out->node_count, &final_nodes, stack, msg, msg_size);
+        status = run_mt(&c, options, &out->node_count, &final_nodes, stack, err);
         if (status != RT_OK) goto done;
         free(c.nodes);
         c.nodes = final_nodes;
     } else {
         uint32_t next = 1;
         if (build_subtree(&c, (range_item){0, 0, count, 1}, &next, 2 * count - 1, stack)) {
-            if (msg) snprintf(msg, msg_size, "thesis builder: node pool or stack overflow");
+            rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "thesis builder: node pool or stack overflow");
             status = RT_ERROR_INVALID_ARGUMENT;
             goto done;
         }
@@ -469,8 +469,8 @@ rt_status rt_bvh_build_thesis(const rt_aabb *boxes, uint32_t count, const rt_bui
     c.prims = NULL;
 
 done:
-    if (status == RT_ERROR_OUT_OF_MEMORY && msg)
-        snprintf(msg, msg_size, "thesis builder: out of memory for %u primitives", count);
+    if (status == RT_ERROR_OUT_OF_MEMORY)
+        rt_fail(err, status, "thesis builder: out of memory for %u primitives", count);
     if (status != RT_OK) memset(out, 0, sizeof *out);
     free(c.ref_box);
     free(c.prims);

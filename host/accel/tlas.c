@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/error.h"
+
 rt_aabb rt_aabb_transform(const rt_aabb *box, const float m[16]) {
     rt_aabb out;
     for (int k = 0; k < 3; k++) {
@@ -25,8 +27,8 @@ rt_aabb rt_aabb_transform(const rt_aabb *box, const float m[16]) {
 }
 
 rt_status rt_tlas_build(const rt_scene *scene, const rt_bvh *mesh_bvhs,
-                        const rt_build_options *options, rt_pool *pool, rt_bvh *out, char *msg,
-                        size_t msg_size) {
+                        const rt_build_options *options, rt_pool *pool, rt_bvh *out,
+                        rt_error *err) {
     if (!out) return RT_ERROR_INVALID_ARGUMENT;
     memset(out, 0, sizeof *out);
     if (!scene || (!mesh_bvhs && scene->mesh_count)) return RT_ERROR_INVALID_ARGUMENT;
@@ -43,7 +45,7 @@ rt_status rt_tlas_build(const rt_scene *scene, const rt_bvh *mesh_bvhs,
     if (!boxes || !ids) {
         free(boxes);
         free(ids);
-        if (msg && msg_size) snprintf(msg, msg_size, "object BVH: out of memory");
+        rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "object BVH: out of memory");
         return RT_ERROR_OUT_OF_MEMORY;
     }
     uint32_t used = 0;
@@ -58,7 +60,7 @@ rt_status rt_tlas_build(const rt_scene *scene, const rt_bvh *mesh_bvhs,
         boxes[used] = rt_aabb_transform(&local, obj->transform);
         ids[used++] = i;
     }
-    rt_status st = rt_bvh_build(boxes, used, &o, pool, out, msg, msg_size);
+    rt_status st = rt_bvh_build(boxes, used, &o, pool, out, err);
     if (st == RT_OK) {
         /* Leaves reference positions in the compacted box list: make them
          * object ids. */

@@ -1,5 +1,5 @@
 /* clock.h - the one monotonic clock that timings in the library, rtcl and
- * the benchmark programs read (defined in render.c). */
+ * the benchmark programs read (base/clock.c). */
 #ifndef RT_CLOCK_H
 #define RT_CLOCK_H
 

@@ -57,3 +57,16 @@ rt_status rt_error_set(rt_error *err, rt_status status, const char *file, int li
     va_end(args);
     return status;
 }
+
+rt_status rt_fail(rt_error *err, rt_status status, const char *fmt, ...) {
+    va_list args;
+    va_start(args, fmt);
+    rt_error_setv(err, status, NULL, 0, 0, fmt, args);
+    va_end(args);
+    return status;
+}
+
+rt_status rt_error_copy(rt_error *dst, const rt_error *src) {
+    if (dst && dst != src) *dst = *src;
+    return src->status;
+}

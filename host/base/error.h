@@ -19,6 +19,16 @@ rt_error_set(rt_error *err, rt_status status, const char *file, int line, int co
 rt_status rt_error_setv(rt_error *err, rt_status status, const char *file, int line, int column,
                         const char *fmt, va_list args);
 
+/* rt_error_set with no place: for errors that are not about a file. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+rt_status
+rt_fail(rt_error *err, rt_status status, const char *fmt, ...);
+
+/* Copies src into dst (if not NULL) and returns src's status. */
+rt_status rt_error_copy(rt_error *dst, const rt_error *src);
+
 /* Clears err to RT_OK with an empty message. */
 void rt_error_clear(rt_error *err);
 

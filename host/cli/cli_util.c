@@ -81,13 +81,90 @@ void cli_progress_done(void) {
     progress_drawn = 0;
 }
 
-const char *cli_backend_name(const char *command, const char *backend, const char *device,
-                             char *buf, size_t size) {
-    if (!device) return backend;
-    if (strcmp(backend, "opencl") != 0 && strcmp(backend, "auto") != 0) {
-        cli_error(command, "--device applies to --backend opencl or auto, not '%s'", backend);
+const char cli_renderer_usage[] =
+    "  --backend B    cpu (the scalar oracle), packet (SIMD ray packets), opencl (fails\n"
+    "                 when no device exists), or auto (opencl when a device exists,\n"
+    "                 else cpu with a notice) [cpu]\n"
+    "  --device D     the OpenCL device: an index or part of a name (rtcl devices)\n"
+    "  --threads N    worker threads, 0 = one per core [0]\n"
+    "  --cl-options OPTS\n"
+    "                 extra OpenCL compiler options, e.g. -cl-mad-enable,\n"
+    "                 -cl-fast-relaxed-math, -DRT_NATIVE_MATH (options appended to\n"
+    "                 the kernels' build); results may then differ from the CPU\n"
+    "                 oracle, and --stats says so (the speed-versus-error study)\n"
+    "  --packet-isa I the packet backend's instruction set: generic, avx2, avx512\n"
+    "                 (x86-64) [the widest the CPU runs]; all give the same bits\n"
+    "For tests and comparisons (every choice gives the same bits):\n"
+    "  --cl-one-ray   OpenCL: one ray per work-item on CPU devices too\n"
+    "  --cl-packet-lanes N\n"
+    "                 OpenCL on CPU devices: 4 (2x2), 8 (4x2) or 16 (4x4) rays per\n"
+    "                 work-item [16]\n"
+    "  --cl-no-wavefront\n"
+    "                 OpenCL: shade every image in one kernel, never as wavefront passes\n"
+    "  --cl-wave-cap N\n"
+    "                 OpenCL: wavefront queues of at most N rays (overflows sooner)\n";
+
+void cli_renderer_args_init(cli_renderer_args *a) {
+    memset(a, 0, sizeof *a);
+    a->opt = rt_renderer_options_default();
+    a->backend = "cpu";
+}
+
+int cli_renderer_arg(int argc, char **argv, int *i, const char *command, cli_renderer_args *a) {
+    const char *o = argv[*i], *v;
+    int n;
+    if (!strcmp(o, "--backend")) {
+        if (!(a->backend = cli_value(argc, argv, i, command))) return -1;
+    } else if (!strcmp(o, "--device")) {
+        if (!(a->device = cli_value(argc, argv, i, command))) return -1;
+    } else if (!strcmp(o, "--threads")) {
+        if (!(v = cli_value(argc, argv, i, command)) ||
+            !cli_int(command, o, v, 0, 1024, &a->opt.threads))
+            return -1;
+    } else if (!strcmp(o, "--cl-options")) {
+        if (!(a->opt.device_options = cli_value(argc, argv, i, command))) return -1;
+    } else if (!strcmp(o, "--packet-isa")) {
+        if (!(a->opt.packet_isa = cli_value(argc, argv, i, command))) return -1;
+    } else if (!strcmp(o, "--cl-one-ray")) {
+        a->opt.opencl.one_ray_kernels = 1;
+    } else if (!strcmp(o, "--cl-no-wavefront")) {
+        a->opt.opencl.no_wavefront = 1;
+    } else if (!strcmp(o, "--cl-packet-lanes")) {
+        if (!(v = cli_value(argc, argv, i, command)) || !cli_int(command, o, v, 4, 16, &n))
+            return -1;
+        if (n != 4 && n != 8 && n != 16) {
+            cli_error(command, "--cl-packet-lanes takes 4, 8 or 16, not %d", n);
+            return -1;
+        }
+        a->opt.opencl.packet_lanes = n;
+    } else if (!strcmp(o, "--cl-wave-cap")) {
+        if (!(v = cli_value(argc, argv, i, command)) || !cli_int(command, o, v, 1, 1 << 30, &n))
+            return -1;
+        a->opt.opencl.wave_queue_cap = (uint32_t)n;
+    } else {
+        return 0;
+    }
+    return 1;
+}
+
+rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a) {
+    if (a->device) {
+        if (strcmp(a->backend, "opencl") != 0 && strcmp(a->backend, "auto") != 0) {
+            cli_error(command, "--device applies to --backend opencl or auto, not '%s'",
+                      a->backend);
+            return NULL;
+        }
+        snprintf(a->spec, sizeof a->spec, "%s:%s", a->backend, a->device);
+    } else {
+        snprintf(a->spec, sizeof a->spec, "%s", a->backend);
+    }
+    a->opt.backend = a->spec;
+    rt_renderer *r = NULL;
+    rt_error err;
+    memset(&err, 0, sizeof err);
+    if (rt_renderer_create(&a->opt, &r, &err) != RT_OK) {
+        cli_error(command, "%s", err.message);
         return NULL;
     }
-    snprintf(buf, size, "%s:%s", backend, device);
-    return buf;
+    return r;
 }

@@ -35,9 +35,26 @@ void cli_error(const char *command, const char *fmt, ...)
 #endif
     ;
 
-/* The backend name rt_render and rt_trace_rays take: "B" or, with --device,
- * "B:DEVICE" (in buf). Prints an error and returns NULL when a device is given
- * for a backend without devices. */
-const char *cli_backend_name(const char *command, const char *backend, const char *device,
-                             char *buf, size_t size);
+/* The options every command that renders or traces takes: the renderer's
+ * (rt_renderer_options). */
+typedef struct cli_renderer_args {
+    rt_renderer_options opt;
+    const char *backend; /* --backend [cpu] */
+    const char *device;  /* --device, or NULL */
+    char spec[256];      /* backend[:device], made by cli_renderer_create */
+} cli_renderer_args;
+
+/* The help lines of those options. */
+extern const char cli_renderer_usage[];
+
+void cli_renderer_args_init(cli_renderer_args *a);
+
+/* If argv[*i] is one of the renderer options, takes it (and its value) and
+ * returns 1; 0 when it is not one; -1 after printing an error. */
+int cli_renderer_arg(int argc, char **argv, int *i, const char *command, cli_renderer_args *a);
+
+/* Creates the renderer the options ask for; prints the error and returns
+ * NULL when it cannot. */
+rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a);
+
 #endif /* RTCL_CLI_UTIL_H */

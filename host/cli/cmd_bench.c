@@ -154,13 +154,14 @@ static void bench_ours(const bench_args *a, const tri_input *in, rt_builder buil
     }
     for (int i = -1; i < a->reps; i++) {
         rt_bvh bvh;
-        char msg[160] = "";
+        rt_error msg;
+        memset(&msg, 0, sizeof msg);
         double t0 = rt_now_ms();
-        rt_status st =
-            rt_bvh_build(in->boxes, in->count, &o, single ? NULL : pool, &bvh, msg, sizeof msg);
+        rt_status st = rt_bvh_build(in->boxes, in->count, &o, single ? NULL : pool, &bvh, &msg);
         double t = rt_now_ms() - t0;
         if (st != RT_OK) {
-            snprintf(r->error, sizeof r->error, "%s", msg[0] ? msg : rt_status_string(st));
+            snprintf(r->error, sizeof r->error, "%.199s",
+                     msg.message[0] ? msg.message : rt_status_string(st));
             free(times);
             return;
         }
@@ -179,15 +180,17 @@ static void bench_ours(const bench_args *a, const tri_input *in, rt_builder buil
 #ifdef RT_HAVE_EMBREE
 static int bench_embree(const bench_args *a, const tri_input *in, row *rows) {
     rt_embree *em = NULL;
-    char msg[160] = "";
+    rt_error msg;
+    memset(&msg, 0, sizeof msg);
     row *b = &rows[0], *low = &rows[1], *med = &rows[2];
     b->builder = "embree";
     low->builder = "embree-commit-low";
     med->builder = "embree-commit-medium";
     for (int i = 0; i < 3; i++) rows[i].threads = a->threads;
     low->nodes = med->nodes = -1;
-    if (rt_embree_create(a->threads, &em, msg, sizeof msg) != RT_OK) {
-        for (int i = 0; i < 3; i++) snprintf(rows[i].error, sizeof rows[i].error, "%s", msg);
+    if (rt_embree_create(a->threads, &em, &msg) != RT_OK) {
+        for (int i = 0; i < 3; i++)
+            snprintf(rows[i].error, sizeof rows[i].error, "%.199s", msg.message);
         return 3;
     }
     rt_build_options o = rt_build_options_default();
@@ -199,9 +202,8 @@ static int bench_embree(const bench_args *a, const tri_input *in, row *rows) {
     for (int i = -1; i < a->reps && !b->error[0]; i++) {
         rt_bvh bvh;
         double ms;
-        if (rt_embree_build_bvh(em, in->boxes, in->count, &o, &bvh, &ms, msg, sizeof msg) !=
-            RT_OK) {
-            snprintf(b->error, sizeof b->error, "%s", msg);
+        if (rt_embree_build_bvh(em, in->boxes, in->count, &o, &bvh, &ms, &msg) != RT_OK) {
+            snprintf(b->error, sizeof b->error, "%.199s", msg.message);
             break;
         }
         if (i >= 0) times[i] = ms;
@@ -219,8 +221,8 @@ static int bench_embree(const bench_args *a, const tri_input *in, row *rows) {
         for (int i = -1; i < a->reps; i++) {
             double ms;
             if (rt_embree_commit_ms(em, in->positions, in->vertex_count, in->indices, in->count,
-                                    quality, &ms, msg, sizeof msg) != RT_OK) {
-                snprintf(r->error, sizeof r->error, "%s", msg);
+                                    quality, &ms, &msg) != RT_OK) {
+                snprintf(r->error, sizeof r->error, "%.199s", msg.message);
                 break;
             }
             if (i >= 0) t[i] = ms;

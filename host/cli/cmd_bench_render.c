@@ -5,15 +5,16 @@
  * the same camera with the same thread count; the CPU oracle's image is kept
  * and every other image is compared with it, so that a fast wrong answer
  * shows. Embree traces the same primary and shadow rays and computes the same
- * Phong terms (host/embree_trace.c); its time includes ray generation and
- * shading like ours. */
+ * Phong terms (bench/peer/embree_trace.c); its time includes ray generation
+ * and shading like ours. One renderer renders every row, switching backend
+ * between frames: the BVHs are built once, as the peer builds its BVH once. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "bench_render.h"
-#include "render/render_internal.h"
+#include "render/renderer_internal.h"
 #include "rt.h"
 #ifdef RT_HAVE_EMBREE
 #include "peer/embree_peer.h"
@@ -54,6 +55,7 @@ static void compare_images(const float *a, const float *b, size_t pixels, render
 /* One row's run: a backend of ours (opt set) or an Embree packet width. */
 typedef struct {
     render_row *row;
+    const char *backend; /* ours: the renderer's backend for this row */
     rt_render_options opt;
     rt_render_stats st;
     rt_framebuffer fb;
@@ -66,7 +68,7 @@ typedef struct {
 /* The Embree scene the embree-N runs trace (empty without Embree). */
 typedef struct {
 #ifdef RT_HAVE_EMBREE
-    rt_prepared prep;
+    rt_backend_layout layout; /* the renderer's layout and pool */
     rt_embree *em;
     rt_embree_scene *es;
 #else
@@ -89,9 +91,8 @@ static void backend_init(bench_run *r, render_row *row, const bench_render_setup
                          const char *backend) {
     run_init(r, row, su);
     snprintf(row->backend, sizeof row->backend, "%s", backend);
+    r->backend = backend;
     r->opt = rt_render_options_default();
-    r->opt.backend = backend;
-    r->opt.threads = su->threads;
     r->opt.direct_only = 1;
     r->opt.stats = &r->st;
     /* One framebuffer for every frame, as the Embree peer keeps one. */
@@ -99,15 +100,17 @@ static void backend_init(bench_run *r, render_row *row, const bench_render_setup
 }
 
 /* Frame i of run r (i < 0: the warm-up frame, not kept). */
-static void run_frame(rt_scene *scene, const embree_peer *peer, bench_run *r, int i) {
+static void run_frame(rt_renderer *renderer, rt_scene *scene, const embree_peer *peer, bench_run *r,
+                      int i) {
     if (r->failed) return;
     double ms = 0.0;
     if (r->embree_lanes) {
 #ifdef RT_HAVE_EMBREE
-        rt_embree_render(peer->es, r->embree_lanes, peer->prep.pool, r->rgb, &r->row->rays, &ms);
+        rt_embree_render(peer->es, r->embree_lanes, peer->layout.pool, r->rgb, &r->row->rays, &ms);
 #endif
-    } else if (rt_render(scene, &r->opt, &r->fb) != RT_OK) {
-        snprintf(r->row->error, sizeof r->row->error, "%s", rt_scene_error(scene));
+    } else if (rt_renderer_set_backend(renderer, r->backend) != RT_OK ||
+               rt_render(renderer, scene, &r->opt, &r->fb) != RT_OK) {
+        snprintf(r->row->error, sizeof r->row->error, "%s", rt_renderer_error(renderer));
         r->failed = 1;
         return;
     } else {
@@ -144,22 +147,24 @@ static void run_finish(bench_run *r, const bench_render_setup *su, const float *
 /* Runs embree-1, -4, -8 (and -16 where Embree traces 16 natively) in rows;
  * returns how many (0 with the reason in rows[0].error when Embree cannot
  * run). */
-static int embree_init(rt_scene *scene, const bench_render_setup *su, embree_peer *peer,
-                       bench_run *runs, render_row *rows) {
-    char msg[200] = "";
+static int embree_init(rt_renderer *renderer, rt_scene *scene, const bench_render_setup *su,
+                       embree_peer *peer, bench_run *runs, render_row *rows) {
+    rt_error msg;
+    memset(&msg, 0, sizeof msg);
     snprintf(rows[0].backend, sizeof rows[0].backend, "embree");
     rows[0].threads = su->threads;
-    if (rt_render_prepare(scene, su->threads, &peer->prep) != RT_OK) {
-        snprintf(rows[0].error, sizeof rows[0].error, "%s", rt_scene_error(scene));
+    double build_ms, sah;
+    if (rt_renderer_layout(renderer, scene, &peer->layout, &build_ms, &sah) != RT_OK) {
+        snprintf(rows[0].error, sizeof rows[0].error, "%s", rt_renderer_error(renderer));
         return 0;
     }
-    if (rt_embree_create(su->threads, &peer->em, msg, sizeof msg) != RT_OK ||
-        rt_embree_scene_create(peer->em, peer->prep.flat, &peer->es, &(double){0}, msg,
-                               sizeof msg) != RT_OK) {
-        snprintf(rows[0].error, sizeof rows[0].error, "%s", msg);
+    if (rt_embree_create(su->threads, &peer->em, &msg) != RT_OK ||
+        rt_embree_scene_create(peer->em, peer->layout.flat, &peer->es, &(double){0}, &msg) !=
+            RT_OK) {
+        snprintf(rows[0].error, sizeof rows[0].error, "%.199s", msg.message);
         return 0;
     }
-    size_t px = (size_t)peer->prep.flat->hdr.width * (size_t)peer->prep.flat->hdr.height;
+    size_t px = (size_t)peer->layout.flat->hdr.width * (size_t)peer->layout.flat->hdr.height;
     static const int widths[] = {1, 4, 8, 16};
     int n = 0;
     for (size_t w = 0; w < 4; w++) {
@@ -168,7 +173,7 @@ static int embree_init(rt_scene *scene, const bench_render_setup *su, embree_pee
         run_init(r, &rows[n], su);
         n++;
         snprintf(r->row->backend, sizeof r->row->backend, "embree-%d", widths[w]);
-        r->row->threads = rt_pool_size(peer->prep.pool);
+        r->row->threads = rt_pool_size(peer->layout.pool);
         r->row->lanes = r->embree_lanes = widths[w];
         r->rgb = malloc(3 * sizeof(float) * px);
         if (!r->rgb && !r->failed) {
@@ -210,6 +215,15 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
         return 0;
     }
     memset(rows, 0, sizeof(render_row) * BENCH_RENDER_MAX_ROWS);
+    rt_renderer_options ro = rt_renderer_options_default();
+    ro.threads = su->threads;
+    rt_renderer *renderer = NULL;
+    rt_error re;
+    if (rt_renderer_create(&ro, &renderer, &re) != RT_OK) {
+        snprintf(err, err_size, "%s", re.message);
+        rt_scene_destroy(scene);
+        return 0;
+    }
     static const char *backends[] = {"cpu", "packet", "opencl"};
     enum { OURS = 3 };
     bench_run runs[BENCH_RENDER_MAX_ROWS];
@@ -218,7 +232,7 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
     for (int b = 0; b < OURS; b++) backend_init(&runs[b], &rows[b], su, backends[b]);
     int n = OURS; /* runs */
 #ifdef RT_HAVE_EMBREE
-    n += embree_init(scene, su, &peer, &runs[OURS], &rows[OURS]);
+    n += embree_init(renderer, scene, su, &peer, &runs[OURS], &rows[OURS]);
 #endif
     /* Frames interleaved round by round, every run's frame i before any run's
      * frame i + 1, so that a disturbance of the shared machine falls on every
@@ -234,8 +248,8 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
             su->progress(path, what);
         }
         for (int k = 0; k < n; k++) {
-            if (i >= 0) run_frame(scene, &peer, &runs[k], -1);
-            run_frame(scene, &peer, &runs[k], i);
+            if (i >= 0) run_frame(renderer, scene, &peer, &runs[k], -1);
+            run_frame(renderer, scene, &peer, &runs[k], i);
         }
     }
     size_t px = (size_t)su->width * (size_t)su->height;
@@ -248,6 +262,7 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
     rt_embree_scene_destroy(peer.es);
     rt_embree_destroy(peer.em);
 #endif
+    rt_renderer_destroy(renderer);
     rt_scene_destroy(scene);
     return n;
 }

@@ -46,14 +46,15 @@ int cmd_devices(int argc, char **argv) {
 #else
     rt_cl_device_info *devs;
     int count;
-    char msg[512];
-    if (rt_cl_devices(&devs, &count, msg, sizeof msg) != RT_OK) {
-        cli_error("devices", "%s", msg);
+    rt_error msg;
+    memset(&msg, 0, sizeof msg);
+    if (rt_cl_devices(&devs, &count, &msg) != RT_OK) {
+        cli_error("devices", "%s", msg.message);
         return 2;
     }
     int only = -1;
-    if (selector && (only = rt_cl_select(devs, count, selector, msg, sizeof msg)) < 0) {
-        cli_error("devices", "%s", msg);
+    if (selector && (only = rt_cl_select(devs, count, selector, &msg)) < 0) {
+        cli_error("devices", "%s", msg.message);
         free(devs);
         return 2;
     }

@@ -9,7 +9,7 @@
 #include "commands.h"
 #include "formats/image.h"
 
-static const char usage[] =
+static const char usage_head[] =
     "usage: rtcl render SCENE [-o FILE] [--backend B] [--device D] [--width W] [--height H]\n"
     "                   [--aov AOV] [--threads N] [--frames N] [--direct]\n"
     "                   [--cl-options OPTS] [--stats] [--help]\n"
@@ -20,29 +20,24 @@ static const char usage[] =
     "\n"
     "  -o FILE        output image, format by extension: .png, .ppm (8-bit, clamped),\n"
     "                 .exr (32-bit float, linear) [out.png]\n"
-    "  --backend B    cpu (the scalar oracle), packet (SIMD ray packets), opencl (fails\n"
-    "                 when no device exists), or auto (opencl when a device exists,\n"
-    "                 else cpu with a notice) [cpu]\n"
-    "  --device D     the OpenCL device: an index or part of a name (rtcl devices)\n"
     "  --width W, --height H\n"
     "                 resolution, overriding the scene's camera\n"
     "  --aov AOV      write an arbitrary output variable instead of the image:\n"
     "                 depth, primid, instid, normal, boxtests, tritests. In EXR the raw\n"
     "                 values; in PNG/PPM depth and counters scaled to [0,1] by their\n"
     "                 maximum, ids in false colour, normals as 0.5 + 0.5 n\n"
-    "  --threads N    worker threads, 0 = one per core [0]\n"
     "  --frames N     render N frames in one process and print the first frame's\n"
     "                 time and the min and median of the others (a benchmark) [1]\n"
     "  --direct       primary and shadow rays only, no reflection or refraction\n"
     "                 (the thesis's benchmark set-up)\n"
-    "  --cl-options OPTS\n"
-    "                 extra OpenCL compiler options, e.g. -cl-mad-enable,\n"
-    "                 -cl-fast-relaxed-math, -DRT_NATIVE_MATH (options appended to\n"
-    "                 the kernels' build); results may then differ from the CPU\n"
-    "                 oracle, and --stats says so (the speed-versus-error study)\n"
     "  --stats        print BVH cost, box and triangle tests per ray and render time;\n"
     "                 for opencl also the device, kernel specialisation, compile,\n"
     "                 upload (bytes), per-kernel and download times\n";
+
+static void print_usage(FILE *f) {
+    fputs(usage_head, f);
+    fputs(cli_renderer_usage, f);
+}
 
 static int parse_aov(const char *name, rt_aov *out) {
     static const struct {
@@ -151,20 +146,19 @@ static void print_stats(const rt_render_stats *s, int width, int height) {
 int cmd_render(int argc, char **argv) {
     const char *scene_path = NULL, *out_path = "out.png";
     rt_render_options opt = rt_render_options_default();
+    cli_renderer_args ra;
+    cli_renderer_args_init(&ra);
     int width = 0, height = 0, stats = 0, frames = 1;
-    const char *device = NULL;
-    char backend_buf[256];
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v;
+        int taken = cli_renderer_arg(argc, argv, &i, "render", &ra);
+        if (taken < 0) return 2;
+        if (taken) continue;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            fputs(usage, stdout);
+            print_usage(stdout);
             return 0;
         } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
             if (!(out_path = cli_value(argc, argv, &i, "render"))) return 2;
-        } else if (!strcmp(a, "--backend")) {
-            if (!(opt.backend = cli_value(argc, argv, &i, "render"))) return 2;
-        } else if (!strcmp(a, "--device")) {
-            if (!(device = cli_value(argc, argv, &i, "render"))) return 2;
         } else if (!strcmp(a, "--width")) {
             if (!(v = cli_value(argc, argv, &i, "render")) ||
                 !cli_int("render", a, v, 1, 32768, &width))
@@ -172,10 +166,6 @@ int cmd_render(int argc, char **argv) {
         } else if (!strcmp(a, "--height")) {
             if (!(v = cli_value(argc, argv, &i, "render")) ||
                 !cli_int("render", a, v, 1, 32768, &height))
-                return 2;
-        } else if (!strcmp(a, "--threads")) {
-            if (!(v = cli_value(argc, argv, &i, "render")) ||
-                !cli_int("render", a, v, 0, 1024, &opt.threads))
                 return 2;
         } else if (!strcmp(a, "--aov")) {
             if (!(v = cli_value(argc, argv, &i, "render"))) return 2;
@@ -194,10 +184,9 @@ int cmd_render(int argc, char **argv) {
             stats = 1;
         } else if (!strcmp(a, "--direct")) {
             opt.direct_only = 1;
-        } else if (!strcmp(a, "--cl-options")) {
-            if (!(opt.device_options = cli_value(argc, argv, &i, "render"))) return 2;
         } else if (a[0] == '-' && a[1]) {
-            cli_error("render", "unknown option '%s'\n%s", a, usage);
+            cli_error("render", "unknown option '%s'", a);
+            print_usage(stderr);
             return 2;
         } else if (scene_path) {
             cli_error("render", "more than one scene given ('%s' and '%s')", scene_path, a);
@@ -207,17 +196,18 @@ int cmd_render(int argc, char **argv) {
         }
     }
     if (!scene_path) {
-        cli_error("render", "no scene given\n%s", usage);
+        cli_error("render", "no scene given");
+        print_usage(stderr);
         return 2;
     }
-    if (!(opt.backend =
-              cli_backend_name("render", opt.backend, device, backend_buf, sizeof backend_buf)))
-        return 2;
+    rt_renderer *renderer = cli_renderer_create("render", &ra);
+    if (!renderer) return 2;
 
     rt_scene *scene;
     rt_error err;
     if (cli_load_scene(scene_path, &scene, &err) != RT_OK) {
         cli_error("render", "%s", err.message);
+        rt_renderer_destroy(renderer);
         return 2;
     }
     rt_camera cam;
@@ -227,6 +217,7 @@ int cmd_render(int argc, char **argv) {
     if (rt_camera_set(scene, &cam) != RT_OK) {
         cli_error("render", "%s", rt_scene_error(scene));
         rt_scene_destroy(scene);
+        rt_renderer_destroy(renderer);
         return 2;
     }
     rt_render_stats st;
@@ -236,11 +227,12 @@ int cmd_render(int argc, char **argv) {
     opt.progress_user = (void *)"render";
     rt_framebuffer fb;
     memset(&fb, 0, sizeof fb);
-    rt_status status = rt_render(scene, &opt, &fb);
+    rt_status status = rt_render(renderer, scene, &opt, &fb);
     cli_progress_done();
     if (status != RT_OK) {
-        cli_error("render", "%s", rt_scene_error(scene));
+        cli_error("render", "%s", rt_renderer_error(renderer));
         rt_scene_destroy(scene);
+        rt_renderer_destroy(renderer);
         return 2;
     }
     if (frames > 1) { /* the same frame again: warm caches, uploads done */
@@ -250,15 +242,16 @@ int cmd_render(int argc, char **argv) {
         memset(&again, 0, sizeof again);
         opt.reuse_framebuffer = 1; /* as a real-time loop does */
         for (int f = 1; f < frames && ms && status == RT_OK; f++) {
-            status = rt_render(scene, &opt, &again);
+            status = rt_render(renderer, scene, &opt, &again);
             if (status == RT_OK) ms[timed++] = st.render_ms;
         }
         rt_framebuffer_free(&again);
         if (status != RT_OK || !ms) {
-            cli_error("render", "%s", ms ? rt_scene_error(scene) : "out of memory");
+            cli_error("render", "%s", ms ? rt_renderer_error(renderer) : "out of memory");
             free(ms);
             rt_framebuffer_free(&fb);
             rt_scene_destroy(scene);
+            rt_renderer_destroy(renderer);
             return 2;
         }
         for (int a = 1; a < timed; a++) /* insertion sort: a handful of values */
@@ -283,6 +276,7 @@ int cmd_render(int argc, char **argv) {
             cli_error("render", "out of memory");
             rt_framebuffer_free(&fb);
             rt_scene_destroy(scene);
+            rt_renderer_destroy(renderer);
             return 2;
         }
         img.channels = 3;
@@ -294,10 +288,12 @@ int cmd_render(int argc, char **argv) {
     if (status != RT_OK) {
         cli_error("render", "%s", err.message);
         rt_scene_destroy(scene);
+        rt_renderer_destroy(renderer);
         return 2;
     }
     if (stats) print_stats(&st, cam.width, cam.height);
     fprintf(stderr, "wrote %s (%dx%d)\n", out_path, cam.width, cam.height);
     rt_scene_destroy(scene);
+    rt_renderer_destroy(renderer);
     return 0;
 }

@@ -11,7 +11,7 @@
 #include "rt_shared.h"
 #include "scene/scene.h"
 
-static const char usage[] =
+static const char usage_head[] =
     "usage: rtcl trace SCENE --rays RAYS.txt --out HITS.txt [--backend B] [--device D]\n"
     "                  [--tri-test T] [--any-hit] [--offset-origins] [--help]\n"
     "\n"
@@ -27,9 +27,6 @@ static const char usage[] =
     "           the 0-based triangle index in its mesh's file order; inst the object\n"
     "           index. Floats as %.9g. A miss is '0 inf 0 0 -1' (plus ' -1').\n"
     "\n"
-    "  --backend B  cpu (the scalar oracle), packet (SIMD ray packets), opencl, or auto\n"
-    "               (opencl when a device exists, else cpu) [cpu]\n"
-    "  --device D   the OpenCL device: an index or part of a name (rtcl devices)\n"
     "  --tri-test T the ray/triangle test: watertight (Woop, Benthin, Wald 2013),\n"
     "               mt (Moller-Trumbore), pluecker or badouel [watertight]\n"
     "  --any-hit    stop at any hit in range (shadow-ray queries): hit is then\n"
@@ -38,6 +35,11 @@ static const char usage[] =
     "               is a point on a surface with that normal, and is moved off it\n"
     "               with the engine's offset (as for shadow and secondary rays),\n"
     "               to the side the direction points to\n";
+
+static void print_usage(FILE *f) {
+    fputs(usage_head, f);
+    fputs(cli_renderer_usage, f);
+}
 
 static const char *const tri_test_names[] = {"watertight", "mt", "pluecker", "badouel"};
 
@@ -107,24 +109,24 @@ static int read_rays(const char *path, int offset, rt_ray **out, size_t *count) 
 }
 
 int cmd_trace(int argc, char **argv) {
-    const char *scene_path = NULL, *rays_path = NULL, *out_path = NULL, *backend = "cpu";
-    const char *device = NULL;
-    char backend_buf[256];
-    int any_hit = 0, offset = 0;
-    rt_render_options opt = rt_render_options_default();
+    const char *scene_path = NULL, *rays_path = NULL, *out_path = NULL;
+    int offset = 0;
+    rt_trace_options opt;
+    memset(&opt, 0, sizeof opt);
+    cli_renderer_args ra;
+    cli_renderer_args_init(&ra);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
+        int taken = cli_renderer_arg(argc, argv, &i, "trace", &ra);
+        if (taken < 0) return 2;
+        if (taken) continue;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            fputs(usage, stdout);
+            print_usage(stdout);
             return 0;
         } else if (!strcmp(a, "--rays")) {
             if (!(rays_path = cli_value(argc, argv, &i, "trace"))) return 2;
         } else if (!strcmp(a, "--out") || !strcmp(a, "-o")) {
             if (!(out_path = cli_value(argc, argv, &i, "trace"))) return 2;
-        } else if (!strcmp(a, "--backend")) {
-            if (!(backend = cli_value(argc, argv, &i, "trace"))) return 2;
-        } else if (!strcmp(a, "--device")) {
-            if (!(device = cli_value(argc, argv, &i, "trace"))) return 2;
         } else if (!strcmp(a, "--tri-test")) {
             const char *name = cli_value(argc, argv, &i, "trace");
             if (!name) return 2;
@@ -140,9 +142,10 @@ int cmd_trace(int argc, char **argv) {
         } else if (!strcmp(a, "--offset-origins")) {
             offset = 1;
         } else if (!strcmp(a, "--any-hit")) {
-            any_hit = 1;
+            opt.any_hit = 1;
         } else if (a[0] == '-' && a[1]) {
-            cli_error("trace", "unknown option '%s'\n%s", a, usage);
+            cli_error("trace", "unknown option '%s'", a);
+            print_usage(stderr);
             return 2;
         } else if (scene_path) {
             cli_error("trace", "more than one scene given ('%s' and '%s')", scene_path, a);
@@ -152,32 +155,38 @@ int cmd_trace(int argc, char **argv) {
         }
     }
     if (!scene_path || !rays_path || !out_path) {
-        cli_error("trace", "need SCENE, --rays and --out\n%s", usage);
+        cli_error("trace", "need SCENE, --rays and --out");
+        print_usage(stderr);
         return 2;
     }
-    if (!(backend = cli_backend_name("trace", backend, device, backend_buf, sizeof backend_buf)))
-        return 2;
+    rt_renderer *renderer = cli_renderer_create("trace", &ra);
+    if (!renderer) return 2;
     rt_ray *rays = NULL;
     size_t n = 0;
-    if (!read_rays(rays_path, offset, &rays, &n)) return 2;
+    if (!read_rays(rays_path, offset, &rays, &n)) {
+        rt_renderer_destroy(renderer);
+        return 2;
+    }
     rt_scene *scene;
     rt_error err;
     if (cli_load_scene(scene_path, &scene, &err) != RT_OK) {
         cli_error("trace", "%s", err.message);
         free(rays);
+        rt_renderer_destroy(renderer);
         return 2;
     }
     rt_hit *hits = malloc((n ? n : 1) * sizeof *hits);
-    opt.backend = backend;
     rt_status st =
-        hits ? rt_trace_rays_with(scene, rays, n, hits, any_hit, &opt) : RT_ERROR_OUT_OF_MEMORY;
+        hits ? rt_trace_rays(renderer, scene, rays, n, hits, &opt) : RT_ERROR_OUT_OF_MEMORY;
     if (st != RT_OK) {
-        cli_error("trace", "%s", hits ? rt_scene_error(scene) : "out of memory");
+        cli_error("trace", "%s", hits ? rt_renderer_error(renderer) : "out of memory");
         free(rays);
         free(hits);
         rt_scene_destroy(scene);
+        rt_renderer_destroy(renderer);
         return 2;
     }
+    rt_renderer_destroy(renderer);
     int with_inst = scene->object_count > 1;
     FILE *f = fopen(out_path, "w");
     if (!f) {

@@ -1,6 +1,8 @@
 /* flatten.c - scene + BVHs -> the device layout (kernels/rt_layout.h). */
 #include "layout/flatten.h"
 
+#include "base/error.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,41 +14,6 @@ rt_flat_options rt_flat_options_default(void) {
     o.max_depth = 5;
     o.min_weight = 1.0f / 256.0f;
     return o;
-}
-
-void rt_flat_free(rt_flat *f) {
-    if (!f) return;
-    free(f->nodes);
-    free(f->tris);
-    free(f->tri_ids);
-    free(f->tri_normals);
-    free(f->tri_mats);
-    free(f->instances);
-    free(f->inst_ids);
-    free(f->materials);
-    free(f->lights);
-    memset(f, 0, sizeof *f);
-}
-
-rt_scene_view rt_flat_view(const rt_flat *f) {
-    rt_scene_view v;
-    v.hdr = &f->hdr;
-    v.nodes = f->nodes;
-    v.tris = f->tris;
-    v.tri_ids = f->tri_ids;
-    v.tri_normals = f->tri_normals;
-    v.tri_mats = f->tri_mats;
-    v.instances = f->instances;
-    v.inst_ids = f->inst_ids;
-    v.materials = f->materials;
-    v.lights = f->lights;
-    return v;
-}
-
-int rt_transform_is_identity(const float m[16]) {
-    for (int i = 0; i < 16; i++)
-        if (m[i] != ((i % 5) == 0 ? 1.0f : 0.0f)) return 0;
-    return 1;
 }
 
 /* Depth of a BVH (the root alone is 1), without recursion. */
@@ -75,30 +42,30 @@ static uint32_t bvh_depth(const rt_bvh *b) {
 }
 
 /* Checks a BVH's indices so that no backend can read out of bounds. */
-static int bvh_valid(const rt_bvh *b, uint32_t prim_limit, char *msg, size_t msg_size,
-                     const char *what) {
+static int bvh_valid(const rt_bvh *b, uint32_t prim_limit, rt_error *err, const char *what) {
     for (uint32_t i = 0; i < b->node_count; i++) {
         const rt_node *n = &b->nodes[i];
         if (n->b & RT_NODE_LEAF_FLAG) {
             uint64_t end = (uint64_t)n->a + (n->b & RT_NODE_COUNT_MASK);
             if (end > b->prim_count) {
-                snprintf(msg, msg_size, "%s BVH: leaf %u references entries past the end", what, i);
+                rt_fail(err, RT_ERROR_INVALID_ARGUMENT,
+                        "%s BVH: leaf %u references entries past the end", what, i);
                 return 0;
             }
         } else if (n->a >= b->node_count || n->b >= b->node_count || n->a == i || n->b == i) {
-            snprintf(msg, msg_size, "%s BVH: node %u has bad children", what, i);
+            rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "%s BVH: node %u has bad children", what, i);
             return 0;
         }
     }
     for (uint32_t i = 0; i < b->prim_count; i++)
         if (b->prim_indices[i] >= prim_limit) {
-            snprintf(msg, msg_size, "%s BVH: primitive index out of range", what);
+            rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "%s BVH: primitive index out of range", what);
             return 0;
         }
     uint32_t depth = bvh_depth(b);
     if (depth > RT_STACK_SIZE) {
-        snprintf(msg, msg_size, "%s BVH is %u levels deep; traversal supports %d", what, depth,
-                 RT_STACK_SIZE);
+        rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "%s BVH is %u levels deep; traversal supports %d",
+                what, depth, RT_STACK_SIZE);
         return 0;
     }
     return 1;
@@ -175,15 +142,12 @@ static void store_tri(const rt_mesh_data *m, uint32_t t, rt_tri *out) {
 }
 
 rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bvh *top,
-                     const rt_flat_options *options, rt_flat *out, char *msg, size_t msg_size) {
-    char dummy[8];
-    if (!msg) msg = dummy, msg_size = sizeof dummy;
-    msg[0] = 0;
+                     const rt_flat_options *options, rt_flat *out, rt_error *err) {
     memset(out, 0, sizeof *out);
     rt_flat_options opt = options ? *options : rt_flat_options_default();
     if (opt.tri_method > RT_TRI_BADOUEL || opt.max_depth > RT_MAX_DEPTH) {
-        snprintf(msg, msg_size, "triangle test %u or depth %u out of range", opt.tri_method,
-                 opt.max_depth);
+        rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "triangle test %u or depth %u out of range",
+                opt.tri_method, opt.max_depth);
         return RT_ERROR_INVALID_ARGUMENT;
     }
     rt_scene_features feat = rt_scene_features_of(scene);
@@ -205,12 +169,11 @@ rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bv
         const rt_mesh_data *md = &scene->meshes[m];
         const rt_bvh *b = &mesh_bvhs[m];
         if (md->triangle_count && (b->prim_count != md->triangle_count || !b->node_count)) {
-            snprintf(msg, msg_size, "mesh '%s': its BVH holds %u of %u triangles", md->name,
-                     b->prim_count, md->triangle_count);
+            rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "mesh '%s': its BVH holds %u of %u triangles",
+                    md->name, b->prim_count, md->triangle_count);
             goto fail;
         }
-        if (md->triangle_count && !bvh_valid(b, md->triangle_count, msg, msg_size, md->name))
-            goto fail;
+        if (md->triangle_count && !bvh_valid(b, md->triangle_count, err, md->name)) goto fail;
         node_base[m] = (uint32_t)nodes;
         tri_base[m] = (uint32_t)tris;
         nodes += md->triangle_count ? b->node_count : 1;
@@ -222,15 +185,16 @@ rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bv
     /* The object BVH may leave out objects whose mesh is empty. */
     if (nobj > 1 || (nobj == 1 && !single)) {
         if (!top || top->prim_count > nobj || (top->prim_count && !top->node_count)) {
-            snprintf(msg, msg_size, "the object BVH is missing or holds the wrong objects");
+            rt_fail(err, RT_ERROR_INVALID_ARGUMENT,
+                    "the object BVH is missing or holds the wrong objects");
             goto fail;
         }
-        if (!bvh_valid(top, nobj, msg, msg_size, "object")) goto fail;
+        if (!bvh_valid(top, nobj, err, "object")) goto fail;
     }
     uint32_t top_root = (uint32_t)nodes;
     if (!single && nobj) nodes += top->node_count ? top->node_count : 1;
     if (nodes >= RT_NODE_COUNT_MASK || tris >= RT_NODE_COUNT_MASK) {
-        snprintf(msg, msg_size, "scene too large for 31-bit indices");
+        rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "scene too large for 31-bit indices");
         goto fail;
     }
 
@@ -298,7 +262,7 @@ rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bv
         uint32_t m = ob->meshes[ob->selected];
         float inv[16];
         if (!rt_mat4_affine_inverse(ob->transform, inv)) {
-            snprintf(msg, msg_size, "object %u: its transform is singular", o);
+            rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "object %u: its transform is singular", o);
             goto fail;
         }
         memcpy(in->world_to_object, inv, 12 * sizeof(float));
@@ -350,7 +314,7 @@ rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bv
     free(used);
     return RT_OK;
 oom:
-    snprintf(msg, msg_size, "out of memory flattening the scene");
+    rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory flattening the scene");
     free(node_base);
     free(tri_base);
     free(used);
@@ -362,51 +326,4 @@ fail:
     free(used);
     rt_flat_free(out);
     return RT_ERROR_INVALID_ARGUMENT;
-}
-
-void rt_mesh_tri_boxes(const rt_mesh_data *m, rt_aabb *boxes) {
-    for (uint32_t t = 0; t < m->triangle_count; t++) {
-        rt_aabb *b = &boxes[t];
-        for (int k = 0; k < 3; k++) {
-            b->bmin[k] = INFINITY;
-            b->bmax[k] = -INFINITY;
-        }
-        for (int v = 0; v < 3; v++) {
-            const float *p = m->positions + 3 * (size_t)m->indices[3 * t + v];
-            for (int k = 0; k < 3; k++) {
-                if (p[k] < b->bmin[k]) b->bmin[k] = p[k];
-                if (p[k] > b->bmax[k]) b->bmax[k] = p[k];
-            }
-        }
-    }
-}
-
-void rt_object_world_box(const rt_scene *scene, uint32_t object, rt_aabb *box) {
-    const rt_object_data *ob = &scene->objects[object];
-    const rt_mesh_data *m = &scene->meshes[ob->meshes[ob->selected]];
-    const float *M = ob->transform;
-    for (int k = 0; k < 3; k++) {
-        box->bmin[k] = INFINITY;
-        box->bmax[k] = -INFINITY;
-    }
-    /* Transforms every vertex (tighter than the 8 corners of the mesh box);
-     * then widens by a few ulps so that rounding in the ray transform cannot
-     * miss a surface on the box's edge. */
-    for (uint32_t v = 0; v < m->vertex_count; v++) {
-        const float *p = m->positions + 3 * (size_t)v;
-        for (int k = 0; k < 3; k++) {
-            float w =
-                ((M[4 * k] * p[0] + M[4 * k + 1] * p[1]) + M[4 * k + 2] * p[2]) + M[4 * k + 3];
-            if (w < box->bmin[k]) box->bmin[k] = w;
-            if (w > box->bmax[k]) box->bmax[k] = w;
-        }
-    }
-    if (!m->vertex_count)
-        for (int k = 0; k < 3; k++) box->bmin[k] = box->bmax[k] = M[4 * k + 3];
-    if (!rt_transform_is_identity(M))
-        for (int k = 0; k < 3; k++) {
-            float pad = (fabsf(box->bmin[k]) + fabsf(box->bmax[k])) * 1e-6f;
-            box->bmin[k] -= pad;
-            box->bmax[k] += pad;
-        }
 }

@@ -1,11 +1,12 @@
-/* cl_backend.c - the OpenCL backend: device state kept with the scene,
- * uploads of what changed, the kernel program specialised to the scene, and
- * frames rendered in bounded tiles (kernels/rt_render.cl).
+/* cl_backend.c - the OpenCL backend (host/backend/backend.h): device state
+ * kept by the renderer, uploads of what changed, the kernel program
+ * specialised to the scene, and frames rendered in bounded tiles
+ * (kernels/rt_render.cl).
  *
  * The kernels compute with the CPU oracle's header, built with no contraction
  * and correctly rounded division and sqrt, so on a device that promises both
  * (and fp64) the results are the oracle's bits. Extra build options
- * (rt_render_options.device_options, for the speed-versus-error study) are
+ * (rt_renderer_options.device_options, for the speed-versus-error study) are
  * appended to the program's options; the results are then not promised. */
 #include <CL/cl.h>
 #include <stdarg.h>
@@ -13,8 +14,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/render_internal.h"
+#include "base/clock.h"
+#include "base/error.h"
+#include "opencl/cl_backend.h"
 #include "opencl/cl_device.h"
+#include "rt_kernel_arg_index.h"
 #include "rt_shade.h" /* rt_wave_entry, rt_wave_record: the wavefront's buffers */
 
 /* Generated from kernels/ at build time. */
@@ -32,19 +36,6 @@ extern const char rt_cl_source_rt_packet[];
  * (2^(max_depth + 1) - 1) per pixel of a tile: its tiles are capped so that
  * buffer stays within this many bytes. */
 #define RT_CL_WAVE_RECORD_BYTES (64u << 20)
-
-static rt_status fail(char *msg, size_t size, rt_status st, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 4, 5)))
-#endif
-    ;
-static rt_status fail(char *msg, size_t size, rt_status st, const char *fmt, ...) {
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, size, fmt, ap);
-    va_end(ap);
-    return st;
-}
 
 /* ---- device state ------------------------------------------------------- */
 
@@ -75,9 +66,14 @@ static const char *const buffer_names[B_COUNT] = {
     "inst_ids", "materials", "lights",    "rays",    "hits",        "counters", "framebuffer",
     "queue_a",  "queue_b",   "wave_hits", "records", "queue_count"};
 
+_Static_assert((int)B_HDR == (int)RT_ARG_HDR && (int)B_LIGHTS == (int)RT_ARG_LIGHTS,
+               "the view buffers are the view arguments, in order");
+
 typedef struct cl_state {
     rt_cl_device_info dev;
-    char selector[128]; /* the --device text this state was made for */
+    char selector[128];       /* the device this state was made for ("": the default) */
+    char device_options[256]; /* the renderer's extra build options */
+    rt_opencl_tuning tune;    /* the renderer's kernel choices (tests, comparisons) */
     cl_context ctx;
     cl_command_queue queue;
     cl_program program;
@@ -94,10 +90,9 @@ typedef struct cl_state {
     uint32_t *mesh_sig;
     size_t mesh_sig_len;
     int uploaded;
-    uint32_t uploaded_version;
+    uint32_t uploaded_generation; /* the layout generation the device holds */
     rt_scene_header uploaded_hdr; /* render options (direct_only) change it alone */
     uint32_t tile;
-    int no_wave; /* RTCL_OPENCL_NO_WAVE set: rt_k_shade for every image (tests) */
 } cl_state;
 
 static void release_wave_kernels(cl_state *s) {
@@ -109,7 +104,7 @@ static void release_wave_kernels(cl_state *s) {
     }
 }
 
-static void state_free(void *p) {
+static void cl_destroy(void *p) {
     cl_state *s = p;
     if (!s) return;
     for (int i = 0; i < B_COUNT; i++)
@@ -125,58 +120,43 @@ static void state_free(void *p) {
     free(s);
 }
 
-/* The state for the selected device, made (or remade for another device). */
-static rt_status get_state(const rt_prepared *prep, const char *selector, cl_state **out, char *msg,
-                           size_t size) {
-    cl_state *s = *prep->backend_state;
-    const char *sel = selector ? selector : "";
-    if (s && *prep->backend_state_free == state_free && strcmp(s->selector, sel) == 0) {
-        *out = s;
-        return RT_OK;
-    }
-    if (s && *prep->backend_state_free) (*prep->backend_state_free)(s);
-    *prep->backend_state = NULL;
-    *prep->backend_state_free = NULL;
+static rt_status cl_create(const rt_backend_config *config, void **state, rt_error *err) {
+    cl_state *s = calloc(1, sizeof *s);
+    if (!s) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "opencl: out of memory");
+    snprintf(s->selector, sizeof s->selector, "%s", config->device ? config->device : "");
+    snprintf(s->device_options, sizeof s->device_options, "%s",
+             config->device_options ? config->device_options : "");
+    s->tune = config->opencl;
+    s->tile = RT_CL_TILE_FIRST;
+    *state = s;
+    return RT_OK;
+}
 
+/* Opens the selected device: its context and queue (at the first frame). */
+static rt_status open_device(cl_state *s, rt_error *err) {
     rt_cl_device_info *devs;
     int count;
-    rt_status st = rt_cl_devices(&devs, &count, msg, size);
+    rt_status st = rt_cl_devices(&devs, &count, err);
     if (st != RT_OK) return st;
-    int pick = rt_cl_select(devs, count, sel, msg, size);
+    int pick = rt_cl_select(devs, count, s->selector, err);
     if (pick < 0) {
         free(devs);
         return RT_ERROR_INVALID_ARGUMENT;
     }
-    s = calloc(1, sizeof *s);
-    if (!s) {
-        free(devs);
-        return fail(msg, size, RT_ERROR_OUT_OF_MEMORY, "out of memory");
-    }
     s->dev = devs[pick];
     free(devs);
-    snprintf(s->selector, sizeof s->selector, "%s", sel);
-    s->tile = RT_CL_TILE_FIRST;
-    s->no_wave = getenv("RTCL_OPENCL_NO_WAVE") != NULL;
     cl_device_id d = s->dev.device_id;
     cl_context_properties props[] = {CL_CONTEXT_PLATFORM, (cl_context_properties)s->dev.platform_id,
                                      0};
-    cl_int err;
-    s->ctx = clCreateContext(props, 1, &d, NULL, NULL, &err);
-    if (!s->ctx) {
-        state_free(s);
-        return fail(msg, size, RT_ERROR_BACKEND, "OpenCL context on '%s': %s", s->dev.name,
-                    rt_cl_error_name(err));
-    }
-    s->queue = clCreateCommandQueue(s->ctx, d, CL_QUEUE_PROFILING_ENABLE, &err);
-    if (!s->queue) {
-        fail(msg, size, RT_ERROR_BACKEND, "OpenCL queue on '%s': %s", s->dev.name,
-             rt_cl_error_name(err));
-        state_free(s);
-        return RT_ERROR_BACKEND;
-    }
-    *prep->backend_state = s;
-    *prep->backend_state_free = state_free;
-    *out = s;
+    cl_int ce;
+    s->ctx = clCreateContext(props, 1, &d, NULL, NULL, &ce);
+    if (!s->ctx)
+        return rt_fail(err, RT_ERROR_BACKEND, "OpenCL context on '%s': %s", s->dev.name,
+                       rt_cl_error_name(ce));
+    s->queue = clCreateCommandQueue(s->ctx, d, CL_QUEUE_PROFILING_ENABLE, &ce);
+    if (!s->queue)
+        return rt_fail(err, RT_ERROR_BACKEND, "OpenCL queue on '%s': %s", s->dev.name,
+                       rt_cl_error_name(ce));
     return RT_OK;
 }
 
@@ -195,16 +175,15 @@ static void scene_defines(const rt_flat *f, char *out, size_t size) {
              flags, inst_set, inst_mask, f->hdr.tri_method);
 }
 
-static rt_status warm_up(cl_state *s, int wave, char *msg, size_t size);
+static rt_status warm_up(cl_state *s, int wave, rt_error *err);
 
 /* The packet kernel's lanes for this device: 16 (4x4 blocks) on CPU devices,
- * 0 (one ray per work-item) elsewhere. Read at every frame, for tests and
- * comparisons: RTCL_OPENCL_NO_PACKET=1 runs the one-ray kernels on a CPU device
- * too; RTCL_OPENCL_PACKET_LANES=4|8|16 picks another block (2x2, 4x2). */
+ * 0 (one ray per work-item) elsewhere. The renderer's tuning (for tests and
+ * comparisons) runs the one-ray kernels on a CPU device too, or picks another
+ * block (4: 2x2, 8: 4x2). */
 static int packet_lanes(const cl_state *s) {
-    if (!s->dev.cpu || getenv("RTCL_OPENCL_NO_PACKET")) return 0;
-    const char *e = getenv("RTCL_OPENCL_PACKET_LANES");
-    int n = e ? atoi(e) : 16;
+    if (!s->dev.cpu || s->tune.one_ray_kernels) return 0;
+    int n = s->tune.packet_lanes;
     return n == 4 || n == 8 ? n : 16;
 }
 
@@ -212,14 +191,14 @@ static int packet_lanes(const cl_state *s) {
 #define RT_CL_EXTRA_MAX 255
 
 static rt_status build_program(cl_state *s, const rt_flat *f, const char *extra, double *compile_ms,
-                               char *msg, size_t size) {
+                               rt_error *err) {
     char defines[192], options[768];
     scene_defines(f, defines, sizeof defines);
     if (!extra) extra = "";
     if (strlen(extra) > RT_CL_EXTRA_MAX)
-        return fail(msg, size, RT_ERROR_INVALID_ARGUMENT,
-                    "extra kernel build options (device_options) longer than %d characters",
-                    RT_CL_EXTRA_MAX);
+        return rt_fail(err, RT_ERROR_INVALID_ARGUMENT,
+                       "extra kernel build options (device_options) longer than %d characters",
+                       RT_CL_EXTRA_MAX);
     int lanes = packet_lanes(s);
     char packet[32] = "";
     if (lanes) snprintf(packet, sizeof packet, " -DRT_PK_LANES=%d", lanes);
@@ -239,13 +218,13 @@ static rt_status build_program(cl_state *s, const rt_flat *f, const char *extra,
     double t0 = rt_now_ms();
     /* CPU devices get the packet kernel in the same program. */
     const char *src[2] = {rt_cl_source_rt_render, rt_cl_source_rt_packet};
-    cl_int err;
-    s->program = clCreateProgramWithSource(s->ctx, lanes ? 2 : 1, src, NULL, &err);
+    cl_int ce;
+    s->program = clCreateProgramWithSource(s->ctx, lanes ? 2 : 1, src, NULL, &ce);
     if (!s->program)
-        return fail(msg, size, RT_ERROR_BACKEND, "OpenCL program: %s", rt_cl_error_name(err));
+        return rt_fail(err, RT_ERROR_BACKEND, "OpenCL program: %s", rt_cl_error_name(ce));
     cl_device_id d = s->dev.device_id;
-    err = clBuildProgram(s->program, 1, &d, options, NULL, NULL);
-    if (err != CL_SUCCESS) {
+    ce = clBuildProgram(s->program, 1, &d, options, NULL, NULL);
+    if (ce != CL_SUCCESS) {
         char log[900] = "";
         size_t n = 0;
         clGetProgramBuildInfo(s->program, d, CL_PROGRAM_BUILD_LOG, sizeof log - 1, log, &n);
@@ -253,41 +232,41 @@ static rt_status build_program(cl_state *s, const rt_flat *f, const char *extra,
         log[sizeof log - 1] = 0;
         clReleaseProgram(s->program);
         s->program = NULL;
-        return fail(msg, size, RT_ERROR_BACKEND,
-                    "OpenCL kernel build failed on '%s' (%s; options: %s); build log%s:\n%s",
-                    s->dev.name, rt_cl_error_name(err), options,
-                    n > sizeof log - 1 ? " (truncated)" : "", log);
+        return rt_fail(err, RT_ERROR_BACKEND,
+                       "OpenCL kernel build failed on '%s' (%s; options: %s); build log%s:\n%s",
+                       s->dev.name, rt_cl_error_name(ce), options,
+                       n > sizeof log - 1 ? " (truncated)" : "", log);
     }
-    s->k_camera = clCreateKernel(s->program, "rt_k_camera", &err);
-    if (s->k_camera) s->k_trace = clCreateKernel(s->program, "rt_k_trace", &err);
-    if (s->k_trace) s->k_shade = clCreateKernel(s->program, "rt_k_shade", &err);
-    if (s->k_shade) s->k_wcam = clCreateKernel(s->program, "rt_k_wave_camera", &err);
-    if (s->k_wcam) s->k_wtrace = clCreateKernel(s->program, "rt_k_wave_trace", &err);
-    if (s->k_wtrace) s->k_wshade = clCreateKernel(s->program, "rt_k_wave_shade", &err);
-    if (s->k_wshade) s->k_wsum = clCreateKernel(s->program, "rt_k_wave_sum", &err);
-    if (s->k_wsum && lanes) s->k_packet = clCreateKernel(s->program, "rt_k_packet", &err);
-    if (s->k_packet) s->k_ptrace = clCreateKernel(s->program, "rt_k_packet_trace", &err);
+    s->k_camera = clCreateKernel(s->program, "rt_k_camera", &ce);
+    if (s->k_camera) s->k_trace = clCreateKernel(s->program, "rt_k_trace", &ce);
+    if (s->k_trace) s->k_shade = clCreateKernel(s->program, "rt_k_shade", &ce);
+    if (s->k_shade) s->k_wcam = clCreateKernel(s->program, "rt_k_wave_camera", &ce);
+    if (s->k_wcam) s->k_wtrace = clCreateKernel(s->program, "rt_k_wave_trace", &ce);
+    if (s->k_wtrace) s->k_wshade = clCreateKernel(s->program, "rt_k_wave_shade", &ce);
+    if (s->k_wshade) s->k_wsum = clCreateKernel(s->program, "rt_k_wave_sum", &ce);
+    if (s->k_wsum && lanes) s->k_packet = clCreateKernel(s->program, "rt_k_packet", &ce);
+    if (s->k_packet) s->k_ptrace = clCreateKernel(s->program, "rt_k_packet_trace", &ce);
     if (!s->k_wsum || (lanes && !s->k_ptrace))
-        return fail(msg, size, RT_ERROR_BACKEND, "OpenCL kernels: %s", rt_cl_error_name(err));
+        return rt_fail(err, RT_ERROR_BACKEND, "OpenCL kernels: %s", rt_cl_error_name(ce));
     s->lanes = lanes;
     snprintf(s->options, sizeof s->options, "%s", options);
     snprintf(s->defines, sizeof s->defines, "%s", defines);
     snprintf(s->extra, sizeof s->extra, "%s", extra);
-    rt_status st = warm_up(s, (f->hdr.flags & RT_SCENE_SECONDARY) != 0, msg, size);
+    rt_status st = warm_up(s, (f->hdr.flags & RT_SCENE_SECONDARY) != 0, err);
     *compile_ms += rt_now_ms() - t0;
     return st;
 }
 
 /* ---- buffers and uploads ------------------------------------------------ */
 
-static int out_of_memory(cl_int err) {
-    return err == CL_MEM_OBJECT_ALLOCATION_FAILURE || err == CL_OUT_OF_RESOURCES ||
-           err == CL_OUT_OF_HOST_MEMORY || err == CL_INVALID_BUFFER_SIZE;
+static int out_of_memory(cl_int ce) {
+    return ce == CL_MEM_OBJECT_ALLOCATION_FAILURE || ce == CL_OUT_OF_RESOURCES ||
+           ce == CL_OUT_OF_HOST_MEMORY || ce == CL_INVALID_BUFFER_SIZE;
 }
 
 /* Makes buffer b hold at least bytes (never 0: empty arrays get a stub).
  * Returns 1 when it was (re)made, so its contents are gone. */
-static rt_status ensure(cl_state *s, int b, size_t bytes, int *remade, char *msg, size_t size) {
+static rt_status ensure(cl_state *s, int b, size_t bytes, int *remade, rt_error *err) {
     if (bytes < 16) bytes = 16;
     *remade = 0;
     if (s->buf[b] && s->cap[b] >= bytes) return RT_OK;
@@ -295,32 +274,32 @@ static rt_status ensure(cl_state *s, int b, size_t bytes, int *remade, char *msg
     s->buf[b] = NULL;
     s->cap[b] = 0;
     if ((uint64_t)bytes > s->dev.max_alloc)
-        return fail(msg, size, RT_ERROR_OUT_OF_MEMORY,
-                    "out of device memory: buffer '%s' needs %zu bytes, more than the largest "
-                    "allocation of '%s' (%llu bytes)",
-                    buffer_names[b], bytes, s->dev.name, (unsigned long long)s->dev.max_alloc);
-    cl_int err;
-    s->buf[b] = clCreateBuffer(s->ctx, CL_MEM_READ_WRITE, bytes, NULL, &err);
+        return rt_fail(err, RT_ERROR_OUT_OF_MEMORY,
+                       "out of device memory: buffer '%s' needs %zu bytes, more than the largest "
+                       "allocation of '%s' (%llu bytes)",
+                       buffer_names[b], bytes, s->dev.name, (unsigned long long)s->dev.max_alloc);
+    cl_int ce;
+    s->buf[b] = clCreateBuffer(s->ctx, CL_MEM_READ_WRITE, bytes, NULL, &ce);
     if (!s->buf[b])
-        return fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
-                    "%s: buffer '%s' of %zu bytes on '%s' (%s)",
-                    out_of_memory(err) ? "out of device memory" : "cannot allocate",
-                    buffer_names[b], bytes, s->dev.name, rt_cl_error_name(err));
+        return rt_fail(err, out_of_memory(ce) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                       "%s: buffer '%s' of %zu bytes on '%s' (%s)",
+                       out_of_memory(ce) ? "out of device memory" : "cannot allocate",
+                       buffer_names[b], bytes, s->dev.name, rt_cl_error_name(ce));
     s->cap[b] = bytes;
     *remade = 1;
     return RT_OK;
 }
 
 static rt_status write_buf(cl_state *s, int b, size_t offset, const void *data, size_t bytes,
-                           uint64_t *uploaded, char *msg, size_t size) {
+                           uint64_t *uploaded, rt_error *err) {
     if (!bytes) return RT_OK;
-    cl_int err =
+    cl_int ce =
         clEnqueueWriteBuffer(s->queue, s->buf[b], CL_FALSE, offset, bytes, data, 0, NULL, NULL);
-    if (err != CL_SUCCESS)
-        return fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
-                    "%s: writing buffer '%s' (%zu bytes) on '%s' (%s)",
-                    out_of_memory(err) ? "out of device memory" : "upload failed", buffer_names[b],
-                    bytes, s->dev.name, rt_cl_error_name(err));
+    if (ce != CL_SUCCESS)
+        return rt_fail(err, out_of_memory(ce) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                       "%s: writing buffer '%s' (%zu bytes) on '%s' (%s)",
+                       out_of_memory(ce) ? "out of device memory" : "upload failed",
+                       buffer_names[b], bytes, s->dev.name, rt_cl_error_name(ce));
     *uploaded += bytes;
     return RT_OK;
 }
@@ -328,13 +307,13 @@ static rt_status write_buf(cl_state *s, int b, size_t offset, const void *data, 
 /* What identifies the mesh part of the layout (mesh BVH nodes and triangle
  * arrays): it is unchanged while no mesh was rebuilt and every instance
  * still points at the same place. */
-static uint32_t *mesh_signature(const rt_prepared *prep, size_t *len) {
-    const rt_flat *f = prep->flat;
+static uint32_t *mesh_signature(const rt_backend_layout *layout, size_t *len) {
+    const rt_flat *f = layout->flat;
     size_t n = 5 + 3 * (size_t)f->hdr.instance_count;
     uint32_t *sig = malloc(n * sizeof *sig);
     if (!sig) return NULL;
     uint32_t mesh_nodes = (f->hdr.flags & RT_SCENE_SINGLE) ? f->node_count : f->hdr.top_root;
-    sig[0] = prep->mesh_generation;
+    sig[0] = layout->mesh_generation;
     sig[1] = mesh_nodes;
     sig[2] = f->tri_count;
     sig[3] = f->hdr.flags & (RT_SCENE_NORMALS | RT_SCENE_TRI_MATS);
@@ -351,16 +330,16 @@ static uint32_t *mesh_signature(const rt_prepared *prep, size_t *len) {
 /* Uploads the mesh part when it changed, and the per-frame part (object BVH,
  * instances, header with the camera, materials, lights) when the scene
  * changed since the last upload. */
-static rt_status upload_scene(cl_state *s, const rt_prepared *prep, uint64_t *bytes, double *ms,
-                              char *msg, size_t size) {
-    const rt_flat *f = prep->flat;
+static rt_status upload_scene(cl_state *s, const rt_backend_layout *layout, uint64_t *bytes,
+                              double *ms, rt_error *err) {
+    const rt_flat *f = layout->flat;
     double t0 = rt_now_ms();
     size_t sig_len;
-    uint32_t *sig = mesh_signature(prep, &sig_len);
-    if (!sig) return fail(msg, size, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    uint32_t *sig = mesh_signature(layout, &sig_len);
+    if (!sig) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
     int mesh_same = s->uploaded && s->mesh_sig && s->mesh_sig_len == sig_len &&
                     memcmp(s->mesh_sig, sig, sig_len * sizeof *sig) == 0;
-    if (mesh_same && s->uploaded_version == prep->flat_version &&
+    if (mesh_same && s->uploaded_generation == layout->layout_generation &&
         memcmp(&s->uploaded_hdr, &f->hdr, sizeof f->hdr) == 0) {
         free(sig);
         return RT_OK;
@@ -387,7 +366,7 @@ static rt_status upload_scene(cl_state *s, const rt_prepared *prep, uint64_t *by
     rt_status st = RT_OK;
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0] && st == RT_OK; i++) {
         int remade;
-        st = ensure(s, arrays[i].b, arrays[i].bytes, &remade, msg, size);
+        st = ensure(s, arrays[i].b, arrays[i].bytes, &remade, err);
         if (st != RT_OK) break;
         int all = remade || !mesh_same;
         if (arrays[i].b == B_NODES) {
@@ -395,16 +374,16 @@ static rt_status upload_scene(cl_state *s, const rt_prepared *prep, uint64_t *by
              * with the objects. */
             size_t from = all ? 0 : sizeof(rt_node) * mesh_nodes;
             st = write_buf(s, B_NODES, from, (const char *)f->nodes + from, arrays[i].bytes - from,
-                           bytes, msg, size);
+                           bytes, err);
         } else if (!arrays[i].mesh || all) {
-            st = write_buf(s, arrays[i].b, 0, arrays[i].data, arrays[i].bytes, bytes, msg, size);
+            st = write_buf(s, arrays[i].b, 0, arrays[i].data, arrays[i].bytes, bytes, err);
         }
     }
     if (st == RT_OK) {
-        cl_int err = clFinish(s->queue);
-        if (err != CL_SUCCESS)
-            st = fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
-                      "upload to '%s' failed (%s)", s->dev.name, rt_cl_error_name(err));
+        cl_int ce = clFinish(s->queue);
+        if (ce != CL_SUCCESS)
+            st = rt_fail(err, out_of_memory(ce) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                         "upload to '%s' failed (%s)", s->dev.name, rt_cl_error_name(ce));
     }
     if (st != RT_OK) {
         free(sig);
@@ -415,7 +394,7 @@ static rt_status upload_scene(cl_state *s, const rt_prepared *prep, uint64_t *by
     s->mesh_sig = sig;
     s->mesh_sig_len = sig_len;
     s->uploaded = 1;
-    s->uploaded_version = prep->flat_version;
+    s->uploaded_generation = layout->layout_generation;
     s->uploaded_hdr = f->hdr;
     *ms += rt_now_ms() - t0;
     return RT_OK;
@@ -423,18 +402,18 @@ static rt_status upload_scene(cl_state *s, const rt_prepared *prep, uint64_t *by
 
 /* ---- launches --------------------------------------------------------------- */
 
-static rt_status set_arg(cl_kernel k, cl_uint i, size_t n, const void *v, char *msg, size_t size) {
-    cl_int err = clSetKernelArg(k, i, n, v);
-    if (err != CL_SUCCESS)
-        return fail(msg, size, RT_ERROR_BACKEND, "kernel argument %u: %s", i,
-                    rt_cl_error_name(err));
+static rt_status set_arg(cl_kernel k, cl_uint i, size_t n, const void *v, rt_error *err) {
+    cl_int ce = clSetKernelArg(k, i, n, v);
+    if (ce != CL_SUCCESS)
+        return rt_fail(err, RT_ERROR_BACKEND, "kernel argument %u: %s", i, rt_cl_error_name(ce));
     return RT_OK;
 }
 
-/* The ten scene arrays, arguments 0..9 of rt_k_trace and rt_k_shade. */
-static rt_status set_view(cl_state *s, cl_kernel k, char *msg, size_t size) {
+/* The ten scene arrays, the view arguments of every tracing kernel. */
+static rt_status set_view(cl_state *s, cl_kernel k, rt_error *err) {
     for (int b = B_HDR; b <= B_LIGHTS; b++) {
-        rt_status st = set_arg(k, (cl_uint)b, sizeof(cl_mem), &s->buf[b], msg, size);
+        rt_status st =
+            set_arg(k, (cl_uint)(RT_ARG_HDR + (b - B_HDR)), sizeof(cl_mem), &s->buf[b], err);
         if (st != RT_OK) return st;
     }
     return RT_OK;
@@ -463,27 +442,27 @@ static size_t local_size(cl_state *s, cl_kernel k) {
  * a tile follow each other on the in-order queue, and the host waits once per
  * tile (see finish_launches). */
 static rt_status enqueue(cl_state *s, cl_kernel k, uint32_t count, const char *name, cl_event *ev,
-                         char *msg, size_t size) {
+                         rt_error *err) {
     size_t local = local_size(s, k);
     size_t global = ((size_t)count + local - 1) / local * local;
     if (global == 0) global = local;
-    cl_int err = clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, &local, 0, NULL, ev);
-    if (err != CL_SUCCESS)
-        return fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
-                    "kernel %s on '%s' (%u items): %s", name, s->dev.name, count,
-                    rt_cl_error_name(err));
+    cl_int ce = clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &global, &local, 0, NULL, ev);
+    if (ce != CL_SUCCESS)
+        return rt_fail(err, out_of_memory(ce) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                       "kernel %s on '%s' (%u items): %s", name, s->dev.name, count,
+                       rt_cl_error_name(ce));
     return RT_OK;
 }
 
 /* Waits for n launches, adds each one's profiled time to ms[i], returns the
  * longest in *longest, and releases the events. */
 static rt_status finish_launches(cl_state *s, cl_event *ev, int n, double *ms, double *longest,
-                                 char *msg, size_t size) {
-    cl_int err = clWaitForEvents((cl_uint)n, ev);
+                                 rt_error *err) {
+    cl_int ce = clWaitForEvents((cl_uint)n, ev);
     *longest = 0.0;
     for (int i = 0; i < n; i++) {
         cl_ulong start = 0, end = 0;
-        if (err == CL_SUCCESS &&
+        if (ce == CL_SUCCESS &&
             clGetEventProfilingInfo(ev[i], CL_PROFILING_COMMAND_START, sizeof start, &start,
                                     NULL) == CL_SUCCESS &&
             clGetEventProfilingInfo(ev[i], CL_PROFILING_COMMAND_END, sizeof end, &end, NULL) ==
@@ -495,34 +474,35 @@ static rt_status finish_launches(cl_state *s, cl_event *ev, int n, double *ms, d
         }
         clReleaseEvent(ev[i]);
     }
-    if (err != CL_SUCCESS)
-        return fail(msg, size, out_of_memory(err) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
-                    "kernels on '%s': %s", s->dev.name, rt_cl_error_name(err));
+    if (ce != CL_SUCCESS)
+        return rt_fail(err, out_of_memory(ce) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                       "kernels on '%s': %s", s->dev.name, rt_cl_error_name(ce));
     return RT_OK;
 }
 
 /* Enqueues k over count items, waits, and adds its profiled time to *ms. */
 static rt_status launch(cl_state *s, cl_kernel k, uint32_t count, const char *name, double *ms,
-                        char *msg, size_t size) {
+                        rt_error *err) {
     cl_event ev;
-    rt_status st = enqueue(s, k, count, name, &ev, msg, size);
+    rt_status st = enqueue(s, k, count, name, &ev, err);
     if (st != RT_OK) return st;
     double longest;
-    return finish_launches(s, &ev, 1, ms, &longest, msg, size);
+    return finish_launches(s, &ev, 1, ms, &longest, err);
 }
 
 /* One empty launch of each kernel (count 0, every item returns at once) with
  * stub buffers, right after the build: PoCL compiles (or loads from its cache)
  * the work-group function of a kernel at its first launch, which otherwise
  * lands in the first frame's time (about 1 s per kernel with a cold cache). */
-static rt_status warm_up(cl_state *s, int wave, char *msg, size_t size) {
+static rt_status warm_up(cl_state *s, int wave, rt_error *err) {
     cl_mem stub = clCreateBuffer(s->ctx, CL_MEM_READ_WRITE, 64, NULL, NULL);
-    if (!stub) return fail(msg, size, RT_ERROR_BACKEND, "cannot allocate a stub buffer");
+    if (!stub) return rt_fail(err, RT_ERROR_BACKEND, "cannot allocate a stub buffer");
     cl_uint zero = 0;
     cl_int izero = 0;
     cl_kernel ks[7] = {s->k_camera, s->k_trace,  s->k_shade, s->k_wcam,
                        s->k_wtrace, s->k_wshade, s->k_wsum};
-    cl_uint nargs[7] = {4, 15, 18, 4, 14, 19, 7};
+    cl_uint nargs[7] = {RT_K_CAMERA_ARGS, RT_K_TRACE_ARGS,  RT_K_SHADE_ARGS, RT_K_WCAM_ARGS,
+                        RT_K_WTRACE_ARGS, RT_K_WSHADE_ARGS, RT_K_WSUM_ARGS};
     const char *names[7] = {"rt_k_camera",      "rt_k_trace",      "rt_k_shade",
                             "rt_k_wave_camera", "rt_k_wave_trace", "rt_k_wave_shade",
                             "rt_k_wave_sum"};
@@ -531,10 +511,10 @@ static rt_status warm_up(cl_state *s, int wave, char *msg, size_t size) {
         /* Frames run rt_k_packet alone; ray queries rt_k_packet_trace
          * (closest hit) and rt_k_trace (any hit). */
         ks[0] = s->k_packet;
-        nargs[0] = 16;
+        nargs[0] = RT_K_PACKET_ARGS;
         names[0] = "rt_k_packet";
         ks[2] = s->k_ptrace;
-        nargs[2] = 14;
+        nargs[2] = RT_K_PTRACE_ARGS;
         names[2] = "rt_k_packet_trace";
         nk = 3;
     }
@@ -542,12 +522,12 @@ static rt_status warm_up(cl_state *s, int wave, char *msg, size_t size) {
     for (int k = 0; k < nk && st == RT_OK; k++) {
         for (cl_uint a = 0; a < nargs[k]; a++) {
             /* Scalars are uint/int (4 bytes), the rest buffers. */
-            cl_int err = clSetKernelArg(ks[k], a, sizeof(cl_mem), &stub);
-            if (err != CL_SUCCESS) err = clSetKernelArg(ks[k], a, sizeof zero, &zero);
-            if (err != CL_SUCCESS) err = clSetKernelArg(ks[k], a, sizeof izero, &izero);
-            if (err != CL_SUCCESS) {
-                st = fail(msg, size, RT_ERROR_BACKEND, "warm-up argument %u of %s: %s", a, names[k],
-                          rt_cl_error_name(err));
+            cl_int ce = clSetKernelArg(ks[k], a, sizeof(cl_mem), &stub);
+            if (ce != CL_SUCCESS) ce = clSetKernelArg(ks[k], a, sizeof zero, &zero);
+            if (ce != CL_SUCCESS) ce = clSetKernelArg(ks[k], a, sizeof izero, &izero);
+            if (ce != CL_SUCCESS) {
+                st = rt_fail(err, RT_ERROR_BACKEND, "warm-up argument %u of %s: %s", a, names[k],
+                             rt_cl_error_name(ce));
                 break;
             }
         }
@@ -556,32 +536,32 @@ static rt_status warm_up(cl_state *s, int wave, char *msg, size_t size) {
         size_t local = local_size(s, ks[k]);
         size_t globals[2] = {local, RT_CL_TILE_MAX};
         for (int g = 0; g < 2 && st == RT_OK; g++) {
-            cl_int err = clEnqueueNDRangeKernel(s->queue, ks[k], 1, NULL, &globals[g], &local, 0,
-                                                NULL, NULL);
-            if (err == CL_SUCCESS) err = clFinish(s->queue);
-            if (err != CL_SUCCESS)
-                st = fail(msg, size, RT_ERROR_BACKEND, "warm-up of %s on '%s': %s", names[k],
-                          s->dev.name, rt_cl_error_name(err));
+            cl_int ce = clEnqueueNDRangeKernel(s->queue, ks[k], 1, NULL, &globals[g], &local, 0,
+                                               NULL, NULL);
+            if (ce == CL_SUCCESS) ce = clFinish(s->queue);
+            if (ce != CL_SUCCESS)
+                st = rt_fail(err, RT_ERROR_BACKEND, "warm-up of %s on '%s': %s", names[k],
+                             s->dev.name, rt_cl_error_name(ce));
         }
     }
     clReleaseMemObject(stub);
     return st;
 }
 
-static rt_status read_buf(cl_state *s, int b, size_t bytes, void *dst, char *msg, size_t size) {
-    cl_int err = clEnqueueReadBuffer(s->queue, s->buf[b], CL_TRUE, 0, bytes, dst, 0, NULL, NULL);
-    if (err != CL_SUCCESS)
-        return fail(msg, size, RT_ERROR_BACKEND, "reading buffer '%s' (%zu bytes) from '%s': %s",
-                    buffer_names[b], bytes, s->dev.name, rt_cl_error_name(err));
+static rt_status read_buf(cl_state *s, int b, size_t bytes, void *dst, rt_error *err) {
+    cl_int ce = clEnqueueReadBuffer(s->queue, s->buf[b], CL_TRUE, 0, bytes, dst, 0, NULL, NULL);
+    if (ce != CL_SUCCESS)
+        return rt_fail(err, RT_ERROR_BACKEND, "reading buffer '%s' (%zu bytes) from '%s': %s",
+                       buffer_names[b], bytes, s->dev.name, rt_cl_error_name(ce));
     return RT_OK;
 }
 
 /* Per-ray buffers for tiles of up to 'tile' rays. */
-static rt_status ensure_ray_buffers(cl_state *s, uint32_t tile, char *msg, size_t size) {
+static rt_status ensure_ray_buffers(cl_state *s, uint32_t tile, rt_error *err) {
     int remade;
-    rt_status st = ensure(s, B_RAYS, sizeof(rt_ray_d) * tile, &remade, msg, size);
-    if (st == RT_OK) st = ensure(s, B_HITS, sizeof(rt_hit_d) * tile, &remade, msg, size);
-    if (st == RT_OK) st = ensure(s, B_COUNTERS, sizeof(rt_counters) * tile, &remade, msg, size);
+    rt_status st = ensure(s, B_RAYS, sizeof(rt_ray_d) * tile, &remade, err);
+    if (st == RT_OK) st = ensure(s, B_HITS, sizeof(rt_hit_d) * tile, &remade, err);
+    if (st == RT_OK) st = ensure(s, B_COUNTERS, sizeof(rt_counters) * tile, &remade, err);
     return st;
 }
 
@@ -603,45 +583,52 @@ static uint32_t next_tile(const cl_state *s, uint32_t tile, double longest_ms) {
     return tile < tile_min(s) ? tile_min(s) : tile;
 }
 
-static rt_status prepare(rt_scene *scene, const rt_prepared *prep, const char *device,
-                         const char *device_options, cl_state **out, rt_render_stats *stats,
-                         char *msg, size_t size) {
-    rt_status st = get_state(prep, device, out, msg, size);
-    if (st == RT_OK)
-        st = build_program(*out, prep->flat, device_options, &stats->compile_ms, msg, size);
-    if (st == RT_OK)
-        st = upload_scene(*out, prep, &stats->upload_bytes, &stats->upload_ms, msg, size);
-    if (st == RT_OK) {
-        snprintf(stats->device, sizeof stats->device, "%s", (*out)->dev.name);
-        snprintf(stats->specialisation, sizeof stats->specialisation, "%s", (*out)->defines);
-        snprintf(stats->device_options, sizeof stats->device_options, "%s", (*out)->extra);
-        /* Extra options (the study's variants) void the device's promise. */
-        stats->exact = (*out)->dev.exact && !(*out)->extra[0];
+/* Any failure of this backend reads "opencl: ..." for the caller. */
+static rt_status named(rt_error *err, rt_status st) {
+    if (st != RT_OK && err && strncmp(err->message, "opencl: ", 8) != 0) {
+        char reason[sizeof err->message];
+        memcpy(reason, err->message, sizeof reason);
+        snprintf(err->message, sizeof err->message, "opencl: %.1000s", reason);
     }
-    (void)scene;
     return st;
+}
+
+static rt_status cl_prepare(void *state, const rt_backend_layout *layout, rt_render_stats *stats,
+                            rt_error *err) {
+    cl_state *s = state;
+    rt_status st = s->ctx ? RT_OK : open_device(s, err);
+    if (st == RT_OK)
+        st = build_program(s, layout->flat, s->device_options, &stats->compile_ms, err);
+    if (st == RT_OK) st = upload_scene(s, layout, &stats->upload_bytes, &stats->upload_ms, err);
+    if (st != RT_OK) return named(err, st);
+    snprintf(stats->device, sizeof stats->device, "%s", s->dev.name);
+    snprintf(stats->specialisation, sizeof stats->specialisation, "%s", s->defines);
+    snprintf(stats->device_options, sizeof stats->device_options, "%s", s->extra);
+    /* Extra options (the study's variants) void the device's promise. */
+    stats->exact = s->dev.exact && !s->extra[0];
+    return RT_OK;
 }
 
 /* One tile through rt_shade_hit's stack inside rt_k_shade: camera, closest
  * hit and shading (or an AOV), back to back on the in-order queue with one
  * wait at the end. *longest gets the longest launch (ms). */
 static rt_status direct_tile(cl_state *s, cl_uint f, cl_uint n, rt_render_stats *stats,
-                             double *longest, char *msg, size_t size) {
+                             double *longest, rt_error *err) {
     cl_kernel kc = s->k_camera, kt = s->k_trace, ks = s->k_shade;
-    rt_status st = set_arg(kc, 1, sizeof f, &f, msg, size);
-    if (st == RT_OK) st = set_arg(kc, 2, sizeof n, &n, msg, size);
-    if (st == RT_OK) st = set_arg(kt, 10, sizeof n, &n, msg, size);
-    if (st == RT_OK) st = set_arg(ks, 10, sizeof f, &f, msg, size);
-    if (st == RT_OK) st = set_arg(ks, 11, sizeof n, &n, msg, size);
+    rt_status st = set_arg(kc, RT_K_CAMERA_FIRST, sizeof f, &f, err);
+    if (st == RT_OK) st = set_arg(kc, RT_K_CAMERA_COUNT, sizeof n, &n, err);
+    if (st == RT_OK) st = set_arg(kt, RT_K_TRACE_COUNT, sizeof n, &n, err);
+    if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_FIRST, sizeof f, &f, err);
+    if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_COUNT, sizeof n, &n, err);
     cl_event ev[3];
     int queued = 0;
-    if (st == RT_OK) st = enqueue(s, kc, n, "rt_k_camera", &ev[queued], msg, size);
-    if (st == RT_OK) st = enqueue(s, kt, n, "rt_k_trace", &ev[++queued], msg, size);
-    if (st == RT_OK) st = enqueue(s, ks, n, "rt_k_shade", &ev[++queued], msg, size);
+    if (st == RT_OK) st = enqueue(s, kc, n, "rt_k_camera", &ev[queued], err);
+    if (st == RT_OK) st = enqueue(s, kt, n, "rt_k_trace", &ev[++queued], err);
+    if (st == RT_OK) st = enqueue(s, ks, n, "rt_k_shade", &ev[++queued], err);
     if (st == RT_OK) queued++;
     *longest = 0.0;
     if (queued == 3) {
-        st = finish_launches(s, ev, 3, stats->kernel_ms, longest, msg, size);
+        st = finish_launches(s, ev, 3, stats->kernel_ms, longest, err);
     } else {
         clFinish(s->queue);
         for (int i = 0; i < queued; i++) clReleaseEvent(ev[i]);
@@ -653,12 +640,12 @@ static rt_status direct_tile(cl_state *s, cl_uint f, cl_uint n, rt_render_stats 
 /* Blocks f .. f + n - 1 through rt_k_packet (camera, trace, shading and
  * shadow rays in one launch); its time counts as trace. */
 static rt_status packet_tile(cl_state *s, cl_uint f, cl_uint n, rt_render_stats *stats,
-                             double *longest, char *msg, size_t size) {
+                             double *longest, rt_error *err) {
     cl_kernel k = s->k_packet;
-    rt_status st = set_arg(k, 10, sizeof f, &f, msg, size);
-    if (st == RT_OK) st = set_arg(k, 11, sizeof n, &n, msg, size);
+    rt_status st = set_arg(k, RT_K_PACKET_FIRST, sizeof f, &f, err);
+    if (st == RT_OK) st = set_arg(k, RT_K_PACKET_COUNT, sizeof n, &n, err);
     double t = 0.0;
-    if (st == RT_OK) st = launch(s, k, n, "rt_k_packet", &t, msg, size);
+    if (st == RT_OK) st = launch(s, k, n, "rt_k_packet", &t, err);
     stats->kernel_ms[1] += t;
     *longest = t;
     if (st == RT_OK) stats->launches++;
@@ -668,21 +655,21 @@ static rt_status packet_tile(cl_state *s, cl_uint f, cl_uint n, rt_render_stats 
 /* Launches k over count items, waits, adds the time to *ms and raises
  * *longest. */
 static rt_status timed(cl_state *s, cl_kernel k, uint32_t count, const char *name, double *ms,
-                       double *longest, char *msg, size_t size) {
+                       double *longest, rt_error *err) {
     double t = 0.0;
-    rt_status st = launch(s, k, count, name, &t, msg, size);
+    rt_status st = launch(s, k, count, name, &t, err);
     *ms += t;
     if (t > *longest) *longest = t;
     return st;
 }
 
-static rt_status zero_buf(cl_state *s, int b, size_t bytes, char *msg, size_t size) {
+static rt_status zero_buf(cl_state *s, int b, size_t bytes, rt_error *err) {
     cl_uint zero = 0;
-    cl_int err =
+    cl_int ce =
         clEnqueueFillBuffer(s->queue, s->buf[b], &zero, sizeof zero, 0, bytes, 0, NULL, NULL);
-    if (err != CL_SUCCESS)
-        return fail(msg, size, RT_ERROR_BACKEND, "clearing buffer '%s' on '%s': %s",
-                    buffer_names[b], s->dev.name, rt_cl_error_name(err));
+    if (ce != CL_SUCCESS)
+        return rt_fail(err, RT_ERROR_BACKEND, "clearing buffer '%s' on '%s': %s", buffer_names[b],
+                       s->dev.name, rt_cl_error_name(ce));
     return RT_OK;
 }
 
@@ -693,33 +680,31 @@ static rt_status zero_buf(cl_state *s, int b, size_t bytes, char *msg, size_t si
  * sum in rt_shade_hit's order. *overflow is set (and the tile left
  * unfinished) when a level queues more than cap rays. */
 static rt_status wave_tile(cl_state *s, cl_uint slots, cl_uint cap, cl_uint f, cl_uint n,
-                           rt_render_stats *stats, double *longest, int *overflow, char *msg,
-                           size_t size) {
+                           rt_render_stats *stats, double *longest, int *overflow, rt_error *err) {
     cl_kernel kc = s->k_wcam, kt = s->k_wtrace, ks = s->k_wshade;
     *longest = 0.0;
     *overflow = 0;
-    rt_status st = zero_buf(s, B_COUNTERS, sizeof(rt_counters) * n, msg, size);
-    if (st == RT_OK) st = set_arg(kc, 1, sizeof f, &f, msg, size);
-    if (st == RT_OK) st = set_arg(kc, 2, sizeof n, &n, msg, size);
-    if (st == RT_OK) st = set_arg(kc, 3, sizeof(cl_mem), &s->buf[B_QUEUE_A], msg, size);
-    if (st == RT_OK)
-        st = timed(s, kc, n, "rt_k_wave_camera", &stats->kernel_ms[0], longest, msg, size);
+    rt_status st = zero_buf(s, B_COUNTERS, sizeof(rt_counters) * n, err);
+    if (st == RT_OK) st = set_arg(kc, RT_K_WCAM_FIRST, sizeof f, &f, err);
+    if (st == RT_OK) st = set_arg(kc, RT_K_WCAM_COUNT, sizeof n, &n, err);
+    if (st == RT_OK) st = set_arg(kc, RT_K_WCAM_QUEUE, sizeof(cl_mem), &s->buf[B_QUEUE_A], err);
+    if (st == RT_OK) st = timed(s, kc, n, "rt_k_wave_camera", &stats->kernel_ms[0], longest, err);
     if (st == RT_OK) stats->launches++;
     cl_uint count = n;
     int in = B_QUEUE_A, out = B_QUEUE_B;
     while (st == RT_OK && count > 0) {
-        st = set_arg(kt, 10, sizeof count, &count, msg, size);
-        if (st == RT_OK) st = set_arg(kt, 11, sizeof(cl_mem), &s->buf[in], msg, size);
-        if (st == RT_OK) st = set_arg(ks, 10, sizeof count, &count, msg, size);
-        if (st == RT_OK) st = set_arg(ks, 11, sizeof(cl_mem), &s->buf[in], msg, size);
-        if (st == RT_OK) st = set_arg(ks, 16, sizeof(cl_mem), &s->buf[out], msg, size);
+        st = set_arg(kt, RT_K_WTRACE_COUNT, sizeof count, &count, err);
+        if (st == RT_OK) st = set_arg(kt, RT_K_WTRACE_QUEUE, sizeof(cl_mem), &s->buf[in], err);
+        if (st == RT_OK) st = set_arg(ks, RT_K_WSHADE_COUNT, sizeof count, &count, err);
+        if (st == RT_OK) st = set_arg(ks, RT_K_WSHADE_QUEUE, sizeof(cl_mem), &s->buf[in], err);
+        if (st == RT_OK) st = set_arg(ks, RT_K_WSHADE_NEXT, sizeof(cl_mem), &s->buf[out], err);
         if (st == RT_OK)
-            st = timed(s, kt, count, "rt_k_wave_trace", &stats->kernel_ms[1], longest, msg, size);
-        if (st == RT_OK) st = zero_buf(s, B_QUEUE_COUNT, sizeof(cl_uint), msg, size);
+            st = timed(s, kt, count, "rt_k_wave_trace", &stats->kernel_ms[1], longest, err);
+        if (st == RT_OK) st = zero_buf(s, B_QUEUE_COUNT, sizeof(cl_uint), err);
         if (st == RT_OK)
-            st = timed(s, ks, count, "rt_k_wave_shade", &stats->kernel_ms[2], longest, msg, size);
+            st = timed(s, ks, count, "rt_k_wave_shade", &stats->kernel_ms[2], longest, err);
         cl_uint next = 0;
-        if (st == RT_OK) st = read_buf(s, B_QUEUE_COUNT, sizeof next, &next, msg, size);
+        if (st == RT_OK) st = read_buf(s, B_QUEUE_COUNT, sizeof next, &next, err);
         if (st != RT_OK) return st;
         stats->launches += 2;
         if (next > cap) {
@@ -732,10 +717,9 @@ static rt_status wave_tile(cl_state *s, cl_uint slots, cl_uint cap, cl_uint f, c
         out = t;
     }
     cl_kernel ksum = s->k_wsum;
-    if (st == RT_OK) st = set_arg(ksum, 0, sizeof f, &f, msg, size);
-    if (st == RT_OK) st = set_arg(ksum, 1, sizeof n, &n, msg, size);
-    if (st == RT_OK)
-        st = timed(s, ksum, n, "rt_k_wave_sum", &stats->kernel_ms[2], longest, msg, size);
+    if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_FIRST, sizeof f, &f, err);
+    if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_COUNT, sizeof n, &n, err);
+    if (st == RT_OK) st = timed(s, ksum, n, "rt_k_wave_sum", &stats->kernel_ms[2], longest, err);
     if (st == RT_OK) stats->launches++;
     return st;
 }
@@ -753,87 +737,87 @@ static uint32_t wave_tile_max(const cl_state *s, uint32_t slots) {
 
 /* Buffers and fixed arguments of the wavefront kernels. */
 static rt_status wave_setup(cl_state *s, cl_uint slots, uint32_t tile_max, cl_uint cap,
-                            cl_int channels, char *msg, size_t size) {
+                            cl_int channels, rt_error *err) {
     /* A queue holds a tile's primary rays or up to cap secondary rays. */
     size_t entries = cap > tile_max ? cap : tile_max;
     int remade;
-    rt_status st = ensure(s, B_QUEUE_A, sizeof(rt_wave_entry) * entries, &remade, msg, size);
-    if (st == RT_OK) st = ensure(s, B_QUEUE_B, sizeof(rt_wave_entry) * entries, &remade, msg, size);
-    if (st == RT_OK) st = ensure(s, B_WAVE_HITS, sizeof(rt_hit_d) * entries, &remade, msg, size);
+    rt_status st = ensure(s, B_QUEUE_A, sizeof(rt_wave_entry) * entries, &remade, err);
+    if (st == RT_OK) st = ensure(s, B_QUEUE_B, sizeof(rt_wave_entry) * entries, &remade, err);
+    if (st == RT_OK) st = ensure(s, B_WAVE_HITS, sizeof(rt_hit_d) * entries, &remade, err);
     if (st == RT_OK)
-        st = ensure(s, B_RECORDS, sizeof(rt_wave_record) * (size_t)slots * tile_max, &remade, msg,
-                    size);
-    if (st == RT_OK) st = ensure(s, B_QUEUE_COUNT, sizeof(cl_uint), &remade, msg, size);
-    if (st == RT_OK) st = set_view(s, s->k_wtrace, msg, size);
-    if (st == RT_OK) st = set_view(s, s->k_wshade, msg, size);
+        st = ensure(s, B_RECORDS, sizeof(rt_wave_record) * (size_t)slots * tile_max, &remade, err);
+    if (st == RT_OK) st = ensure(s, B_QUEUE_COUNT, sizeof(cl_uint), &remade, err);
+    if (st == RT_OK) st = set_view(s, s->k_wtrace, err);
+    if (st == RT_OK) st = set_view(s, s->k_wshade, err);
     cl_kernel kc = s->k_wcam, kt = s->k_wtrace, ks = s->k_wshade, ksum = s->k_wsum;
-    if (st == RT_OK) st = set_arg(kc, 0, sizeof(cl_mem), &s->buf[B_HDR], msg, size);
-    if (st == RT_OK) st = set_arg(kt, 12, sizeof(cl_mem), &s->buf[B_WAVE_HITS], msg, size);
-    if (st == RT_OK) st = set_arg(kt, 13, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, size);
-    if (st == RT_OK) st = set_arg(ks, 12, sizeof(cl_mem), &s->buf[B_WAVE_HITS], msg, size);
-    if (st == RT_OK) st = set_arg(ks, 13, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, size);
-    if (st == RT_OK) st = set_arg(ks, 14, sizeof(cl_mem), &s->buf[B_RECORDS], msg, size);
+    if (st == RT_OK) st = set_arg(kc, RT_K_WCAM_HDR, sizeof(cl_mem), &s->buf[B_HDR], err);
+    if (st == RT_OK) st = set_arg(kt, RT_K_WTRACE_HITS, sizeof(cl_mem), &s->buf[B_WAVE_HITS], err);
+    if (st == RT_OK)
+        st = set_arg(kt, RT_K_WTRACE_COUNTERS, sizeof(cl_mem), &s->buf[B_COUNTERS], err);
+    if (st == RT_OK) st = set_arg(ks, RT_K_WSHADE_HITS, sizeof(cl_mem), &s->buf[B_WAVE_HITS], err);
+    if (st == RT_OK)
+        st = set_arg(ks, RT_K_WSHADE_COUNTERS, sizeof(cl_mem), &s->buf[B_COUNTERS], err);
+    if (st == RT_OK) st = set_arg(ks, RT_K_WSHADE_RECORDS, sizeof(cl_mem), &s->buf[B_RECORDS], err);
     cl_uint stride = tile_max; /* records are slot-major */
-    if (st == RT_OK) st = set_arg(ks, 15, sizeof stride, &stride, msg, size);
-    if (st == RT_OK) st = set_arg(ks, 17, sizeof(cl_mem), &s->buf[B_QUEUE_COUNT], msg, size);
-    if (st == RT_OK) st = set_arg(ks, 18, sizeof cap, &cap, msg, size);
-    if (st == RT_OK) st = set_arg(ksum, 2, sizeof(cl_mem), &s->buf[B_HDR], msg, size);
-    if (st == RT_OK) st = set_arg(ksum, 3, sizeof(cl_mem), &s->buf[B_RECORDS], msg, size);
-    if (st == RT_OK) st = set_arg(ksum, 4, sizeof stride, &stride, msg, size);
-    if (st == RT_OK) st = set_arg(ksum, 5, sizeof channels, &channels, msg, size);
-    if (st == RT_OK) st = set_arg(ksum, 6, sizeof(cl_mem), &s->buf[B_FB], msg, size);
+    if (st == RT_OK) st = set_arg(ks, RT_K_WSHADE_STRIDE, sizeof stride, &stride, err);
+    if (st == RT_OK)
+        st = set_arg(ks, RT_K_WSHADE_NEXT_COUNT, sizeof(cl_mem), &s->buf[B_QUEUE_COUNT], err);
+    if (st == RT_OK) st = set_arg(ks, RT_K_WSHADE_NEXT_CAP, sizeof cap, &cap, err);
+    if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_HDR, sizeof(cl_mem), &s->buf[B_HDR], err);
+    if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_RECORDS, sizeof(cl_mem), &s->buf[B_RECORDS], err);
+    if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_STRIDE, sizeof stride, &stride, err);
+    if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_CHANNELS, sizeof channels, &channels, err);
+    if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_FB, sizeof(cl_mem), &s->buf[B_FB], err);
     return st;
 }
 
-static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char *device,
-                           const rt_render_options *opt, rt_framebuffer *fb,
-                           rt_render_stats *stats) {
-    char msg[1000] = "";
-    cl_state *s;
-    rt_status st = prepare(scene, prep, device, opt->device_options, &s, stats, msg, sizeof msg);
-    if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
-    const rt_scene_header *h = &prep->flat->hdr;
+static rt_status cl_render(void *state, const rt_backend_layout *layout,
+                           const rt_backend_frame *frame, rt_render_stats *stats, rt_error *err) {
+    cl_state *s = state;
+    const rt_scene_header *h = &layout->flat->hdr;
     uint32_t pixels = (uint32_t)h->width * (uint32_t)h->height;
-    size_t fb_bytes = sizeof(float) * (size_t)pixels * (size_t)fb->channels;
+    size_t fb_bytes = sizeof(float) * (size_t)pixels * (size_t)frame->channels;
     int remade;
-    st = ensure(s, B_FB, fb_bytes, &remade, msg, sizeof msg);
-    if (st == RT_OK) st = ensure_ray_buffers(s, RT_CL_TILE_MAX, msg, sizeof msg);
-    if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
+    rt_status st = ensure(s, B_FB, fb_bytes, &remade, err);
+    if (st == RT_OK) st = ensure_ray_buffers(s, RT_CL_TILE_MAX, err);
+    if (st != RT_OK) return named(err, st);
 
-    cl_int aov = (cl_int)opt->aov, channels = fb->channels, any = 0;
-    st = set_view(s, s->k_trace, msg, sizeof msg);
-    if (st == RT_OK) st = set_view(s, s->k_shade, msg, sizeof msg);
+    cl_int aov = (cl_int)frame->aov, channels = frame->channels, any = 0;
+    st = set_view(s, s->k_trace, err);
+    if (st == RT_OK) st = set_view(s, s->k_shade, err);
     cl_kernel kc = s->k_camera, kt = s->k_trace, ks = s->k_shade;
-    if (st == RT_OK) st = set_arg(kc, 0, sizeof(cl_mem), &s->buf[B_HDR], msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(kc, 3, sizeof(cl_mem), &s->buf[B_RAYS], msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(kt, 11, sizeof any, &any, msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(kt, 12, sizeof(cl_mem), &s->buf[B_RAYS], msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(kt, 13, sizeof(cl_mem), &s->buf[B_HITS], msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(kt, 14, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(ks, 12, sizeof aov, &aov, msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(ks, 13, sizeof channels, &channels, msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(ks, 14, sizeof(cl_mem), &s->buf[B_RAYS], msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(ks, 15, sizeof(cl_mem), &s->buf[B_HITS], msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(ks, 16, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(ks, 17, sizeof(cl_mem), &s->buf[B_FB], msg, sizeof msg);
+    if (st == RT_OK) st = set_arg(kc, RT_K_CAMERA_HDR, sizeof(cl_mem), &s->buf[B_HDR], err);
+    if (st == RT_OK) st = set_arg(kc, RT_K_CAMERA_RAYS, sizeof(cl_mem), &s->buf[B_RAYS], err);
+    if (st == RT_OK) st = set_arg(kt, RT_K_TRACE_ANY_HIT, sizeof any, &any, err);
+    if (st == RT_OK) st = set_arg(kt, RT_K_TRACE_RAYS, sizeof(cl_mem), &s->buf[B_RAYS], err);
+    if (st == RT_OK) st = set_arg(kt, RT_K_TRACE_HITS, sizeof(cl_mem), &s->buf[B_HITS], err);
+    if (st == RT_OK)
+        st = set_arg(kt, RT_K_TRACE_COUNTERS, sizeof(cl_mem), &s->buf[B_COUNTERS], err);
+    if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_AOV, sizeof aov, &aov, err);
+    if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_CHANNELS, sizeof channels, &channels, err);
+    if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_RAYS, sizeof(cl_mem), &s->buf[B_RAYS], err);
+    if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_HITS, sizeof(cl_mem), &s->buf[B_HITS], err);
+    if (st == RT_OK)
+        st = set_arg(ks, RT_K_SHADE_COUNTERS, sizeof(cl_mem), &s->buf[B_COUNTERS], err);
+    if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_FB, sizeof(cl_mem), &s->buf[B_FB], err);
 
     /* Images with reflection or refraction go through the wavefront; AOVs
      * (primary-ray values, or every ray's tests of a pixel) and scenes
      * without secondary rays through rt_k_shade. */
-    int wave = aov == RT_AOV_NONE && (h->flags & RT_SCENE_SECONDARY) && !s->no_wave && !s->lanes;
+    int wave =
+        aov == RT_AOV_NONE && (h->flags & RT_SCENE_SECONDARY) && !s->tune.no_wavefront && !s->lanes;
     cl_uint slots = (2u << h->max_depth) - 1u, cap = 0;
     uint32_t tmax = RT_CL_TILE_MAX;
     if (st == RT_OK && wave) {
         tmax = wave_tile_max(s, slots);
         cap = 2u * tmax;
         /* Tests shrink the queues to force the overflow path. */
-        const char *cap_env = getenv("RTCL_OPENCL_WAVE_CAP");
-        if (cap_env && atoi(cap_env) > 0 && (cl_uint)atoi(cap_env) < cap)
-            cap = (cl_uint)atoi(cap_env);
-        st = wave_setup(s, slots, tmax, cap, channels, msg, sizeof msg);
+        if (s->tune.wave_queue_cap > 0 && s->tune.wave_queue_cap < cap)
+            cap = s->tune.wave_queue_cap;
+        st = wave_setup(s, slots, tmax, cap, channels, err);
         if (s->tile > tmax) s->tile = tmax;
     }
-    if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
+    if (st != RT_OK) return named(err, st);
 
     /* CPU devices: rt_k_packet over blocks of lanes pixels (tiles are then
      * ranges of blocks); elsewhere rt_k_camera/trace/shade or the wavefront
@@ -846,21 +830,22 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
     if (lanes) {
         snprintf(stats->kernels, sizeof stats->kernels, "packet %ux%u (rt_k_packet)", bw, bh);
         cl_kernel kp = s->k_packet;
-        if (st == RT_OK) st = set_view(s, kp, msg, sizeof msg);
-        if (st == RT_OK) st = set_arg(kp, 12, sizeof aov, &aov, msg, sizeof msg);
-        if (st == RT_OK) st = set_arg(kp, 13, sizeof channels, &channels, msg, sizeof msg);
-        if (st == RT_OK) st = set_arg(kp, 14, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, sizeof msg);
-        if (st == RT_OK) st = set_arg(kp, 15, sizeof(cl_mem), &s->buf[B_FB], msg, sizeof msg);
-        if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
+        if (st == RT_OK) st = set_view(s, kp, err);
+        if (st == RT_OK) st = set_arg(kp, RT_K_PACKET_AOV, sizeof aov, &aov, err);
+        if (st == RT_OK) st = set_arg(kp, RT_K_PACKET_CHANNELS, sizeof channels, &channels, err);
+        if (st == RT_OK)
+            st = set_arg(kp, RT_K_PACKET_COUNTERS, sizeof(cl_mem), &s->buf[B_COUNTERS], err);
+        if (st == RT_OK) st = set_arg(kp, RT_K_PACKET_FB, sizeof(cl_mem), &s->buf[B_FB], err);
+        if (st != RT_OK) return named(err, st);
     } else {
         snprintf(stats->kernels, sizeof stats->kernels, "one ray per work-item%s",
                  wave ? " (wavefront)" : "");
     }
 
     rt_counters *counts = NULL;
-    if (opt->stats) {
+    if (frame->want_counts) {
         counts = malloc(sizeof(rt_counters) * RT_CL_TILE_MAX);
-        if (!counts) return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+        if (!counts) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "opencl: out of memory");
     }
     double t_render = rt_now_ms();
     for (uint32_t first = 0; first < units && st == RT_OK;) {
@@ -872,21 +857,21 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
         double longest = 0.0;
         int overflow = 0;
         if (lanes) {
-            st = packet_tile(s, first, n, stats, &longest, msg, sizeof msg);
+            st = packet_tile(s, first, n, stats, &longest, err);
         } else if (wave) {
-            st = wave_tile(s, slots, cap, first, n, stats, &longest, &overflow, msg, sizeof msg);
+            st = wave_tile(s, slots, cap, first, n, stats, &longest, &overflow, err);
             stats->wave_tiles++;
             if (overflow) stats->wave_fallbacks++;
         }
         /* A level that queued more rays than the queues hold: the tile again
          * with the stack in the kernel (the same bits). */
         if (st == RT_OK && (overflow || (!lanes && !wave)))
-            st = direct_tile(s, first, n, stats, &longest, msg, sizeof msg);
+            st = direct_tile(s, first, n, stats, &longest, err);
         if (st != RT_OK) break;
         if (tile_px > stats->tile_pixels) stats->tile_pixels = tile_px;
         if (counts) {
             double t0 = rt_now_ms();
-            st = read_buf(s, B_COUNTERS, sizeof(rt_counters) * n, counts, msg, sizeof msg);
+            st = read_buf(s, B_COUNTERS, sizeof(rt_counters) * n, counts, err);
             stats->download_ms += rt_now_ms() - t0;
             for (cl_uint i = 0; i < n && st == RT_OK; i++) {
                 stats->rays += counts[i].rays;
@@ -898,15 +883,15 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
         /* Only a full tile says how long a tile takes. */
         if (n == per) s->tile = next_tile(s, s->tile, longest);
         if (wave && s->tile > tmax) s->tile = tmax;
-        if (opt->progress) opt->progress(opt->progress_user, (double)first / units);
+        if (frame->progress) frame->progress(frame->progress_user, (double)first / units);
     }
     free(counts);
     if (st == RT_OK) {
         double t0 = rt_now_ms();
-        st = read_buf(s, B_FB, fb_bytes, fb->pixels, msg, sizeof msg);
+        st = read_buf(s, B_FB, fb_bytes, frame->pixels, err);
         stats->download_ms += rt_now_ms() - t0;
     }
-    if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
+    if (st != RT_OK) return named(err, st);
     /* Wall time of the launches and their read-backs: comparable with the
      * CPU backends' render_ms. */
     stats->render_ms = rt_now_ms() - t_render;
@@ -915,56 +900,58 @@ static rt_status cl_render(rt_scene *scene, const rt_prepared *prep, const char 
     return RT_OK;
 }
 
-static rt_status cl_trace(rt_scene *scene, const rt_prepared *prep, const char *device,
-                          const char *device_options, const rt_ray_d *rays, size_t count,
-                          rt_hit_d *hits, int any_hit) {
-    char msg[1000] = "";
-    rt_render_stats stats;
-    memset(&stats, 0, sizeof stats);
-    cl_state *s = NULL;
-    rt_status st = prepare(scene, prep, device, device_options, &s, &stats, msg, sizeof msg);
-    if (st == RT_OK) st = ensure_ray_buffers(s, RT_CL_TILE_MAX, msg, sizeof msg);
+static rt_status cl_trace(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
+                          size_t count, rt_hit_d *hits, int any_hit, rt_error *err) {
+    cl_state *s = state;
+    (void)layout; /* cl_prepare uploaded it */
+    rt_status st = ensure_ray_buffers(s, RT_CL_TILE_MAX, err);
     /* Closest hits on a CPU device: packets of consecutive rays
      * (rt_k_packet_trace, the same hits); any hit: rt_k_trace, so that the
      * hit reported is the oracle's first one, not only some hit. */
     int packet = st == RT_OK && s->lanes && !any_hit;
     cl_kernel k = s ? (packet ? s->k_ptrace : s->k_trace) : NULL;
-    cl_uint a = packet ? 11 : 12; /* the rays argument */
+    _Static_assert((int)RT_K_PTRACE_COUNT == (int)RT_K_TRACE_COUNT &&
+                       (int)RT_K_PTRACE_HITS - (int)RT_K_PTRACE_RAYS ==
+                           (int)RT_K_TRACE_HITS - (int)RT_K_TRACE_RAYS &&
+                       (int)RT_K_PTRACE_COUNTERS - (int)RT_K_PTRACE_RAYS ==
+                           (int)RT_K_TRACE_COUNTERS - (int)RT_K_TRACE_RAYS,
+                   "rt_k_trace and rt_k_packet_trace take count, rays, hits, counters alike");
+    cl_uint a = packet ? RT_K_PTRACE_RAYS : RT_K_TRACE_RAYS; /* the rays argument */
     cl_int any = any_hit ? 1 : 0;
-    if (st == RT_OK) st = set_view(s, k, msg, sizeof msg);
-    if (st == RT_OK && !packet) st = set_arg(k, 11, sizeof any, &any, msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(k, a, sizeof(cl_mem), &s->buf[B_RAYS], msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(k, a + 1, sizeof(cl_mem), &s->buf[B_HITS], msg, sizeof msg);
-    if (st == RT_OK) st = set_arg(k, a + 2, sizeof(cl_mem), &s->buf[B_COUNTERS], msg, sizeof msg);
+    if (st == RT_OK) st = set_view(s, k, err);
+    if (st == RT_OK && !packet) st = set_arg(k, RT_K_TRACE_ANY_HIT, sizeof any, &any, err);
+    if (st == RT_OK) st = set_arg(k, a, sizeof(cl_mem), &s->buf[B_RAYS], err);
+    if (st == RT_OK) st = set_arg(k, a + 1, sizeof(cl_mem), &s->buf[B_HITS], err);
+    if (st == RT_OK) st = set_arg(k, a + 2, sizeof(cl_mem), &s->buf[B_COUNTERS], err);
     for (size_t first = 0; first < count && st == RT_OK;) {
         cl_uint n = (cl_uint)(count - first < s->tile ? count - first : s->tile);
         uint64_t ignored = 0;
         double ms = 0.0;
-        st = write_buf(s, B_RAYS, 0, rays + first, sizeof(rt_ray_d) * n, &ignored, msg, sizeof msg);
-        if (st == RT_OK) st = set_arg(k, 10, sizeof n, &n, msg, sizeof msg);
+        st = write_buf(s, B_RAYS, 0, rays + first, sizeof(rt_ray_d) * n, &ignored, err);
+        if (st == RT_OK) st = set_arg(k, RT_K_TRACE_COUNT, sizeof n, &n, err);
         if (st == RT_OK)
             st = launch(s, k, packet ? (n + (cl_uint)s->lanes - 1) / (cl_uint)s->lanes : n,
-                        packet ? "rt_k_packet_trace" : "rt_k_trace", &ms, msg, sizeof msg);
+                        packet ? "rt_k_packet_trace" : "rt_k_trace", &ms, err);
         if (st == RT_OK) {
-            cl_int err = clEnqueueReadBuffer(s->queue, s->buf[B_HITS], CL_TRUE, 0,
-                                             sizeof(rt_hit_d) * n, hits + first, 0, NULL, NULL);
-            if (err != CL_SUCCESS)
-                st = fail(msg, sizeof msg, RT_ERROR_BACKEND, "reading hits: %s",
-                          rt_cl_error_name(err));
+            cl_int ce = clEnqueueReadBuffer(s->queue, s->buf[B_HITS], CL_TRUE, 0,
+                                            sizeof(rt_hit_d) * n, hits + first, 0, NULL, NULL);
+            if (ce != CL_SUCCESS)
+                st = rt_fail(err, RT_ERROR_BACKEND, "reading hits: %s", rt_cl_error_name(ce));
         }
         first += n;
         if (n == s->tile) s->tile = next_tile(s, s->tile, ms);
     }
-    if (st != RT_OK) return rt_scene_fail(scene, st, "opencl: %s", msg);
+    if (st != RT_OK) return named(err, st);
     return RT_OK;
 }
 
-static int cl_available(char *msg, size_t size) {
+static int cl_available(rt_error *why) {
     rt_cl_device_info *devs;
     int count;
-    if (rt_cl_devices(&devs, &count, msg, size) != RT_OK) return 0;
+    if (rt_cl_devices(&devs, &count, why) != RT_OK) return 0;
     free(devs);
     return 1;
 }
 
-const rt_backend_ops rt_opencl_backend = {"opencl", cl_render, cl_trace, cl_available, state_free};
+const rt_backend_ops rt_backend_opencl = {"opencl",  cl_available, cl_create, cl_prepare,
+                                          cl_render, cl_trace,     cl_destroy};

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/error.h"
+
 const char *rt_cl_error_name(int code) {
     switch (code) {
     case CL_SUCCESS:
@@ -95,23 +97,21 @@ static void describe(cl_platform_id p, cl_device_id d, rt_cl_device_info *info) 
     info->exact = info->cr_div_sqrt && info->fp64;
 }
 
-rt_status rt_cl_devices(rt_cl_device_info **out, int *count, char *msg, size_t msg_size) {
+rt_status rt_cl_devices(rt_cl_device_info **out, int *count, rt_error *err) {
     *out = NULL;
     *count = 0;
     cl_uint np = 0;
-    cl_int err = clGetPlatformIDs(0, NULL, &np);
-    if (err != CL_SUCCESS || np == 0) {
-        snprintf(msg, msg_size,
-                 "no OpenCL platform found (%s): the ICD loader lists no driver in "
-                 "/etc/OpenCL/vendors (install one, e.g. pocl-opencl-icd)",
-                 err != CL_SUCCESS ? rt_cl_error_name(err) : "none installed");
-        return RT_ERROR_UNSUPPORTED;
+    cl_int cl_err = clGetPlatformIDs(0, NULL, &np);
+    if (cl_err != CL_SUCCESS || np == 0) {
+        return rt_fail(err, RT_ERROR_UNSUPPORTED,
+                       "no OpenCL platform found (%s): the ICD loader lists no driver in "
+                       "/etc/OpenCL/vendors (install one, e.g. pocl-opencl-icd)",
+                       cl_err != CL_SUCCESS ? rt_cl_error_name(cl_err) : "none installed");
     }
     cl_platform_id *plats = calloc(np, sizeof *plats);
     if (!plats || clGetPlatformIDs(np, plats, NULL) != CL_SUCCESS) {
         free(plats);
-        snprintf(msg, msg_size, "cannot list OpenCL platforms");
-        return RT_ERROR_BACKEND;
+        return rt_fail(err, RT_ERROR_BACKEND, "cannot list OpenCL platforms");
     }
     rt_cl_device_info *list = NULL;
     int n = 0;
@@ -125,8 +125,7 @@ rt_status rt_cl_devices(rt_cl_device_info **out, int *count, char *msg, size_t m
             free(ids);
             free(grown ? grown : list);
             free(plats);
-            snprintf(msg, msg_size, "out of memory");
-            return RT_ERROR_OUT_OF_MEMORY;
+            return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
         }
         list = grown;
         if (clGetDeviceIDs(plats[p], CL_DEVICE_TYPE_ALL, nd, ids, NULL) == CL_SUCCESS) {
@@ -142,9 +141,9 @@ rt_status rt_cl_devices(rt_cl_device_info **out, int *count, char *msg, size_t m
     free(plats);
     if (n == 0) {
         free(list);
-        snprintf(msg, msg_size, "no OpenCL device found (%u platform%s, none with a device)", np,
-                 np == 1 ? "" : "s");
-        return RT_ERROR_UNSUPPORTED;
+        return rt_fail(err, RT_ERROR_UNSUPPORTED,
+                       "no OpenCL device found (%u platform%s, none with a device)", np,
+                       np == 1 ? "" : "s");
     }
     *out = list;
     *count = n;
@@ -163,8 +162,7 @@ static int contains_nocase(const char *hay, const char *needle) {
     return n == 0;
 }
 
-int rt_cl_select(const rt_cl_device_info *devs, int count, const char *sel, char *msg,
-                 size_t msg_size) {
+int rt_cl_select(const rt_cl_device_info *devs, int count, const char *sel, rt_error *err) {
     if (!sel || !*sel) {
         for (int i = 0; i < count; i++)
             if (devs[i].exact) return i;
@@ -174,13 +172,15 @@ int rt_cl_select(const rt_cl_device_info *devs, int count, const char *sel, char
     long idx = strtol(sel, &end, 10);
     if (end != sel && *end == 0) {
         if (idx >= 0 && idx < count) return (int)idx;
-        snprintf(msg, msg_size, "no OpenCL device %ld (there %s %d: 0..%d, see 'rtcl devices')",
-                 idx, count == 1 ? "is" : "are", count, count - 1);
+        rt_fail(err, RT_ERROR_INVALID_ARGUMENT,
+                "no OpenCL device %ld (there %s %d: 0..%d, see 'rtcl devices')", idx,
+                count == 1 ? "is" : "are", count, count - 1);
         return -1;
     }
     for (int i = 0; i < count; i++)
         if (contains_nocase(devs[i].name, sel)) return i;
-    snprintf(msg, msg_size, "no OpenCL device named like '%s' (see 'rtcl devices')", sel);
+    rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "no OpenCL device named like '%s' (see 'rtcl devices')",
+            sel);
     return -1;
 }
 

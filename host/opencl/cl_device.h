@@ -1,4 +1,4 @@
-/* cl_device.h - OpenCL platforms and devices (host/cl_device.c): listing,
+/* cl_device.h - OpenCL platforms and devices (host/opencl/cl_device.c): listing,
  * capabilities that decide bit-exactness with the CPU oracle, and selection
  * by index or name. Compiled only when the build found the OpenCL ICD loader
  * (RT_HAVE_OPENCL). No OpenCL types here, so callers need no CL headers. */
@@ -32,14 +32,13 @@ typedef struct rt_cl_device_info {
 
 /* Every device of every platform. RT_ERROR_UNSUPPORTED with a message when
  * there is no platform or no device; *out is then NULL. free() the list. */
-rt_status rt_cl_devices(rt_cl_device_info **out, int *count, char *msg, size_t msg_size);
+rt_status rt_cl_devices(rt_cl_device_info **out, int *count, rt_error *err);
 
 /* Picks a device: selector NULL or "" is the first device (an exact one when
  * there is one), a number is an index, anything else the first device whose
  * name contains it (case-insensitive). Returns the position in devs, or -1
  * with a message. */
-int rt_cl_select(const rt_cl_device_info *devs, int count, const char *selector, char *msg,
-                 size_t msg_size);
+int rt_cl_select(const rt_cl_device_info *devs, int count, const char *selector, rt_error *err);
 
 /* Why a device does or does not promise the oracle's bits, one line. */
 const char *rt_cl_exactness_note(const rt_cl_device_info *d);

@@ -2,6 +2,7 @@
 #include "scene/scene.h"
 
 #include <math.h>
+#include <stdatomic.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -74,6 +75,12 @@ int rt_mat4_affine_inverse(const float m[16], float out[16]) {
     return 1;
 }
 
+int rt_transform_is_identity(const float m[16]) {
+    for (int i = 0; i < 16; i++)
+        if (m[i] != ((i % 5) == 0 ? 1.0f : 0.0f)) return 0;
+    return 1;
+}
+
 /* ---- lifetime --------------------------------------------------------- */
 
 rt_material rt_material_default(void) {
@@ -90,6 +97,8 @@ rt_status rt_scene_create(rt_scene **out) {
     /* A camera at +z looking at the origin until one is set. */
     rt_camera cam = {{0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 60.0f, 1024, 576};
     s->camera = cam;
+    static _Atomic uint64_t next_uid = 1;
+    s->uid = atomic_fetch_add(&next_uid, 1);
     return RT_OK;
 }
 
@@ -106,7 +115,6 @@ void rt_scene_destroy(rt_scene *scene) {
     free(scene->materials);
     free(scene->lights);
     free(scene->objects);
-    rt_render_cache_free(scene->render_cache);
     free(scene);
 }
 
@@ -194,6 +202,7 @@ rt_status rt_mesh_add_triangles(rt_scene *scene, uint32_t mesh_id, const float *
         m->indices[3 * (size_t)t0 + i] = indices[i] + v0;
     m->vertex_count += vertex_count;
     m->triangle_count += triangle_count;
+    m->version++;
     scene->version++;
     return RT_OK;
 oom:

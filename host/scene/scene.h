@@ -23,6 +23,9 @@ typedef struct rt_mesh_data {
     /* Per-triangle material id overriding the object's, or NULL.
      * UINT32_MAX entries use the object's material. */
     uint32_t *tri_materials;
+    /* Bumped by every change of the mesh's geometry, so that a renderer
+     * knows when its BVH is stale. */
+    uint32_t version;
 } rt_mesh_data;
 
 typedef struct rt_object_data {
@@ -54,21 +57,20 @@ struct rt_scene {
     float background[3];
     rt_camera camera;
     int has_camera;
-    uint32_t version; /* bumped by every change, so backends know what to re-upload */
+    uint32_t version; /* bumped by every change, so renderers know what to redo */
+    /* Unique among the scenes of the process (never reused), so that a
+     * renderer given another scene knows its caches are not this one's. */
+    uint64_t uid;
     char source[512]; /* the file it was loaded from, or "" */
-    rt_error error;
-    /* Renderer state kept between frames (mesh BVHs, flattened layout,
-     * threads); owned by host/render.c, freed with the scene. */
-    struct rt_render_cache *render_cache;
+    rt_error error;   /* the last error of a call that edited the scene */
 };
-
-/* Frees the renderer's state (host/render.c); NULL is fine. */
-void rt_render_cache_free(struct rt_render_cache *cache);
 
 /* Identity matrix. */
 void rt_mat4_identity(float m[16]);
 /* out = a * b (out may alias neither). */
 void rt_mat4_mul(const float a[16], const float b[16], float out[16]);
+/* Is m exactly the identity? */
+int rt_transform_is_identity(const float m[16]);
 /* Inverse of an affine matrix (last row 0 0 0 1); returns 0 if singular. */
 int rt_mat4_affine_inverse(const float m[16], float out[16]);
 

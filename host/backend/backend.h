@@ -1,0 +1,82 @@
+/* backend.h - the one interface every backend implements (cpu, packet,
+ * opencl; vulkan next), and all that a backend sees of a scene.
+ *
+ * A backend gets the flattened layout (layout/flat.h) and never the scene's
+ * structs, so every backend traces exactly the same bytes, and a backend can
+ * be written, tested and replaced without knowing how scenes are stored. It
+ * reports a failure as a status and a message in the rt_error it is given;
+ * the renderer forwards it to the caller.
+ *
+ * Lifetime: the renderer calls create once, when the backend is first
+ * chosen; then per frame prepare (bring the backend's copy of the layout up
+ * to date: a device uploads what changed, the packet backend widens the
+ * BVHs) followed by render or trace; destroy when the renderer goes. State
+ * is the backend's own; nothing is global.
+ *
+ * Adding a backend: a folder host/NAME/ with one rt_backend_ops, a line in
+ * host/render/backend_registry.c, and its sources in CMakeLists.txt
+ * (docs/ARCHITECTURE.md). */
+#ifndef RT_BACKEND_H
+#define RT_BACKEND_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "base/thread_pool.h"
+#include "layout/flat.h"
+#include "rt.h"
+
+/* What a backend is made with (from rt_renderer_options). */
+typedef struct rt_backend_config {
+    const char *device;         /* the part after "name:" (NULL: the default device) */
+    const char *device_options; /* extra kernel compiler options, or NULL */
+    const char *packet_isa;     /* the packet backend's instruction set, or NULL */
+    rt_opencl_tuning opencl;
+} rt_backend_config;
+
+/* The layout of the frame and what changed since the backend last saw one. */
+typedef struct rt_backend_layout {
+    /* The header selects this frame's triangle test and features (a
+     * direct-only frame clears RT_SCENE_SECONDARY); the arrays are shared. */
+    const rt_flat *flat;
+    rt_pool *pool; /* the renderer's workers: the CPU backends run on them */
+    /* Counters that change whenever the layout was remade, and whenever some
+     * mesh BVH was rebuilt (then the mesh part of the layout moved too). */
+    uint32_t layout_generation;
+    uint32_t mesh_generation;
+} rt_backend_layout;
+
+/* One frame's request. pixels is width x height x channels floats of the
+ * layout's camera, allocated by the renderer; every pixel is written. */
+typedef struct rt_backend_frame {
+    rt_aov aov;
+    int channels; /* 3 for the image and normals, else 1 */
+    float *pixels;
+    int want_counts; /* 1: fill the ray and test counts of the statistics */
+    void (*progress)(void *user, double done);
+    void *progress_user;
+} rt_backend_frame;
+
+typedef struct rt_backend_ops {
+    const char *name;
+    /* 1 when the backend can run on this machine; else 0 with the reason in
+     * *why (NULL allowed). Called for "auto"; cheap enough for a listing. */
+    int (*available)(rt_error *why);
+    rt_status (*create)(const rt_backend_config *config, void **state, rt_error *err);
+    /* Brings the backend's copy of the layout up to date and opens the
+     * device. Adds to stats: build_ms (host work such as wide BVHs),
+     * compile_ms, upload_ms and upload_bytes, and the device fields. */
+    rt_status (*prepare)(void *state, const rt_backend_layout *layout, rt_render_stats *stats,
+                         rt_error *err);
+    /* Renders one frame after prepare. Fills render_ms, the counts when
+     * frame->want_counts, and the backend's own statistics fields. */
+    rt_status (*render)(void *state, const rt_backend_layout *layout, const rt_backend_frame *frame,
+                        rt_render_stats *stats, rt_error *err);
+    /* Traces count rays (closest hit, or any hit) after prepare; a miss has
+     * prim = RT_NO_HIT. Invalid rays were made empty ranges by the caller. */
+    rt_status (*trace)(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
+                       size_t count, rt_hit_d *hits, int any_hit, rt_error *err);
+    void (*destroy)(void *state);
+} rt_backend_ops;
+
+#endif /* RT_BACKEND_H */

@@ -1,0 +1,23 @@
+/* render_frame.h - what rt_render and rt_trace_rays share: the frame's
+ * layout (the triangle test and features it asks for) and the backend that
+ * runs it. */
+#ifndef RT_RENDER_FRAME_H
+#define RT_RENDER_FRAME_H
+
+#include "render/renderer_internal.h"
+
+typedef struct rt_frame_state {
+    rt_flat flat;              /* a shallow copy of the renderer's layout ... */
+    rt_backend_layout layout;  /* ... that layout.flat points at */
+    const rt_backend_ops *ops; /* the renderer's backend */
+    void *state;
+    double build_ms; /* BVH builds and flattening done for this frame */
+    double sah_cost;
+} rt_frame_state;
+
+/* Brings the renderer's layout up to date for scene and fills out; an
+ * unknown triangle test is an invalid argument. Errors go to r->error. */
+rt_status rt_frame_layout(rt_renderer *r, rt_scene *scene, rt_triangle_test test, int direct_only,
+                          rt_frame_state *out);
+
+#endif /* RT_RENDER_FRAME_H */
