@@ -10,6 +10,7 @@
  * scene, so nothing is half-loaded.
  */
 #include "formats/scene_load.h"
+#include "formats/scene_obj.h"
 
 #include <errno.h>
 #include <jansson.h>

@@ -8,9 +8,4 @@
  * file for messages and its folder resolves relative mesh paths. */
 rt_status rt_scene_load_json(rt_scene *scene, const char *path, rt_error *err);
 
-/* Adds an OBJ file to scene as one mesh (no object, camera or lights). The
- * materials of its .mtl, if any, become scene materials that the mesh's
- * triangles use; triangles without one take their object's material. */
-rt_status rt_scene_add_obj(rt_scene *scene, const char *path, uint32_t *mesh_id, rt_error *err);
-
 #endif /* RT_SCENE_LOAD_H */
