@@ -60,11 +60,7 @@ static inline float rt_sm_float_(rt_u32 u) {
     memcpy(&f, &u, sizeof f);
     return f;
 }
-#if defined(__GNUC__) || defined(__clang__)
-#define RT_SM_CLZ(x) ((rt_u32)__builtin_clz(x))
-#else
-#define RT_SM_CLZ(x) rt_sm_clz_(x)
-/* Leading zeros of x != 0, by halving. */
+/* Leading zeros of x != 0, by halving: for compilers without a builtin. */
 static inline rt_u32 rt_sm_clz_(rt_u32 x) {
     rt_u32 n = 0;
     if (!(x & 0xffff0000u)) n += 16, x <<= 16;
@@ -74,6 +70,10 @@ static inline rt_u32 rt_sm_clz_(rt_u32 x) {
     if (!(x & 0x80000000u)) n += 1;
     return n;
 }
+#if (defined(__GNUC__) || defined(__clang__)) && !defined(RT_SM_PORTABLE_CLZ)
+#define RT_SM_CLZ(x) ((rt_u32)__builtin_clz(x))
+#else
+#define RT_SM_CLZ(x) rt_sm_clz_(x)
 #endif
 #endif
 

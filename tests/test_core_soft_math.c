@@ -202,6 +202,16 @@ int main(void) {
     uint64_t seed = 0x9e3779b97f4a7c15ull;
     const long n_random = 1000000;
 
+    /* The portable clz (for compilers without __builtin_clz). */
+    int clz_bad = 0;
+    for (int i = 0; i < 32; i++) {
+        for (uint32_t low = 0; low < 4; low++) {
+            uint32_t x = (1u << i) | ((low * 0x55555555u) & ((1u << i) - 1u));
+            clz_bad += rt_sm_clz_(x) != (uint32_t)(31 - i);
+        }
+    }
+    CHECK_MSG(clz_bad == 0, "rt_sm_clz_ wrong for %d values", clz_bad);
+
     /* Every pair of specials; sqrt of every special. */
     for (int i = 0; i < ns; i++) {
         check_sqrt("special", sp[i]);
