@@ -12,7 +12,7 @@
 static const char usage_head[] =
     "usage: rtcl render SCENE [-o FILE] [--backend B] [--device D] [--width W] [--height H]\n"
     "                   [--aov AOV] [--threads N] [--frames N] [--direct]\n"
-    "                   [--cl-options OPTS] [--stats] [--help]\n"
+    "                   [--cl-options OPTS] [--packet-isa I] [--stats] [--help]\n"
     "\n"
     "Renders SCENE (a .json scene, a bare .obj, or builtin:NAME) with Whitted-style\n"
     "shading (Phong, shadow rays, reflection, refraction). Options may come before or\n"

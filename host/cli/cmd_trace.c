@@ -13,7 +13,8 @@
 
 static const char usage_head[] =
     "usage: rtcl trace SCENE --rays RAYS.txt --out HITS.txt [--backend B] [--device D]\n"
-    "                  [--tri-test T] [--any-hit] [--offset-origins] [--help]\n"
+    "                  [--tri-test T] [--any-hit] [--offset-origins] [--threads N]\n"
+    "                  [--cl-options OPTS] [--packet-isa I] [--help]\n"
     "\n"
     "Traces the rays of RAYS.txt through SCENE (a .json scene, a bare .obj, or\n"
     "builtin:NAME) and writes one line per ray to HITS.txt.\n"
