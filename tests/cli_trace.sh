@@ -35,6 +35,32 @@ checks=$((checks + 1))
 if ! cmp -s "$tmp/cpu.txt" "$tmp/packet.txt"; then
     echo "FAIL: packet and cpu hits differ"; fails=$((fails + 1))
 fi
+# A ray with tmax = -inf (or NaN, or an inverted range) in the packet of
+# valid ones (one origin, directions of one sign: the packet-wide interval
+# test runs) must not hide their hits, at t = 0 or beyond; in each
+# instruction-set build of the packet tracer.
+{
+    printf '0 1.5 -1 0.001 0.001 -1 0 -inf\n0 1.5 -1 0.001 0.001 -1 0 inf\n'
+    printf '0.2 1.0 -1 0.1 0.1 -1 0 inf\n0 1.5 3 0.001 0.001 -1 5 1\n'
+    for i in $(seq 60); do printf '0 1.5 3 0.00%d 0.001 -1 0 inf\n' $((i % 9 + 1)); done
+    # a second packet: NaN and -inf range ends
+    printf '0 1.5 3 0.001 0.001 -1 0 nan\n0 1.5 3 0.002 0.001 -1 -inf -inf\n'
+    printf '0 1.5 3 0.001 0.002 -1 0 inf\n'
+} > "$tmp/odd.txt"
+expect 0 '' -- "$RTCL" trace builtin:cornell --rays "$tmp/odd.txt" --out "$tmp/odd_cpu.txt"
+for isa in generic avx2 avx512; do
+    RTCL_PACKET_ISA=$isa expect 0 '' -- "$RTCL" trace builtin:cornell --rays "$tmp/odd.txt" \
+        --out "$tmp/odd_packet.txt" --backend packet
+    checks=$((checks + 1))
+    if ! cmp -s "$tmp/odd_cpu.txt" "$tmp/odd_packet.txt"; then
+        echo "FAIL: packet ($isa) differs from cpu with odd rays in the packet:"
+        paste "$tmp/odd_cpu.txt" "$tmp/odd_packet.txt"; fails=$((fails + 1))
+    fi
+done
+if [ "$(grep -c '^1 ' "$tmp/odd_cpu.txt")" != 63 ]; then
+    echo "FAIL: expected 63 hits among the odd rays:"; cat "$tmp/odd_cpu.txt"; fails=$((fails + 1))
+fi
+
 # Any-hit agrees with closest hit on whether a ray hits.
 expect 0 '' -- "$RTCL" trace builtin:cornell --rays "$tmp/random.txt" --out "$tmp/any.txt" --any-hit
 checks=$((checks + 1))
