@@ -87,6 +87,40 @@ static void test_camera(void) {
     bad = c;
     bad.hfov_degrees = 180.0f;
     CHECK(rt_camera_set(s, &bad) == RT_ERROR_INVALID_ARGUMENT);
+    /* Up exactly opposite the view direction: the float check saw a tiny
+     * side vector, the layout's double frame an exact zero (NaN rays). */
+    rt_camera opp = {{0, 0, 0}, {-0.5f, -1.5f, -2.79999995f}, {1, 3, 5.5999999f}, 60.0f, 64, 32};
+    CHECK(rt_camera_set(s, &opp) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK_CONTAINS(rt_scene_error(s), "parallel to the view direction");
+    /* Any camera accepted gives a finite frame, as the layout computes it:
+     * up a multiple of the view direction, or nearly so. */
+    uint32_t seed = 99;
+    int accepted = 0, refused = 0;
+    for (int i = 0; i < 20000; i++) {
+        float q[7];
+        for (int k = 0; k < 7; k++) {
+            seed = seed * 1664525u + 1013904223u;
+            q[k] = (float)(seed >> 8) / 16777216.0f * 20.0f - 10.0f;
+        }
+        rt_camera cc = c;
+        for (int k = 0; k < 3; k++) {
+            cc.position[k] = q[k];
+            cc.look_at[k] = q[k] + q[k + 3];
+            cc.up[k] = q[6] * q[k + 3] * (i % 2 ? 1.0f : 1.0f + 1e-7f * (float)k);
+        }
+        if (rt_camera_set(s, &cc) != RT_OK) {
+            refused++;
+            continue;
+        }
+        accepted++;
+        double f[3], r[3], u[3];
+        CHECK(rt_camera_frame_d(&cc, f, r, u));
+        int finite = 1;
+        for (int k = 0; k < 3; k++) finite &= isfinite(f[k]) && isfinite(r[k]) && isfinite(u[k]);
+        CHECK_MSG(finite, "camera %d accepted with a non-finite frame", i);
+    }
+    CHECK(refused > 0);
+    CHECK(rt_camera_set(s, &c) == RT_OK);
     CHECK(rt_camera_move(s, 0, 0, 1) == RT_OK); /* forward is -z */
     rt_camera got;
     rt_camera_get(s, &got);

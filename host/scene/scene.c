@@ -375,20 +375,41 @@ static int normalize3(float v[3]) {
     return 1;
 }
 
+int rt_camera_frame_d(const rt_camera *c, double f[3], double r[3], double u[3]) {
+    const double up[3] = {c->up[0], c->up[1], c->up[2]};
+    for (int i = 0; i < 3; i++) f[i] = (double)c->look_at[i] - (double)c->position[i];
+    double fl = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    for (int i = 0; i < 3; i++) f[i] /= fl;
+    r[0] = f[1] * up[2] - f[2] * up[1];
+    r[1] = f[2] * up[0] - f[0] * up[2];
+    r[2] = f[0] * up[1] - f[1] * up[0];
+    double rl = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+    double ul = sqrt(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
+    /* |f x up| = |up| sin(angle): exactly zero for an up (anti)parallel to
+     * f in double even where the float check above passed. */
+    if (!(fl > 0.0) || !isfinite(fl) || !(rl > RT_CAMERA_MIN_SINE * ul) || !isfinite(rl)) return 0;
+    for (int i = 0; i < 3; i++) r[i] /= rl;
+    u[0] = r[1] * f[2] - r[2] * f[1];
+    u[1] = r[2] * f[0] - r[0] * f[2];
+    u[2] = r[0] * f[1] - r[1] * f[0];
+    for (int i = 0; i < 3; i++)
+        if (!isfinite(f[i]) || !isfinite(r[i]) || !isfinite(u[i])) return 0;
+    return 1;
+}
+
 rt_status rt_camera_set(rt_scene *scene, const rt_camera *cam) {
     if (!scene || !cam) return RT_ERROR_INVALID_ARGUMENT;
     if (!finite3(cam->position) || !finite3(cam->look_at) || !finite3(cam->up))
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "camera: vectors must be finite");
     float fwd[3] = {cam->look_at[0] - cam->position[0], cam->look_at[1] - cam->position[1],
                     cam->look_at[2] - cam->position[2]};
-    float up[3] = {cam->up[0], cam->up[1], cam->up[2]}, side[3];
     if (!normalize3(fwd))
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                              "camera: look-at point equals the position");
-    cross3(fwd, up, side);
-    if (!normalize3(side))
+    double f[3], r[3], u[3];
+    if (!rt_camera_frame_d(cam, f, r, u))
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
-                             "camera: up is zero or parallel to the view direction");
+                             "camera: up is zero or (nearly) parallel to the view direction");
     if (!(cam->hfov_degrees > 0.0f && cam->hfov_degrees < 180.0f))
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                              "camera: field of view %g is outside (0, 180) degrees",

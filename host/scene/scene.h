@@ -79,6 +79,15 @@ __attribute__((format(printf, 3, 4)))
 rt_status
 rt_scene_fail(rt_scene *scene, rt_status status, const char *fmt, ...);
 
+/* The camera's orthonormal frame in double, as the layout stores it
+ * (host/layout/flatten.c): forward f, right r = f x up / |f x up|, up u =
+ * r x f. Returns 0, leaving the outputs undefined, when the frame is not
+ * finite or up is within RT_CAMERA_MIN_SINE of the view direction (sine of
+ * the angle): rt_camera_set refuses such cameras, so every accepted camera
+ * gives finite rays. */
+#define RT_CAMERA_MIN_SINE 1e-6
+int rt_camera_frame_d(const rt_camera *c, double f[3], double r[3], double u[3]);
+
 /* Total triangles over the selected keyframe of every object. */
 uint64_t rt_scene_triangle_count(const rt_scene *scene);
 
