@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/file_read.h"
 #include "cli_util.h"
 #include "commands.h"
 #include "rt_shared.h"
@@ -44,16 +45,25 @@ static const char *const tri_test_names[] = {"watertight", "mt", "pluecker", "ba
 /* Reads the rays; on a bad line prints file:line and returns 0. */
 static int read_rays(const char *path, int offset, rt_ray **out, size_t *count) {
     const int want = offset ? 11 : 8;
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        cli_error("trace", "%s: cannot open: %s", path, strerror(errno));
+    /* The whole file, a regular one of at most RT_MAX_RAY_FILE_BYTES. */
+    char *text;
+    size_t text_len;
+    rt_error rerr;
+    if (rt_read_file(path, "ray file", RT_MAX_RAY_FILE_BYTES, &text, &text_len, &rerr) != RT_OK) {
+        cli_error("trace", "%s", rerr.message);
+        return 0;
+    }
+    FILE *f = text_len ? fmemopen(text, text_len, "r") : NULL;
+    if (text_len && !f) {
+        cli_error("trace", "%s: cannot read: %s", path, strerror(errno));
+        free(text);
         return 0;
     }
     size_t n = 0, cap = 1024;
     rt_ray *rays = malloc(cap * sizeof *rays);
     char line[4096];
     int lineno = 0, ok = rays != NULL;
-    while (ok && fgets(line, sizeof line, f)) {
+    while (ok && f && fgets(line, sizeof line, f)) {
         lineno++;
         char *p = line;
         while (*p == ' ' || *p == '\t') p++;
@@ -96,7 +106,8 @@ static int read_rays(const char *path, int offset, rt_ray **out, size_t *count) 
             rt_offset_point(v, v + 8, d >= 0.0f ? 1.0f : -1.0f, r->org);
         }
     }
-    fclose(f);
+    if (f) fclose(f);
+    free(text);
     if (!ok) {
         free(rays);
         return 0;

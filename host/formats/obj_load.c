@@ -14,6 +14,7 @@
 #include <sys/stat.h>
 
 #include "base/error.h"
+#include "base/file_read.h"
 #include "formats/obj_internal.h"
 #include "formats/parse_number.h"
 
@@ -564,57 +565,11 @@ rt_status rt_obj_parse(const char *text, size_t len, const char *name, const cha
     return st;
 }
 
-rt_status rt_read_text_file(const char *path, char **text, size_t *len, rt_error *err) {
-    *text = NULL;
-    *len = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f) return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot open: %s", strerror(errno));
-    struct stat info;
-    size_t cap = 1 << 16;
-    if (fstat(fileno(f), &info) == 0) {
-        if (S_ISDIR(info.st_mode)) {
-            fclose(f);
-            return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot read: %s", strerror(EISDIR));
-        }
-        if (S_ISREG(info.st_mode) && info.st_size > 0 && (uint64_t)info.st_size < SIZE_MAX - 1)
-            cap = (size_t)info.st_size + 1;
-    }
-    char *buf = malloc(cap);
-    size_t n = 0;
-    while (buf) {
-        n += fread(buf + n, 1, cap - n, f);
-        if (n < cap) break; /* end of file or an error */
-        char *grown = cap <= SIZE_MAX / 2 ? realloc(buf, cap * 2) : NULL;
-        if (!grown) {
-            free(buf);
-            buf = NULL;
-            break;
-        }
-        buf = grown;
-        cap *= 2;
-    }
-    if (!buf) {
-        fclose(f);
-        return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0, "out of memory reading it");
-    }
-    if (ferror(f)) {
-        int e = errno;
-        free(buf);
-        fclose(f);
-        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot read: %s", strerror(e));
-    }
-    fclose(f);
-    buf[n] = '\0';
-    *text = buf;
-    *len = n;
-    return RT_OK;
-}
-
 rt_status rt_obj_load(const char *path, rt_obj_mesh *out, rt_error *err) {
     memset(out, 0, sizeof *out);
     char *text;
     size_t len;
-    rt_status st = rt_read_text_file(path, &text, &len, err);
+    rt_status st = rt_read_file(path, "OBJ file", RT_MAX_OBJ_FILE_BYTES, &text, &len, err);
     if (st != RT_OK) return st;
     /* mtllib names are relative to the OBJ's folder. */
     const char *slash = strrchr(path, '/');
