@@ -73,6 +73,26 @@ expect 2 'bad.txt:2: expected 8 numbers' -- "$RTCL" trace builtin:cornell --rays
 printf '0 0 0 1 0 0 0 inf x\n' > "$tmp/bad2.txt"
 expect 2 'bad2.txt:1: .*found: x' -- "$RTCL" trace builtin:cornell --rays "$tmp/bad2.txt" --out "$tmp/x.txt"
 expect 2 'cannot open' -- "$RTCL" trace builtin:cornell --rays "$tmp/missing.txt" --out "$tmp/x.txt"
+# NUL bytes (a file of them, one inside a line, a binary file) are errors
+# with file:line, not blank lines; a directory is a read error, not zero
+# rays. Under a timeout: a file of NULs used to hang.
+head -c 100000 /dev/zero > "$tmp/nul.txt"
+expect 2 'nul.txt:1: a NUL byte' -- timeout 20 "$RTCL" trace builtin:cornell --rays "$tmp/nul.txt" --out "$tmp/x.txt"
+printf '0 1.5 3 0 0 -1 0 inf\n0 1.5 3 0 0\000 -1 0 inf\n' > "$tmp/nul2.txt"
+expect 2 'nul2.txt:2: a NUL byte' -- timeout 20 "$RTCL" trace builtin:cornell --rays "$tmp/nul2.txt" --out "$tmp/x.txt"
+expect 2 'rtcl:1: a NUL byte' -- timeout 20 "$RTCL" trace builtin:cornell --rays "$RTCL" --out "$tmp/x.txt"
+mkdir "$tmp/raydir"
+expect 2 'raydir: .*directory' -- timeout 20 "$RTCL" trace builtin:cornell --rays "$tmp/raydir" --out "$tmp/x.txt"
+# Lines longer than any buffer: one line is one ray, whatever its length.
+{ printf '%5000s' ''; printf '0 1.5 3 0 0 -1 0 inf\n'; printf '0 1.5 3 0 0 -1 0 4'; printf '%6000s\n' ''; } > "$tmp/long.txt"
+expect 0 '' -- "$RTCL" trace builtin:cornell --rays "$tmp/long.txt" --out "$tmp/long_hits.txt"
+checks=$((checks + 1))
+if [ "$(cut -d' ' -f1,2 "$tmp/long_hits.txt" | tr '\n' ,)" != "1 4,1 4," ]; then
+    echo "FAIL: long lines:"; cat "$tmp/long_hits.txt"; fails=$((fails + 1))
+fi
+# Two rays' numbers on one long line are an error, not two rays.
+{ printf '0 1.5 3 0 0 -1 0 inf'; printf '%5000s' ''; printf '0 1.5 3 0 0 -1 0 inf\n'; } > "$tmp/two.txt"
+expect 2 'two.txt:1: expected 8 numbers .*found: ' -- "$RTCL" trace builtin:cornell --rays "$tmp/two.txt" --out "$tmp/x.txt"
 expect 2 "unknown or unavailable backend 'warp'" -- "$RTCL" trace builtin:cornell --rays "$rays" --out "$tmp/x.txt" --backend warp
 expect 2 'need SCENE' -- "$RTCL" trace builtin:cornell --rays "$rays"
 expect 0 'usage: rtcl trace' -- "$RTCL" trace --help
