@@ -136,6 +136,26 @@ rt_status rt_mesh_add_triangles(rt_scene *scene, uint32_t mesh_id, const float *
     if ((vertex_count && !positions) || (triangle_count && !indices))
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "null positions or indices");
     rt_mesh_data *m = &scene->meshes[mesh_id];
+    /* The limits (docs/ROBUSTNESS.md, "Limits"), checked before anything is
+     * read or allocated. */
+    if ((uint64_t)m->triangle_count + triangle_count > RT_MAX_MESH_TRIANGLES)
+        return rt_scene_fail(scene, RT_ERROR_UNSUPPORTED,
+                             "mesh %u: %llu triangles exceed the limit of %llu triangles per mesh",
+                             mesh_id, (unsigned long long)m->triangle_count + triangle_count,
+                             (unsigned long long)RT_MAX_MESH_TRIANGLES);
+    if ((uint64_t)m->vertex_count + vertex_count > RT_MAX_MESH_VERTICES)
+        return rt_scene_fail(scene, RT_ERROR_UNSUPPORTED,
+                             "mesh %u: %llu vertices exceed the limit of %llu vertices per mesh",
+                             mesh_id, (unsigned long long)m->vertex_count + vertex_count,
+                             (unsigned long long)RT_MAX_MESH_VERTICES);
+    uint64_t total = triangle_count;
+    for (uint32_t i = 0; i < scene->mesh_count; i++) total += scene->meshes[i].triangle_count;
+    if (total > RT_MAX_SCENE_TRIANGLES)
+        return rt_scene_fail(scene, RT_ERROR_UNSUPPORTED,
+                             "mesh %u: the scene's meshes would hold %llu triangles, more than "
+                             "the limit of %llu",
+                             mesh_id, (unsigned long long)total,
+                             (unsigned long long)RT_MAX_SCENE_TRIANGLES);
     if (m->vertex_count && ((m->normals != NULL) != (normals != NULL)))
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                              "mesh %u: normals must be given for all vertices or for none",
@@ -414,10 +434,17 @@ rt_status rt_camera_set(rt_scene *scene, const rt_camera *cam) {
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                              "camera: field of view %g is outside (0, 180) degrees",
                              (double)cam->hfov_degrees);
-    if (cam->width < 1 || cam->height < 1 || cam->width > 32768 || cam->height > 32768)
+    if (cam->width < 1 || cam->height < 1 || cam->width > RT_MAX_IMAGE_SIDE ||
+        cam->height > RT_MAX_IMAGE_SIDE)
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
-                             "camera: resolution %dx%d is outside 1..32768", cam->width,
-                             cam->height);
+                             "camera: resolution %dx%d is outside 1..%d (the image size limit)",
+                             cam->width, cam->height, RT_MAX_IMAGE_SIDE);
+    /* The largest framebuffer (4 float channels) must fit in size_t: true
+     * on 64-bit machines (16 GiB), checked for 32-bit ones. */
+    if ((uint64_t)cam->width * (uint64_t)cam->height * 4u * sizeof(float) > (uint64_t)SIZE_MAX)
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "camera: a %dx%d image does not fit in this machine's memory space",
+                             cam->width, cam->height);
     scene->camera = *cam;
     scene->has_camera = 1;
     scene->version++;
