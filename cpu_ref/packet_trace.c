@@ -18,6 +18,7 @@
  * This file is compiled once per instruction set (RT_PK_ISA names the
  * variant; cpu_ref/packet_dispatch.c picks one at run time); the variants
  * differ in register width only, never in results. */
+#include <assert.h>
 #include <string.h>
 
 #include "packet_trace.h"
@@ -263,6 +264,16 @@ typedef rt_v8i ck_i;
 #define ck_bits  rt_v8bits
 #endif
 
+/* The slots of n that hold a child. An empty slot's inverted box is missed
+ * by every ray with numbers in it, but a NaN (a NaN ray, or 0 * inf where a
+ * direction is infinite) passes any slab test, as it passes the oracle's:
+ * the slot itself must never be entered (its ref is no node). */
+static inline uint32_t real_children(const rt_pk_node *n) {
+    uint32_t m = 0;
+    for (int s = 0; s < RT_PK_WIDTH; s++) m |= (uint32_t)(n->ref[s] != RT_PK_NO_CHILD) << s;
+    return m;
+}
+
 /* Interval arithmetic over the whole packet (Wald, Boulos and Shirley 2007),
  * for all children of a wide node at once: bit c is set unless no
  * lane's rt_box_test can pass for child c. Every lane computes t0 =
@@ -300,7 +311,7 @@ static inline uint32_t pk_ia_children(const rt_pk_node *n, const pk_geom *p, flo
     leave = leave * (ck_f)(((leave < zero) & (ck_i)neg) | (~(leave < zero) & (ck_i)pos));
     leave = ck_min(leave, ck_splat(hi_max));
     *enter_out = enter;
-    return ck_bits(enter <= leave);
+    return ck_bits(enter <= leave) & real_children(n);
 }
 
 /* ---- box test: rt_box_test on the lanes of group g ------------------------ */
@@ -335,8 +346,14 @@ static inline uint32_t pk_box(const rt_pk_node *n, int c, const pk_geom *p, cons
 /* The greatest of hi (hi only shrinks, so a stale value is merely loose). */
 static inline float hi_max(pk_state *st) {
     if (st->hi_stale) {
-        rt_vf m = st->hi[0];
-        for (int g = 1; g < G; g++) m = rt_vmax_of(st->hi[g], m);
+        /* A NaN hi (tmax NaN or -inf: rt_box_hi(-inf) = -inf + inf) limits
+         * nothing in the oracle's box test ('tmax < hi ? tmax : hi' keeps
+         * the box's hi): it counts as +inf here, or one such lane would cull
+         * every node for the whole packet. */
+        const rt_vf inf = rt_vsplat(RT_INF);
+        rt_vf m = rt_vsplat(-RT_INF);
+        for (int g = 0; g < G; g++)
+            m = rt_vmax_of(rt_vsel(st->hi[g] == st->hi[g], st->hi[g], inf), m);
         float x = m[0];
         for (int i = 1; i < N; i++) x = m[i] > x ? m[i] : x;
         st->hi_max = x;
@@ -509,6 +526,16 @@ static inline void prefetch_child(const rt_pk_node *nodes, const rt_pk_node *ch,
     __builtin_prefetch((const char *)&nodes[ch->ref[s]] + 64);
 }
 
+/* The traversal stacks below hold the entered siblings of the nodes on the
+ * path from the entry node: at most RT_PK_WIDTH - 1 per wide level. Only
+ * real children are ever entered (real_children: a NaN lane passes every
+ * slab test, an empty slot's included), so the path follows the wide tree,
+ * whose levels are at most the binary tree's (each wide node collapses one
+ * binary level or more) plus the entry node, which has one child and pushes
+ * nothing; host/layout/flatten.c rejects binary trees deeper than
+ * RT_STACK_SIZE. Hence (RT_PK_WIDTH - 1) * RT_STACK_SIZE + 1 entries suffice
+ * for any ray, NaN and infinite ones included (asserted in debug builds). */
+
 /* A set of groups: bit g is group g. */
 typedef uint32_t pk_groups;
 
@@ -566,8 +593,9 @@ static void pk_bvh_group(pk_state *st, const pk_geom *p, rt_u32 entry, int slot,
             rt_vf ts[RT_PK_WIDTH];
             int kids = 0;
             for (int s = 0; s < RT_PK_WIDTH; s++) {
-                kids += ch->ref[s] != RT_PK_NO_CHILD;
-                ms[s] = pk_box(ch, s, p, st, g, &ts[s]) & lanes;
+                const int real = ch->ref[s] != RT_PK_NO_CHILD;
+                kids += real;
+                ms[s] = real ? pk_box(ch, s, p, st, g, &ts[s]) & lanes : 0u;
                 entered |= (uint32_t)(ms[s] != 0) << s;
             }
             count_boxes(st, g, lanes, kids);
@@ -588,6 +616,7 @@ static void pk_bvh_group(pk_state *st, const pk_geom *p, rt_u32 entry, int slot,
                 key[i] = k;
             }
             if (hits) {
+                assert(sp + hits - 1 <= (int)(sizeof stack / sizeof stack[0]));
                 for (int i = hits - 1; i > 0; i--) stack[sp++] = hit[i];
                 cur = hit[0];
                 continue;
@@ -596,7 +625,9 @@ static void pk_bvh_group(pk_state *st, const pk_geom *p, rt_u32 entry, int slot,
         cur.mask = 0;
         while (!cur.mask && sp > 0) {
             cur = stack[--sp];
-            cur.mask &= st->alive[g] & rt_vbits(cur.tnear <= st->hi[g]);
+            /* The lanes whose box test could still pass (a NaN hi limits
+             * nothing, as in rt_box_test). */
+            cur.mask &= st->alive[g] & ~rt_vbits(cur.tnear > st->hi[g]);
         }
     }
 }
@@ -687,6 +718,7 @@ static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst,
                 hit[i] = (item){en[s], child, s};
             }
             if (hits) {
+                assert(sp + hits - 1 <= (int)(sizeof stack / sizeof stack[0]));
                 for (int i = hits - 1; i > 0; i--) stack[sp++] = hit[i];
                 cur = hit[0];
                 continue;

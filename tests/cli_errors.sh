@@ -46,4 +46,15 @@ expect 0 "opencl build exact \(no extra options\)" -- "$RTCL" info "$tmp/tri.obj
 expect 0 "opencl build NOT exact: extra options '-cl-mad-enable'" -- "$RTCL" info "$tmp/tri.obj" \
     --cl-options -cl-mad-enable
 expect 2 "option --cl-options needs a value" -- "$RTCL" info "$tmp/tri.obj" --cl-options
+# A camera whose up is exactly opposite the view direction (the float check
+# of old passed it; the layout's frame was NaN): refused with file:line:column.
+printf '{"camera": {"position": [0, 0, 0], "look_at": [-0.5, -1.5, -2.79999995],
+ "up": [1, 3, 5.5999999], "fov": 60, "width": 32, "height": 32},
+ "lights": [{"position": [0, 2, 0], "color": [1, 1, 1]}],
+ "meshes": {"t": {"file": "tri.obj"}}, "objects": [{"mesh": "t"}]}\n' > "$tmp/upbad.json"
+printf 'v -1 -1 -3\nv 1 -1 -3\nv 0 1 -3\nf 1 2 3\n' > "$tmp/tri.obj"
+for b in cpu packet; do
+    expect 2 'upbad.json:1:[0-9]+: .*up is zero or \(nearly\) parallel to the view direction' -- \
+        "$RTCL" render "$tmp/upbad.json" -o "$tmp/upbad.png" --backend $b
+done
 finish

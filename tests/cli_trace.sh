@@ -35,6 +35,32 @@ checks=$((checks + 1))
 if ! cmp -s "$tmp/cpu.txt" "$tmp/packet.txt"; then
     echo "FAIL: packet and cpu hits differ"; fails=$((fails + 1))
 fi
+# A ray with tmax = -inf (or NaN, or an inverted range) in the packet of
+# valid ones (one origin, directions of one sign: the packet-wide interval
+# test runs) must not hide their hits, at t = 0 or beyond; in each
+# instruction-set build of the packet tracer.
+{
+    printf '0 1.5 -1 0.001 0.001 -1 0 -inf\n0 1.5 -1 0.001 0.001 -1 0 inf\n'
+    printf '0.2 1.0 -1 0.1 0.1 -1 0 inf\n0 1.5 3 0.001 0.001 -1 5 1\n'
+    for i in $(seq 60); do printf '0 1.5 3 0.00%d 0.001 -1 0 inf\n' $((i % 9 + 1)); done
+    # a second packet: NaN and -inf range ends
+    printf '0 1.5 3 0.001 0.001 -1 0 nan\n0 1.5 3 0.002 0.001 -1 -inf -inf\n'
+    printf '0 1.5 3 0.001 0.002 -1 0 inf\n'
+} > "$tmp/odd.txt"
+expect 0 '' -- "$RTCL" trace builtin:cornell --rays "$tmp/odd.txt" --out "$tmp/odd_cpu.txt"
+for isa in generic avx2 avx512; do
+    RTCL_PACKET_ISA=$isa expect 0 '' -- "$RTCL" trace builtin:cornell --rays "$tmp/odd.txt" \
+        --out "$tmp/odd_packet.txt" --backend packet
+    checks=$((checks + 1))
+    if ! cmp -s "$tmp/odd_cpu.txt" "$tmp/odd_packet.txt"; then
+        echo "FAIL: packet ($isa) differs from cpu with odd rays in the packet:"
+        paste "$tmp/odd_cpu.txt" "$tmp/odd_packet.txt"; fails=$((fails + 1))
+    fi
+done
+if [ "$(grep -c '^1 ' "$tmp/odd_cpu.txt")" != 63 ]; then
+    echo "FAIL: expected 63 hits among the odd rays:"; cat "$tmp/odd_cpu.txt"; fails=$((fails + 1))
+fi
+
 # Any-hit agrees with closest hit on whether a ray hits.
 expect 0 '' -- "$RTCL" trace builtin:cornell --rays "$tmp/random.txt" --out "$tmp/any.txt" --any-hit
 checks=$((checks + 1))
@@ -47,6 +73,26 @@ expect 2 'bad.txt:2: expected 8 numbers' -- "$RTCL" trace builtin:cornell --rays
 printf '0 0 0 1 0 0 0 inf x\n' > "$tmp/bad2.txt"
 expect 2 'bad2.txt:1: .*found: x' -- "$RTCL" trace builtin:cornell --rays "$tmp/bad2.txt" --out "$tmp/x.txt"
 expect 2 'cannot open' -- "$RTCL" trace builtin:cornell --rays "$tmp/missing.txt" --out "$tmp/x.txt"
+# NUL bytes (a file of them, one inside a line, a binary file) are errors
+# with file:line, not blank lines; a directory is a read error, not zero
+# rays. Under a timeout: a file of NULs used to hang.
+head -c 100000 /dev/zero > "$tmp/nul.txt"
+expect 2 'nul.txt:1: a NUL byte' -- timeout 20 "$RTCL" trace builtin:cornell --rays "$tmp/nul.txt" --out "$tmp/x.txt"
+printf '0 1.5 3 0 0 -1 0 inf\n0 1.5 3 0 0\000 -1 0 inf\n' > "$tmp/nul2.txt"
+expect 2 'nul2.txt:2: a NUL byte' -- timeout 20 "$RTCL" trace builtin:cornell --rays "$tmp/nul2.txt" --out "$tmp/x.txt"
+expect 2 'rtcl:1: a NUL byte' -- timeout 20 "$RTCL" trace builtin:cornell --rays "$RTCL" --out "$tmp/x.txt"
+mkdir "$tmp/raydir"
+expect 2 'raydir: .*directory' -- timeout 20 "$RTCL" trace builtin:cornell --rays "$tmp/raydir" --out "$tmp/x.txt"
+# Lines longer than any buffer: one line is one ray, whatever its length.
+{ printf '%5000s' ''; printf '0 1.5 3 0 0 -1 0 inf\n'; printf '0 1.5 3 0 0 -1 0 4'; printf '%6000s\n' ''; } > "$tmp/long.txt"
+expect 0 '' -- "$RTCL" trace builtin:cornell --rays "$tmp/long.txt" --out "$tmp/long_hits.txt"
+checks=$((checks + 1))
+if [ "$(cut -d' ' -f1,2 "$tmp/long_hits.txt" | tr '\n' ,)" != "1 4,1 4," ]; then
+    echo "FAIL: long lines:"; cat "$tmp/long_hits.txt"; fails=$((fails + 1))
+fi
+# Two rays' numbers on one long line are an error, not two rays.
+{ printf '0 1.5 3 0 0 -1 0 inf'; printf '%5000s' ''; printf '0 1.5 3 0 0 -1 0 inf\n'; } > "$tmp/two.txt"
+expect 2 'two.txt:1: expected 8 numbers .*found: ' -- "$RTCL" trace builtin:cornell --rays "$tmp/two.txt" --out "$tmp/x.txt"
 expect 2 "unknown backend 'warp'" -- "$RTCL" trace builtin:cornell --rays "$rays" --out "$tmp/x.txt" --backend warp
 expect 2 'need SCENE' -- "$RTCL" trace builtin:cornell --rays "$rays"
 expect 0 'usage: rtcl trace' -- "$RTCL" trace --help

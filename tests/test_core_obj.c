@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/file_read.h"
 #include "check.h"
 #include "formats/obj_load.h"
 
@@ -260,12 +261,27 @@ static void test_file_errors(void) {
     rt_error err;
     CHECK(rt_obj_load("/nonexistent/folder/none.obj", &m, &err) == RT_ERROR_IO);
     CHECK(mesh_is_empty(&m));
-    CHECK_CONTAINS(err.message, "/nonexistent/folder/none.obj: cannot open: ");
+    CHECK_CONTAINS(err.message, "/nonexistent/folder/none.obj: cannot open the OBJ file: ");
     CHECK_CONTAINS(err.message, "No such file or directory");
 
     CHECK(rt_obj_load("/tmp", &m, &err) == RT_ERROR_IO);
     CHECK(mesh_is_empty(&m));
-    CHECK_CONTAINS(err.message, "/tmp: cannot read: Is a directory");
+    CHECK_CONTAINS(err.message, "/tmp: cannot read the OBJ file: it is a directory");
+
+    /* The reader's size limit is a parameter: exactly at it is read, one
+     * byte over is refused before reading (RT_ERROR_UNSUPPORTED). */
+    const char *hundred = test_write_temp(
+        "hundred.txt", "0123456789012345678901234567890123456789012345678901234567890123456789"
+                       "01234567890123456789012345678\n");
+    char *text = NULL;
+    size_t len = 0;
+    CHECK(rt_read_file(hundred, "test file", 100, &text, &len, &err) == RT_OK);
+    CHECK(text && len == 100 && text[99] == '\n' && text[100] == '\0');
+    free(text);
+    CHECK(rt_read_file(hundred, "test file", 99, &text, &len, &err) == RT_ERROR_UNSUPPORTED);
+    CHECK(text == NULL);
+    CHECK_CONTAINS(err.message,
+                   "hundred.txt: the test file is 100 bytes, more than the limit of 99");
 
     const char *path = test_write_temp("bad_face.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n");
     CHECK(rt_obj_load(path, &m, &err) == RT_ERROR_PARSE);

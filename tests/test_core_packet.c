@@ -3,17 +3,29 @@
  * for the image (Whitted and direct-only) and the depth, primitive, instance
  * and normal AOVs, with every instruction-set build of the packet tracer the
  * CPU runs; the oracle's image does not depend on the thread count. Also
- * runs under qemu-aarch64, where the packet tracer is NEON. */
+ * runs under qemu-aarch64, where the packet tracer is NEON.
+ *
+ * rt_pk_trace itself is held to rt_trace lane by lane for packets that mix
+ * valid rays with any ray the API lets through: NaN and infinite origins,
+ * directions and range ends, zero directions, empty and inverted ranges,
+ * tmax = -inf, in every lane position (check_odd_lanes); on the built-in
+ * scenes and on a finely tessellated surface far from the origin hit at tiny
+ * t (check_far_surface). */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
 #include "cpu_render.h"
+#include "oracle_util.h"
 #include "packet_trace.h"
+#include "layout/flat.h"
+#include "scene/scene.h"
 #include "rt.h"
 #include "scene/scene_builtin.h"
 
-/* The packet renderers of the instruction-set build under test. */
+/* The instruction-set build under test, and its packet renderers. */
+static const rt_pk_variant *cur_isa;
 static rt_renderer *packet_renderer[2]; /* 3 threads, 2 threads */
 
 /* "cpu" on threads threads, or "packet" of the build under test. */
@@ -92,6 +104,231 @@ static void check_scenes(const char *isa) {
     }
 }
 
+/* Every lane of the packet against rt_trace on the same ray, closest hit and
+ * any hit; returns the number of lanes that differ. */
+static int compare_packet(const rt_scene_view *v, const rt_pk_wide *w, const rt_pk_rays *rays,
+                          const char *what) {
+    int bad = 0;
+    for (int any = 0; any < 2; any++) {
+        rt_pk_hits ph;
+        rt_pk_counts pc;
+        memset(&pc, 0, sizeof pc);
+        rt_pk_trace(cur_isa, v, w, rays, any, &ph, &pc);
+        for (int l = 0; l < RT_PK_LANES; l++) {
+            if (!((rays->valid >> l) & 1u)) continue;
+            rt_ray_d r;
+            rt_hit_d want, got;
+            rt_counters c = {0, 0, 0};
+            rt_pk_get_ray(rays, l, &r);
+            rt_trace(v, &r, any, &want, &c);
+            rt_pk_get_hit(&ph, l, &got);
+            int ok = any ? (got.prim == RT_NO_HIT) == (want.prim == RT_NO_HIT)
+                         : oracle_same_hit(&got, &want);
+            if (!ok && bad++ < 5)
+                fprintf(stderr,
+                        "%s (%s, %s): lane %d org %g %g %g dir %g %g %g t [%g, %g]: packet t %.9g "
+                        "prim %d, cpu t %.9g prim %d\n",
+                        what, rt_pk_variant_name(cur_isa), any ? "any hit" : "closest", l,
+                        (double)r.org[0], (double)r.org[1], (double)r.org[2], (double)r.dir[0],
+                        (double)r.dir[1], (double)r.dir[2], (double)r.tmin, (double)r.tmax,
+                        (double)got.t, (int)got.prim, (double)want.t, (int)want.prim);
+        }
+    }
+    return bad;
+}
+
+/* Ray k of the odd kinds: each breaks some packet-wide bound. */
+static void odd_ray(int k, const rt_ray_d *valid, rt_ray_d *r) {
+    const float nan = NAN, inf = INFINITY;
+    *r = *valid;
+    switch (k % 14) {
+    case 0:
+        r->tmax = -inf;
+        break;
+    case 1:
+        r->tmax = nan;
+        break;
+    case 2:
+        r->tmin = nan;
+        break;
+    case 3:
+        r->tmin = inf;
+        break;
+    case 4:
+        r->tmin = -inf;
+        break;
+    case 5:
+        r->tmin = 2.0f, r->tmax = 1.0f;
+        break; /* inverted */
+    case 6:
+        r->tmin = r->tmax = 0.5f;
+        break; /* empty but for t = 0.5 */
+    case 7:
+        r->dir[0] = r->dir[1] = r->dir[2] = nan;
+        break;
+    case 8:
+        r->org[1] = nan;
+        break;
+    case 9:
+        r->dir[2] = inf;
+        break;
+    case 10:
+        r->org[0] = -inf;
+        break;
+    case 11:
+        r->dir[0] = r->dir[1] = r->dir[2] = 0.0f;
+        break;
+    case 12:
+        r->dir[0] = 0.0f, r->dir[1] = -0.0f;
+        break; /* on the slab planes */
+    default:
+        r->tmin = -inf, r->tmax = -inf;
+        break;
+    }
+}
+
+/* Packets of coherent valid rays (one origin, directions of one sign per
+ * axis: the packet-wide interval test runs) with 1, 2 or many odd lanes at
+ * every position, lane 0 included. */
+static void check_odd_lanes(const rt_scene_view *v, const rt_pk_wide *w, const char *name) {
+    int bad = 0, packets = 0;
+    oracle_rng = 777;
+    for (int pkt = 0; pkt < 48 && !bad; pkt++) {
+        rt_pk_rays rays;
+        rt_ray_d base;
+        rt_camera_ray(v->hdr, (int)(oracle_rnd() * (float)v->hdr->width),
+                      (int)(oracle_rnd() * (float)v->hdr->height), &base);
+        for (int l = 0; l < RT_PK_LANES; l++) {
+            rt_ray_d r = base;
+            for (int k = 0; k < 3; k++) r.dir[k] += 0.01f * (oracle_rnd() - 0.5f);
+            if (pkt % 3 == 1) /* secondary-like: different origins */
+                for (int k = 0; k < 3; k++) r.org[k] += 0.2f * oracle_rnd();
+            rt_pk_set_ray(&rays, l, &r);
+        }
+        rays.valid = pkt % 4 == 3 ? RT_PK_ALL & ~(rt_pk_mask)0x5 : RT_PK_ALL;
+        const int odd = pkt % 5 == 4 ? RT_PK_LANES / 2 : 1 + pkt % 2;
+        for (int i = 0; i < odd; i++) {
+            int l = (pkt * 7 + i * 13) % RT_PK_LANES;
+            if (i == 0) l = (pkt / 2) % 8 * 8 % RT_PK_LANES; /* lane 0 and each vector's first */
+            rt_ray_d r, o;
+            rt_pk_get_ray(&rays, l, &r);
+            odd_ray(pkt + i, &r, &o);
+            rt_pk_set_ray(&rays, l, &o);
+            rays.valid |= (rt_pk_mask)1 << l;
+        }
+        bad += compare_packet(v, w, &rays, name);
+        packets++;
+    }
+    CHECK_MSG(bad == 0, "%s: %d lanes differ from cpu in packets with odd lanes (%s)", name, bad,
+              rt_pk_variant_name(cur_isa));
+    CHECK(packets > 0);
+}
+
+static void check_odd_lanes_scene(rt_scene *s, const char *name) {
+    const rt_flat *flat = test_layout(s, 1);
+    if (!flat) return;
+    rt_pk_wide w;
+    CHECK(rt_pk_wide_build(flat, &w) == RT_OK);
+    rt_scene_view v = rt_flat_view(flat);
+    check_odd_lanes(&v, &w, name);
+    rt_pk_wide_free(&w);
+}
+
+/* A finely tessellated bumpy surface about 1500 units from the origin, and
+ * packets of bounce-like rays that leave it from nearby points at tiny t
+ * (the next triangle a fraction of a cell away). */
+static void check_far_surface(void) {
+    enum { CELLS = 96 };
+    const float base[3] = {1500.0f, 1200.0f, -1300.0f}, cell = 0.25f;
+    float *pos = malloc(sizeof(float) * 3 * (CELLS + 1) * (CELLS + 1));
+    uint32_t *idx = malloc(sizeof(uint32_t) * 6 * CELLS * CELLS);
+    if (!pos || !idx) {
+        CHECK(0);
+        free(pos), free(idx);
+        return;
+    }
+    oracle_rng = 4242;
+    for (int j = 0; j <= CELLS; j++)
+        for (int i = 0; i <= CELLS; i++) {
+            float *p = pos + 3 * (j * (CELLS + 1) + i);
+            p[0] = base[0] + cell * (float)i;
+            p[1] = base[1] + 0.1f * cell * (oracle_rnd() - 0.5f);
+            p[2] = base[2] + cell * (float)j;
+        }
+    for (int j = 0, t = 0; j < CELLS; j++)
+        for (int i = 0; i < CELLS; i++, t += 6) {
+            uint32_t a = (uint32_t)(j * (CELLS + 1) + i), b = a + 1, c = a + CELLS + 1, d = c + 1;
+            const uint32_t q[6] = {a, b, d, a, d, c};
+            memcpy(idx + t, q, sizeof q);
+        }
+    rt_scene *s;
+    uint32_t mesh, mat, obj;
+    rt_material m = rt_material_default();
+    rt_camera cam = {{base[0], base[1] + 5.0f, base[2] - 5.0f},
+                     {base[0] + 12.0f, base[1], base[2] + 12.0f},
+                     {0, 1, 0},
+                     60.0f,
+                     64,
+                     64};
+    CHECK(rt_scene_create(&s) == RT_OK);
+    CHECK(rt_mesh_create(s, &mesh) == RT_OK);
+    CHECK(rt_mesh_add_triangles(s, mesh, pos, NULL, (CELLS + 1) * (CELLS + 1), idx,
+                                2 * CELLS * CELLS) == RT_OK);
+    CHECK(rt_material_add(s, &m, &mat) == RT_OK);
+    CHECK(rt_object_create(s, mat, &obj) == RT_OK);
+    CHECK(rt_object_add_mesh(s, obj, mesh) == RT_OK);
+    CHECK(rt_camera_set(s, &cam) == RT_OK);
+    const rt_flat *flat = test_layout(s, 1);
+    if (!flat) {
+        rt_scene_destroy(s);
+        free(pos);
+        free(idx);
+        return;
+    }
+    rt_pk_wide w;
+    CHECK(rt_pk_wide_build(flat, &w) == RT_OK);
+    rt_scene_view v = rt_flat_view(flat);
+    int bad = 0, tiny = 0;
+    for (int pkt = 0; pkt < 400; pkt++) {
+        rt_pk_rays rays;
+        /* A point of a random cell, and a shared direction nearly along the
+         * surface (one sign per axis for the whole packet), downwards. */
+        const int ci = 2 + (int)(oracle_rnd() * (CELLS - 4)),
+                  cj = 2 + (int)(oracle_rnd() * (CELLS - 4));
+        float d0[3] = {oracle_rnd() - 0.5f, -0.02f - 0.3f * oracle_rnd(), oracle_rnd() - 0.5f};
+        for (int l = 0; l < RT_PK_LANES; l++) {
+            const float fu = oracle_rnd(), fv = oracle_rnd();
+            const float *p00 = pos + 3 * (cj * (CELLS + 1) + ci);
+            const float *p11 = pos + 3 * ((cj + 1) * (CELLS + 1) + ci + 1);
+            rt_ray_d r;
+            for (int k = 0; k < 3; k++) {
+                r.org[k] = p00[k] + (fu > fv ? fu : fv) * 0.5f * (p11[k] - p00[k]);
+                r.dir[k] = d0[k] * (1.0f + 0.02f * (oracle_rnd() - 0.5f));
+            }
+            r.org[0] = p00[0] + fu * cell, r.org[2] = p00[2] + fv * cell;
+            r.org[1] += 0.002f + 0.01f * oracle_rnd(); /* just above: t is tiny */
+            r.tmin = 0.0f;
+            r.tmax = pkt % 7 == 6 && l == 0 ? -INFINITY : INFINITY;
+            rt_pk_set_ray(&rays, l, &r);
+        }
+        rays.valid = RT_PK_ALL;
+        bad += compare_packet(&v, &w, &rays, "far surface");
+        rt_pk_hits ph;
+        rt_pk_counts pc;
+        memset(&pc, 0, sizeof pc);
+        rt_pk_trace(cur_isa, &v, &w, &rays, 0, &ph, &pc);
+        for (int l = 0; l < RT_PK_LANES; l++) tiny += ph.prim[l] != RT_NO_HIT && ph.t[l] < 0.1f;
+    }
+    CHECK_MSG(bad == 0, "far surface: %d lanes differ from cpu (%s)", bad,
+              rt_pk_variant_name(cur_isa));
+    CHECK_MSG(tiny > 1000, "far surface: only %d hits at t < 0.1", tiny);
+    check_odd_lanes(&v, &w, "far surface");
+    rt_pk_wide_free(&w);
+    rt_scene_destroy(s);
+    free(pos);
+    free(idx);
+}
+
 int main(void) {
     /* Each instruction-set build of the packet tracer this CPU runs. */
     int tested = 0;
@@ -103,6 +340,7 @@ int main(void) {
         rt_renderer_options ro = rt_renderer_options_default();
         ro.backend = "packet";
         ro.packet_isa = rt_pk_isa_name(k);
+        cur_isa = rt_pk_variant_find(ro.packet_isa);
         rt_error err;
         for (int t = 0; t < 2; t++) {
             ro.threads = t == 0 ? 3 : 2;
@@ -112,6 +350,13 @@ int main(void) {
         if (!packet_renderer[0] || !packet_renderer[1]) continue;
         printf("packet build %s\n", rt_pk_isa_name(k));
         check_scenes(rt_pk_isa_name(k));
+        for (int i = 0; rt_builtin_scene_names[i]; i++) {
+            rt_scene *s = test_builtin_scene(rt_builtin_scene_names[i], 64, 48);
+            if (!s) continue;
+            check_odd_lanes_scene(s, rt_builtin_scene_names[i]);
+            rt_scene_destroy(s);
+        }
+        check_far_surface();
         tested++;
     }
     CHECK(tested > 0);

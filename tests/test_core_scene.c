@@ -1,5 +1,6 @@
 /* test_core_scene.c - the scene model's operations and their validation. */
 #include <math.h>
+#include <stdint.h>
 #include <string.h>
 
 #include "check.h"
@@ -87,6 +88,40 @@ static void test_camera(void) {
     bad = c;
     bad.hfov_degrees = 180.0f;
     CHECK(rt_camera_set(s, &bad) == RT_ERROR_INVALID_ARGUMENT);
+    /* Up exactly opposite the view direction: the float check saw a tiny
+     * side vector, the layout's double frame an exact zero (NaN rays). */
+    rt_camera opp = {{0, 0, 0}, {-0.5f, -1.5f, -2.79999995f}, {1, 3, 5.5999999f}, 60.0f, 64, 32};
+    CHECK(rt_camera_set(s, &opp) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK_CONTAINS(rt_scene_error(s), "parallel to the view direction");
+    /* Any camera accepted gives a finite frame, as the layout computes it:
+     * up a multiple of the view direction, or nearly so. */
+    uint32_t seed = 99;
+    int accepted = 0, refused = 0;
+    for (int i = 0; i < 20000; i++) {
+        float q[7];
+        for (int k = 0; k < 7; k++) {
+            seed = seed * 1664525u + 1013904223u;
+            q[k] = (float)(seed >> 8) / 16777216.0f * 20.0f - 10.0f;
+        }
+        rt_camera cc = c;
+        for (int k = 0; k < 3; k++) {
+            cc.position[k] = q[k];
+            cc.look_at[k] = q[k] + q[k + 3];
+            cc.up[k] = q[6] * q[k + 3] * (i % 2 ? 1.0f : 1.0f + 1e-7f * (float)k);
+        }
+        if (rt_camera_set(s, &cc) != RT_OK) {
+            refused++;
+            continue;
+        }
+        accepted++;
+        double f[3], r[3], u[3];
+        CHECK(rt_camera_frame_d(&cc, f, r, u));
+        int finite = 1;
+        for (int k = 0; k < 3; k++) finite &= isfinite(f[k]) && isfinite(r[k]) && isfinite(u[k]);
+        CHECK_MSG(finite, "camera %d accepted with a non-finite frame", i);
+    }
+    CHECK(refused > 0);
+    CHECK(rt_camera_set(s, &c) == RT_OK);
     CHECK(rt_camera_move(s, 0, 0, 1) == RT_OK); /* forward is -z */
     rt_camera got;
     rt_camera_get(s, &got);
@@ -121,10 +156,41 @@ static void test_default_view(void) {
     rt_scene_destroy(s);
 }
 
+/* The documented limits (docs/ROBUSTNESS.md, "Limits"), each refused before
+ * anything is read or allocated: the arrays passed are far shorter than the
+ * counts claim, so a read would be caught (AddressSanitizer) or crash. */
+static void test_limits(void) {
+    rt_scene *s;
+    CHECK(rt_scene_create(&s) == RT_OK);
+    uint32_t mesh;
+    CHECK(rt_mesh_create(s, &mesh) == RT_OK);
+    const float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const uint32_t idx[3] = {0, 1, 2};
+    CHECK(rt_mesh_add_triangles(s, mesh, pos, NULL, 3, idx, (uint32_t)RT_MAX_MESH_TRIANGLES + 1) ==
+          RT_ERROR_UNSUPPORTED);
+    CHECK_CONTAINS(rt_scene_error(s), "exceed the limit of 268435456 triangles per mesh");
+    CHECK(rt_mesh_add_triangles(s, mesh, pos, NULL, (uint32_t)RT_MAX_MESH_VERTICES + 1, idx, 1) ==
+          RT_ERROR_UNSUPPORTED);
+    CHECK_CONTAINS(rt_scene_error(s), "exceed the limit of 268435456 vertices per mesh");
+    CHECK(rt_mesh_add_triangles(s, mesh, pos, NULL, 3, idx, 1) == RT_OK); /* within: fine */
+    /* Image size: a side beyond RT_MAX_IMAGE_SIDE is refused at the camera,
+     * before any framebuffer exists; the largest accepted one fits size_t. */
+    rt_camera c = {{0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 60.0f, 100000, 100000};
+    CHECK(rt_camera_set(s, &c) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK_CONTAINS(rt_scene_error(s), "outside 1..32768 (the image size limit)");
+    c.width = RT_MAX_IMAGE_SIDE + 1, c.height = 16;
+    CHECK(rt_camera_set(s, &c) == RT_ERROR_INVALID_ARGUMENT);
+    c.width = c.height = RT_MAX_IMAGE_SIDE;
+    CHECK(rt_camera_set(s, &c) == RT_OK);
+    CHECK((uint64_t)c.width * (uint64_t)c.height * 4u * sizeof(float) <= (uint64_t)SIZE_MAX);
+    rt_scene_destroy(s);
+}
+
 int main(void) {
     test_mesh_and_objects();
     test_queued_transforms();
     test_camera();
+    test_limits();
     test_default_view();
     return TEST_END();
 }

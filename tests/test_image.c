@@ -308,6 +308,22 @@ static void test_write_errors(void) {
     CHECK_EQ_INT(rt_image_write("/nonexistent_rt_folder/out.exr", &image, &err), RT_ERROR_IO);
     CHECK_CONTAINS(err.message, "out.exr");
 
+    /* A full disk: /dev/full fails every write with ENOSPC. Every format
+     * reports it (OIIO's PNG writer used to drop it: "wrote", exit 0). */
+    const char *full_names[] = {"full.png", "full.ppm", "full.exr"};
+    for (int i = 0; i < 3; i++) {
+        const char *full = temp_path(full_names[i]);
+        unlink(full);
+        if (symlink("/dev/full", full) != 0) {
+            CHECK_MSG(0, "cannot link %s to /dev/full", full);
+            continue;
+        }
+        CHECK_EQ_INT(rt_image_write(full, &image, &err), RT_ERROR_IO);
+        CHECK_CONTAINS(err.message, full_names[i]);
+        CHECK_CONTAINS(err.message, "No space left on device");
+        unlink(full);
+    }
+
     rt_image empty = {0, 4, 3, NULL};
     CHECK_EQ_INT(rt_image_write(temp_path("empty.png"), &empty, &err), RT_ERROR_INVALID_ARGUMENT);
     CHECK_CONTAINS(err.message, "empty.png");

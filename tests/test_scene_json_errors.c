@@ -157,7 +157,7 @@ static const error_case cases[] = {
     {"camera_up_parallel",
      "{\n  'camera': {'position': [0, 0, 5], 'look_at': [0, 0, 0], 'up': [0, 0, 1]},\n" MESH_T OBJ_T
      "}",
-     2, 13, "camera: up is zero or parallel to the view direction"},
+     2, 13, "camera: up is zero or (nearly) parallel to the view direction"},
 
     /* references */
     {"missing_mesh", "{\n" MESH_T "  'objects': [{'mesh': 'cube'}]\n}", 3, 24,

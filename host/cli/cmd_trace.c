@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/file_read.h"
 #include "cli_util.h"
 #include "commands.h"
 #include "rt_shared.h"
@@ -47,36 +48,50 @@ static const char *const tri_test_names[] = {"watertight", "mt", "pluecker", "ba
 /* Reads the rays; on a bad line prints file:line and returns 0. */
 static int read_rays(const char *path, int offset, rt_ray **out, size_t *count) {
     const int want = offset ? 11 : 8;
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        cli_error("trace", "%s: cannot open: %s", path, strerror(errno));
+    /* The whole file, a regular one of at most RT_MAX_RAY_FILE_BYTES. */
+    char *text;
+    size_t text_len;
+    rt_error rerr;
+    if (rt_read_file(path, "ray file", RT_MAX_RAY_FILE_BYTES, &text, &text_len, &rerr) != RT_OK) {
+        cli_error("trace", "%s", rerr.message);
         return 0;
     }
     size_t n = 0, cap = 1024;
     rt_ray *rays = malloc(cap * sizeof *rays);
-    char line[4096];
     int lineno = 0, ok = rays != NULL;
-    while (ok && fgets(line, sizeof line, f)) {
+    /* Line by line through the text, of any length; a line ends at '\n' or
+     * at the end of the file. The text is NUL-terminated, so strtof stops
+     * at the line's end once no NUL byte is inside the line. */
+    for (size_t at = 0; ok && at < text_len;) {
+        char *p = text + at, *eol = memchr(p, '\n', text_len - at);
+        const size_t line_len = eol ? (size_t)(eol - p) : text_len - at;
+        at += line_len + 1;
         lineno++;
-        char *p = line;
+        if (memchr(p, '\0', line_len)) {
+            cli_error("trace", "%s:%d: a NUL byte in the line (a binary file?)", path, lineno);
+            ok = 0;
+            break;
+        }
+        char *const end_of_line = p + line_len;
         while (*p == ' ' || *p == '\t') p++;
-        if (*p == '#' || *p == '\n' || *p == '\r' || *p == 0) continue;
+        if (p == end_of_line || *p == '#' || *p == '\r') continue;
         float v[11];
         int got = 0;
         while (got < want + 1) {
             char *end;
             errno = 0;
             float x = strtof(p, &end);
-            if (end == p) break;
+            if (end == p || end > end_of_line) break;
             if (got < want) v[got] = x;
             got++;
             p = end;
         }
-        while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r') p++;
-        if (got != want || *p) {
-            cli_error("trace", "%s:%d: expected %d numbers 'ox oy oz dx dy dz tmin tmax%s'%s%s",
-                      path, lineno, want, offset ? " nx ny nz" : "", *p ? ", found: " : "",
-                      *p ? p : "");
+        while (p < end_of_line && (*p == ' ' || *p == '\t' || *p == '\r')) p++;
+        if (got != want || p < end_of_line) {
+            const int rest = p < end_of_line ? (int)(end_of_line - p) : 0;
+            cli_error("trace", "%s:%d: expected %d numbers 'ox oy oz dx dy dz tmin tmax%s'%s%.*s%s",
+                      path, lineno, want, offset ? " nx ny nz" : "", rest ? ", found: " : "",
+                      rest > 40 ? 40 : rest, p, rest > 40 ? "..." : "");
             ok = 0;
             break;
         }
@@ -99,7 +114,7 @@ static int read_rays(const char *path, int offset, rt_ray **out, size_t *count) 
             rt_offset_point(v, v + 8, d >= 0.0f ? 1.0f : -1.0f, r->org);
         }
     }
-    fclose(f);
+    free(text);
     if (!ok) {
         free(rays);
         return 0;

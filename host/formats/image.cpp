@@ -6,6 +6,7 @@
 // cleared) and put into the rt_error; nothing is printed.
 #include "formats/image.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <cerrno>
@@ -18,6 +19,7 @@
 #include <memory>
 #include <new>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -106,6 +108,24 @@ std::string folder_problem(const char *path) {
     return " (folder " + folder + ": " + std::strerror(errno) + ")";
 }
 
+// Writes the encoded file: open, write, flush and close each checked, so a
+// full disk (ENOSPC) or an i/o error is reported, never a truncated file.
+rt_status write_bytes(const char *path, const std::vector<unsigned char> &data, rt_error *err) {
+    std::FILE *f = std::fopen(path, "wb");
+    if (!f)
+        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot open for writing: %s%s",
+                            std::strerror(errno), folder_problem(path).c_str());
+    size_t put = data.empty() ? 0 : std::fwrite(data.data(), 1, data.size(), f);
+    int e = put == data.size() ? 0 : errno;
+    if (std::fflush(f) != 0 && !e) e = errno;
+    if (std::ferror(f) && !e) e = EIO;
+    if (std::fclose(f) != 0 && !e) e = errno;
+    if (e)
+        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot write the file: %s",
+                            std::strerror(e));
+    return RT_OK;
+}
+
 rt_status write_image(const char *path, const rt_image *image, rt_error *err) {
     size_t count = 0;
     rt_status status = check_image(image, "the", path, &count, err);
@@ -137,15 +157,24 @@ rt_status write_image(const char *path, const rt_image *image, rt_error *err) {
         for (size_t i = 0; i < count; i++) bytes[i] = to_8bit(image->pixels[i]);
     }
 
+    // OpenImageIO encodes into memory (its IOProxy); the file is then written
+    // here with every error checked. OIIO's PNG writer drops write errors (a
+    // full disk gave a truncated file and success); this way every format
+    // reports them alike, with the system's reason (ENOSPC, EIO, ...).
     clear_global_error();
     auto out = OIIO::ImageOutput::create(path);
     if (!out)
         return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
                             "OpenImageIO has no writer for this file: %s",
                             one_line(OIIO::geterror()).c_str());
+    std::vector<unsigned char> encoded;
+    OIIO::Filesystem::IOVecOutput memory(encoded);
+    if (!out->supports("ioproxy") || !out->set_ioproxy(&memory))
+        return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
+                            "OpenImageIO cannot write this format to memory");
     if (!out->open(path, spec))
-        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot open for writing: %s%s",
-                            one_line(out->geterror()).c_str(), folder_problem(path).c_str());
+        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot encode the image: %s",
+                            one_line(out->geterror()).c_str());
     bool written = eight_bit ? out->write_image(OIIO::TypeDesc::UINT8, bytes.get())
                              : out->write_image(OIIO::TypeDesc::FLOAT, image->pixels);
     std::string write_error = written ? std::string() : one_line(out->geterror());
@@ -156,7 +185,7 @@ rt_status write_image(const char *path, const rt_image *image, rt_error *err) {
     if (!closed)
         return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot finish the file: %s",
                             one_line(out->geterror()).c_str());
-    return RT_OK;
+    return write_bytes(path, encoded, err);
 }
 
 // ---- a structural check of PNG files -------------------------------------

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "base/error.h"
+#include "base/file_read.h"
 #include "formats/obj_internal.h"
 #include "formats/parse_number.h"
 
@@ -157,7 +158,7 @@ rt_status rt_mtl_load(const char *path, rt_obj_material **materials, uint32_t *c
                       rt_error *err) {
     char *text;
     size_t len;
-    rt_status st = rt_read_text_file(path, &text, &len, err);
+    rt_status st = rt_read_file(path, "MTL file", RT_MAX_OBJ_FILE_BYTES, &text, &len, err);
     if (st != RT_OK) return st;
     st = rt_mtl_parse(text, len, path, materials, count, err);
     free(text);

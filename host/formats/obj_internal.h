@@ -89,10 +89,6 @@ static inline int rt_text_line(const rt_text_cursor *c) {
     return c->line > 2000000000 ? 2000000000 : (int)c->line;
 }
 
-/* Reads a whole file into a new NUL-terminated buffer. On failure returns
- * RT_ERROR_IO (with strerror) or RT_ERROR_OUT_OF_MEMORY. */
-rt_status rt_read_text_file(const char *path, char **text, size_t *len, rt_error *err);
-
 /* Reads the materials of an MTL file and appends them to *materials. An
  * unreadable file gives RT_ERROR_IO (the OBJ reader then goes on without
  * materials); malformed content gives RT_ERROR_PARSE with file and line. */

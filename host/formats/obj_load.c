@@ -14,6 +14,7 @@
 #include <sys/stat.h>
 
 #include "base/error.h"
+#include "base/file_read.h"
 #include "formats/obj_internal.h"
 #include "formats/parse_number.h"
 
@@ -44,6 +45,8 @@ typedef struct obj_parser {
     uint32_t current_mtl;
     char (*mtl_names)[128]; /* distinct usemtl names */
     uint32_t mtl_name_count, mtl_name_cap;
+    uint32_t *mtl_name_slots; /* hash table of mtl_names' ids (id_table) */
+    size_t mtl_name_slot_count;
 
     rt_obj_material *materials;
     uint32_t material_count;
@@ -284,6 +287,70 @@ static rt_status parse_face(obj_parser *o, int face_column) {
 }
 
 /* The rest of the statement, without the comment and trailing blanks. */
+/* ---- hash tables of ids -------------------------------------------------- */
+
+/* Open addressing with linear probing over a power-of-two number of slots,
+ * each an id or NO_INDEX; the caller compares keys through the ids. Kept at
+ * most half full, so a lookup probes O(1) slots on average: loading stays
+ * near-linear however many distinct normals share a position or however
+ * many usemtl names a file has. */
+static uint32_t *id_table_new(size_t min_entries, size_t *slot_count) {
+    size_t n = 16;
+    while (n < 2 * min_entries) n *= 2;
+    uint32_t *t = malloc(n * sizeof *t);
+    if (!t) return NULL;
+    for (size_t i = 0; i < n; i++) t[i] = NO_INDEX;
+    *slot_count = n;
+    return t;
+}
+
+/* FNV-1a over bytes. */
+static uint64_t hash_bytes(const char *p, size_t len) {
+    uint64_t h = 1469598103934665603ull;
+    for (size_t i = 0; i < len; i++) h = (h ^ (unsigned char)p[i]) * 1099511628211ull;
+    return h;
+}
+
+/* A 64-bit finaliser (splitmix64) for a pair of indices. */
+static uint64_t hash_pair(uint32_t a, uint32_t b) {
+    uint64_t x = ((uint64_t)a << 32 | b) + 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+/* The id of a usemtl name (its first 'len' bytes), or NO_INDEX; *slot gets
+ * the slot where it is or would go. */
+static uint32_t find_mtl_name(const obj_parser *o, const char *name, size_t len, size_t *slot) {
+    const size_t mask = o->mtl_name_slot_count - 1;
+    for (size_t i = (size_t)hash_bytes(name, len) & mask;; i = (i + 1) & mask) {
+        const uint32_t id = o->mtl_name_slots[i];
+        if (id == NO_INDEX ||
+            (strncmp(o->mtl_names[id], name, len) == 0 && o->mtl_names[id][len] == '\0')) {
+            *slot = i;
+            return id;
+        }
+    }
+}
+
+/* Doubles the usemtl name table when it would be more than half full. */
+static int grow_mtl_names(obj_parser *o) {
+    if (o->mtl_name_slots && 2 * ((size_t)o->mtl_name_count + 1) <= o->mtl_name_slot_count)
+        return 1;
+    size_t n;
+    uint32_t *t = id_table_new(2 * ((size_t)o->mtl_name_count + 1), &n);
+    if (!t) return 0;
+    free(o->mtl_name_slots);
+    o->mtl_name_slots = t;
+    o->mtl_name_slot_count = n;
+    for (uint32_t id = 0; id < o->mtl_name_count; id++) {
+        size_t slot;
+        find_mtl_name(o, o->mtl_names[id], strlen(o->mtl_names[id]), &slot);
+        t[slot] = id;
+    }
+    return 1;
+}
+
 static void rest_of_statement(obj_parser *o, const char **start, size_t *len) {
     rt_text_skip_blanks(&o->c);
     const char *s = o->c.p, *q = s;
@@ -298,11 +365,12 @@ static rt_status parse_usemtl(obj_parser *o) {
     size_t len;
     rest_of_statement(o, &name, &len);
     if (len >= sizeof o->mtl_names[0]) len = sizeof o->mtl_names[0] - 1;
-    uint32_t id = 0;
-    while (id < o->mtl_name_count &&
-           !(strncmp(o->mtl_names[id], name, len) == 0 && o->mtl_names[id][len] == '\0'))
-        id++;
-    if (id == o->mtl_name_count) {
+    if (!grow_mtl_names(o)) return out_of_memory(o);
+    size_t slot;
+    uint32_t id = find_mtl_name(o, name, len, &slot);
+    if (id == NO_INDEX) {
+        id = o->mtl_name_count;
+        o->mtl_name_slots[slot] = id;
         size_t cap = o->mtl_name_cap;
         if (!reserve((void **)&o->mtl_names, &cap, (size_t)id + 1, sizeof o->mtl_names[0]))
             return out_of_memory(o);
@@ -391,12 +459,12 @@ static rt_status parse_statement(obj_parser *o) {
 /* ---- the result ---------------------------------------------------------- */
 
 /* Each distinct (position, normal) pair of the corners becomes one vertex, in
- * order of first use. Per position, a short list of the normals seen with it
- * finds repeats without hashing. */
+ * order of first use. A hash table of (position, normal) pairs finds repeats
+ * (a position used with many normals stays linear). */
 static rt_status build_vertices_with_normals(obj_parser *o, rt_obj_mesh *out) {
     size_t corners = 3 * o->tri_count;
-    uint32_t *first = malloc((o->position_count ? o->position_count : 1) * sizeof *first);
-    uint32_t *next = malloc(corners * sizeof *next);
+    size_t slot_count = 0;
+    uint32_t *slots = id_table_new(corners, &slot_count); /* (position, normal) -> vertex */
     uint32_t *normal_of = malloc(corners * sizeof *normal_of);
     uint32_t *position_of = malloc(corners * sizeof *position_of);
     /* The output indices overwrite tri_pos in place: corner k is read
@@ -405,18 +473,18 @@ static rt_status build_vertices_with_normals(obj_parser *o, rt_obj_mesh *out) {
     float *positions = NULL, *normals = NULL;
     uint32_t count = 0;
     rt_status st = RT_OK;
-    if (!first || !next || !normal_of || !position_of) goto oom;
-    for (size_t i = 0; i < o->position_count; i++) first[i] = NO_INDEX;
+    if (!slots || !normal_of || !position_of) goto oom;
     for (size_t k = 0; k < corners; k++) {
-        uint32_t p = o->tri_pos[k], n = o->tri_nrm[k];
-        uint32_t v = first[p];
-        while (v != NO_INDEX && normal_of[v] != n) v = next[v];
+        const uint32_t p = o->tri_pos[k], n = o->tri_nrm[k];
+        const size_t mask = slot_count - 1;
+        size_t i = (size_t)hash_pair(p, n) & mask;
+        uint32_t v;
+        while ((v = slots[i]) != NO_INDEX && !(position_of[v] == p && normal_of[v] == n))
+            i = (i + 1) & mask;
         if (v == NO_INDEX) {
-            v = count++;
+            v = slots[i] = count++;
             normal_of[v] = n;
             position_of[v] = p;
-            next[v] = first[p];
-            first[p] = v;
         }
         indices[k] = v;
     }
@@ -438,8 +506,7 @@ static rt_status build_vertices_with_normals(obj_parser *o, rt_obj_mesh *out) {
 oom:
     st = out_of_memory(o);
 done:
-    free(first);
-    free(next);
+    free(slots);
     free(normal_of);
     free(position_of);
     free(positions);
@@ -451,17 +518,31 @@ done:
 static rt_status build_materials(obj_parser *o, rt_obj_mesh *out) {
     if (!o->tri_mat || o->material_count == 0) return RT_OK;
     uint32_t *material_of_name = malloc(((size_t)o->mtl_name_count + 1) * sizeof(uint32_t));
-    if (!material_of_name) return out_of_memory(o);
-    for (uint32_t id = 0; id < o->mtl_name_count; id++) {
-        material_of_name[id] = NO_INDEX;
-        for (uint32_t m = 0; m < o->material_count; m++) {
-            /* Names are kept to 127 bytes on both sides, so they compare alike. */
-            if (strcmp(o->materials[m].name, o->mtl_names[id]) == 0) {
-                material_of_name[id] = m;
-                break;
-            }
-        }
+    size_t slot_count = 0;
+    uint32_t *slots = id_table_new(o->material_count, &slot_count); /* name -> first material */
+    if (!material_of_name || !slots) {
+        free(material_of_name);
+        free(slots);
+        return out_of_memory(o);
     }
+    const size_t mask = slot_count - 1;
+    /* Names are kept to 127 bytes on both sides, so they compare alike; of
+     * materials of one name the first counts. */
+    for (uint32_t m = 0; m < o->material_count; m++) {
+        const char *name = o->materials[m].name;
+        size_t i = (size_t)hash_bytes(name, strlen(name)) & mask;
+        while (slots[i] != NO_INDEX && strcmp(o->materials[slots[i]].name, name) != 0)
+            i = (i + 1) & mask;
+        if (slots[i] == NO_INDEX) slots[i] = m;
+    }
+    for (uint32_t id = 0; id < o->mtl_name_count; id++) {
+        const char *name = o->mtl_names[id];
+        size_t i = (size_t)hash_bytes(name, strlen(name)) & mask;
+        while (slots[i] != NO_INDEX && strcmp(o->materials[slots[i]].name, name) != 0)
+            i = (i + 1) & mask;
+        material_of_name[id] = slots[i];
+    }
+    free(slots);
     for (size_t t = 0; t < o->tri_count; t++)
         o->tri_mat[t] = o->tri_mat[t] == NO_INDEX ? NO_INDEX : material_of_name[o->tri_mat[t]];
     free(material_of_name);
@@ -525,6 +606,7 @@ static void free_parser(obj_parser *o) {
     free(o->tri_nrm);
     free(o->tri_mat);
     free(o->mtl_names);
+    free(o->mtl_name_slots);
     free(o->materials);
 }
 
@@ -564,57 +646,11 @@ rt_status rt_obj_parse(const char *text, size_t len, const char *name, const cha
     return st;
 }
 
-rt_status rt_read_text_file(const char *path, char **text, size_t *len, rt_error *err) {
-    *text = NULL;
-    *len = 0;
-    FILE *f = fopen(path, "rb");
-    if (!f) return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot open: %s", strerror(errno));
-    struct stat info;
-    size_t cap = 1 << 16;
-    if (fstat(fileno(f), &info) == 0) {
-        if (S_ISDIR(info.st_mode)) {
-            fclose(f);
-            return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot read: %s", strerror(EISDIR));
-        }
-        if (S_ISREG(info.st_mode) && info.st_size > 0 && (uint64_t)info.st_size < SIZE_MAX - 1)
-            cap = (size_t)info.st_size + 1;
-    }
-    char *buf = malloc(cap);
-    size_t n = 0;
-    while (buf) {
-        n += fread(buf + n, 1, cap - n, f);
-        if (n < cap) break; /* end of file or an error */
-        char *grown = cap <= SIZE_MAX / 2 ? realloc(buf, cap * 2) : NULL;
-        if (!grown) {
-            free(buf);
-            buf = NULL;
-            break;
-        }
-        buf = grown;
-        cap *= 2;
-    }
-    if (!buf) {
-        fclose(f);
-        return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0, "out of memory reading it");
-    }
-    if (ferror(f)) {
-        int e = errno;
-        free(buf);
-        fclose(f);
-        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot read: %s", strerror(e));
-    }
-    fclose(f);
-    buf[n] = '\0';
-    *text = buf;
-    *len = n;
-    return RT_OK;
-}
-
 rt_status rt_obj_load(const char *path, rt_obj_mesh *out, rt_error *err) {
     memset(out, 0, sizeof *out);
     char *text;
     size_t len;
-    rt_status st = rt_read_text_file(path, &text, &len, err);
+    rt_status st = rt_read_file(path, "OBJ file", RT_MAX_OBJ_FILE_BYTES, &text, &len, err);
     if (st != RT_OK) return st;
     /* mtllib names are relative to the OBJ's folder. */
     const char *slash = strrchr(path, '/');

@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "base/error.h"
+#include "base/file_read.h"
 #include "formats/json_locate.h"
 #include "scene/scene.h"
 
@@ -853,39 +854,6 @@ static rt_status load_document(loader *L, json_t *root) {
 
 /* ---- files ------------------------------------------------------------------------- */
 
-static rt_status read_file(const char *path, char **out, size_t *len, rt_error *err) {
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot open the scene file: %s",
-                            strerror(errno));
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        n += fread(buf + n, 1, cap - n, f);
-        if (n < cap) break;
-        char *bigger = cap <= SIZE_MAX / 2 ? realloc(buf, cap * 2) : NULL;
-        if (!bigger) {
-            free(buf);
-            buf = NULL;
-            break;
-        }
-        buf = bigger;
-        cap *= 2;
-    }
-    int failed = ferror(f);
-    int saved = errno;
-    fclose(f);
-    if (!buf) return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0, "out of memory");
-    if (failed) {
-        free(buf);
-        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot read the scene file: %s",
-                            strerror(saved));
-    }
-    *out = buf;
-    *len = n;
-    return RT_OK;
-}
-
 /* Where a syntax error is: jansson gives the offset just past the token it
  * stopped at and quotes that token ("... near 'tru'"); the token's first
  * character is the more useful place. */
@@ -910,7 +878,7 @@ rt_status rt_scene_load_json(rt_scene *scene, const char *path, rt_error *err) {
         return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0, "no scene or no path");
     char *text = NULL;
     size_t len = 0;
-    rt_status st = read_file(path, &text, &len, err);
+    rt_status st = rt_read_file(path, "scene file", RT_MAX_SCENE_FILE_BYTES, &text, &len, err);
     if (st != RT_OK) return st;
 
     json_error_t je;

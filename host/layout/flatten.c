@@ -97,18 +97,8 @@ static void copy_nodes(const rt_bvh *b, rt_node *dst, uint32_t node_base, uint32
 }
 
 static void camera_of(const rt_camera *c, rt_scene_header *h) {
-    double f[3], r[3], u[3], up[3] = {c->up[0], c->up[1], c->up[2]};
-    for (int i = 0; i < 3; i++) f[i] = (double)c->look_at[i] - (double)c->position[i];
-    double fl = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
-    for (int i = 0; i < 3; i++) f[i] /= fl;
-    r[0] = f[1] * up[2] - f[2] * up[1];
-    r[1] = f[2] * up[0] - f[0] * up[2];
-    r[2] = f[0] * up[1] - f[1] * up[0];
-    double rl = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-    for (int i = 0; i < 3; i++) r[i] /= rl;
-    u[0] = r[1] * f[2] - r[2] * f[1];
-    u[1] = r[2] * f[0] - r[0] * f[2];
-    u[2] = r[0] * f[1] - r[1] * f[0];
+    double f[3], r[3], u[3];
+    rt_camera_frame_d(c, f, r, u); /* rt_camera_set accepted only finite frames */
     double tx = tan((double)c->hfov_degrees * 3.14159265358979323846 / 360.0);
     double ty = tx * (double)c->height / (double)c->width;
     for (int i = 0; i < 3; i++) {

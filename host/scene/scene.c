@@ -144,6 +144,26 @@ rt_status rt_mesh_add_triangles(rt_scene *scene, uint32_t mesh_id, const float *
     if ((vertex_count && !positions) || (triangle_count && !indices))
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "null positions or indices");
     rt_mesh_data *m = &scene->meshes[mesh_id];
+    /* The limits (docs/ROBUSTNESS.md, "Limits"), checked before anything is
+     * read or allocated. */
+    if ((uint64_t)m->triangle_count + triangle_count > RT_MAX_MESH_TRIANGLES)
+        return rt_scene_fail(scene, RT_ERROR_UNSUPPORTED,
+                             "mesh %u: %llu triangles exceed the limit of %llu triangles per mesh",
+                             mesh_id, (unsigned long long)m->triangle_count + triangle_count,
+                             (unsigned long long)RT_MAX_MESH_TRIANGLES);
+    if ((uint64_t)m->vertex_count + vertex_count > RT_MAX_MESH_VERTICES)
+        return rt_scene_fail(scene, RT_ERROR_UNSUPPORTED,
+                             "mesh %u: %llu vertices exceed the limit of %llu vertices per mesh",
+                             mesh_id, (unsigned long long)m->vertex_count + vertex_count,
+                             (unsigned long long)RT_MAX_MESH_VERTICES);
+    uint64_t total = triangle_count;
+    for (uint32_t i = 0; i < scene->mesh_count; i++) total += scene->meshes[i].triangle_count;
+    if (total > RT_MAX_SCENE_TRIANGLES)
+        return rt_scene_fail(scene, RT_ERROR_UNSUPPORTED,
+                             "mesh %u: the scene's meshes would hold %llu triangles, more than "
+                             "the limit of %llu",
+                             mesh_id, (unsigned long long)total,
+                             (unsigned long long)RT_MAX_SCENE_TRIANGLES);
     if (m->vertex_count && ((m->normals != NULL) != (normals != NULL)))
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                              "mesh %u: normals must be given for all vertices or for none",
@@ -384,28 +404,56 @@ static int normalize3(float v[3]) {
     return 1;
 }
 
+int rt_camera_frame_d(const rt_camera *c, double f[3], double r[3], double u[3]) {
+    const double up[3] = {c->up[0], c->up[1], c->up[2]};
+    for (int i = 0; i < 3; i++) f[i] = (double)c->look_at[i] - (double)c->position[i];
+    double fl = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    for (int i = 0; i < 3; i++) f[i] /= fl;
+    r[0] = f[1] * up[2] - f[2] * up[1];
+    r[1] = f[2] * up[0] - f[0] * up[2];
+    r[2] = f[0] * up[1] - f[1] * up[0];
+    double rl = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+    double ul = sqrt(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
+    /* |f x up| = |up| sin(angle): exactly zero for an up (anti)parallel to
+     * f in double even where the float check above passed. */
+    if (!(fl > 0.0) || !isfinite(fl) || !(rl > RT_CAMERA_MIN_SINE * ul) || !isfinite(rl)) return 0;
+    for (int i = 0; i < 3; i++) r[i] /= rl;
+    u[0] = r[1] * f[2] - r[2] * f[1];
+    u[1] = r[2] * f[0] - r[0] * f[2];
+    u[2] = r[0] * f[1] - r[1] * f[0];
+    for (int i = 0; i < 3; i++)
+        if (!isfinite(f[i]) || !isfinite(r[i]) || !isfinite(u[i])) return 0;
+    return 1;
+}
+
 rt_status rt_camera_set(rt_scene *scene, const rt_camera *cam) {
     if (!scene || !cam) return RT_ERROR_INVALID_ARGUMENT;
     if (!finite3(cam->position) || !finite3(cam->look_at) || !finite3(cam->up))
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "camera: vectors must be finite");
     float fwd[3] = {cam->look_at[0] - cam->position[0], cam->look_at[1] - cam->position[1],
                     cam->look_at[2] - cam->position[2]};
-    float up[3] = {cam->up[0], cam->up[1], cam->up[2]}, side[3];
     if (!normalize3(fwd))
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                              "camera: look-at point equals the position");
-    cross3(fwd, up, side);
-    if (!normalize3(side))
+    double f[3], r[3], u[3];
+    if (!rt_camera_frame_d(cam, f, r, u))
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
-                             "camera: up is zero or parallel to the view direction");
+                             "camera: up is zero or (nearly) parallel to the view direction");
     if (!(cam->hfov_degrees > 0.0f && cam->hfov_degrees < 180.0f))
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                              "camera: field of view %g is outside (0, 180) degrees",
                              (double)cam->hfov_degrees);
-    if (cam->width < 1 || cam->height < 1 || cam->width > 32768 || cam->height > 32768)
+    if (cam->width < 1 || cam->height < 1 || cam->width > RT_MAX_IMAGE_SIDE ||
+        cam->height > RT_MAX_IMAGE_SIDE)
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
-                             "camera: resolution %dx%d is outside 1..32768", cam->width,
-                             cam->height);
+                             "camera: resolution %dx%d is outside 1..%d (the image size limit)",
+                             cam->width, cam->height, RT_MAX_IMAGE_SIDE);
+    /* The largest framebuffer (4 float channels) must fit in size_t: true
+     * on 64-bit machines (16 GiB), checked for 32-bit ones. */
+    if ((uint64_t)cam->width * (uint64_t)cam->height * 4u * sizeof(float) > (uint64_t)SIZE_MAX)
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "camera: a %dx%d image does not fit in this machine's memory space",
+                             cam->width, cam->height);
     scene->camera = *cam;
     scene->has_camera = 1;
     scene->version++;

@@ -81,6 +81,27 @@ __attribute__((format(printf, 3, 4)))
 rt_status
 rt_scene_fail(rt_scene *scene, rt_status status, const char *fmt, ...);
 
+/* Limits on meshes (docs/ROBUSTNESS.md, "Limits"): beyond them
+ * rt_mesh_add_triangles fails with RT_ERROR_UNSUPPORTED naming the limit.
+ * The layout's indices are 32-bit and a leaf's count has 31 bits; these
+ * leave room for the BVH's nodes (about 2 per triangle) in 32 bits. */
+#define RT_MAX_MESH_TRIANGLES  ((uint64_t)1 << 28) /* per mesh */
+#define RT_MAX_MESH_VERTICES   ((uint64_t)1 << 28) /* per mesh */
+#define RT_MAX_SCENE_TRIANGLES ((uint64_t)1 << 29) /* over all the scene's meshes */
+
+/* The largest image side in pixels (camera width and height); a 32768 x
+ * 32768 framebuffer of 4 float channels is 16 GiB. */
+#define RT_MAX_IMAGE_SIDE 32768
+
+/* The camera's orthonormal frame in double, as the layout stores it
+ * (host/layout/flatten.c): forward f, right r = f x up / |f x up|, up u =
+ * r x f. Returns 0, leaving the outputs undefined, when the frame is not
+ * finite or up is within RT_CAMERA_MIN_SINE of the view direction (sine of
+ * the angle): rt_camera_set refuses such cameras, so every accepted camera
+ * gives finite rays. */
+#define RT_CAMERA_MIN_SINE 1e-6
+int rt_camera_frame_d(const rt_camera *c, double f[3], double r[3], double u[3]);
+
 /* Total triangles over the selected keyframe of every object. */
 uint64_t rt_scene_triangle_count(const rt_scene *scene);
 

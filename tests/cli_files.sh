@@ -1,0 +1,53 @@
+# cli_files.sh - input files that are not regular files, or too large, are
+# refused with the file name and the reason, never read without bound and
+# never waited on: a FIFO as a scene, OBJ, MTL or ray file (open() used to
+# block forever), an OBJ or scene symlinked to /dev/zero (used to grow a
+# buffer until memory ran out), directories, and files beyond the documented
+# size limits (docs/ROBUSTNESS.md, "Limits"; sparse files, nothing is read).
+# Every command runs under a timeout so that a regression fails, not hangs.
+source "$RT_SOURCE_DIR/tests/shell_check.sh"
+
+T="timeout 20"
+printf 'v -1 -1 -3\nv 1 -1 -3\nv 0 1 -3\nf 1 2 3\n' > "$tmp/tri.obj"
+printf '0 0 0 0 0 -1 0 inf\n' > "$tmp/one.rays"
+
+mkfifo "$tmp/fifo.json" "$tmp/fifo.obj" "$tmp/fifo.rays" "$tmp/fifo.mtl"
+expect 2 'fifo.json: .*scene file: it is a FIFO' -- $T "$RTCL" info "$tmp/fifo.json"
+expect 2 'fifo.obj: .*OBJ file: it is a FIFO' -- $T "$RTCL" info "$tmp/fifo.obj"
+expect 2 'fifo.rays: .*ray file: it is a FIFO' -- $T "$RTCL" trace "$tmp/tri.obj" \
+    --rays "$tmp/fifo.rays" --out "$tmp/hits.txt"
+# An OBJ whose mtllib is a FIFO: the MTL is unreadable, the OBJ loads.
+printf 'mtllib fifo.mtl\nv -1 -1 -3\nv 1 -1 -3\nv 0 1 -3\nf 1 2 3\n' > "$tmp/withmtl.obj"
+expect 0 'triangles' -- $T "$RTCL" info "$tmp/withmtl.obj"
+# A JSON scene naming a FIFO as its mesh.
+printf '{"meshes": {"m": {"file": "fifo.obj"}}, "objects": [{"mesh": "m"}]}\n' > "$tmp/usesfifo.json"
+expect 2 'fifo.obj: .*it is a FIFO' -- $T "$RTCL" info "$tmp/usesfifo.json"
+
+# A regression here would read /dev/zero until memory runs out: cap the
+# address space (not under AddressSanitizer, which reserves terabytes).
+if ! ldd "$RTCL" 2> /dev/null | grep -q asan; then ulimit -v 4194304; fi
+ln -s /dev/zero "$tmp/zero.obj"
+ln -s /dev/zero "$tmp/zero.json"
+ln -s /dev/zero "$tmp/zero.rays"
+expect 2 'zero.obj: .*it is a character device' -- $T "$RTCL" info "$tmp/zero.obj"
+expect 2 'zero.json: .*it is a character device' -- $T "$RTCL" info "$tmp/zero.json"
+expect 2 'zero.rays: .*it is a character device' -- $T "$RTCL" trace "$tmp/tri.obj" \
+    --rays "$tmp/zero.rays" --out "$tmp/hits.txt"
+
+mkdir "$tmp/dir.obj" "$tmp/dir.json" "$tmp/dir.rays"
+expect 2 'dir.obj: .*it is a directory' -- $T "$RTCL" info "$tmp/dir.obj"
+expect 2 'dir.json: .*it is a directory' -- $T "$RTCL" info "$tmp/dir.json"
+expect 2 'dir.rays: .*it is a directory' -- $T "$RTCL" trace "$tmp/tri.obj" \
+    --rays "$tmp/dir.rays" --out "$tmp/hits.txt"
+
+# One byte beyond each limit (64 MiB scene, 4 GiB OBJ and ray file), as
+# sparse files: refused before any of it is read.
+truncate -s $((64 * 1024 * 1024 + 1)) "$tmp/big.json"
+truncate -s $((4 * 1024 * 1024 * 1024 + 1)) "$tmp/big.obj" "$tmp/big.rays"
+expect 2 'big.json: the scene file is 67108865 bytes, more than the limit of 67108864' -- \
+    $T "$RTCL" info "$tmp/big.json"
+expect 2 'big.obj: the OBJ file is 4294967297 bytes, more than the limit of 4294967296' -- \
+    $T "$RTCL" info "$tmp/big.obj"
+expect 2 'big.rays: the ray file is 4294967297 bytes, more than the limit of 4294967296' -- \
+    $T "$RTCL" trace "$tmp/tri.obj" --rays "$tmp/big.rays" --out "$tmp/hits.txt"
+finish
