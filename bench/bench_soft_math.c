@@ -38,32 +38,6 @@ static uint32_t bits(float f) {
 static float flt(uint32_t u) {
     return rt_sm_float_(u);
 }
-static int same(uint32_t x, uint32_t y) {
-    return x == y || (rt_sm_is_nan_(x) && rt_sm_is_nan_(y));
-}
-
-static float round_sum(double s, double err) {
-    float f = (float)s;
-    if (err == 0.0 || (double)f == s || isinf(s)) return f;
-    float lo, hi;
-    if ((double)f < s) {
-        lo = f;
-        hi = nextafterf(f, INFINITY);
-    } else {
-        hi = f;
-        lo = nextafterf(f, -INFINITY);
-    }
-    double dlo = isinf(lo) ? -0x1p128 : (double)lo, dhi = isinf(hi) ? 0x1p128 : (double)hi;
-    if (s != 0.5 * (dlo + dhi)) return f;
-    return err > 0.0 ? hi : lo;
-}
-
-static uint32_t ref_dop(const uint32_t *q) {
-    double p = (double)flt(q[0]) * (double)flt(q[1]), r = (double)flt(q[2]) * (double)flt(q[3]);
-    if (!isfinite(p) || !isfinite(r)) return bits((float)(p - r));
-    double s = p - r, bb = s - p, err = (p - (s - bb)) + (-r - bb);
-    return bits(round_sum(s, err));
-}
 
 static void operands(uint64_t *seed, long i, int fn, uint32_t q[4]) {
     if (i & 1) {
@@ -93,10 +67,10 @@ static long run(int fn, long n) {
             want = bits(sqrtf(flt(q[0])));
             got = rt_soft_sqrt_bits(q[0]);
         } else {
-            want = ref_dop(q);
+            want = sm_ref_dop(q[0], q[1], q[2], q[3]);
             got = rt_soft_diff_of_products_bits(q[0], q[1], q[2], q[3]);
         }
-        if (!same(want, got) && bad++ < 10)
+        if (!sm_same(want, got) && bad++ < 10)
             fprintf(stderr, "%s mismatch: %08x %08x %08x %08x: want %08x got %08x\n", fn_names[fn],
                     (unsigned)q[0], (unsigned)q[1], (unsigned)q[2], (unsigned)q[3], (unsigned)want,
                     (unsigned)got);

@@ -2,11 +2,16 @@
  * special values (every class of binary32 and the boundaries between them)
  * and random generators (bit patterns, values near each other, results near
  * the overflow and underflow thresholds, near-cancelling products).
- * Header-only; test_core_soft_math.c and test_soft_math_opencl.c share it. */
+ * And the references they are compared with. Header-only;
+ * test_core_soft_math.c, test_soft_math_opencl.c and bench/bench_soft_math.c
+ * share it. */
 #ifndef RT_SOFT_MATH_CASES_H
 #define RT_SOFT_MATH_CASES_H
 
+#include <math.h>
 #include <stdint.h>
+
+#include "rt_soft_math.h"
 
 /* xorshift64*: reproducible, good enough for operands. */
 static inline uint32_t sm_rand(uint64_t *s) {
@@ -119,6 +124,49 @@ static inline void sm_dop_quad(uint64_t *s, uint32_t q[4]) {
         q[0] = (q[0] & 0x807fffffu) | e1 << 23;
         q[1] = (q[1] & 0x807fffffu) | e2 << 23;
     }
+}
+
+/* ---- the references the tests and bench_soft_math compare with ---------- */
+
+/* Bit for bit, but any NaN equals any NaN (payloads are not promised). */
+static inline int sm_same(uint32_t x, uint32_t y) {
+    return x == y || (rt_sm_is_nan_(x) && rt_sm_is_nan_(y));
+}
+
+/* The float nearest s + err (ties to even), where s = fl(s + err) in double. */
+static inline float sm_round_sum(double s, double err) {
+    float f = (float)s;
+    if (err == 0.0 || (double)f == s || isinf(s)) return f;
+    float lo, hi;
+    if ((double)f < s) {
+        lo = f;
+        hi = nextafterf(f, INFINITY);
+    } else {
+        hi = f;
+        lo = nextafterf(f, -INFINITY);
+    }
+    double dlo = isinf(lo) ? -0x1p128 : (double)lo, dhi = isinf(hi) ? 0x1p128 : (double)hi;
+    double mid = 0.5 * (dlo + dhi); /* exact: 25 bits */
+    if (s != mid) return f;         /* s + err is on s's side of the midpoint */
+    return err > 0.0 ? hi : lo;
+}
+
+/* s + err = p + q exactly (Knuth's TwoSum, doubles). */
+static inline void sm_two_sum(double p, double q, double *s, double *err) {
+    *s = p + q;
+    double bb = *s - p;
+    *err = (p - (*s - bb)) + (q - bb);
+}
+
+/* The exact a b - c d rounded once: float products are exact in double, their
+ * difference is exact as s + err. */
+static inline uint32_t sm_ref_dop(uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
+    double p = (double)rt_sm_float_(a) * (double)rt_sm_float_(b),
+           q = (double)rt_sm_float_(c) * (double)rt_sm_float_(d);
+    if (!isfinite(p) || !isfinite(q)) return rt_sm_bits_((float)(p - q));
+    double s, err;
+    sm_two_sum(p, -q, &s, &err);
+    return rt_sm_bits_(sm_round_sum(s, err));
 }
 
 #endif /* RT_SOFT_MATH_CASES_H */

@@ -61,9 +61,6 @@ static uint32_t bits(float f) {
 static float flt(uint32_t u) {
     return rt_sm_float_(u);
 }
-static int same(uint32_t x, uint32_t y) {
-    return x == y || (rt_sm_is_nan_(x) && rt_sm_is_nan_(y));
-}
 
 /* The hardware, through volatile so that nothing is folded at compile time
  * (and so that the current MXCSR / FPCR applies). */
@@ -80,38 +77,6 @@ static uint32_t hw_sqrt(uint32_t a) {
 
 /* ---- the exact reference for a b - c d ---- */
 
-/* The float nearest s + err (ties to even), where s = fl(s + err) in double. */
-static float round_sum(double s, double err) {
-    float f = (float)s;
-    if (err == 0.0 || (double)f == s || isinf(s)) return f;
-    float lo, hi;
-    if ((double)f < s) {
-        lo = f;
-        hi = nextafterf(f, INFINITY);
-    } else {
-        hi = f;
-        lo = nextafterf(f, -INFINITY);
-    }
-    double dlo = isinf(lo) ? -0x1p128 : (double)lo, dhi = isinf(hi) ? 0x1p128 : (double)hi;
-    double mid = 0.5 * (dlo + dhi); /* exact: 25 bits */
-    if (s != mid) return f;         /* s + err is on s's side of the midpoint */
-    return err > 0.0 ? hi : lo;
-}
-
-static void two_sum(double p, double q, double *s, double *err) {
-    *s = p + q;
-    double bb = *s - p;
-    *err = (p - (*s - bb)) + (q - bb);
-}
-
-static uint32_t ref_dop(uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
-    double p = (double)flt(a) * (double)flt(b), q = (double)flt(c) * (double)flt(d);
-    if (!isfinite(p) || !isfinite(q)) return bits((float)(p - q));
-    double s, err;
-    two_sum(p, -q, &s, &err);
-    return bits(round_sum(s, err));
-}
-
 static uint32_t daz(uint32_t x) {
     return (x & 0x7f800000u) ? x : (x & 0x80000000u);
 }
@@ -123,10 +88,10 @@ static uint32_t ref_dop_ftz(uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
     double p = (double)flt(a) * (double)flt(b), q = (double)flt(c) * (double)flt(d);
     if (!isfinite(p) || !isfinite(q)) return bits((float)(p - q));
     double s, err;
-    two_sum(p, -q, &s, &err);
-    if (fabs(s) >= 0x1p-125) return bits(round_sum(s, err));
+    sm_two_sum(p, -q, &s, &err);
+    if (fabs(s) >= 0x1p-125) return bits(sm_round_sum(s, err));
     if (fabs(s) < 0x1p-127) return bits(s < 0.0 || (s == 0.0 && signbit(s)) ? -0.0f : 0.0f);
-    float r = round_sum(s * 0x1p100, err * 0x1p100); /* normal: 24-bit rounding */
+    float r = sm_round_sum(s * 0x1p100, err * 0x1p100); /* normal: 24-bit rounding */
     if (fabsf(r) < 0x1p-26f) return bits(r < 0.0f ? -0.0f : 0.0f);
     return bits((float)((double)r * 0x1p-100));
 }
@@ -141,7 +106,7 @@ typedef struct tally {
 static void report(tally *t, const char *what, const uint32_t *in, int n_in, uint32_t want,
                    uint32_t got) {
     t->checked++;
-    if (same(want, got)) return;
+    if (sm_same(want, got)) return;
     if (t->bad++ < 8) {
         fprintf(stderr, "%s (%s):", t->name, what);
         for (int i = 0; i < n_in; i++) fprintf(stderr, " %08x", (unsigned)in[i]);
@@ -176,7 +141,7 @@ static void check_sqrt(const char *what, uint32_t a) {
 }
 
 static void check_dop(const char *what, const uint32_t q[4]) {
-    report(&t_dop, what, q, 4, ref_dop(q[0], q[1], q[2], q[3]),
+    report(&t_dop, what, q, 4, sm_ref_dop(q[0], q[1], q[2], q[3]),
            rt_soft_diff_of_products_bits(q[0], q[1], q[2], q[3]));
     uint32_t soft_ftz = rt_soft_diff_of_products_ftz_bits(q[0], q[1], q[2], q[3]);
     report(&t_dop_ftz, what, q, 4, ref_dop_ftz(q[0], q[1], q[2], q[3]), soft_ftz);
@@ -185,7 +150,7 @@ static void check_dop(const char *what, const uint32_t q[4]) {
      * double conversions, FTZ on the double to float one) is a reference. */
     volatile double p = (double)flt(q[0]) * flt(q[1]), r = (double)flt(q[2]) * flt(q[3]);
     double s, err;
-    two_sum(p, -r, &s, &err);
+    sm_two_sum(p, -r, &s, &err);
     if (err == 0.0 || !isfinite(s)) {
         ftz_on();
         volatile float fa = flt(q[0]), fb = flt(q[1]), fc = flt(q[2]), fd = flt(q[3]);
