@@ -244,14 +244,8 @@ int main(int argc, char **argv) {
     if (rt_embree_create(threads, &b.em, &emsg) != RT_OK) b.em = NULL;
 #endif
     /* The library's own frame (default builder): what every tree must give. */
-    rt_renderer_options rop = rt_renderer_options_default();
-    rop.threads = threads;
-    rt_renderer *renderer = NULL;
-    rt_error rerr;
-    if (rt_renderer_create(&rop, &renderer, &rerr) != RT_OK) {
-        fprintf(stderr, "%s\n", rerr.message);
-        return 1;
-    }
+    rt_renderer *renderer = bench_renderer("cpu", threads);
+    if (!renderer) return 1;
     rt_render_options ro = rt_render_options_default();
     ro.direct_only = 1;
     rt_framebuffer ref;

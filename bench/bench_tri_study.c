@@ -235,14 +235,8 @@ int main(int argc, char **argv) {
     }
     bench_primary_rays(&cam, w, h, rays);
 
-    rt_renderer_options ro = rt_renderer_options_default();
-    ro.threads = threads;
-    rt_renderer *renderer = NULL;
-    rt_error rerr;
-    if (rt_renderer_create(&ro, &renderer, &rerr) != RT_OK) {
-        fprintf(stderr, "%s\n", rerr.message);
-        return 1;
-    }
+    rt_renderer *renderer = bench_renderer("cpu", threads);
+    if (!renderer) return 1;
     rt_trace_options opt = {0, RT_TRI_TEST_WATERTIGHT};
     static double ms[TESTS][MAX_RUNS];
     for (int r = -1; r < runs; r++) /* r = -1: the warm-up pass, not counted */
@@ -317,6 +311,7 @@ int main(int argc, char **argv) {
     free_world(&wt);
     for (int m = 0; m < TESTS; m++) free(hits[m]);
     free(rays);
+    rt_renderer_destroy(renderer);
     rt_scene_destroy(scene);
     return 0;
 }

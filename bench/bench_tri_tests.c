@@ -42,14 +42,8 @@ int main(int argc, char **argv) {
     static const char *names[] = {"watertight", "mt", "pluecker", "badouel"};
     double ms[4][100];
     size_t hit_count[4] = {0};
-    rt_renderer_options ro = rt_renderer_options_default();
-    ro.backend = backend;
-    rt_renderer *renderer = NULL;
-    rt_error rerr;
-    if (rt_renderer_create(&ro, &renderer, &rerr) != RT_OK) {
-        fprintf(stderr, "%s\n", rerr.message);
-        return 1;
-    }
+    rt_renderer *renderer = bench_renderer(backend, 0);
+    if (!renderer) return 1;
     rt_trace_options opt = {0, RT_TRI_TEST_WATERTIGHT};
     /* One untimed pass builds the BVH and layout. */
     if (rt_trace_rays(renderer, scene, rays, n, hits, &opt) != RT_OK) {
@@ -78,6 +72,7 @@ int main(int argc, char **argv) {
     }
     free(rays);
     free(hits);
+    rt_renderer_destroy(renderer);
     rt_scene_destroy(scene);
     return 0;
 }

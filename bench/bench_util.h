@@ -1,12 +1,13 @@
 /* bench_util.h - what the benchmark programs share: min and median of
  * repeated timings, integer options, the interior views of
  * shared/scenes/VIEWS.md for the bare OBJ files of Sponza and Sibenik, and
- * pinhole primary rays through pixel centres. Header-only (static inline
+ * pinhole primary rays through pixel centres, renderers. Header-only (static inline
  * functions): every bench/bench_*.c is its own program. */
 #ifndef RT_BENCH_UTIL_H
 #define RT_BENCH_UTIL_H
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -26,6 +27,18 @@ static inline int bench_arg_int(int argc, char **argv, int *i, int lo, int hi, i
     if (*end || v < lo || v > hi) return 0;
     *out = (int)v;
     return 1;
+}
+
+/* A renderer on backend (NULL: cpu) with threads (0: all cores); prints
+ * the reason and returns NULL when it cannot be made. */
+static inline rt_renderer *bench_renderer(const char *backend, int threads) {
+    rt_renderer_options o = rt_renderer_options_default();
+    if (backend) o.backend = backend;
+    o.threads = threads;
+    rt_renderer *r = NULL;
+    rt_error err;
+    if (rt_renderer_create(&o, &r, &err) != RT_OK) fprintf(stderr, "%s\n", err.message);
+    return r;
 }
 
 /* Sorts v[0..n) and returns its minimum and median (the mean of the middle
