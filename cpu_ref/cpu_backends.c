@@ -49,6 +49,33 @@ static void fill_counts(rt_render_stats *stats, const rt_cpu_counts *counts) {
     stats->packet_tri_tests = counts->packet_tri_tests;
 }
 
+/* One frame on the pool: the scalar oracle, or packets through wide (with
+ * the build isa) when wide is given. */
+static rt_status render_frame(const rt_backend_layout *layout, const rt_backend_frame *frame,
+                              const rt_pk_wide *wide, const rt_pk_variant *isa,
+                              rt_render_stats *stats, rt_error *err) {
+    rt_cpu_frame f = {
+        layout->flat,        wide, isa, frame->aov, frame->pixels, frame->channels, frame->progress,
+        frame->progress_user};
+    rt_cpu_counts counts;
+    double t0 = rt_now_ms();
+    rt_status st = wide ? rt_packet_render(&f, layout->pool, &counts)
+                        : rt_cpu_render(&f, layout->pool, &counts);
+    if (st != RT_OK) return rt_fail(err, st, "%s: out of memory", wide ? "packet" : "cpu");
+    stats->render_ms = rt_now_ms() - t0;
+    fill_counts(stats, &counts);
+    stats->threads = rt_pool_size(layout->pool);
+    return RT_OK;
+}
+
+/* Ray queries on the pool, as render_frame chooses. */
+static void trace_all(const rt_backend_layout *layout, const rt_pk_wide *wide,
+                      const rt_pk_variant *isa, const rt_ray_d *rays, size_t count, rt_hit_d *hits,
+                      int any_hit) {
+    trace_job job = {layout->flat, wide, isa, rays, hits, count, any_hit};
+    rt_pool_run(layout->pool, trace_chunk, &job);
+}
+
 static int always_available(rt_error *why) {
     (void)why;
     return 1;
@@ -75,30 +102,14 @@ static rt_status cpu_prepare(void *state, const rt_backend_layout *layout, rt_re
 static rt_status cpu_render(void *state, const rt_backend_layout *layout,
                             const rt_backend_frame *frame, rt_render_stats *stats, rt_error *err) {
     (void)state;
-    rt_cpu_frame f = {layout->flat,
-                      NULL,
-                      NULL,
-                      frame->aov,
-                      frame->pixels,
-                      frame->channels,
-                      frame->progress,
-                      frame->progress_user};
-    rt_cpu_counts counts;
-    double t0 = rt_now_ms();
-    rt_status st = rt_cpu_render(&f, layout->pool, &counts);
-    if (st != RT_OK) return rt_fail(err, st, "cpu: out of memory");
-    stats->render_ms = rt_now_ms() - t0;
-    fill_counts(stats, &counts);
-    stats->threads = rt_pool_size(layout->pool);
-    return RT_OK;
+    return render_frame(layout, frame, NULL, NULL, stats, err);
 }
 
 static rt_status cpu_trace(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
                            size_t count, rt_hit_d *hits, int any_hit, rt_error *err) {
     (void)state;
     (void)err;
-    trace_job job = {layout->flat, NULL, NULL, rays, hits, count, any_hit};
-    rt_pool_run(layout->pool, trace_chunk, &job);
+    trace_all(layout, NULL, NULL, rays, count, hits, any_hit);
     return RT_OK;
 }
 
@@ -160,18 +171,11 @@ static rt_status packet_render(void *state, const rt_backend_layout *layout,
                                const rt_backend_frame *frame, rt_render_stats *stats,
                                rt_error *err) {
     packet_state *s = state;
-    rt_cpu_frame f = {layout->flat,  &s->wide,        s->isa,          frame->aov,
-                      frame->pixels, frame->channels, frame->progress, frame->progress_user};
-    rt_cpu_counts counts;
-    double t0 = rt_now_ms();
-    rt_status st = rt_packet_render(&f, layout->pool, &counts);
-    if (st != RT_OK) return rt_fail(err, st, "packet: out of memory");
-    stats->render_ms = rt_now_ms() - t0;
-    fill_counts(stats, &counts);
+    rt_status st = render_frame(layout, frame, &s->wide, s->isa, stats, err);
+    if (st != RT_OK) return st;
     stats->packet_rays = RT_PK_LANES;
     stats->packet_isa = rt_pk_variant_name(s->isa);
     stats->packet_vector = rt_pk_variant_lanes(s->isa);
-    stats->threads = rt_pool_size(layout->pool);
     return RT_OK;
 }
 
@@ -179,8 +183,7 @@ static rt_status packet_trace(void *state, const rt_backend_layout *layout, cons
                               size_t count, rt_hit_d *hits, int any_hit, rt_error *err) {
     packet_state *s = state;
     (void)err;
-    trace_job job = {layout->flat, &s->wide, s->isa, rays, hits, count, any_hit};
-    rt_pool_run(layout->pool, trace_chunk, &job);
+    trace_all(layout, &s->wide, s->isa, rays, count, hits, any_hit);
     return RT_OK;
 }
 
