@@ -29,7 +29,8 @@
 /* What a backend is made with (from rt_renderer_options). */
 typedef struct rt_backend_config {
     const char *device;         /* the part after "name:" (NULL: the default device) */
-    const char *device_options; /* extra kernel compiler options, or NULL */
+    const char *device_options; /* extra kernel compiler options (at most 255 characters:
+                                   the renderer refuses longer ones), or NULL */
     const char *packet_isa;     /* the packet backend's instruction set, or NULL */
     rt_opencl_tuning opencl;
 } rt_backend_config;

@@ -72,14 +72,13 @@ _Static_assert((int)B_HDR == (int)RT_ARG_HDR && (int)B_LIGHTS == (int)RT_ARG_LIG
 typedef struct cl_state {
     rt_cl_device_info dev;
     char selector[128];       /* the device this state was made for ("": the default) */
-    char device_options[256]; /* the renderer's extra build options */
+    char device_options[256]; /* the renderer's extra build options ("": the exact build) */
     rt_opencl_tuning tune;    /* the renderer's kernel choices (tests, comparisons) */
     cl_context ctx;
     cl_command_queue queue;
     cl_program program;
     char options[768]; /* the program's build options (the cache key) */
     char defines[192]; /* the specialisation part of options */
-    char extra[256];   /* the device_options part of options ("" for the exact build) */
     cl_kernel k_camera, k_trace, k_shade;
     cl_kernel k_wcam, k_wtrace, k_wshade, k_wsum; /* the wavefront */
     cl_kernel k_packet, k_ptrace;                 /* CPU devices: rt_k_packet, rt_k_packet_trace */
@@ -187,18 +186,10 @@ static int packet_lanes(const cl_state *s) {
     return n == 4 || n == 8 ? n : 16;
 }
 
-/* The longest device_options string taken (rt.h). */
-#define RT_CL_EXTRA_MAX 255
-
-static rt_status build_program(cl_state *s, const rt_flat *f, const char *extra, double *compile_ms,
-                               rt_error *err) {
+static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms, rt_error *err) {
     char defines[192], options[768];
     scene_defines(f, defines, sizeof defines);
-    if (!extra) extra = "";
-    if (strlen(extra) > RT_CL_EXTRA_MAX)
-        return rt_fail(err, RT_ERROR_INVALID_ARGUMENT,
-                       "extra kernel build options (device_options) longer than %d characters",
-                       RT_CL_EXTRA_MAX);
+    const char *extra = s->device_options;
     int lanes = packet_lanes(s);
     char packet[32] = "";
     if (lanes) snprintf(packet, sizeof packet, " -DRT_PK_LANES=%d", lanes);
@@ -251,7 +242,6 @@ static rt_status build_program(cl_state *s, const rt_flat *f, const char *extra,
     s->lanes = lanes;
     snprintf(s->options, sizeof s->options, "%s", options);
     snprintf(s->defines, sizeof s->defines, "%s", defines);
-    snprintf(s->extra, sizeof s->extra, "%s", extra);
     rt_status st = warm_up(s, (f->hdr.flags & RT_SCENE_SECONDARY) != 0, err);
     *compile_ms += rt_now_ms() - t0;
     return st;
@@ -597,15 +587,14 @@ static rt_status cl_prepare(void *state, const rt_backend_layout *layout, rt_ren
                             rt_error *err) {
     cl_state *s = state;
     rt_status st = s->ctx ? RT_OK : open_device(s, err);
-    if (st == RT_OK)
-        st = build_program(s, layout->flat, s->device_options, &stats->compile_ms, err);
+    if (st == RT_OK) st = build_program(s, layout->flat, &stats->compile_ms, err);
     if (st == RT_OK) st = upload_scene(s, layout, &stats->upload_bytes, &stats->upload_ms, err);
     if (st != RT_OK) return named(err, st);
     snprintf(stats->device, sizeof stats->device, "%s", s->dev.name);
     snprintf(stats->specialisation, sizeof stats->specialisation, "%s", s->defines);
-    snprintf(stats->device_options, sizeof stats->device_options, "%s", s->extra);
+    snprintf(stats->device_options, sizeof stats->device_options, "%s", s->device_options);
     /* Extra options (the study's variants) void the device's promise. */
-    stats->exact = s->dev.exact && !s->extra[0];
+    stats->exact = s->dev.exact && !s->device_options[0];
     return RT_OK;
 }
 
