@@ -6,7 +6,6 @@
  * All of them give the same bits (tests/test_core_packet.c checks each one
  * the machine can run); they differ in speed only. The caller picks one by
  * name (rt_renderer_options.packet_isa); nothing here is global state. */
-#include <stdlib.h>
 #include <string.h>
 
 #include "packet_trace.h"

@@ -18,7 +18,6 @@
  * counters count per lane (they differ from the oracle's), so they are
  * checked for consistency instead, and exactly with the one-ray kernels (rt_opencl_tuning)
  * (the one-ray kernels, which must stay exact too). */
-#define _POSIX_C_SOURCE 200809L /* setenv */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
