@@ -55,10 +55,14 @@ static void fill_counts(rt_render_stats *stats, const rt_cpu_counts *counts) {
 static rt_status render_frame(const rt_backend_layout *layout, const rt_backend_frame *frame,
                               const rt_pk_wide *wide, const rt_pk_variant *isa, int flush,
                               rt_render_stats *stats, rt_error *err) {
-    rt_cpu_frame f = {layout->flat,   wide,
-                      isa,            frame->aov,
-                      frame->pixels,  frame->channels,
-                      frame->progress, frame->progress_user,
+    rt_cpu_frame f = {layout->flat,
+                      wide,
+                      isa,
+                      frame->aov,
+                      frame->pixels,
+                      frame->channels,
+                      frame->progress,
+                      frame->progress_user,
                       flush};
     rt_cpu_counts counts;
     double t0 = rt_now_ms();
@@ -83,8 +87,7 @@ static void trace_all(const rt_backend_layout *layout, const rt_pk_wide *wide,
 }
 
 /* "flush" needs a CPU whose denormal mode the backend can set. */
-static rt_status check_denormals(const char *name, const rt_backend_config *config,
-                                 rt_error *err) {
+static rt_status check_denormals(const char *name, const rt_backend_config *config, rt_error *err) {
     if (config->flush_denormals && !rt_fp_can_flush())
         return rt_fail(err, RT_ERROR_UNSUPPORTED,
                        "%s: this CPU build cannot set flush-to-zero (denormals 'flush' needs "

@@ -186,8 +186,8 @@ typedef struct rt_render_stats {
     const char *notice;
     /* Device backends (opencl); zero or empty on the CPU. */
     char device[128]; /* the device that ran */
-    int exact; /* the backend promises the CPU oracle's bits (0 with device_options); the
-                  CPU backends always (they are the oracle, in the denormal mode asked for) */
+    int exact;        /* the backend promises the CPU oracle's bits (0 with device_options); the
+                         CPU backends always (they are the oracle, in the denormal mode asked for) */
     const char *math_profile; /* "native" or "portable" (device backends), "ieee" (CPU) */
     const char *denormals;    /* "preserve" or "flush" */
     char specialisation[192]; /* the -D feature switches of the kernels */

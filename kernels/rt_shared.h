@@ -86,8 +86,8 @@
 #define RT_INF         INFINITY
 /* The hardware's division and sqrt flush when the thread's mode does; the
  * integer-only difference of products follows that mode explicitly. */
-#define RT_DOP(a, b, c, d)                                                     \
-    (rt_fp_flushing() ? rt_soft_diff_of_products_ftz((a), (b), (c), (d))     \
+#define RT_DOP(a, b, c, d)                                                                         \
+    (rt_fp_flushing() ? rt_soft_diff_of_products_ftz((a), (b), (c), (d))                           \
                       : rt_soft_diff_of_products((a), (b), (c), (d)))
 static inline rt_i32 rt_as_int_(float f) {
     rt_i32 i;

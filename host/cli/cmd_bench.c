@@ -433,8 +433,13 @@ static int bench_scene(const char *path, const bench_args *a, rt_pool *pool) {
     int n_render = 0;
     char why[300] = "";
     if (a->render) {
-        bench_render_setup su = {a->reps,        a->threads,   a->width, a->height,
-                                 a->device_math, a->denormals, a->progress ? render_progress : NULL};
+        bench_render_setup su = {a->reps,
+                                 a->threads,
+                                 a->width,
+                                 a->height,
+                                 a->device_math,
+                                 a->denormals,
+                                 a->progress ? render_progress : NULL};
         n_render = bench_render(path, &su, rrows, why, sizeof why);
     }
     if (a->progress) fprintf(stderr, "\r\033[K");
@@ -480,11 +485,16 @@ int cmd_bench(int argc, char **argv) {
         } else if (!strcmp(s, "--device-math") || !strcmp(s, "--denormals")) {
             const char *v = i + 1 < argc ? argv[++i] : "";
             int math = !strcmp(s, "--device-math");
-            if (math && !strcmp(v, "auto")) a.device_math = RT_DEVICE_MATH_AUTO;
-            else if (math && !strcmp(v, "native")) a.device_math = RT_DEVICE_MATH_NATIVE;
-            else if (math && !strcmp(v, "portable")) a.device_math = RT_DEVICE_MATH_PORTABLE;
-            else if (!math && !strcmp(v, "preserve")) a.denormals = RT_DENORMALS_PRESERVE;
-            else if (!math && !strcmp(v, "flush")) a.denormals = RT_DENORMALS_FLUSH;
+            if (math && !strcmp(v, "auto"))
+                a.device_math = RT_DEVICE_MATH_AUTO;
+            else if (math && !strcmp(v, "native"))
+                a.device_math = RT_DEVICE_MATH_NATIVE;
+            else if (math && !strcmp(v, "portable"))
+                a.device_math = RT_DEVICE_MATH_PORTABLE;
+            else if (!math && !strcmp(v, "preserve"))
+                a.denormals = RT_DENORMALS_PRESERVE;
+            else if (!math && !strcmp(v, "flush"))
+                a.denormals = RT_DENORMALS_FLUSH;
             else {
                 fprintf(stderr, "rtcl bench: %s takes %s, not '%s'\n", s,
                         math ? "auto, native or portable" : "preserve or flush", v);

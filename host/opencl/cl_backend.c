@@ -192,7 +192,8 @@ static rt_status probe_flush(cl_state *s, int *flushes, rt_error *err) {
     float vin[4] = {0x1p-70f, 0x1p-70f, 0x1p-140f, 0x1p100f}, vout[2] = {1.0f, 1.0f};
     if (prog) ce = clBuildProgram(prog, 1, &d, denormal_options(s), NULL, NULL);
     if (prog && ce == CL_SUCCESS) k = clCreateKernel(prog, "rt_k_denorm_probe", &ce);
-    if (k) in = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof vin, vin, &ce);
+    if (k)
+        in = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof vin, vin, &ce);
     if (in) out = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, sizeof vout, NULL, &ce);
     if (out) ce = clSetKernelArg(k, 0, sizeof in, &in);
     if (out && ce == CL_SUCCESS) ce = clSetKernelArg(k, 1, sizeof out, &out);
@@ -250,7 +251,7 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
     /* The exact build: no mad or fast-relaxed maths (they change results);
      * the maths profile and denormal policy of the plan. Study variants
      * append their options (device_options) after ours. */
-    const char *math = s->plan.portable       ? "-DRT_PORTABLE_MATH "
+    const char *math = s->plan.portable     ? "-DRT_PORTABLE_MATH "
                        : s->dev.cr_div_sqrt ? "-cl-fp32-correctly-rounded-divide-sqrt "
                                             : "";
     snprintf(options, sizeof options, "%s%s%s%s%s%s", math, denormal_options(s), defines, packet,
@@ -655,7 +656,8 @@ static rt_status cl_prepare(void *state, const rt_backend_layout *layout, rt_ren
     snprintf(stats->specialisation, sizeof stats->specialisation, "%s", s->defines);
     snprintf(stats->device_options, sizeof stats->device_options, "%s", s->device_options);
     /* Extra options (the study's variants) void the device's promise. */
-    stats->exact = s->plan.exact && (!s->plan.needs_probe || s->probed_flush) && !s->device_options[0];
+    stats->exact =
+        s->plan.exact && (!s->plan.needs_probe || s->probed_flush) && !s->device_options[0];
     stats->math_profile = s->plan.portable ? "portable" : "native";
     stats->denormals = s->plan.flush ? "flush" : "preserve";
     return RT_OK;

@@ -188,7 +188,8 @@ int rt_cl_select(const rt_cl_device_info *devs, int count, const char *sel, rt_e
 rt_cl_math_plan rt_cl_plan_math(const rt_cl_device_info *d, rt_device_math math, int flush) {
     rt_cl_math_plan p;
     memset(&p, 0, sizeof p);
-    p.portable = math == RT_DEVICE_MATH_PORTABLE || (math == RT_DEVICE_MATH_AUTO && !d->cr_div_sqrt);
+    p.portable =
+        math == RT_DEVICE_MATH_PORTABLE || (math == RT_DEVICE_MATH_AUTO && !d->cr_div_sqrt);
     p.flush = flush != 0;
     if (!p.portable && !d->cr_div_sqrt) {
         p.note = "native maths on a device whose float divide/sqrt are not "
