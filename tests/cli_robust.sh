@@ -25,7 +25,7 @@ word_args() {
     done
 }
 word_oracle() { case $1 in *+flush*) echo cpu+flush ;; *) echo cpu ;; esac; }
-TRI_TESTS="watertight mt pluecker badouel"
+TRI_TESTS=${RT_ROBUST_TRI_TESTS:-"watertight mt pluecker badouel"}
 
 if ! command -v python3 > /dev/null; then
     echo "python3 not found: the robustness suite needs it"; exit 77
