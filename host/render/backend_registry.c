@@ -12,6 +12,9 @@
 #ifdef RT_HAVE_OPENCL
 #include "opencl/cl_backend.h"
 #endif
+#ifdef RT_HAVE_VULKAN
+#include "vulkan/vk_backend.h"
+#endif
 
 typedef struct registry_entry {
     const char *name;
@@ -27,6 +30,14 @@ static const registry_entry registry[] = {
     {"opencl", NULL,
      "this build has no OpenCL backend (configure with -DRT_OPENCL=ON and the OpenCL ICD loader "
      "installed: ocl-icd-opencl-dev, opencl-c-headers)",
+     1},
+#endif
+#ifdef RT_HAVE_VULKAN
+    {"vulkan", &rt_backend_vulkan, NULL, 1},
+#else
+    {"vulkan", NULL,
+     "this build has no Vulkan backend (configure with -DRT_VULKAN=ON and the Vulkan loader and "
+     "glslang installed: libvulkan-dev, glslang-tools)",
      1},
 #endif
     {"cpu", &rt_backend_cpu, NULL, 0},
