@@ -27,10 +27,8 @@
 #include "vulkan/vk_internal.h"
 
 /* Generated from kernels/vulkan/ at build time (cmake/embed_spirv.cmake). */
-extern const uint32_t rt_vk_spirv_rt_vk_render[], rt_vk_spirv_rt_vk_trace[],
-    rt_vk_spirv_rt_vk_soft_test[];
-extern const size_t rt_vk_spirv_rt_vk_render_size, rt_vk_spirv_rt_vk_trace_size,
-    rt_vk_spirv_rt_vk_soft_test_size;
+extern const uint32_t rt_vk_spirv_rt_vk_main[], rt_vk_spirv_rt_vk_soft_test[];
+extern const size_t rt_vk_spirv_rt_vk_main_size, rt_vk_spirv_rt_vk_soft_test_size;
 
 /* Tiles (pixels or rays per dispatch), adapted per frame so that one
  * dispatch stays near RT_VK_TARGET_MS: OpenCL's budget (a GPU watchdog fires
@@ -68,15 +66,14 @@ static const char *const buffer_names[B_COUNT] = {
 /* The push constants of every shader (Push in kernels/vulkan/rt_vk_io.glsl). */
 typedef struct vk_push {
     uint32_t first, count;
-    int32_t aov, channels, any_hit;
+    int32_t aov, channels, any_hit, query;
 } vk_push;
 
 /* The specialization constants (constant_id 0..4 in rt_vk_shared.glsl). */
 enum { SPEC_FLAGS, SPEC_INST_SET, SPEC_INST_MASK, SPEC_TRI_METHOD, SPEC_FLUSH, SPEC_COUNT };
 
-enum { P_RENDER, P_TRACE, P_SOFT, P_COUNT };
-static const char *const pipeline_names[P_COUNT] = {"rt_vk_render", "rt_vk_trace",
-                                                    "rt_vk_soft_test"};
+enum { P_MAIN, P_SOFT, P_COUNT };
+static const char *const pipeline_names[P_COUNT] = {"rt_vk_main", "rt_vk_soft_test"};
 
 typedef struct vk_buf {
     VkBuffer buf;
@@ -117,13 +114,9 @@ typedef struct vk_state {
 } vk_state;
 
 const uint32_t *rt_vk_module(const char *name, size_t *bytes) {
-    if (!strcmp(name, "rt_vk_render")) {
-        *bytes = rt_vk_spirv_rt_vk_render_size;
-        return rt_vk_spirv_rt_vk_render;
-    }
-    if (!strcmp(name, "rt_vk_trace")) {
-        *bytes = rt_vk_spirv_rt_vk_trace_size;
-        return rt_vk_spirv_rt_vk_trace;
+    if (!strcmp(name, "rt_vk_main")) {
+        *bytes = rt_vk_spirv_rt_vk_main_size;
+        return rt_vk_spirv_rt_vk_main;
     }
     if (!strcmp(name, "rt_vk_soft_test")) {
         *bytes = rt_vk_spirv_rt_vk_soft_test_size;
@@ -409,6 +402,9 @@ static rt_status ready(vk_state *s, rt_error *err) {
 
 /* ---- pipelines ----------------------------------------------------------------- */
 
+static rt_status bind_all(vk_state *s, rt_error *err);
+static rt_status dispatch(vk_state *s, int p, const vk_push *push, double *ms, rt_error *err);
+
 /* Pipeline p specialised to spec (made again only when spec changed). The
  * module gets the device's float controls first. */
 static rt_status pipeline(vk_state *s, int p, const uint32_t spec[SPEC_COUNT], double *ms,
@@ -455,8 +451,16 @@ static rt_status pipeline(vk_state *s, int p, const uint32_t spec[SPEC_COUNT], d
         return vk_fail(s, r, "creating the compute pipeline", err);
     }
     memcpy(s->spec[p], spec, sizeof s->spec[p]);
+    /* One empty dispatch (count 0: every invocation returns at once): some
+     * drivers (lavapipe) compile the shader at its first dispatch, which
+     * would otherwise land in the first frame's time. */
+    vk_push none;
+    memset(&none, 0, sizeof none);
+    double ignored;
+    rt_status st = bind_all(s, err);
+    if (st == RT_OK) st = dispatch(s, p, &none, &ignored, err);
     *ms += rt_now_ms() - t0;
-    return RT_OK;
+    return st;
 }
 
 /* The specialization constants for the scene: its header flags and triangle
@@ -720,8 +724,7 @@ static rt_status vk_prepare(void *state, const rt_backend_layout *layout, rt_ren
     rt_status st = ready(s, err);
     uint32_t spec[SPEC_COUNT];
     scene_spec(layout->flat, spec);
-    if (st == RT_OK) st = pipeline(s, P_RENDER, spec, &stats->compile_ms, err);
-    if (st == RT_OK) st = pipeline(s, P_TRACE, spec, &stats->compile_ms, err);
+    if (st == RT_OK) st = pipeline(s, P_MAIN, spec, &stats->compile_ms, err);
     if (st == RT_OK) st = upload_scene(s, layout, &stats->upload_bytes, &stats->upload_ms, err);
     if (st != RT_OK) return named(err, st);
     snprintf(s->spec_text, sizeof s->spec_text,
@@ -747,15 +750,15 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
     if (st == RT_OK) st = ensure(s, B_COUNTERS, sizeof(rt_counters) * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK) st = bind_all(s, err);
     if (st != RT_OK) return named(err, st);
-    snprintf(stats->kernels, sizeof stats->kernels, "one pixel per invocation (rt_vk_render)");
+    snprintf(stats->kernels, sizeof stats->kernels, "one pixel per invocation (rt_vk_main)");
     double t_render = rt_now_ms();
     const rt_counters *counts = s->buf[B_COUNTERS].map;
     for (uint32_t first = 0; first < pixels && st == RT_OK;) {
         uint32_t per = s->tile;
         uint32_t n = pixels - first < per ? pixels - first : per;
-        vk_push push = {first, n, (int32_t)frame->aov, frame->channels, 0};
+        vk_push push = {first, n, (int32_t)frame->aov, frame->channels, 0, 0};
         double ms = 0.0;
-        st = dispatch(s, P_RENDER, &push, &ms, err);
+        st = dispatch(s, P_MAIN, &push, &ms, err);
         if (st != RT_OK) break;
         stats->kernel_ms[1] += ms;
         stats->launches++;
@@ -794,9 +797,9 @@ static rt_status vk_trace(void *state, const rt_backend_layout *layout, const rt
     for (size_t first = 0; first < count && st == RT_OK;) {
         uint32_t n = (uint32_t)(count - first < s->tile ? count - first : s->tile);
         memcpy(s->buf[B_RAYS].map, rays + first, sizeof(rt_ray_d) * n);
-        vk_push push = {0, n, 0, 0, any_hit ? 1 : 0};
+        vk_push push = {0, n, 0, 0, any_hit ? 1 : 0, 1};
         double ms = 0.0;
-        st = dispatch(s, P_TRACE, &push, &ms, err);
+        st = dispatch(s, P_MAIN, &push, &ms, err);
         if (st != RT_OK) break;
         memcpy(hits + first, s->buf[B_HITS].map, sizeof(rt_hit_d) * n);
         first += n;
@@ -834,7 +837,7 @@ rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size
     for (size_t first = 0; first < count && st == RT_OK;) {
         uint32_t n = (uint32_t)(count - first < tile ? count - first : tile);
         memcpy(s->buf[B_RAYS].map, operands + 4 * first, 16 * (size_t)n);
-        vk_push push = {0, n, 0, 0, 0};
+        vk_push push = {0, n, 0, 0, 0, 0};
         st = dispatch(s, P_SOFT, &push, &ms, err);
         if (st == RT_OK) memcpy(results + 3 * first, s->buf[B_HITS].map, 12 * (size_t)n);
         first += n;

@@ -19,6 +19,7 @@ layout(push_constant) uniform Push {
     int aov;      /* rt_aov */
     int channels; /* floats per pixel of fb */
     int any_hit;  /* ray queries: 1 any hit, 0 closest */
+    int query;    /* 1: ray queries (rays -> hits), 0: a frame's tile */
 } pc;
 
 #define AOV_NONE      0

@@ -142,6 +142,17 @@ layout(std430, set = 0, binding = 7) readonly buffer B_inst_ids { uint inst_ids[
 layout(std430, set = 0, binding = 8) readonly buffer B_mats { rt_material_d materials[]; };
 layout(std430, set = 0, binding = 9) readonly buffer B_lights { rt_light_d lights[]; };
 
+/* ---- traversal stacks ------------------------------------------------------
+ * In workgroup-shared memory, not in per-invocation arrays: a driver keeps a
+ * private array indexed at run time in scratch memory or as a chain of
+ * selects (lavapipe traced 100 times slower so). Entry k of invocation l is
+ * at k * RT_VK_LOCAL + l (consecutive invocations in consecutive words). The
+ * object BVH's stack is entries 0 .. RT_STACK_SIZE - 1, a mesh BVH's the
+ * next RT_STACK_SIZE. */
+#define RT_VK_LOCAL 64u
+shared uint rt_vk_stack[2 * RT_STACK_SIZE * RT_VK_LOCAL];
+#define STACK_AT(level, k) rt_vk_stack[(uint(level) * uint(RT_STACK_SIZE) + uint(k)) * RT_VK_LOCAL + gl_LocalInvocationIndex]
+
 /* ---- the portable profile's division and square root -------------------- */
 
 float RT_DIV(float a, float b) {
@@ -163,6 +174,13 @@ float RT_FABS(float x) {
 
 /* ---- small vector helpers ----------------------------------------------- */
 
+/* a[k] for k in 0..2, by selects: a local array indexed at run time stays in
+ * memory (scratch) in many drivers, and with it every access to the array,
+ * which made lavapipe trace several times slower. */
+float rt_pick3(float a[3], int k) {
+    return k == 0 ? a[0] : (k == 1 ? a[1] : a[2]);
+}
+
 float rt_dot3(float a[3], float b[3]) {
     return (a[0] * b[0] + a[1] * b[1]) + a[2] * b[2];
 }
@@ -176,26 +194,21 @@ void rt_cross3(float a[3], float b[3], out float o[3]) {
 void rt_normalize3(inout float v[3]) {
     float len = RT_SQRT(rt_dot3(v, v));
     if (len > 0.0) {
-        v[0] = RT_DIV(v[0], len);
-        v[1] = RT_DIV(v[1], len);
-        v[2] = RT_DIV(v[2], len);
+        [[dont_unroll]] for (int i = 0; i < 3; i++) v[i] = RT_DIV(v[i], len);
     }
 }
 
 /* ---- rays ----------------------------------------------------------------- */
 
 void rt_ray_prepare(rt_ray_d r, out rt_ray_pre p) {
-    for (int i = 0; i < 3; i++) {
-        p.inv[i] = RT_DIV(1.0, r.dir[i]);
-        p.sign[i] = p.inv[i] < 0.0 ? 1 : 0;
-    }
     float ax = RT_FABS(r.dir[0]), ay = RT_FABS(r.dir[1]), az = RT_FABS(r.dir[2]);
     int kz = 0;
     if (ay > ax) kz = 1;
     if (az > (kz == 1 ? ay : ax)) kz = 2;
     int kx = kz + 1 == 3 ? 0 : kz + 1;
     int ky = kx + 1 == 3 ? 0 : kx + 1;
-    if (r.dir[kz] < 0.0) {
+    float dkz = rt_pick3(r.dir, kz);
+    if (dkz < 0.0) {
         int tmp = kx;
         kx = ky;
         ky = tmp;
@@ -203,9 +216,19 @@ void rt_ray_prepare(rt_ray_d r, out rt_ray_pre p) {
     p.kx = kx;
     p.ky = ky;
     p.kz = kz;
-    p.sx = RT_DIV(r.dir[kx], r.dir[kz]);
-    p.sy = RT_DIV(r.dir[ky], r.dir[kz]);
-    p.sz = RT_DIV(1.0, r.dir[kz]);
+    /* The six divisions of the C function, in one loop: one inlined copy of
+     * the soft division instead of six. */
+    float num[6] = float[6](1.0, 1.0, 1.0, rt_pick3(r.dir, kx), rt_pick3(r.dir, ky), 1.0);
+    float den[6] = float[6](r.dir[0], r.dir[1], r.dir[2], dkz, dkz, dkz);
+    float q[6];
+    [[dont_unroll]] for (int i = 0; i < 6; i++) q[i] = RT_DIV(num[i], den[i]);
+    for (int i = 0; i < 3; i++) {
+        p.inv[i] = q[i];
+        p.sign[i] = p.inv[i] < 0.0 ? 1 : 0;
+    }
+    p.sx = q[3];
+    p.sy = q[4];
+    p.sz = q[5];
 }
 
 float rt_camera_sx(int px) {
@@ -262,9 +285,12 @@ bool rt_tri_watertight(uint e, rt_ray_d r, rt_ray_pre p, float tmin, float tmax,
         C[i] = tris[e].v2[i] - r.org[i];
     }
     int kx = p.kx, ky = p.ky, kz = p.kz;
-    float Ax = A[kx] - p.sx * A[kz], Ay = A[ky] - p.sy * A[kz];
-    float Bx = B[kx] - p.sx * B[kz], By = B[ky] - p.sy * B[kz];
-    float Cx = C[kx] - p.sx * C[kz], Cy = C[ky] - p.sy * C[kz];
+    float Akx = rt_pick3(A, kx), Aky = rt_pick3(A, ky), Akz = rt_pick3(A, kz);
+    float Bkx = rt_pick3(B, kx), Bky = rt_pick3(B, ky), Bkz = rt_pick3(B, kz);
+    float Ckx = rt_pick3(C, kx), Cky = rt_pick3(C, ky), Ckz = rt_pick3(C, kz);
+    float Ax = Akx - p.sx * Akz, Ay = Aky - p.sy * Akz;
+    float Bx = Bkx - p.sx * Bkz, By = Bky - p.sy * Bkz;
+    float Cx = Ckx - p.sx * Ckz, Cy = Cky - p.sy * Ckz;
     float U = Cx * By - Cy * Bx;
     float V = Ax * Cy - Ay * Cx;
     float W = Bx * Ay - By * Ax;
@@ -279,7 +305,7 @@ bool rt_tri_watertight(uint e, rt_ray_d r, rt_ray_pre p, float tmin, float tmax,
     if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0)) return false;
     float det = (U + V) + W;
     if (det == 0.0) return false;
-    float Az = p.sz * A[kz], Bz = p.sz * B[kz], Cz = p.sz * C[kz];
+    float Az = p.sz * Akz, Bz = p.sz * Bkz, Cz = p.sz * Ckz;
     float T = (U * Az + V * Bz) + W * Cz;
     float tt = RT_DIV(T, det);
     if (!(tt >= tmin && tt <= tmax)) return false;
@@ -364,11 +390,13 @@ bool rt_tri_badouel(uint e, rt_ray_d r, float tmin, float tmax, out float t, out
     if (ny > nx) k = 1;
     if (nz > (k == 1 ? ny : nx)) k = 2;
     int i1 = k == 0 ? 1 : 0, i2 = k == 2 ? 1 : 2;
-    float p1 = (r.org[i1] + tt * r.dir[i1]) - tris[e].v0[i1];
-    float p2 = (r.org[i2] + tt * r.dir[i2]) - tris[e].v0[i2];
-    float det = e1[i1] * e2[i2] - e1[i2] * e2[i1];
-    float uu = RT_DIV(p1 * e2[i2] - p2 * e2[i1], det);
-    float vv = RT_DIV(e1[i1] * p2 - e1[i2] * p1, det);
+    float e1i1 = rt_pick3(e1, i1), e1i2 = rt_pick3(e1, i2);
+    float e2i1 = rt_pick3(e2, i1), e2i2 = rt_pick3(e2, i2);
+    float p1 = (rt_pick3(r.org, i1) + tt * rt_pick3(r.dir, i1)) - tris[e].v0[i1];
+    float p2 = (rt_pick3(r.org, i2) + tt * rt_pick3(r.dir, i2)) - tris[e].v0[i2];
+    float det = e1i1 * e2i2 - e1i2 * e2i1;
+    float uu = RT_DIV(p1 * e2i2 - p2 * e2i1, det);
+    float vv = RT_DIV(e1i1 * p2 - e1i2 * p1, det);
     if (!(uu >= 0.0 && vv >= 0.0 && uu + vv <= 1.0)) return false;
     t = tt;
     u = uu;
@@ -458,7 +486,6 @@ int rt_descend(uint node, rt_ray_d r, rt_ray_pre p, rt_hit_d best, inout rt_coun
 
 bool rt_trace_mesh(uint root, uint inst, rt_ray_d r, rt_ray_pre p, bool any_hit,
                    inout rt_hit_d best, inout rt_counters c) {
-    uint stack[RT_STACK_SIZE];
     int sp = 0;
     float tn;
     c.box_tests++;
@@ -470,16 +497,16 @@ bool rt_trace_mesh(uint root, uint inst, rt_ray_d r, rt_ray_pre p, bool any_hit,
             if (rt_leaf_test(nodes[node].a, nb & RT_NODE_COUNT_MASK, inst, r, p, any_hit, best, c))
                 return true;
             if (sp == 0) return false;
-            node = stack[--sp];
+            node = STACK_AT(1, --sp);
             continue;
         }
         uint next, push;
         int d = rt_descend(node, r, p, best, c, next, push);
         if (d == 0) {
             if (sp == 0) return false;
-            node = stack[--sp];
+            node = STACK_AT(1, --sp);
         } else {
-            if (d == 2) stack[sp++] = push;
+            if (d == 2) STACK_AT(1, sp++) = push;
             node = next;
         }
     }
@@ -499,15 +526,17 @@ void rt_ray_to_object(uint inst, rt_ray_d r, out rt_ray_d o) {
     o.tmax = r.tmax;
 }
 
+/* One call of rt_trace_mesh for both cases of the C function (the ray
+ * transformed or not): one inlined copy of the traversal. */
 bool rt_trace_instance(uint inst, rt_ray_d r, rt_ray_pre p, bool any_hit, inout rt_hit_d best,
                        inout rt_counters c) {
     uint root = instances[inst].root;
-    if ((RT_INST_FLAGS(instances[inst].flags) & RT_INST_IDENTITY) != 0u)
-        return rt_trace_mesh(root, inst, r, p, any_hit, best, c);
-    rt_ray_d o;
-    rt_ray_pre op;
-    rt_ray_to_object(inst, r, o);
-    rt_ray_prepare(o, op);
+    rt_ray_d o = r;
+    rt_ray_pre op = p;
+    if ((RT_INST_FLAGS(instances[inst].flags) & RT_INST_IDENTITY) == 0u) {
+        rt_ray_to_object(inst, r, o);
+        rt_ray_prepare(o, op);
+    }
     return rt_trace_mesh(root, inst, o, op, any_hit, best, c);
 }
 
@@ -521,7 +550,6 @@ bool rt_trace(rt_ray_d r, bool any_hit, out rt_hit_d best, inout rt_counters c) 
         rt_trace_instance(0u, r, p, any_hit, best, c);
         return best.prim != RT_NO_HIT;
     }
-    uint stack[RT_STACK_SIZE];
     int sp = 0;
     float tn;
     uint node = hdr.top_root;
@@ -534,16 +562,16 @@ bool rt_trace(rt_ray_d r, bool any_hit, out rt_hit_d best, inout rt_counters c) 
             for (uint e = na; e < na + count; e++)
                 if (rt_trace_instance(inst_ids[e], r, p, any_hit, best, c)) return true;
             if (sp == 0) break;
-            node = stack[--sp];
+            node = STACK_AT(0, --sp);
             continue;
         }
         uint next, push;
         int d = rt_descend(node, r, p, best, c, next, push);
         if (d == 0) {
             if (sp == 0) break;
-            node = stack[--sp];
+            node = STACK_AT(0, --sp);
         } else {
-            if (d == 2) stack[sp++] = push;
+            if (d == 2) STACK_AT(0, sp++) = push;
             node = next;
         }
     }
@@ -729,59 +757,6 @@ void rt_shade_end(rt_shade_entry e, rt_hit_d h, rt_shade_node nd, out float term
         t.ray.tmax = RT_INF;
         t.depth = e.depth + 1u;
         if (rt_weight_counts(t.w, hdr.min_weight)) child[children++] = t;
-    }
-}
-
-void rt_shade_step(rt_shade_entry e, rt_hit_d h, inout rt_counters c, out float term[3],
-                   out bool has_term, out rt_shade_entry child[2], out int children) {
-    rt_shade_node nd;
-    if (rt_shade_begin(e, h, nd)) {
-        for (uint li = 0u; li < hdr.light_count; li++) {
-            rt_ray_d sr;
-            rt_hit_d sh;
-            float Ln[3], ndl;
-            if (!rt_phong_light(nd.sf, li, sr, Ln, ndl)) continue;
-            if (rt_trace(sr, true, sh, c)) continue;
-            rt_phong_add(nd.sf, li, Ln, ndl, nd.dn, nd.lit);
-        }
-    }
-    rt_shade_end(e, h, nd, term, has_term, child, children);
-}
-
-void rt_shade_hit(rt_ray_d primary, rt_hit_d primary_hit, inout rt_counters c, out float rgb[3]) {
-    rt_shade_entry root;
-    root.ray = primary;
-    root.w[0] = 1.0;
-    root.w[1] = 1.0;
-    root.w[2] = 1.0;
-    root.depth = 0u;
-    float term[3];
-    rt_shade_entry child[2];
-    bool has_term;
-    int children;
-    rt_shade_step(root, primary_hit, c, term, has_term, child, children);
-    rgb[0] = 0.0;
-    rgb[1] = 0.0;
-    rgb[2] = 0.0;
-    if (has_term)
-        for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + term[k];
-    /* rt_shade_children */
-    rt_shade_entry stack[RT_SHADE_STACK];
-    int sp = 0;
-    for (int i = 0; i < children; i++) stack[sp++] = child[i];
-    while (sp > 0) {
-        rt_shade_entry e = stack[--sp];
-        rt_hit_d h;
-        rt_trace(e.ray, false, h, c);
-        float t3[3];
-        rt_shade_entry next[2];
-        bool ht;
-        int n;
-        rt_shade_step(e, h, c, t3, ht, next, n);
-        if (ht)
-            for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + t3[k];
-        for (int i = 0; i < n; i++)
-            if (sp < RT_SHADE_STACK) stack[sp++] = next[i];
     }
 }
 

@@ -7,9 +7,13 @@
  * function has the C function's name and steps. test_vulkan_oracle holds it
  * to the C header bit for bit on the special classes and on random operands
  * (rt_vk_soft_test.comp). Differences from C: no pointers (out parameters),
- * bool where C tests an int, findMSB for the leading-zero count. */
+ * bool where C tests an int, findMSB for the leading-zero count. The
+ * digit loops are not unrolled ([[dont_unroll]]): unrolled, every inlined
+ * division made the driver's compile of the shaders minutes long. */
 #ifndef RT_VK_SOFT_MATH_GLSL
 #define RT_VK_SOFT_MATH_GLSL
+
+#extension GL_EXT_control_flow_attributes : require
 
 #define RT_SM_SIGN  0x80000000u
 #define RT_SM_INF   0x7f800000u
@@ -87,7 +91,7 @@ uint rt_sm_div_bits_(uint a, uint b, bool ftz) {
         e -= 1;
     }
     uint r = ma - mb, q = 1u;
-    for (int i = 0; i < 24; i++) {
+    [[dont_unroll]] for (int i = 0; i < 24; i++) {
         r <<= 1;
         uint t = r - mb;
         uint bit = (t >> 31) ^ 1u;
@@ -109,7 +113,7 @@ uint rt_sm_sqrt_bits_(uint x, bool ftz) {
     uint odd = uint(e + 1) & 1u;
     uint t = m << (1u + odd);
     uint root = 0u, rem = 0u;
-    for (int i = 0; i < 25; i++) {
+    [[dont_unroll]] for (int i = 0; i < 25; i++) {
         uint pair = 0u;
         if (i < 13) pair = (t >> uint(24 - 2 * i)) & 3u;
         rem = (rem << 2) | pair;

@@ -19,6 +19,7 @@ layout(push_constant) uniform Push {
     int aov;
     int channels;
     int any_hit;
+    int query;
 } pc;
 
 void main() {
