@@ -4,7 +4,7 @@
 # a reason, auto falls back to the CPU with a notice.
 source "$RT_SOURCE_DIR/tests/shell_check.sh"
 
-if ! "$RTCL" devices >"$tmp/devices.txt" 2>&1; then
+if ! "$RTCL" devices --api opencl >"$tmp/devices.txt" 2>&1; then
     if grep -q "no OpenCL backend" "$tmp/devices.txt"; then
         echo "skipped: this build has no OpenCL backend"; exit 77
     fi
@@ -12,13 +12,13 @@ if ! "$RTCL" devices >"$tmp/devices.txt" 2>&1; then
         echo "skipped: no OpenCL device: $(cat "$tmp/devices.txt")"; exit 77
     fi
 fi
-expect 0 'device 0: .*' -- "$RTCL" devices
-expect 0 'exact +(yes|no): ' -- "$RTCL" devices --device 0
-expect 0 'kernels +(packet|one ray per work-item)' -- "$RTCL" devices --device 0
+expect 0 'device 0: .*' -- "$RTCL" devices --api opencl
+expect 0 'exact +(yes|no): ' -- "$RTCL" devices --api opencl --device 0
+expect 0 'kernels +(packet|one ray per work-item)' -- "$RTCL" devices --api opencl --device 0
 # The packet kernel runs on CPU devices (the 'kernel path' line of --stats).
-if "$RTCL" devices --device 0 | grep -q 'kernels  *packet'; then path=packet; else path='one ray'; fi
-expect 2 'no OpenCL device 99' -- "$RTCL" devices --device 99
-expect 2 "no OpenCL device named like 'no-such-gpu'" -- "$RTCL" devices --device no-such-gpu
+if "$RTCL" devices --api opencl --device 0 | grep -q 'kernels  *packet'; then path=packet; else path='one ray'; fi
+expect 2 'no OpenCL device 99' -- "$RTCL" devices --api opencl --device 99
+expect 2 "no OpenCL device named like 'no-such-gpu'" -- "$RTCL" devices --api opencl --device no-such-gpu
 
 # Images: the PNG files are byte-identical.
 for scene in builtin:cornell builtin:keyframes; do
@@ -80,7 +80,7 @@ done
 # No platform at all (the ICD loader reads no vendor file).
 mkdir "$tmp/no_vendors"
 export OCL_ICD_VENDORS="$tmp/no_vendors"
-expect 2 'no OpenCL platform' -- "$RTCL" devices
+expect 2 'no OpenCL platform' -- "$RTCL" devices --api opencl
 expect 2 'opencl: no OpenCL platform' -- "$RTCL" render builtin:cornell --width 32 --height 18 --backend opencl -o "$tmp/x.png"
 expect 2 'opencl: no OpenCL platform' -- "$RTCL" trace builtin:cornell --rays "$tmp/rays.txt" --out "$tmp/x.txt" --backend opencl
 expect 0 'notice: opencl not available \(no OpenCL platform' -- "$RTCL" render builtin:cornell --width 32 --height 18 --backend auto -o "$tmp/x.png"

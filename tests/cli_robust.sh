@@ -7,7 +7,7 @@
 source "$RT_SOURCE_DIR/tests/shell_check.sh"
 
 # The backends that run the suite: a new backend is one more word here.
-BACKENDS=${RT_ROBUST_BACKENDS:-"cpu packet opencl"}
+BACKENDS=${RT_ROBUST_BACKENDS:-"cpu packet opencl vulkan"}
 TRI_TESTS="watertight mt pluecker badouel"
 
 if ! command -v python3 > /dev/null; then
@@ -19,9 +19,11 @@ names=$(python3 -c 'import json, sys
 for c in json.load(open(sys.argv[1]))["cases"]: print(c["name"], " ".join(c["flags"]))' "$cases/manifest.json")
 
 for backend in $BACKENDS; do
-    if [ "$backend" = opencl ] && ! "$RTCL" devices > "$tmp/devices.txt" 2>&1; then
-        # Only a build or machine without any OpenCL device gets here; CI has PoCL.
-        echo "skipped backend opencl: $(head -1 "$tmp/devices.txt")"
+    if { [ "$backend" = opencl ] || [ "$backend" = vulkan ]; } &&
+        ! "$RTCL" devices --api "$backend" > "$tmp/devices.txt" 2>&1; then
+        # Only a build or machine without any such device gets here; CI has
+        # PoCL and lavapipe.
+        echo "skipped backend $backend: $(head -1 "$tmp/devices.txt")"
         continue
     fi
     for tri in $TRI_TESTS; do

@@ -81,8 +81,8 @@ static int same_file(const char *a, const char *b) {
 }
 
 /* The AOVs from first to last (the image is RT_AOV_NONE) in one mode. */
-static void check_images(const char *name, rt_scene *s, int direct, rt_triangle_test tri,
-                         int first, int last) {
+static void check_images(const char *name, rt_scene *s, int direct, rt_triangle_test tri, int first,
+                         int last) {
     for (int aov = first; aov <= last; aov++) {
         rt_framebuffer cpu, vk;
         rt_render_stats cs, st;
@@ -306,8 +306,8 @@ static void check_soft_math(void) {
         }
         CHECK_MSG(bad == 0, "soft maths%s: %ld results differ from rt_soft_math.h",
                   ftz ? " (ftz)" : "", bad);
-        printf("soft maths%s: %zu operand sets x 3 functions, %ld differ\n", ftz ? " (ftz)" : "",
-               n, bad);
+        printf("soft maths%s: %zu operand sets x 3 functions, %ld differ\n", ftz ? " (ftz)" : "", n,
+               bad);
     }
     free(in);
     free(out);

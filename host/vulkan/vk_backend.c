@@ -60,7 +60,7 @@ enum {
     B_COUNT
 };
 static const char *const buffer_names[B_COUNT] = {
-    "header",   "nodes",     "tris",   "tri_ids", "tri_normals", "tri_mats",    "instances",
+    "header",   "nodes",     "tris",   "tri_ids", "tri_normals", "tri_mats", "instances",
     "inst_ids", "materials", "lights", "rays",    "hits",        "counters", "framebuffer"};
 
 /* The push constants of every shader (Push in kernels/vulkan/rt_vk_io.glsl). */
@@ -150,7 +150,8 @@ uint32_t *rt_vk_with_float_controls(const uint32_t *w, size_t bytes, int rte,
     uint32_t modes[3], caps[3];
     int k = 0;
     if (rte) modes[k] = SPV_RTE, caps[k++] = SPV_CAP_RTE;
-    if (signed_zero_inf_nan) modes[k] = SPV_SIGNED_ZERO_INF_NAN, caps[k++] = SPV_CAP_SIGNED_ZERO_INF_NAN;
+    if (signed_zero_inf_nan)
+        modes[k] = SPV_SIGNED_ZERO_INF_NAN, caps[k++] = SPV_CAP_SIGNED_ZERO_INF_NAN;
     if (denorm_preserve) modes[k] = SPV_DENORM_PRESERVE, caps[k++] = SPV_CAP_DENORM_PRESERVE;
     /* Where to insert: after the last capability, the last extension (else
      * the capabilities) and the last execution mode (else the entry point). */
@@ -335,7 +336,8 @@ static rt_status open_device(vk_state *s, rt_error *err) {
         b[i].descriptorCount = 1;
         b[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
     }
-    VkDescriptorSetLayoutCreateInfo li = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    VkDescriptorSetLayoutCreateInfo li = {.sType =
+                                              VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     li.bindingCount = B_COUNT;
     li.pBindings = b;
     r = vkCreateDescriptorSetLayout(s->device, &li, NULL, &s->dsl);
@@ -417,9 +419,9 @@ static rt_status pipeline(vk_state *s, int p, const uint32_t spec[SPEC_COUNT], d
         const uint32_t *words = rt_vk_module(pipeline_names[p], &bytes);
         uint32_t *patched = NULL;
         if (s->dev.float_controls) {
-            patched = rt_vk_with_float_controls(words, bytes, s->dev.rte,
-                                                s->dev.signed_zero_inf_nan,
-                                                s->dev.denorm_preserve, &patched_bytes);
+            patched =
+                rt_vk_with_float_controls(words, bytes, s->dev.rte, s->dev.signed_zero_inf_nan,
+                                          s->dev.denorm_preserve, &patched_bytes);
             if (!patched) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
         }
         VkShaderModuleCreateInfo mi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};

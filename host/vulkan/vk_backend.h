@@ -11,7 +11,8 @@
 
 extern const rt_backend_ops rt_backend_vulkan;
 
-/* The shipped SPIR-V modules by name ("rt_vk_main", "rt_vk_soft_test"): words and size in bytes; NULL for an unknown name. */
+/* The shipped SPIR-V modules by name ("rt_vk_main", "rt_vk_soft_test"): words and size in bytes;
+ * NULL for an unknown name. */
 const uint32_t *rt_vk_module(const char *name, size_t *bytes);
 
 /* The module words with the float-control execution modes that a device

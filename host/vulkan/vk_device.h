@@ -13,20 +13,20 @@
 typedef struct rt_vk_device_info {
     int index; /* the loader's order: the number vulkan:N takes */
     char name[256];
-    char type[24];     /* "integrated GPU", "discrete GPU", "CPU", ... */
-    char api[24];      /* the device's Vulkan version, "1.3.255" */
-    char driver[160];  /* driver name and info (Vulkan 1.2), or the driver version */
-    uint64_t memory;   /* the largest device-local heap, bytes */
-    uint64_t max_buffer; /* maxStorageBufferRange, bytes */
-    uint32_t queue_family; /* the first family with compute */
-    int timestamps;        /* the compute queue has timestamps (timestampValidBits > 0) */
+    char type[24];          /* "integrated GPU", "discrete GPU", "CPU", ... */
+    char api[24];           /* the device's Vulkan version, "1.3.255" */
+    char driver[160];       /* driver name and info (Vulkan 1.2), or the driver version */
+    uint64_t memory;        /* the largest device-local heap, bytes */
+    uint64_t max_buffer;    /* maxStorageBufferRange, bytes */
+    uint32_t queue_family;  /* the first family with compute */
+    int timestamps;         /* the compute queue has timestamps (timestampValidBits > 0) */
     float timestamp_period; /* ns per timestamp tick */
     /* VK_KHR_shader_float_controls (core in Vulkan 1.2), for 32-bit floats;
      * float_controls is 0 when the device does not report them. */
     int float_controls;
-    int denorm_preserve;  /* shaderDenormPreserveFloat32 */
-    int denorm_flush;     /* shaderDenormFlushToZeroFloat32 */
-    int rte;              /* shaderRoundingModeRTEFloat32 */
+    int denorm_preserve;     /* shaderDenormPreserveFloat32 */
+    int denorm_flush;        /* shaderDenormFlushToZeroFloat32 */
+    int rte;                 /* shaderRoundingModeRTEFloat32 */
     int signed_zero_inf_nan; /* shaderSignedZeroInfNanPreserveFloat32 */
     /* The oracle's bits are promised: the modules' maths is exact by
      * construction (no contraction, soft division and sqrt, no fp64) and the
