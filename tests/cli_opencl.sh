@@ -65,7 +65,7 @@ expect 0 'bit-exact with the CPU oracle promised' -- "$RTCL" render builtin:corn
 expect 2 'kernel build failed.*-cl-no-such-option' -- "$RTCL" render builtin:cornell --width 32 \
     --height 18 --backend opencl --cl-options -cl-no-such-option -o "$tmp/x.png"
 expect 2 'no OpenCL device 99' -- "$RTCL" render builtin:cornell --backend opencl --device 99 -o "$tmp/x.png"
-expect 2 '--device applies to --backend opencl or auto' -- "$RTCL" render builtin:cornell --device 0 -o "$tmp/x.png"
+expect 2 '--device applies to --backend opencl, vulkan or auto' -- "$RTCL" render builtin:cornell --device 0 -o "$tmp/x.png"
 
 # Ray queries: the same hit lines, closest and any hit.
 awk 'BEGIN { srand(5); for (i = 0; i < 3000; i++) printf "%f %f %f %f %f %f 0 inf\n",

@@ -224,8 +224,8 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
         rt_scene_destroy(scene);
         return 0;
     }
-    static const char *backends[] = {"cpu", "packet", "opencl"};
-    enum { OURS = 3 };
+    static const char *backends[] = {"cpu", "packet", "opencl", "vulkan"};
+    enum { OURS = 4 };
     bench_run runs[BENCH_RENDER_MAX_ROWS];
     embree_peer peer;
     memset(&peer, 0, sizeof peer);

@@ -752,7 +752,7 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
     if (st == RT_OK) st = ensure(s, B_COUNTERS, sizeof(rt_counters) * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK) st = bind_all(s, err);
     if (st != RT_OK) return named(err, st);
-    snprintf(stats->kernels, sizeof stats->kernels, "one pixel per invocation (rt_vk_main)");
+    snprintf(stats->kernels, sizeof stats->kernels, "vulkan rt_vk_main, portable maths");
     double t_render = rt_now_ms();
     const rt_counters *counts = s->buf[B_COUNTERS].map;
     for (uint32_t first = 0; first < pixels && st == RT_OK;) {
