@@ -12,6 +12,10 @@
  * - 20,000 random ray queries per scene (closest and any hit): t, u, v bits,
  *   prim and inst identical;
  * - later frames upload nothing, a moved object only the per-frame part;
+ * - --denormals flush: cornell's image and hits are the flushing oracle's;
+ *   on a scene 1e-13 across (denormal t numerators) the device is held to
+ *   the oracle of each policy it promises (float controls), and what it
+ *   gives elsewhere is printed;
  * - a device that does not exist is an error with a reason.
  * Skips only when the build has no Vulkan backend or no Vulkan device
  * exists. */
@@ -121,49 +125,93 @@ static void check_images(const char *name, rt_scene *s, int direct, rt_triangle_
     }
 }
 
-static void check_hits(const char *name, rt_scene *s) {
+typedef void (*ray_maker)(const rt_scene_header *h, const float lo[3], const float hi[3], int i,
+                          rt_ray_d *r);
+
+/* Rays from random points of the bounds in random directions of length
+ * about 1 (for the denormal scene, whose camera rays would be huge). */
+static void unit_ray(const rt_scene_header *h, const float lo[3], const float hi[3], int i,
+                     rt_ray_d *r) {
+    (void)h;
+    (void)i;
+    for (int k = 0; k < 3; k++) {
+        r->org[k] = lo[k] + (hi[k] - lo[k]) * oracle_rnd();
+        r->dir[k] = oracle_rnd() - 0.5f;
+    }
+    r->tmin = 0.0f;
+    r->tmax = INFINITY;
+}
+
+/* n rays of a maker over the scene's bounds. */
+static rt_ray *make_rays(rt_scene *s, ray_maker make, int n) {
     const rt_flat *flat = test_layout(s, 0);
-    if (!flat) return;
-    const rt_scene_header *h = &flat->hdr;
+    rt_ray *rays = flat ? malloc(sizeof *rays * (size_t)n) : NULL;
+    if (!rays) return NULL;
     float lo[3], hi[3];
     CHECK(rt_scene_bounds(s, lo, hi));
-    enum { N = 20000 };
-    rt_ray *rays = malloc(sizeof *rays * N);
-    rt_hit *a = malloc(sizeof *a * N), *b = malloc(sizeof *b * N);
-    CHECK(rays && a && b);
-    for (int i = 0; rays && i < N; i++) {
+    for (int i = 0; i < n; i++) {
         rt_ray_d r;
-        oracle_ray(h, lo, hi, i, &r);
+        make(&flat->hdr, lo, hi, i, &r);
         memcpy(rays[i].org, r.org, sizeof r.org);
         memcpy(rays[i].dir, r.dir, sizeof r.dir);
         rays[i].tmin = r.tmin;
         rays[i].tmax = r.tmax;
     }
-    for (int any = 0; any <= 1 && rays && a && b; any++) {
-        rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT};
-        CHECK(rt_trace_rays(cpu_r, s, rays, N, a, &q) == RT_OK);
-        rt_status st = rt_trace_rays(vk_r, s, rays, N, b, &q);
-        CHECK_MSG(st == RT_OK, "%s", rt_renderer_error(vk_r));
-        int hits = 0;
-        for (int i = 0; i < N && st == RT_OK; i++) {
-            hits += a[i].hit;
-            if (a[i].hit != b[i].hit || memcmp(&a[i].t, &b[i].t, 4) ||
-                memcmp(&a[i].u, &b[i].u, 4) || memcmp(&a[i].v, &b[i].v, 4) ||
-                a[i].prim != b[i].prim || a[i].inst != b[i].inst) {
-                CHECK_MSG(0,
-                          "%s %s ray %d: cpu hit %d t %.9g u %.9g v %.9g prim %u inst %u; vulkan "
-                          "hit %d t %.9g u %.9g v %.9g prim %u inst %u",
-                          name, any ? "any-hit" : "closest", i, a[i].hit, (double)a[i].t,
-                          (double)a[i].u, (double)a[i].v, a[i].prim, a[i].inst, b[i].hit,
-                          (double)b[i].t, (double)b[i].u, (double)b[i].v, b[i].prim, b[i].inst);
-                break;
-            }
+    return rays;
+}
+
+static int same_hit(const rt_hit *a, const rt_hit *b) {
+    return a->hit == b->hit && !memcmp(&a->t, &b->t, 4) && !memcmp(&a->u, &b->u, 4) &&
+           !memcmp(&a->v, &b->v, 4) && a->prim == b->prim && a->inst == b->inst;
+}
+
+/* Closest or any hits of n rays on two renderers; returns how many differ
+ * (-1 when a trace failed), and *hits the hits of the first. */
+static int differing_hits(rt_renderer *ra, rt_renderer *rb, rt_scene *s, const rt_ray *rays, int n,
+                          int any, int *hits, char *first, size_t first_size) {
+    rt_hit *a = malloc(sizeof *a * (size_t)n), *b = malloc(sizeof *b * (size_t)n);
+    rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT};
+    int differ = -1;
+    *hits = 0;
+    if (a && b && rt_trace_rays(ra, s, rays, (size_t)n, a, &q) == RT_OK) {
+        rt_status st = rt_trace_rays(rb, s, rays, (size_t)n, b, &q);
+        CHECK_MSG(st == RT_OK, "%s", rt_renderer_error(rb));
+        if (st == RT_OK) differ = 0;
+        for (int i = 0; i < n && st == RT_OK; i++) {
+            *hits += a[i].hit;
+            if (same_hit(&a[i], &b[i])) continue;
+            if (!differ++)
+                snprintf(first, first_size,
+                         "ray %d: cpu hit %d t %.9g u %.9g v %.9g prim %u inst %u; vulkan hit %d t "
+                         "%.9g u %.9g v %.9g prim %u inst %u",
+                         i, a[i].hit, (double)a[i].t, (double)a[i].u, (double)a[i].v, a[i].prim,
+                         a[i].inst, b[i].hit, (double)b[i].t, (double)b[i].u, (double)b[i].v,
+                         b[i].prim, b[i].inst);
         }
+    }
+    free(a);
+    free(b);
+    return differ;
+}
+
+/* 20,000 random rays, closest and any hit, identical on the two renderers. */
+static void check_hits_on(const char *name, rt_renderer *ra, rt_renderer *rb, rt_scene *s) {
+    enum { N = 20000 };
+    rt_ray *rays = make_rays(s, oracle_ray, N);
+    CHECK(rays != NULL);
+    for (int any = 0; any <= 1 && rays; any++) {
+        char first[400] = "";
+        int hits;
+        int differ = differing_hits(ra, rb, s, rays, N, any, &hits, first, sizeof first);
+        CHECK_MSG(differ == 0, "%s %s: %d of %d hits differ; first: %s", name,
+                  any ? "any-hit" : "closest", differ, N, first);
         CHECK_MSG(hits > N / 10, "%s: only %d of %d rays hit: a weak test", name, hits, N);
     }
     free(rays);
-    free(a);
-    free(b);
+}
+
+static void check_hits(const char *name, rt_scene *s) {
+    check_hits_on(name, cpu_r, vk_r, s);
 }
 
 /* Turns object obj by 0.5 rad about the oblique axis (1, 2, 3) through c
@@ -257,6 +305,104 @@ static void check_uploads(void) {
     rt_scene_destroy(s);
 }
 
+/* Random triangles in a box a few 1e-13 across (test_opencl_oracle's
+ * denormal scene): edge functions near 1e-26 and t's numerator near 1e-39,
+ * below the smallest normal float, so the denormal policy decides many bits
+ * of t. */
+static rt_scene *denormal_scene(void) {
+    rt_scene *s = NULL;
+    uint32_t mesh, mat, obj;
+    rt_material m = rt_material_default();
+    CHECK(rt_scene_create(&s) == RT_OK);
+    if (!s) return NULL;
+    CHECK(rt_mesh_create(s, &mesh) == RT_OK);
+    enum { TRIS = 200 };
+    float pos[9 * TRIS];
+    uint32_t idx[3 * TRIS];
+    for (uint32_t i = 0; i < 3 * TRIS; i++) idx[i] = i;
+    uint32_t seed = 12345u;
+    for (int i = 0; i < 9 * TRIS; i++) {
+        seed = seed * 1664525u + 1013904223u;
+        pos[i] = (float)(seed >> 8) * (1e-13f / 16777216.0f);
+    }
+    CHECK(rt_mesh_add_triangles(s, mesh, pos, NULL, 3 * TRIS, idx, TRIS) == RT_OK);
+    CHECK(rt_material_add(s, &m, &mat) == RT_OK);
+    CHECK(rt_object_create(s, mat, &obj) == RT_OK);
+    CHECK(rt_object_add_mesh(s, obj, mesh) == RT_OK);
+    CHECK(rt_scene_commit(s) == RT_OK);
+    return s;
+}
+
+static rt_renderer *flushing(const char *backend) {
+    rt_renderer_options o = rt_renderer_options_default();
+    o.backend = backend;
+    o.denormals = RT_DENORMALS_FLUSH;
+    rt_error err;
+    rt_renderer *r = test_renderer_with(&o, &err);
+    CHECK_MSG(r != NULL, "%s with --denormals flush: %s", backend, r ? "" : err.message);
+    return r;
+}
+
+/* The flush policy: the shipped cornell (no denormal occurs there) gives
+ * the flushing oracle's image and hits. On the denormal scene the device is
+ * held to the oracle of a policy only where it promises that policy
+ * (float controls); elsewhere the count of differing hits is printed. */
+static void check_denormals(const rt_vk_device_info *dev) {
+    rt_renderer *cpu_f = flushing("cpu"), *vk_f = flushing("vulkan");
+    if (!cpu_f || !vk_f) return;
+    rt_scene *s = NULL;
+    rt_error err;
+    CHECK_MSG(rt_scene_load(test_source_path("scenes/cornell.json"), &s, &err) == RT_OK, "%s",
+              err.message);
+    if (s) {
+        rt_camera cam;
+        rt_camera_get(s, &cam);
+        cam.width = 64;
+        cam.height = 36;
+        CHECK(rt_camera_set(s, &cam) == RT_OK);
+        rt_framebuffer a, b;
+        rt_render_stats st;
+        CHECK(render_with(cpu_f, s, RT_AOV_NONE, 0, RT_TRI_TEST_WATERTIGHT, &a, NULL) == RT_OK);
+        rt_status status = render_with(vk_f, s, RT_AOV_NONE, 0, RT_TRI_TEST_WATERTIGHT, &b, &st);
+        CHECK_MSG(status == RT_OK, "%s", rt_renderer_error(vk_f));
+        if (status == RT_OK) {
+            CHECK(st.denormals && strcmp(st.denormals, "flush") == 0);
+            CHECK(st.math_profile && strcmp(st.math_profile, "portable") == 0);
+            CHECK_CONTAINS(st.specialisation, "denormal_flush=1");
+            CHECK_EQ_INT(st.exact, dev->exact_flush);
+            same_pixels("cornell (flush)", "image", &a, &b);
+            rt_framebuffer_free(&b);
+        }
+        rt_framebuffer_free(&a);
+        check_hits_on("cornell (flush)", cpu_f, vk_f, s);
+        rt_scene_destroy(s);
+    }
+    s = denormal_scene();
+    if (!s) return;
+    enum { N = 4000 };
+    rt_ray *rays = make_rays(s, unit_ray, N);
+    int hits, policies, keep, flush;
+    char first[400] = "", ignored[400];
+    policies = rays ? differing_hits(cpu_r, cpu_f, s, rays, N, 0, &hits, ignored, 400) : -1;
+    CHECK_MSG(policies > 0, "the denormal scene gives the same hits in both policies");
+    keep = rays ? differing_hits(cpu_r, vk_r, s, rays, N, 0, &hits, first, sizeof first) : -1;
+    if (dev->exact)
+        CHECK_MSG(keep == 0, "denormal scene: %d hits differ from the oracle; first: %s", keep,
+                  first);
+    flush = rays ? differing_hits(cpu_f, vk_f, s, rays, N, 0, &hits, first, sizeof first) : -1;
+    if (dev->exact_flush)
+        CHECK_MSG(flush == 0,
+                  "denormal scene (flush): %d hits differ from the flushing oracle; "
+                  "first: %s",
+                  flush, first);
+    printf("denormal scene, %d rays: the oracle's two policies differ on %d; vulkan differs from "
+           "the preserving oracle on %d (%s), from the flushing oracle on %d (%s)\n",
+           N, policies, keep, dev->exact ? "promised, checked" : "not promised", flush,
+           dev->exact_flush ? "promised, checked" : "not promised");
+    free(rays);
+    rt_scene_destroy(s);
+}
+
 /* The GLSL soft maths against the C header, bit for bit. */
 static void check_soft_math(void) {
     uint32_t sp[512];
@@ -324,9 +470,9 @@ int main(void) {
     memset(&err, 0, sizeof err);
     if (rt_vk_devices(&devs, &count, &err) != RT_OK) test_skip(err.message);
     int pick = rt_vk_select(devs, count, NULL, &err);
-    printf("device: %s (%s, %s)\n", devs[pick].name, devs[pick].driver,
-           rt_vk_exactness_note(&devs[pick]));
+    rt_vk_device_info dev = devs[pick];
     free(devs);
+    printf("device: %s (%s, %s)\n", dev.name, dev.driver, rt_vk_exactness_note(&dev, 0));
     check_soft_math();
     cpu_r = test_renderer("cpu", 0);
     vk_r = test_renderer("vulkan", 0);
@@ -334,6 +480,7 @@ int main(void) {
     static const char *const shipped[] = {"cornell", "keyframes"};
     for (int i = 0; i < 2; i++) check_scene(shipped[i]);
     check_uploads();
+    check_denormals(&dev);
     /* A device that does not exist is an error with a reason. */
     rt_scene *s = test_builtin_scene("cornell", 32, 18);
     rt_renderer *bad = test_renderer("vulkan:99", 0);

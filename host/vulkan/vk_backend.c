@@ -84,6 +84,7 @@ typedef struct vk_buf {
 
 typedef struct vk_state {
     char selector[128];
+    int flush; /* the denormal policy: 1 flush (rt_backend_config.flush_denormals) */
     rt_vk_device_info dev;
     VkInstance inst;
     VkPhysicalDevice phys;
@@ -135,24 +136,27 @@ enum {
     SPV_OP_CAPABILITY = 17,
     /* execution modes and the capabilities that allow them */
     SPV_DENORM_PRESERVE = 4459,
+    SPV_DENORM_FLUSH = 4460,
     SPV_SIGNED_ZERO_INF_NAN = 4461,
     SPV_RTE = 4462,
     SPV_CAP_DENORM_PRESERVE = 4464,
+    SPV_CAP_DENORM_FLUSH = 4465,
     SPV_CAP_SIGNED_ZERO_INF_NAN = 4466,
     SPV_CAP_RTE = 4467
 };
 
 uint32_t *rt_vk_with_float_controls(const uint32_t *w, size_t bytes, int rte,
-                                    int signed_zero_inf_nan, int denorm_preserve,
+                                    int signed_zero_inf_nan, int denorm_preserve, int denorm_flush,
                                     size_t *out_bytes) {
     size_t n = bytes / 4;
     if (n < 5 || w[0] != 0x07230203u) return NULL;
-    uint32_t modes[3], caps[3];
+    uint32_t modes[4], caps[4];
     int k = 0;
     if (rte) modes[k] = SPV_RTE, caps[k++] = SPV_CAP_RTE;
     if (signed_zero_inf_nan)
         modes[k] = SPV_SIGNED_ZERO_INF_NAN, caps[k++] = SPV_CAP_SIGNED_ZERO_INF_NAN;
     if (denorm_preserve) modes[k] = SPV_DENORM_PRESERVE, caps[k++] = SPV_CAP_DENORM_PRESERVE;
+    if (denorm_flush) modes[k] = SPV_DENORM_FLUSH, caps[k++] = SPV_CAP_DENORM_FLUSH;
     /* Where to insert: after the last capability, the last extension (else
      * the capabilities) and the last execution mode (else the entry point). */
     size_t end_cap = 0, end_ext = 0, end_mode = 0, end_entry = 0;
@@ -268,7 +272,15 @@ static void vk_destroy(void *p) {
 static rt_status vk_create(const rt_backend_config *config, void **state, rt_error *err) {
     vk_state *s = calloc(1, sizeof *s);
     if (!s) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "vulkan: out of memory");
+    if (config->device_math == RT_DEVICE_MATH_NATIVE) {
+        free(s);
+        return rt_fail(err, RT_ERROR_UNSUPPORTED,
+                       "vulkan: no native maths profile: Vulkan does not promise correctly rounded "
+                       "division and sqrt (2.5 ulp allowed), so the shaders always compute them "
+                       "in software (--device-math portable or auto)");
+    }
     snprintf(s->selector, sizeof s->selector, "%s", config->device ? config->device : "");
+    s->flush = config->flush_denormals;
     s->tile = RT_VK_TILE_FIRST;
     *state = s;
     return RT_OK;
@@ -421,7 +433,8 @@ static rt_status pipeline(vk_state *s, int p, const uint32_t spec[SPEC_COUNT], d
         if (s->dev.float_controls) {
             patched =
                 rt_vk_with_float_controls(words, bytes, s->dev.rte, s->dev.signed_zero_inf_nan,
-                                          s->dev.denorm_preserve, &patched_bytes);
+                                          !s->flush && s->dev.denorm_preserve,
+                                          s->flush && s->dev.denorm_flush, &patched_bytes);
             if (!patched) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
         }
         VkShaderModuleCreateInfo mi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
@@ -467,13 +480,13 @@ static rt_status pipeline(vk_state *s, int p, const uint32_t spec[SPEC_COUNT], d
 
 /* The specialization constants for the scene: its header flags and triangle
  * test, as OpenCL's -D switches (scene_defines in cl_backend.c). */
-static void scene_spec(const rt_flat *f, uint32_t spec[SPEC_COUNT]) {
+static void scene_spec(const rt_flat *f, int flush, uint32_t spec[SPEC_COUNT]) {
     uint32_t flags = f->hdr.flags;
     spec[SPEC_FLAGS] = flags;
     spec[SPEC_INST_SET] = (flags & RT_SCENE_SINGLE) ? RT_INST_IDENTITY : 0u;
     spec[SPEC_INST_MASK] = RT_INST_IDENTITY | ((flags & RT_SCENE_NORMALS) ? RT_INST_NORMALS : 0u);
     spec[SPEC_TRI_METHOD] = f->hdr.tri_method;
-    spec[SPEC_FLUSH] = 0; /* denormals: the oracle keeps them */
+    spec[SPEC_FLUSH] = flush ? 1u : 0u; /* the soft maths' denormal mode, the policy's */
 }
 
 /* ---- buffers ----------------------------------------------------------------- */
@@ -725,7 +738,7 @@ static rt_status vk_prepare(void *state, const rt_backend_layout *layout, rt_ren
     vk_state *s = state;
     rt_status st = ready(s, err);
     uint32_t spec[SPEC_COUNT];
-    scene_spec(layout->flat, spec);
+    scene_spec(layout->flat, s->flush, spec);
     if (st == RT_OK) st = pipeline(s, P_MAIN, spec, &stats->compile_ms, err);
     if (st == RT_OK) st = upload_scene(s, layout, &stats->upload_bytes, &stats->upload_ms, err);
     if (st != RT_OK) return named(err, st);
@@ -737,7 +750,9 @@ static rt_status vk_prepare(void *state, const rt_backend_layout *layout, rt_ren
     snprintf(stats->device, sizeof stats->device, "%.127s", s->dev.name);
     snprintf(stats->specialisation, sizeof stats->specialisation, "%s", s->spec_text);
     stats->device_options[0] = 0;
-    stats->exact = s->dev.exact;
+    stats->exact = s->flush ? s->dev.exact_flush : s->dev.exact;
+    stats->math_profile = "portable";
+    stats->denormals = s->flush ? "flush" : "preserve";
     return RT_OK;
 }
 

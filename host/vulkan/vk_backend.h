@@ -15,13 +15,14 @@ extern const rt_backend_ops rt_backend_vulkan;
  * NULL for an unknown name. */
 const uint32_t *rt_vk_module(const char *name, size_t *bytes);
 
-/* The module words with the float-control execution modes that a device
- * supports added (what the backend hands the driver): round to nearest
- * even when rte, signed zeros, infs and NaNs kept when signed_zero_inf_nan,
- * denormals kept when denorm_preserve. Returns a malloc'ed copy (free()),
- * its size in *out_bytes, or NULL when out of memory or not SPIR-V. */
+/* The module words with float-control execution modes for 32-bit floats
+ * added (what the backend hands the driver, with the modes the device
+ * supports): round to nearest even when rte, signed zeros, infs and NaNs
+ * kept when signed_zero_inf_nan, denormals kept when denorm_preserve or
+ * flushed when denorm_flush. Returns a malloc'ed copy (free()), its size in
+ * *out_bytes, or NULL when out of memory or not SPIR-V. */
 uint32_t *rt_vk_with_float_controls(const uint32_t *words, size_t bytes, int rte,
-                                    int signed_zero_inf_nan, int denorm_preserve,
+                                    int signed_zero_inf_nan, int denorm_preserve, int denorm_flush,
                                     size_t *out_bytes);
 
 /* Runs rt_vk_soft_test.comp on device (NULL: the default): for count cases

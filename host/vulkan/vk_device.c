@@ -113,6 +113,7 @@ static int describe(VkPhysicalDevice p, rt_vk_device_info *d) {
         snprintf(d->driver, sizeof d->driver, "%.60s %.90s", drv.driverName, drv.driverInfo);
     }
     d->exact = d->float_controls && d->denorm_preserve && d->rte && d->signed_zero_inf_nan;
+    d->exact_flush = d->float_controls && d->denorm_flush && d->rte && d->signed_zero_inf_nan;
     VkPhysicalDeviceMemoryProperties mem;
     vkGetPhysicalDeviceMemoryProperties(p, &mem);
     for (uint32_t i = 0; i < mem.memoryHeapCount; i++)
@@ -221,18 +222,24 @@ int rt_vk_select(const rt_vk_device_info *devs, int count, const char *sel, rt_e
     return -1;
 }
 
-const char *rt_vk_exactness_note(const rt_vk_device_info *d) {
-    if (d->exact)
-        return "bit-exact with the CPU oracle (portable maths: no contraction, software "
-               "division and sqrt, no fp64; the modules ask for round to nearest even, "
-               "denormals and signed zeros, infs and NaNs kept)";
+const char *rt_vk_exactness_note(const rt_vk_device_info *d, int flush) {
+    if (flush ? d->exact_flush : d->exact)
+        return flush ? "bit-exact with the flushing CPU oracle (portable maths: no contraction, "
+                       "software division and sqrt, no fp64; the shader asks for round to "
+                       "nearest even, denormals flushed, signed zeros, infs and NaNs kept)"
+                     : "bit-exact with the CPU oracle (portable maths: no contraction, software "
+                       "division and sqrt, no fp64; the shader asks for round to nearest even, "
+                       "denormals and signed zeros, infs and NaNs kept)";
     if (!d->float_controls)
         return "exactness NOT promised: the device reports no float controls (Vulkan 1.2), so "
                "its rounding and denormal handling are unknown";
-    if (!d->denorm_preserve && d->rte && d->signed_zero_inf_nan)
-        return "exactness NOT promised: the device cannot keep denormals (it may flush them), so "
-               "results differ from the oracle where a denormal occurs; elsewhere the oracle's "
-               "bits (portable maths, round to nearest even, signed zeros kept)";
-    return "exactness NOT promised: the device cannot round to nearest even or keep signed "
-           "zeros, infs and NaNs on request";
+    if (d->rte && d->signed_zero_inf_nan)
+        return flush ? "exactness NOT promised: the device cannot be asked to flush denormals, "
+                       "so results may differ from the flushing oracle where a denormal occurs"
+                     : "exactness NOT promised: the device cannot be asked to keep denormals (it "
+                       "may flush them), so results may differ from the oracle where a denormal "
+                       "occurs; elsewhere the oracle's bits (portable maths, round to nearest "
+                       "even, signed zeros kept)";
+    return "exactness NOT promised: the device cannot be asked to round to nearest even or keep "
+           "signed zeros, infs and NaNs";
 }

@@ -30,10 +30,11 @@ typedef struct rt_vk_device_info {
     int signed_zero_inf_nan; /* shaderSignedZeroInfNanPreserveFloat32 */
     /* The oracle's bits are promised: the modules' maths is exact by
      * construction (no contraction, soft division and sqrt, no fp64) and the
-     * device rounds to nearest even, keeps denormals and signed zeros, infs
-     * and NaNs when the module asks (all four float controls above, bar
-     * denorm_flush). */
+     * device rounds to nearest even, keeps signed zeros, infs and NaNs, and
+     * keeps denormals (exact) or flushes them (exact_flush, compared with the
+     * flushing oracle of --denormals flush) when the module asks. */
     int exact;
+    int exact_flush;
 } rt_vk_device_info;
 
 /* Every physical device with a compute queue. RT_ERROR_UNSUPPORTED with a
@@ -47,8 +48,9 @@ rt_status rt_vk_devices(rt_vk_device_info **out, int *count, rt_error *err);
  * with a message. */
 int rt_vk_select(const rt_vk_device_info *devs, int count, const char *selector, rt_error *err);
 
-/* Why a device does or does not promise the oracle's bits, one line. */
-const char *rt_vk_exactness_note(const rt_vk_device_info *d);
+/* Why a device does or does not promise the oracle's bits in a denormal
+ * policy (flush 0: preserve), one line. */
+const char *rt_vk_exactness_note(const rt_vk_device_info *d, int flush);
 
 /* A name for a VkResult ("VK_ERROR_DEVICE_LOST"). */
 const char *rt_vk_result_name(int result);

@@ -276,6 +276,13 @@ bool rt_box_test(uint node, rt_ray_d r, rt_ray_pre p, float tmin, float tmax, ou
 
 /* ---- ray/triangle tests --------------------------------------------------- */
 
+void rt_edge_recheck(float Ax, float Ay, float Bx, float By, float Cx, float Cy, out float U,
+                     out float V, out float W) {
+    U = RT_DOP(Cx, By, Cy, Bx);
+    V = RT_DOP(Ax, Cy, Ay, Cx);
+    W = RT_DOP(Bx, Ay, By, Ax);
+}
+
 bool rt_tri_watertight(uint e, rt_ray_d r, rt_ray_pre p, float tmin, float tmax, out float t,
                        out float u, out float v) {
     float A[3], B[3], C[3];
@@ -294,11 +301,7 @@ bool rt_tri_watertight(uint e, rt_ray_d r, rt_ray_pre p, float tmin, float tmax,
     float U = Cx * By - Cy * Bx;
     float V = Ax * Cy - Ay * Cx;
     float W = Bx * Ay - By * Ax;
-    if (U == 0.0 || V == 0.0 || W == 0.0) {
-        U = RT_DOP(Cx, By, Cy, Bx);
-        V = RT_DOP(Ax, Cy, Ay, Cx);
-        W = RT_DOP(Bx, Ay, By, Ax);
-    }
+    if (U == 0.0 || V == 0.0 || W == 0.0) rt_edge_recheck(Ax, Ay, Bx, By, Cx, Cy, U, V, W);
     t = 0.0;
     u = 0.0;
     v = 0.0;
