@@ -608,6 +608,7 @@ static void pk_surface_at(const rt_scene_view *s, const pk_ray *r, const pk_stat
     uint ent[RT_PK_LANES], ins[RT_PK_LANES], mi[RT_PK_LANES];
     int hm[RT_PK_LANES], fl[RT_PK_LANES], shin[RT_PK_LANES];
     float v[9][RT_PK_LANES], m[9][RT_PK_LANES], vn[9][RT_PK_LANES], mf[8][RT_PK_LANES];
+    float om[12][RT_PK_LANES];
     pk_vstore(h->entry, 0, ent);
     pk_vstore(h->inst, 0, ins);
     pk_vstore(hit, 0, hm);
@@ -621,6 +622,7 @@ static void pk_surface_at(const rt_scene_view *s, const pk_ray *r, const pk_stat
             v[6 + k][l] = tri->v2[k];
             for (int j = 0; j < 3; j++) m[3 * j + k][l] = in->world_to_object[4 * j + k];
         }
+        for (int k = 0; k < 12; k++) om[k][l] = in->object_to_world[k];
         fl[l] = (int)RT_INST_FLAGS(in);
         for (int k = 0; k < 9; k++)
             vn[k][l] = (RT_INST_FLAGS(in) & RT_INST_NORMALS) ? s->tri_normals[9 * e + k] : 0.0f;
@@ -652,12 +654,23 @@ static void pk_surface_at(const rt_scene_view *s, const pk_ray *r, const pk_stat
     if (transform)
         for (int j = 0; j < 3; j++)
             for (int k = 0; k < 3; k++) wm[j][k] = pk_vload(0, m[3 * j + k]);
-    pk_f e1[3], e2[3], n[3], w[3];
+    pk_f e1[3], e2[3], n[3], w[3], po[3];
+    pk_f b0 = (1.0f - h->u) - h->v;
     for (int k = 0; k < 3; k++) {
-        pk_f v0 = pk_vload(0, v[k]);
-        e1[k] = pk_vload(0, v[3 + k]) - v0;
-        e2[k] = pk_vload(0, v[6 + k]) - v0;
-        sf->p[k] = r->org[k] + h->t * r->dir[k];
+        pk_f v0 = pk_vload(0, v[k]), v1 = pk_vload(0, v[3 + k]), v2 = pk_vload(0, v[6 + k]);
+        e1[k] = v1 - v0;
+        e2[k] = v2 - v0;
+        po[k] = (b0 * v0 + h->u * v1) + h->v * v2;
+    }
+    /* rt_point_to_world where a lane has a transform. */
+    for (int i = 0; i < 3; i++) {
+        sf->p[i] = po[i];
+        if (transform) {
+            pk_f pw = ((pk_vload(0, om[4 * i]) * po[0] + pk_vload(0, om[4 * i + 1]) * po[1]) +
+                       pk_vload(0, om[4 * i + 2]) * po[2]) +
+                      pk_vload(0, om[4 * i + 3]);
+            sf->p[i] = select(pw, po[i], identity);
+        }
     }
     pk_cross3(e1, e2, n);
     if (transform) {

@@ -598,14 +598,30 @@ void rt_normal_to_world(uint inst, float n[3], out float o[3]) {
                instances[inst].world_to_object[8 + i] * n[2];
 }
 
+void rt_point_to_world(uint inst, float p[3], out float o[3]) {
+    for (int i = 0; i < 3; i++)
+        o[i] = ((instances[inst].object_to_world[4 * i] * p[0] +
+                 instances[inst].object_to_world[4 * i + 1] * p[1]) +
+                instances[inst].object_to_world[4 * i + 2] * p[2]) +
+               instances[inst].object_to_world[4 * i + 3];
+}
+
+/* The hit point from the barycentrics in object space, then transformed
+ * (Waechter and Binder 2019), as the C function. */
 void rt_surface_at(rt_ray_d r, rt_hit_d h, out rt_surface sf) {
     uint e = h.entry, inst = h.inst;
     bool identity = (RT_INST_FLAGS(instances[inst].flags) & RT_INST_IDENTITY) != 0u;
-    float e1[3], e2[3], n[3], ns[3];
+    float e1[3], e2[3], n[3], ns[3], po[3];
+    float b0 = (1.0 - h.u) - h.v;
     for (int k = 0; k < 3; k++) {
         e1[k] = tris[e].v1[k] - tris[e].v0[k];
         e2[k] = tris[e].v2[k] - tris[e].v0[k];
-        sf.p[k] = r.org[k] + h.t * r.dir[k];
+        po[k] = (b0 * tris[e].v0[k] + h.u * tris[e].v1[k]) + h.v * tris[e].v2[k];
+    }
+    if (identity) {
+        for (int k = 0; k < 3; k++) sf.p[k] = po[k];
+    } else {
+        rt_point_to_world(inst, po, sf.p);
     }
     rt_cross3(e1, e2, n);
     if (identity) {
