@@ -77,12 +77,13 @@ for any in "" --any-hit; do
     cmp -s "$tmp/h_cpu.txt" "$tmp/h_cl.txt" || { echo "FAIL: trace $any: opencl hits differ"; fails=$((fails + 1)); }
 done
 
-# No platform at all (the ICD loader reads no vendor file).
+# No platform at all (the ICD loader reads no vendor file), and no Vulkan
+# driver either (else auto would take Vulkan).
 mkdir "$tmp/no_vendors"
-export OCL_ICD_VENDORS="$tmp/no_vendors"
+export OCL_ICD_VENDORS="$tmp/no_vendors" VK_ICD_FILENAMES="$tmp/none.json" VK_DRIVER_FILES="$tmp/none.json"
 expect 2 'no OpenCL platform' -- "$RTCL" devices --api opencl
 expect 2 'opencl: no OpenCL platform' -- "$RTCL" render builtin:cornell --width 32 --height 18 --backend opencl -o "$tmp/x.png"
 expect 2 'opencl: no OpenCL platform' -- "$RTCL" trace builtin:cornell --rays "$tmp/rays.txt" --out "$tmp/x.txt" --backend opencl
 expect 0 'notice: opencl not available \(no OpenCL platform' -- "$RTCL" render builtin:cornell --width 32 --height 18 --backend auto -o "$tmp/x.png"
-unset OCL_ICD_VENDORS
+unset OCL_ICD_VENDORS VK_ICD_FILENAMES VK_DRIVER_FILES
 finish

@@ -59,21 +59,28 @@ const rt_backend_ops *rt_backend_find(const char *name, rt_error *err) {
 }
 
 const rt_backend_ops *rt_backend_auto(rt_error *why) {
+    /* Every device backend's reason, in order: the notice names them all. */
+    char reasons[sizeof why->message] = "";
     int devices = 0;
     for (int k = 0; k < ENTRIES; k++) {
         if (!registry[k].device) continue;
         devices++;
+        size_t used = strlen(reasons);
+        const char *sep = used ? "; " : "";
         if (!registry[k].ops) {
-            rt_fail(why, RT_ERROR_UNSUPPORTED, "%s", registry[k].missing);
+            snprintf(reasons + used, sizeof reasons - used, "%s%s", sep, registry[k].missing);
             continue;
         }
         rt_error reason;
         rt_error_clear(&reason);
         if (registry[k].ops->available(&reason)) return registry[k].ops;
-        rt_fail(why, RT_ERROR_UNSUPPORTED, "%s not available (%s)", registry[k].name,
-                reason.message);
+        snprintf(reasons + used, sizeof reasons - used, "%s%s not available (%s)", sep,
+                 registry[k].name, reason.message);
     }
-    if (!devices) rt_fail(why, RT_ERROR_UNSUPPORTED, "this build has no device backend");
+    if (!devices)
+        rt_fail(why, RT_ERROR_UNSUPPORTED, "this build has no device backend");
+    else
+        rt_fail(why, RT_ERROR_UNSUPPORTED, "%s", reasons);
     return NULL;
 }
 
