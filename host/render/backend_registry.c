@@ -5,6 +5,7 @@
 #include "render/backend_registry.h"
 
 #include <stddef.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "base/error.h"
@@ -74,7 +75,7 @@ const rt_backend_ops *rt_backend_auto(rt_error *why) {
         rt_error reason;
         rt_error_clear(&reason);
         if (registry[k].ops->available(&reason)) return registry[k].ops;
-        snprintf(reasons + used, sizeof reasons - used, "%s%s not available (%s)", sep,
+        snprintf(reasons + used, sizeof reasons - used, "%s%s not available (%.400s)", sep,
                  registry[k].name, reason.message);
     }
     if (!devices)
