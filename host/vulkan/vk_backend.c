@@ -56,7 +56,7 @@ enum {
     B_RAYS,     /* binding 10: ray queries' rays (the soft-maths test: operands) */
     B_HITS,     /* 11: their hits (results) */
     B_COUNTERS, /* 12: per pixel or ray of a tile */
-    B_FB,       /* 13: the frame */
+    B_FB,       /* 13: the tile's pixels */
     B_COUNT
 };
 static const char *const buffer_names[B_COUNT] = {
@@ -761,9 +761,12 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
     vk_state *s = state;
     const rt_scene_header *h = &layout->flat->hdr;
     uint32_t pixels = (uint32_t)h->width * (uint32_t)h->height;
-    size_t fb_bytes = sizeof(float) * (size_t)pixels * (size_t)frame->channels;
+    /* The framebuffer buffer holds one tile (the shader writes tile-relative
+     * pixels), copied into the frame after each dispatch: no frame is too
+     * large for the device's largest storage buffer. */
+    size_t px_bytes = sizeof(float) * (size_t)frame->channels;
     int remade;
-    rt_status st = ensure(s, B_FB, fb_bytes, &remade, err);
+    rt_status st = ensure(s, B_FB, px_bytes * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK) st = ensure(s, B_COUNTERS, sizeof(rt_counters) * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK) st = bind_all(s, err);
     if (st != RT_OK) return named(err, st);
@@ -780,6 +783,10 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
         stats->kernel_ms[1] += ms;
         stats->launches++;
         if (n > stats->tile_pixels) stats->tile_pixels = n;
+        double t0 = rt_now_ms();
+        memcpy(frame->pixels + (size_t)first * (size_t)frame->channels, s->buf[B_FB].map,
+               px_bytes * n);
+        stats->download_ms += rt_now_ms() - t0;
         if (frame->want_counts)
             for (uint32_t i = 0; i < n; i++) {
                 stats->rays += counts[i].rays;
@@ -789,11 +796,6 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
         first += n;
         if (n == per) s->tile = next_tile(s->tile, ms);
         if (frame->progress) frame->progress(frame->progress_user, (double)first / pixels);
-    }
-    if (st == RT_OK) {
-        double t0 = rt_now_ms();
-        memcpy(frame->pixels, s->buf[B_FB].map, fb_bytes);
-        stats->download_ms += rt_now_ms() - t0;
     }
     if (st != RT_OK) return named(err, st);
     stats->render_ms = rt_now_ms() - t_render;

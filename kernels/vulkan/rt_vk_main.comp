@@ -13,8 +13,8 @@
  * are the C functions' (kernels/rt_shade.h), so the bits are the oracle's.
  *
  * Ray queries: rays[i] -> hits[i] (closest or any hit), counters[i].
- * Frames: pixels pc.first .. pc.first + pc.count - 1 (row-major) into fb,
- * counters[i] the pixel's ray and test counts. */
+ * Frames: pixels pc.first .. pc.first + pc.count - 1 (row-major), pixel
+ * first + i at fb[i * channels], counters[i] its ray and test counts. */
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
@@ -35,7 +35,7 @@ void main() {
     c.tri_tests = 0u;
     c.rays = 0u;
     uint pixel = pc.first + i;
-    uint o = pixel * uint(pc.channels);
+    uint o = i * uint(pc.channels); /* fb holds the tile (vk_render copies it out) */
     int step = pc.query != 0 ? STEP_QUERY : STEP_NODE;
     bool primary = true;
     /* The node being shaded (rt_shade_step's state), and the stack of
