@@ -10,7 +10,7 @@ source "$RT_SOURCE_DIR/tests/shell_check.sh"
 # word BACKEND+portable runs the portable maths profile (--device-math
 # portable), +flush the flushing denormal policy (--denormals flush); each
 # is held to the oracle in its own denormal policy (cpu or cpu+flush).
-BACKENDS=${RT_ROBUST_BACKENDS:-"cpu packet opencl opencl+portable cpu+flush packet+flush opencl+portable+flush"}
+BACKENDS=${RT_ROBUST_BACKENDS:-"cpu packet opencl opencl+portable cpu+flush packet+flush opencl+portable+flush vulkan vulkan+flush"}
 
 # The rtcl options of a word, and the oracle it is compared with.
 word_args() {
@@ -36,9 +36,12 @@ names=$(python3 -c 'import json, sys
 for c in json.load(open(sys.argv[1]))["cases"]: print(c["name"], " ".join(c["flags"]))' "$cases/manifest.json")
 
 for backend in $BACKENDS; do
-    if [ "${backend%%+*}" = opencl ] && ! "$RTCL" devices > "$tmp/devices.txt" 2>&1; then
-        # Only a build or machine without any OpenCL device gets here; CI has PoCL.
-        echo "skipped backend opencl: $(head -1 "$tmp/devices.txt")"
+    api=${backend%%+*}
+    if { [ "$api" = opencl ] || [ "$api" = vulkan ]; } &&
+        ! "$RTCL" devices --api "$api" > "$tmp/devices.txt" 2>&1; then
+        # Only a build or machine without any such device gets here; CI has
+        # PoCL and lavapipe.
+        echo "skipped backend $backend: $(head -1 "$tmp/devices.txt")"
         continue
     fi
     for tri in $TRI_TESTS; do

@@ -82,10 +82,12 @@ void cli_progress_done(void) {
 }
 
 const char cli_renderer_usage[] =
-    "  --backend B    cpu (the scalar oracle), packet (SIMD ray packets), opencl (fails\n"
-    "                 when no device exists), or auto (opencl when a device exists,\n"
+    "  --backend B    cpu (the scalar oracle), packet (SIMD ray packets), opencl or\n"
+    "                 vulkan (fail when no device exists; opencl:D, vulkan:D pick a\n"
+    "                 device), or auto (opencl, else vulkan, when a device exists,\n"
     "                 else cpu with a notice) [cpu]\n"
-    "  --device D     the OpenCL device: an index or part of a name (rtcl devices)\n"
+    "  --device D     the OpenCL or Vulkan device: an index or part of a name (rtcl\n"
+    "                 devices)\n"
     "  --threads N    worker threads, 0 = one per core [0]\n"
     "  --cl-options OPTS\n"
     "                 extra OpenCL compiler options, e.g. -cl-mad-enable,\n"
@@ -180,8 +182,9 @@ int cli_renderer_arg(int argc, char **argv, int *i, const char *command, cli_ren
 
 rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a) {
     if (a->device) {
-        if (strcmp(a->backend, "opencl") != 0 && strcmp(a->backend, "auto") != 0) {
-            cli_error(command, "--device applies to --backend opencl or auto, not '%s'",
+        if (strcmp(a->backend, "opencl") != 0 && strcmp(a->backend, "vulkan") != 0 &&
+            strcmp(a->backend, "auto") != 0) {
+            cli_error(command, "--device applies to --backend opencl, vulkan or auto, not '%s'",
                       a->backend);
             return NULL;
         }

@@ -246,6 +246,9 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
         }
         runs[3].renderer = portable;
     }
+    /* The Vulkan row (always the portable maths profile). */
+    backend_init(&runs[ours], &rows[ours], su, "vulkan");
+    ours++;
     int n = ours; /* runs */
 #ifdef RT_HAVE_EMBREE
     n += embree_init(renderer, scene, su, &peer, &runs[ours], &rows[ours]);

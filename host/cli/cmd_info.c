@@ -13,8 +13,9 @@ static const char usage[] =
     "scene, a bare .obj, or builtin:NAME), its camera, and the features it uses:\n"
     "backends specialise to these (no secondary rays without reflective or\n"
     "refractive materials, no instance transforms for one identity object, no\n"
-    "normal interpolation without normals), and whether the OpenCL kernels are\n"
-    "the exact build.\n"
+    "normal interpolation without normals; OpenCL as -D switches, Vulkan as\n"
+    "specialization constants), whether the OpenCL kernels are the exact build,\n"
+    "and the Vulkan shaders' maths profile.\n"
     "\n"
     "  --cl-options OPTS  the extra OpenCL compiler options rtcl render would be\n"
     "                     given (the speed-versus-error study): info then says the\n"
@@ -112,6 +113,16 @@ int cmd_info(int argc, char **argv) {
                                          : ": exact only where divide/sqrt are correctly rounded");
     printf("denormals    %s%s\n", denormals,
            !strcmp(denormals, "flush") ? ": compared with a flushing oracle (FTZ/DAZ)" : " (IEEE)");
+#ifdef RT_HAVE_VULKAN
+    /* The Vulkan shaders take the same switches as specialization constants
+     * (rtcl render --stats prints their values). */
+    printf("vulkan       specialization constants: secondary rays %s, instance transforms %s, "
+           "normal interpolation %s, per-triangle materials %s; portable maths (software "
+           "division and sqrt, no fp64, no contraction): the CPU oracle's bits where the device "
+           "promises them (rtcl devices)\n",
+           (f.reflection || f.refraction) ? "on" : "off", f.instancing ? "on" : "off",
+           f.normals ? "on" : "off", f.tri_materials ? "on" : "off");
+#endif
     rt_scene_destroy(s);
     return 0;
 }

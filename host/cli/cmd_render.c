@@ -31,8 +31,10 @@ static const char usage_head[] =
     "  --direct       primary and shadow rays only, no reflection or refraction\n"
     "                 (the thesis's benchmark set-up)\n"
     "  --stats        print BVH cost, box and triangle tests per ray and render time;\n"
-    "                 for opencl also the device, kernel specialisation, compile,\n"
-    "                 upload (bytes), per-kernel and download times\n";
+    "                 for opencl and vulkan also the device, kernel specialisation\n"
+    "                 (-D switches, specialization constants), compile, upload\n"
+    "                 (bytes), per-kernel (vulkan: timestamp queries) and download\n"
+    "                 times\n";
 
 static void print_usage(FILE *f) {
     fputs(usage_head, f);
@@ -129,7 +131,11 @@ static void print_stats(const rt_render_stats *s, int width, int height) {
         printf("upload           %.2f ms, %llu bytes\n", s->upload_ms,
                (unsigned long long)s->upload_bytes);
         if (s->kernels[0]) printf("kernel path      %s\n", s->kernels);
-        if (!strncmp(s->kernels, "packet", 6))
+        if (!strncmp(s->kernels, "vulkan", 6))
+            printf("kernels          %.2f ms by timestamp queries (%u dispatches, tiles up to %u "
+                   "pixels)\n",
+                   s->kernel_ms[1], s->launches, s->tile_pixels);
+        else if (!strncmp(s->kernels, "packet", 6))
             printf("kernels          packet %.2f ms (%u launches, tiles up to %u pixels)\n",
                    s->kernel_ms[1], s->launches, s->tile_pixels);
         else

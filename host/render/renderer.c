@@ -83,7 +83,7 @@ static rt_status set_backend(rt_renderer *r, const char *spec, rt_error *err) {
         rt_error_clear(&why);
         ops = rt_backend_auto(&why);
         if (!ops) {
-            snprintf(notice, sizeof notice, "%.280s: using the CPU", why.message);
+            snprintf(notice, sizeof notice, "%.480s: using the CPU", why.message);
             ops = rt_backend_find("cpu", err);
             device = NULL;
         }
