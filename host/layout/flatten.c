@@ -150,7 +150,7 @@ rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bv
     if (!node_base || !tri_base || !used) goto oom;
     for (uint32_t o = 0; o < nobj; o++) {
         const rt_object_data *ob = &scene->objects[o];
-        used[ob->meshes[ob->selected]] = 1;
+        used[rt_object_shown_mesh(ob)] = 1;
     }
     uint64_t nodes = 0, tris = 0;
     int any_normals = 0, any_mats = 0;
@@ -249,7 +249,7 @@ rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bv
     for (uint32_t o = 0; o < nobj; o++) {
         const rt_object_data *ob = &scene->objects[o];
         rt_instance *in = &out->instances[o];
-        uint32_t m = ob->meshes[ob->selected];
+        uint32_t m = rt_object_shown_mesh(ob);
         float inv[16];
         if (!rt_mat4_affine_inverse(ob->transform, inv)) {
             rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "object %u: its transform is singular", o);

@@ -80,7 +80,7 @@ static double mean_sah(const rt_accel_cache *c, const rt_scene *scene) {
     double sah = 0.0, weight = 0.0;
     for (uint32_t o = 0; o < scene->object_count; o++) {
         const rt_object_data *ob = &scene->objects[o];
-        uint32_t m = ob->meshes[ob->selected];
+        uint32_t m = rt_object_shown_mesh(ob);
         double n = (double)scene->meshes[m].triangle_count;
         if (n == 0) continue;
         sah += n * c->sah[m];
@@ -101,7 +101,7 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
     if (!c->flat_valid || c->flat_scene_version != scene->version) {
         for (uint32_t o = 0; o < scene->object_count; o++) {
             const rt_object_data *ob = &scene->objects[o];
-            rt_status st = build_mesh(c, scene, ob->meshes[ob->selected], pool, err);
+            rt_status st = build_mesh(c, scene, rt_object_shown_mesh(ob), pool, err);
             if (st != RT_OK) return st;
         }
         /* The object BVH, every frame the scene changed: objects move. */
