@@ -161,3 +161,15 @@ rt_status rt_renderer_layout(rt_renderer *r, rt_scene *scene, rt_backend_layout 
     out->mesh_generation = r->accel.mesh_generation;
     return RT_OK;
 }
+
+rt_status rt_renderer_update_stats(const rt_renderer *r, rt_update_stats *out) {
+    if (!r || !out) return RT_ERROR_INVALID_ARGUMENT;
+    memset(out, 0, sizeof *out);
+    out->meshes = r->accel.updates;
+    out->mesh_count = r->accel.update_count;
+    out->object_bvh_ms = r->accel.object_bvh_ms;
+    out->layout_ms = r->accel.layout_ms;
+    out->layout_in_place = r->accel.layout_in_place;
+    out->layout_bytes = r->accel.layout_bytes;
+    return RT_OK;
+}
