@@ -300,6 +300,21 @@ static void check_lbvh(void) {
         for (int k = 0; k < 3; k++) tight &= lo[k] == nd->bmin[k] && hi[k] == nd->bmax[k];
     }
     CHECK_MSG(tight, "refit boxes are not the unions of their contents");
+    /* Every path gives the same boxes: one thread (a backward sweep where
+     * children follow parents, else the climb), and from the vertices. */
+    rt_node *pooled = malloc(sizeof(rt_node) * first.node_count);
+    memcpy(pooled, first.nodes, sizeof(rt_node) * first.node_count);
+    rt_bvh_refit(&first, &info, boxes, NULL);
+    rt_bvh_refit(&first, &info, moved, NULL);
+    CHECK_MSG(memcmp(pooled, first.nodes, sizeof(rt_node) * first.node_count) == 0,
+              "refit on one thread differs from the pool's");
+    CHECK(info.ordered); /* the LBVH writes children after parents */
+    info.ordered = 0;
+    rt_bvh_refit(&first, &info, boxes, NULL);
+    rt_bvh_refit(&first, &info, moved, NULL);
+    CHECK_MSG(memcmp(pooled, first.nodes, sizeof(rt_node) * first.node_count) == 0,
+              "the one-thread climb differs from the pool's");
+    free(pooled);
     rt_bvh_refit_info_free(&info);
     rt_pool_destroy(pool);
     rt_bvh_free(&first);

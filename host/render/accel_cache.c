@@ -91,10 +91,11 @@ static rt_status build(rt_accel_cache *c, const rt_mesh_data *md, uint32_t m, rt
     return RT_OK;
 }
 
-static rt_status refit(rt_accel_cache *c, uint32_t m, rt_pool *pool, rt_error *err) {
+static rt_status refit(rt_accel_cache *c, const rt_mesh_data *md, uint32_t m, rt_pool *pool,
+                       rt_error *err) {
     if (!c->refit[m].parents && rt_bvh_refit_prepare(&c->bvhs[m], &c->refit[m]) != RT_OK)
         return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
-    rt_bvh_refit(&c->bvhs[m], &c->refit[m], c->boxes, pool);
+    rt_bvh_refit_tris(&c->bvhs[m], &c->refit[m], md->positions, md->indices, pool);
     return RT_OK;
 }
 
@@ -109,28 +110,31 @@ static rt_status update_mesh(rt_accel_cache *c, const rt_scene *scene, uint32_t 
     rt_update_action action = RT_ACTION_BUILD;
     double sah = 0.0;
     if (md->triangle_count) {
-        rt_status st = tri_boxes(c, md, err);
-        if (st != RT_OK) return st;
+        rt_status st = RT_OK;
         rt_update_policy policy = (rt_update_policy)md->update_policy;
         int can_refit = had && c->built_topology[m] == md->topology_version &&
                         c->bvhs[m].prim_count == md->triangle_count && c->bvhs[m].node_count;
         if ((policy == RT_UPDATE_REFIT || policy == RT_UPDATE_AUTO) && can_refit) {
-            st = refit(c, m, pool, err);
+            st = refit(c, md, m, pool, err);
             action = RT_ACTION_REFIT;
             if (st == RT_OK && policy == RT_UPDATE_AUTO) {
                 /* Refit while the tree stays within the bound of its last
                  * rebuild's cost; past it, rebuild. */
                 sah = rt_bvh_sah(&c->bvhs[m], 1.0f, 2.0f);
                 if (sah > RT_UPDATE_AUTO_BOUND * c->sah_rebuilt[m]) {
-                    st = build(c, md, m, RT_BUILDER_FAST, pool, err);
+                    st = tri_boxes(c, md, err);
+                    if (st == RT_OK) st = build(c, md, m, RT_BUILDER_FAST, pool, err);
                     action = RT_ACTION_REBUILD;
                 }
             }
-        } else if (policy == RT_UPDATE_FAST) {
-            st = build(c, md, m, RT_BUILDER_LBVH, pool, err);
-            action = RT_ACTION_FAST;
         } else {
-            st = build(c, md, m, RT_BUILDER_FAST, pool, err);
+            st = tri_boxes(c, md, err);
+            if (st == RT_OK && policy == RT_UPDATE_FAST) {
+                st = build(c, md, m, RT_BUILDER_LBVH, pool, err);
+                action = RT_ACTION_FAST;
+            } else if (st == RT_OK) {
+                st = build(c, md, m, RT_BUILDER_FAST, pool, err);
+            }
         }
         if (st != RT_OK) return st;
     } else {
