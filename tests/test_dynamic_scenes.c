@@ -78,6 +78,8 @@ static void check_scene(const char *name, const char *path, double fps) {
             printf("%s: opencl not tested: %s\n", name, err.message);
             continue;
         }
+        uint64_t full_upload = 0;
+        int in_place = 0;
         for (int p = 0; p < 3; p++) {
             set_policy(s, policies[p]);
             for (int k = 0; k < FRAMES; k++) {
@@ -102,12 +104,35 @@ static void check_scene(const char *name, const char *path, double fps) {
                     p = 3;
                     break;
                 }
+                if (status == RT_OK && k > 0 && policies[p] == RT_UPDATE_REFIT) {
+                    /* Refit frames rewrite the layout in place where the
+                     * same meshes stay shown; a device then receives the
+                     * changed ranges only. */
+                    rt_update_stats us;
+                    rt_renderer_update_stats(r, &us);
+                    if (us.layout_in_place && b == 2)
+                        CHECK_MSG(st.upload_bytes > 0 && st.upload_bytes <= us.layout_bytes,
+                                  "%s: frame %d uploaded %llu bytes, %llu changed", name, k,
+                                  (unsigned long long)st.upload_bytes,
+                                  (unsigned long long)us.layout_bytes);
+                    if (us.layout_in_place && b == 2 && strcmp(name, "keyframes_animated"))
+                        CHECK_MSG(st.upload_bytes < full_upload * 3 / 4,
+                                  "%s: frame %d uploaded %llu bytes of %llu", name, k,
+                                  (unsigned long long)st.upload_bytes,
+                                  (unsigned long long)full_upload);
+                    in_place += us.layout_in_place;
+                }
+                if (k == 0 && p == 0) full_upload = st.upload_bytes;
                 CHECK_MSG(status != RT_OK || same_fb(&fb, &ref[k]),
                           "%s on %s, policy %s, frame %d: differs from a fresh build", name,
                           backends[b], rt_update_policy_name(policies[p]), k);
                 rt_framebuffer_free(&fb);
             }
         }
+        if (strcmp(name, "keyframes_animated"))
+            CHECK_MSG(in_place >= FRAMES - 2,
+                      "%s on %s: %d refit frames rewrote the layout in place", name, backends[b],
+                      in_place);
         rt_renderer_destroy(r);
     }
     for (int k = 0; k < FRAMES; k++) rt_framebuffer_free(&ref[k]);
@@ -133,7 +158,8 @@ static const char *shared_anim(const char *name, const char *prefix) {
     n += (size_t)snprintf(json + n, sizeof json - n,
                           "}, \"objects\": [{\"keyframes\": [\"k0\", \"k1\", \"k2\", \"k3\", "
                           "\"k4\", \"k5\", \"k6\", \"k7\", \"k8\", \"k9\"], \"animation\": "
-                          "{\"keyframe_rate\": 5, \"interpolate\": true}}]}\n");
+                          "{\"keyframe_rate\": 5, \"interpolate\": true}}, {\"mesh\": \"k0\", "
+                          "\"transform\": {\"translate\": [1.5, 0, 0]}}]}\n");
     char file[64];
     snprintf(file, sizeof file, "%s.json", name);
     return test_write_temp(file, json);

@@ -26,6 +26,11 @@ typedef struct rt_flat {
     rt_light_d *lights;
 } rt_flat;
 
+/* A range of nodes or triangles of a layout (rewritten in place). */
+typedef struct rt_flat_range {
+    uint32_t first, count;
+} rt_flat_range;
+
 void rt_flat_free(rt_flat *flat);
 
 /* The view the shared traversal reads. */

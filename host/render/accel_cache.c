@@ -25,6 +25,8 @@ void rt_accel_cache_clear(rt_accel_cache *c) {
     free(c->refit);
     free(c->updates);
     free(c->boxes);
+    free(c->dirty_nodes);
+    free(c->dirty_tris);
     rt_bvh_free(&c->top);
     rt_flat_free(&c->flat);
     rt_flat_shape_free(&c->shape);
@@ -55,6 +57,8 @@ static int grow(rt_accel_cache *c, uint32_t meshes) {
     GROW(sah_rebuilt, meshes);
     GROW(refit, meshes);
     GROW(updates, meshes);
+    GROW(dirty_nodes, meshes + 1);
+    GROW(dirty_tris, meshes);
     for (uint32_t i = c->mesh_count; i < meshes; i++) {
         memset(&c->bvhs[i], 0, sizeof(rt_bvh));
         memset(&c->refit[i], 0, sizeof(rt_bvh_refit_info));
@@ -208,7 +212,21 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
         if (c->flat_valid && rt_flatten_update(scene, c->bvhs, &c->top, c->dirty, &c->shape,
                                                &c->flat, &c->layout_bytes) == RT_OK) {
             c->layout_in_place = 1;
+            /* What changed, for backends holding the previous generation. */
+            c->base_generation = c->layout_generation;
+            c->dirty_node_ranges = c->dirty_tri_ranges = 0;
+            for (uint32_t m = 0; m < scene->mesh_count; m++) {
+                if (!c->dirty[m] || c->shape.node_base[m] == UINT32_MAX) continue;
+                rt_flat_range n = {c->shape.node_base[m], c->shape.node_count[m]};
+                rt_flat_range t = {c->shape.tri_base[m], c->shape.tri_count[m]};
+                c->dirty_nodes[c->dirty_node_ranges++] = n;
+                if (t.count) c->dirty_tris[c->dirty_tri_ranges++] = t;
+            }
+            rt_flat_range top = {c->shape.top_root, c->flat.node_count - c->shape.top_root};
+            if (top.count) c->dirty_nodes[c->dirty_node_ranges++] = top;
         } else {
+            c->base_generation = 0;
+            c->dirty_node_ranges = c->dirty_tri_ranges = 0;
             rt_flat_free(&c->flat);
             rt_flat_shape_free(&c->shape);
             c->flat_valid = 0;

@@ -42,6 +42,10 @@ typedef struct rt_accel_cache {
     uint32_t flat_scene_version; /* the scene version flat was made from */
     uint32_t layout_generation;  /* bumped by every change of flat */
     uint32_t mesh_generation;    /* bumped by every mesh BVH update */
+    /* After an in-place rewrite: what changed since generation base_generation. */
+    uint32_t base_generation;
+    rt_flat_range *dirty_nodes, *dirty_tris;
+    uint32_t dirty_node_ranges, dirty_tri_ranges;
     double object_bvh_ms, layout_ms;
     int layout_in_place;
     uint64_t layout_bytes;

@@ -159,6 +159,11 @@ rt_status rt_renderer_layout(rt_renderer *r, rt_scene *scene, rt_backend_layout 
     out->pool = r->pool;
     out->layout_generation = r->accel.layout_generation;
     out->mesh_generation = r->accel.mesh_generation;
+    out->base_generation = r->accel.base_generation;
+    out->dirty_nodes = r->accel.dirty_nodes;
+    out->dirty_node_ranges = r->accel.dirty_node_ranges;
+    out->dirty_tris = r->accel.dirty_tris;
+    out->dirty_tri_ranges = r->accel.dirty_tri_ranges;
     return RT_OK;
 }
 
