@@ -29,7 +29,7 @@
 #include "rt.h"
 #include "scene/scene.h"
 
-enum { GRID = 96 }; /* 96 x 96 quads: 18432 triangles, enough for the parallel paths */
+enum { GRID = 64 }; /* 64 x 64 quads: 8192 triangles, enough for the parallel paths */
 
 static float *grid_positions(int frame) {
     float *p = malloc(sizeof(float) * 3 * (GRID + 1) * (GRID + 1));
@@ -233,6 +233,8 @@ static void check_policy(rt_update_policy policy, const char *backend) {
 
 /* ---- the builders ------------------------------------------------------------ */
 
+/* Four shifted copies of the grid's triangle boxes: enough leaves for the
+ * parallel refit (4096 and more). */
 static rt_aabb *grid_boxes(int frame, uint32_t *count) {
     uint32_t grid;
     rt_scene *s = make_scene(&grid);
@@ -240,13 +242,19 @@ static rt_aabb *grid_boxes(int frame, uint32_t *count) {
     rt_mesh_set_positions(s, grid, p, NULL, (GRID + 1) * (GRID + 1));
     free(p);
     const rt_mesh_data *m = &s->meshes[grid];
-    rt_aabb *boxes = malloc(sizeof(rt_aabb) * m->triangle_count);
-    for (uint32_t t = 0; t < m->triangle_count; t++) {
+    uint32_t n = m->triangle_count;
+    rt_aabb *boxes = malloc(sizeof(rt_aabb) * 4 * n);
+    for (uint32_t t = 0; t < n; t++) {
         float v[9];
         for (int c = 0; c < 3; c++) memcpy(v + 3 * c, m->positions + 3 * m->indices[3 * t + c], 12);
         boxes[t] = bvh_test_tri_box(v);
+        for (uint32_t copy = 1; copy < 4; copy++) {
+            boxes[copy * n + t] = boxes[t];
+            boxes[copy * n + t].bmin[0] += 3.0f * (float)copy;
+            boxes[copy * n + t].bmax[0] += 3.0f * (float)copy;
+        }
     }
-    *count = m->triangle_count;
+    *count = 4 * n;
     rt_scene_destroy(s);
     return boxes;
 }
@@ -277,6 +285,8 @@ static void check_lbvh(void) {
     rt_aabb *moved = grid_boxes(99, &n2);
     rt_bvh_refit_info info;
     CHECK(rt_bvh_refit_prepare(&first, &info) == RT_OK);
+    CHECK_MSG(info.leaf_count >= 4096, "%u leaves: the parallel refit would not run",
+              info.leaf_count);
     rt_pool *pool = rt_pool_create(3);
     rt_bvh_refit(&first, &info, moved, pool);
     CHECK_MSG(bvh_validate(&first, moved, n2, 4, 64, msg, sizeof msg), "refit: %s", msg);
