@@ -59,7 +59,8 @@ static uint32_t morph_mesh(const rt_scene *s) {
 }
 
 static int run_ours(rt_scene *s, rt_update_policy p, const char *backend, int threads, int frames,
-                    double fps, samples *out, double *render_of_frame, double *sah_of_frame) {
+                    double fps, samples *out, double *render_of_frame, double *sah_of_frame,
+                    double *tests_of_frame) {
     rt_renderer *r = bench_renderer(backend, threads);
     if (!r) return 0;
     for (uint32_t m = 0; m < s->mesh_count; m++) rt_mesh_set_update(s, m, p);
@@ -85,6 +86,8 @@ static int run_ours(rt_scene *s, rt_update_policy p, const char *backend, int th
         for (uint32_t i = 0; i < us.mesh_count; i++) upd += us.meshes[i].ms;
         render_of_frame[k] = st.render_ms;
         sah_of_frame[k] = st.sah_cost;
+        /* The traversal work the SAH predicts, counted (Ct = 1, Ci = 2). */
+        tests_of_frame[k] = (double)st.box_tests + 2.0 * (double)st.tri_tests;
         if (k == 0) continue; /* the first build */
         out->update[out->n] = upd;
         out->host[out->n] = st.build_ms;
@@ -199,17 +202,19 @@ int main(int argc, char **argv) {
             smp[e].n = 0;
         }
         /* Per frame, per run: render ms and SAH of rebuild (0) and refit (1). */
-        double *render_f[2], *sah_f[2];
+        double *render_f[2], *sah_f[2], *tests_f[2];
         for (int j = 0; j < 2; j++) {
             render_f[j] = calloc(cap, sizeof(double));
             sah_f[j] = calloc(cap, sizeof(double));
+            tests_f[j] = calloc(cap, sizeof(double));
         }
-        double scratch_r[MAX_FRAMES], scratch_s[MAX_FRAMES];
+        double scratch_r[MAX_FRAMES], scratch_s[MAX_FRAMES], scratch_t[MAX_FRAMES];
         for (int run = 0; run < runs; run++) {
             for (int e = 0; e < OURS; e++) {
                 double *rf = e < 2 ? render_f[e] + (size_t)run * frames : scratch_r;
                 double *sf = e < 2 ? sah_f[e] + (size_t)run * frames : scratch_s;
-                if (!run_ours(s, policies[e], backend, threads, frames, fps, &smp[e], rf, sf))
+                double *tf = e < 2 ? tests_f[e] + (size_t)run * frames : scratch_t;
+                if (!run_ours(s, policies[e], backend, threads, frames, fps, &smp[e], rf, sf, tf))
                     return 2;
             }
 #ifdef RT_HAVE_EMBREE
@@ -244,11 +249,13 @@ int main(int argc, char **argv) {
                    "rebuild / MEDIUM %.2f\n",
                    med_update[1] / med_update[OURS], med_update[2] / med_update[OURS + 1],
                    med_update[0] / med_update[OURS + 2]);
-        /* The refit study: per frame, medians over the runs. */
-        printf("\nRefit against rebuild, frame by frame (medians over the runs): the refitted "
-               "tree's SAH cost and render time over the rebuilt tree's\n\n"
-               "| frame | time s | SAH refit / rebuild | render refit / rebuild |\n"
-               "|---:|---:|---:|---:|\n");
+        /* The refit study: per frame, medians over the runs (the counts are
+         * the same in every run). */
+        printf("\nRefit against rebuild, frame by frame: the refitted tree's SAH cost, its "
+               "counted traversal work (box tests + 2 x triangle tests, all rays) and its "
+               "render time (median over the runs), each over the rebuilt tree's\n\n"
+               "| frame | time s | SAH | tests | render ms |\n|---:|---:|---:|---:|---:|\n");
+        double sxy = 0.0, sxx = 0.0, max_sah = 0.0;
         for (int k = 1; k < frames; k++) {
             double rr[100], ss[100];
             for (int run = 0; run < runs; run++) {
@@ -256,11 +263,34 @@ int main(int argc, char **argv) {
                 rr[run] = render_f[1][i] / render_f[0][i];
                 ss[run] = sah_f[1][i] / sah_f[0][i];
             }
+            double tr = tests_f[1][k] / tests_f[0][k];
             stat(ss, runs);
             double sm = ms_med;
             stat(rr, runs);
-            printf("| %d | %.2f | %.3f | %.3f |\n", k, k / fps, sm, ms_med);
+            printf("| %d | %.2f | %.3f | %.3f | %.3f |\n", k, k / fps, sm, tr, ms_med);
+            sxy += (sm - 1.0) * (tr - 1.0);
+            sxx += (sm - 1.0) * (sm - 1.0);
+            if (sm > max_sah) max_sah = sm;
         }
+        /* Where refitting stops paying: the extra traversal of the refitted
+         * tree costs as much as a rebuild saves. With the minima of the runs:
+         * tests ratio r* = 1 + (rebuild - refit update) / rebuilt render time;
+         * and through the fitted slope of tests over SAH, the SAH ratio. */
+        stat(smp[0].update, smp[0].n);
+        double rebuild_ms = ms_min;
+        stat(smp[1].update, smp[1].n);
+        double refit_ms = ms_min;
+        stat(smp[0].render, smp[0].n);
+        double render_ms = ms_min;
+        double slope = sxx > 0.0 ? sxy / sxx : 0.0;
+        double r_star = 1.0 + (rebuild_ms - refit_ms) / render_ms;
+        printf("\nBreak-even: a rebuild saves %.2f ms over a refit (minima) against %.2f ms of "
+               "rendering on the rebuilt tree (minimum): refitting pays while the counted work "
+               "stays below %.3f x the rebuilt tree's; the work grows %.2f times as fast as the "
+               "SAH cost (least squares through 1), so the break-even SAH ratio is %.3f. The "
+               "largest SAH ratio of a refitted tree here: %.3f.\n",
+               rebuild_ms - refit_ms, render_ms, r_star, slope,
+               slope > 0.0 ? 1.0 + (r_star - 1.0) / slope : 0.0, max_sah);
         printf("\n");
         for (int e = 0; e < ENGINES; e++) {
             free(smp[e].update);
@@ -272,6 +302,7 @@ int main(int argc, char **argv) {
         for (int j = 0; j < 2; j++) {
             free(render_f[j]);
             free(sah_f[j]);
+            free(tests_f[j]);
         }
         rt_scene_destroy(s);
     }
