@@ -48,7 +48,8 @@ typedef struct rt_backend_layout {
     /* When the layout was rewritten in place from generation base_generation
      * (0: made anew), what changed since: node ranges (the updated meshes'
      * and the object BVH's) and triangle ranges (the updated meshes'; their
-     * tris, tri_ids, normals and materials entries). Instances, materials,
+     * tris and normals entries, and their tri_ids and materials unless the
+     * range says only the vertices moved). Instances, materials,
      * lights and the header are rewritten every time. A backend holding
      * generation base_generation may copy only these. */
     uint32_t base_generation;

@@ -235,9 +235,11 @@ fail:
     return RT_ERROR_INVALID_ARGUMENT;
 }
 
-/* Writes a mesh's BVH nodes and triangles at its place in the layout. */
-static void write_mesh(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b, uint32_t node_base,
-                       uint32_t tri_base) {
+/* Writes a mesh's BVH nodes and triangles at its place in the layout;
+ * moved_only: only the nodes and the vertices (and normals), the tree's
+ * shape and the triangle order being the same as written before (a refit). */
+static void write_mesh_as(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b, uint32_t node_base,
+                          uint32_t tri_base, int moved_only) {
     if (!md->triangle_count) {
         empty_node(&out->nodes[node_base], tri_base);
         return;
@@ -246,15 +248,20 @@ static void write_mesh(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b, ui
     for (uint32_t j = 0; j < b->prim_count; j++) {
         uint32_t t = b->prim_indices[j], e = tri_base + j;
         store_tri(md, t, &out->tris[e]);
-        out->tri_ids[e] = t;
+        if (!moved_only) out->tri_ids[e] = t;
         if (md->normals) {
             for (int v = 0; v < 3; v++)
                 memcpy(out->tri_normals + 9 * (size_t)e + 3 * v,
                        md->normals + 3 * (size_t)md->indices[3 * t + v], 3 * sizeof(float));
         }
-        if (out->tri_mats)
+        if (out->tri_mats && !moved_only)
             out->tri_mats[e] = md->tri_materials ? md->tri_materials[t] : RT_NO_MATERIAL;
     }
+}
+
+static void write_mesh(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b, uint32_t node_base,
+                       uint32_t tri_base) {
+    write_mesh_as(out, md, b, node_base, tri_base, 0);
 }
 
 /* Writes what changes with every frame: the object BVH, the instances,
@@ -435,8 +442,10 @@ rt_status rt_flatten_update(const rt_scene *scene, const rt_bvh *mesh_bvhs, cons
         uint32_t nodes = md->triangle_count ? mesh_bvhs[m].node_count : 1;
         if (nodes != shape->node_count[m] || md->triangle_count != shape->tri_count[m])
             return RT_ERROR_UNSUPPORTED;
-        if (md->triangle_count && (mesh_bvhs[m].prim_count != md->triangle_count ||
-                                   !bvh_valid(&mesh_bvhs[m], md->triangle_count, NULL, md->name)))
+        /* A refitted tree keeps the shape validated when it was written. */
+        if (md->triangle_count && dirty[m] != RT_DIRTY_MOVED &&
+            (mesh_bvhs[m].prim_count != md->triangle_count ||
+             !bvh_valid(&mesh_bvhs[m], md->triangle_count, NULL, md->name)))
             return RT_ERROR_UNSUPPORTED;
     }
     if (!single && nobj && top && !bvh_valid(top, nobj, NULL, "object"))
@@ -444,8 +453,13 @@ rt_status rt_flatten_update(const rt_scene *scene, const rt_bvh *mesh_bvhs, cons
     /* The shape holds: rewrite the changed meshes and the frame's part. */
     for (uint32_t m = 0; m < nmesh; m++) {
         if (shape->node_base[m] == UINT32_MAX || !dirty[m]) continue;
-        write_mesh(flat, &scene->meshes[m], &mesh_bvhs[m], shape->node_base[m], shape->tri_base[m]);
-        *bytes += mesh_bytes(flat, shape->node_count[m], shape->tri_count[m]);
+        int moved = dirty[m] == RT_DIRTY_MOVED;
+        write_mesh_as(flat, &scene->meshes[m], &mesh_bvhs[m], shape->node_base[m],
+                      shape->tri_base[m], moved);
+        *bytes += moved ? (uint64_t)shape->node_count[m] * sizeof(rt_node) +
+                              (uint64_t)shape->tri_count[m] *
+                                  (sizeof(rt_tri) + (flat->tri_normals ? 9 * sizeof(float) : 0))
+                        : mesh_bytes(flat, shape->node_count[m], shape->tri_count[m]);
     }
     rt_flat_options opt = rt_flat_options_default();
     opt.tri_method = flat->hdr.tri_method;

@@ -44,10 +44,17 @@ rt_status rt_flat_shape_of(const rt_scene *scene, const rt_bvh *mesh_bvhs, const
                            rt_flat_shape *shape);
 void rt_flat_shape_free(rt_flat_shape *shape);
 
+/* What changed of a mesh since its layout was written. */
+enum {
+    RT_DIRTY_NONE = 0,
+    RT_DIRTY_MOVED = 1, /* refitted: vertices and boxes moved, the tree's shape stayed */
+    RT_DIRTY_ALL = 2    /* a new tree */
+};
+
 /* Rewrites flat (made by rt_flatten, of the given shape) in place for the
  * scene's new state: the nodes and triangles of the meshes marked dirty
- * (indexed by mesh id), then the object BVH, instances, materials, lights
- * and header. RT_ERROR_UNSUPPORTED, with flat untouched, when the shape
+ * (RT_DIRTY_*, indexed by mesh id), then the object BVH, instances,
+ * materials, lights and header. RT_ERROR_UNSUPPORTED, with flat untouched, when the shape
  * changed (another mesh shown, a tree of another size, ...): then flatten
  * anew. *bytes gets the bytes rewritten. */
 rt_status rt_flatten_update(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bvh *top,

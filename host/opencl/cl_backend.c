@@ -371,14 +371,14 @@ static rt_status upload_scene(cl_state *s, const rt_backend_layout *layout, uint
             const rt_flat_range *g = &layout->dirty_tris[r];
             st = write_buf(s, B_TRIS, sizeof(rt_tri) * g->first, f->tris + g->first,
                            sizeof(rt_tri) * g->count, bytes, err);
-            if (st == RT_OK)
+            if (st == RT_OK && !g->moved)
                 st = write_buf(s, B_TRI_IDS, sizeof(uint32_t) * g->first, f->tri_ids + g->first,
                                sizeof(uint32_t) * g->count, bytes, err);
             if (st == RT_OK && f->tri_normals)
                 st = write_buf(s, B_NORMALS, 9 * sizeof(float) * g->first,
                                f->tri_normals + 9 * (size_t)g->first, 9 * sizeof(float) * g->count,
                                bytes, err);
-            if (st == RT_OK && f->tri_mats)
+            if (st == RT_OK && f->tri_mats && !g->moved)
                 st = write_buf(s, B_TRI_MATS, sizeof(uint32_t) * g->first, f->tri_mats + g->first,
                                sizeof(uint32_t) * g->count, bytes, err);
         }

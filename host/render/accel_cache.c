@@ -63,7 +63,7 @@ static int grow(rt_accel_cache *c, uint32_t meshes) {
         memset(&c->bvhs[i], 0, sizeof(rt_bvh));
         memset(&c->refit[i], 0, sizeof(rt_bvh_refit_info));
         c->built[i] = 0;
-        c->dirty[i] = 1;
+        c->dirty[i] = RT_DIRTY_ALL;
         c->sah[i] = c->sah_rebuilt[i] = 0.0;
     }
     c->mesh_count = meshes;
@@ -155,7 +155,10 @@ static rt_status update_mesh(rt_accel_cache *c, const rt_scene *scene, uint32_t 
     c->built[m] = 1;
     c->built_version[m] = md->version;
     c->built_topology[m] = md->topology_version;
-    c->dirty[m] = 1;
+    if (action != RT_ACTION_REFIT)
+        c->dirty[m] = RT_DIRTY_ALL;
+    else if (c->dirty[m] != RT_DIRTY_ALL)
+        c->dirty[m] = RT_DIRTY_MOVED;
     c->mesh_generation++;
     rt_mesh_update *u = &c->updates[c->update_count++];
     u->mesh = m;
@@ -217,12 +220,13 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
             c->dirty_node_ranges = c->dirty_tri_ranges = 0;
             for (uint32_t m = 0; m < scene->mesh_count; m++) {
                 if (!c->dirty[m] || c->shape.node_base[m] == UINT32_MAX) continue;
-                rt_flat_range n = {c->shape.node_base[m], c->shape.node_count[m]};
-                rt_flat_range t = {c->shape.tri_base[m], c->shape.tri_count[m]};
+                rt_flat_range n = {c->shape.node_base[m], c->shape.node_count[m], 0};
+                rt_flat_range t = {c->shape.tri_base[m], c->shape.tri_count[m],
+                                   c->dirty[m] == RT_DIRTY_MOVED};
                 c->dirty_nodes[c->dirty_node_ranges++] = n;
                 if (t.count) c->dirty_tris[c->dirty_tri_ranges++] = t;
             }
-            rt_flat_range top = {c->shape.top_root, c->flat.node_count - c->shape.top_root};
+            rt_flat_range top = {c->shape.top_root, c->flat.node_count - c->shape.top_root, 0};
             if (top.count) c->dirty_nodes[c->dirty_node_ranges++] = top;
         } else {
             c->base_generation = 0;
