@@ -57,6 +57,9 @@ typedef struct rt_backend_layout {
     uint32_t dirty_node_ranges;
     const rt_flat_range *dirty_tris;
     uint32_t dirty_tri_ranges;
+    /* 1 when, besides, every mesh tree kept its shape (it was refitted, not
+     * rebuilt): structures derived from the mesh trees can be refitted too. */
+    int shapes_kept;
 } rt_backend_layout;
 
 /* One frame's request. pixels is width x height x channels floats of the

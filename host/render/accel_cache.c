@@ -218,8 +218,10 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
             /* What changed, for backends holding the previous generation. */
             c->base_generation = c->layout_generation;
             c->dirty_node_ranges = c->dirty_tri_ranges = 0;
+            c->shapes_kept = 1;
             for (uint32_t m = 0; m < scene->mesh_count; m++) {
                 if (!c->dirty[m] || c->shape.node_base[m] == UINT32_MAX) continue;
+                if (c->dirty[m] == RT_DIRTY_ALL) c->shapes_kept = 0;
                 rt_flat_range n = {c->shape.node_base[m], c->shape.node_count[m], 0};
                 rt_flat_range t = {c->shape.tri_base[m], c->shape.tri_count[m],
                                    c->dirty[m] == RT_DIRTY_MOVED};
@@ -230,6 +232,7 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
             if (top.count) c->dirty_nodes[c->dirty_node_ranges++] = top;
         } else {
             c->base_generation = 0;
+            c->shapes_kept = 0;
             c->dirty_node_ranges = c->dirty_tri_ranges = 0;
             rt_flat_free(&c->flat);
             rt_flat_shape_free(&c->shape);

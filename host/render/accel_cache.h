@@ -46,6 +46,7 @@ typedef struct rt_accel_cache {
     uint32_t base_generation;
     rt_flat_range *dirty_nodes, *dirty_tris;
     uint32_t dirty_node_ranges, dirty_tri_ranges;
+    int shapes_kept; /* ... and no mesh tree changed shape */
     double object_bvh_ms, layout_ms;
     int layout_in_place;
     uint64_t layout_bytes;

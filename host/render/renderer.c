@@ -164,6 +164,7 @@ rt_status rt_renderer_layout(rt_renderer *r, rt_scene *scene, rt_backend_layout 
     out->dirty_node_ranges = r->accel.dirty_node_ranges;
     out->dirty_tris = r->accel.dirty_tris;
     out->dirty_tri_ranges = r->accel.dirty_tri_ranges;
+    out->shapes_kept = r->accel.shapes_kept;
     return RT_OK;
 }
 
