@@ -230,7 +230,7 @@ int main(int argc, char **argv) {
     if (!b.pool || !b.image || !b.boxes || !b.bvhs) return 1;
     uint64_t tris = 0;
     for (uint32_t o = 0; o < sc->object_count; o++) {
-        uint32_t m = sc->objects[o].meshes[sc->objects[o].selected];
+        uint32_t m = rt_object_shown_mesh(&sc->objects[o]);
         const rt_mesh_data *md = &sc->meshes[m];
         if (b.boxes[m] || !md->triangle_count) continue;
         b.boxes[m] = malloc(sizeof(rt_aabb) * md->triangle_count);

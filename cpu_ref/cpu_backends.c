@@ -183,6 +183,15 @@ static rt_status packet_prepare(void *state, const rt_backend_layout *layout,
     packet_state *s = state;
     if (s->have_wide && s->wide_generation == layout->layout_generation) return RT_OK;
     double t0 = rt_now_ms();
+    /* Only refits since the wide BVHs were made: refit them too. */
+    if (s->have_wide && layout->base_generation && s->wide_generation == layout->base_generation &&
+        layout->shapes_kept) {
+        if (rt_pk_wide_refit(layout->flat, &s->wide) == RT_OK) {
+            s->wide_generation = layout->layout_generation;
+            stats->build_ms += rt_now_ms() - t0;
+            return RT_OK;
+        }
+    }
     rt_pk_wide_free(&s->wide);
     s->have_wide = 0;
     if (rt_pk_wide_build(layout->flat, &s->wide) != RT_OK)

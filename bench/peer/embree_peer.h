@@ -70,4 +70,23 @@ rt_status rt_embree_render(const rt_embree_scene *es, int lanes, rt_pool *pool, 
 /* Does the device trace packets of this width natively (1 always)? */
 int rt_embree_native_lanes(rt_embree *em, int lanes);
 
+/* ---- deforming geometry: the peer of the update policies (embree_dynamic.c) -- */
+
+typedef struct rt_embree_dynamic rt_embree_dynamic;
+
+enum { RT_EMBREE_REFIT = 0, RT_EMBREE_LOW = 1, RT_EMBREE_MEDIUM = 2 };
+
+/* A dynamic scene (RTC_SCENE_FLAG_DYNAMIC) of one triangle geometry whose
+ * build quality is REFIT, LOW (Morton) or MEDIUM (binned SAH), the scene's
+ * LOW for the first two and MEDIUM for the last; *ms is the first commit. */
+rt_status rt_embree_dynamic_create(rt_embree *em, const float *positions, uint32_t vertex_count,
+                                   const uint32_t *indices, uint32_t triangle_count, int quality,
+                                   rt_embree_dynamic **out, double *ms, rt_error *err);
+
+/* New positions (same count): *ms times rtcUpdateGeometryBuffer,
+ * rtcCommitGeometry and rtcCommitScene (not the copy into Embree's buffer). */
+rt_status rt_embree_dynamic_update(rt_embree_dynamic *d, const float *positions, double *ms,
+                                   rt_error *err);
+void rt_embree_dynamic_destroy(rt_embree_dynamic *d);
+
 #endif /* RT_EMBREE_PEER_H */

@@ -47,6 +47,21 @@ typedef struct rt_backend_layout {
      * mesh BVH was rebuilt (then the mesh part of the layout moved too). */
     uint32_t layout_generation;
     uint32_t mesh_generation;
+    /* When the layout was rewritten in place from generation base_generation
+     * (0: made anew), what changed since: node ranges (the updated meshes'
+     * and the object BVH's) and triangle ranges (the updated meshes'; their
+     * tris and normals entries, and their tri_ids and materials unless the
+     * range says only the vertices moved). Instances, materials,
+     * lights and the header are rewritten every time. A backend holding
+     * generation base_generation may copy only these. */
+    uint32_t base_generation;
+    const rt_flat_range *dirty_nodes;
+    uint32_t dirty_node_ranges;
+    const rt_flat_range *dirty_tris;
+    uint32_t dirty_tri_ranges;
+    /* 1 when, besides, every mesh tree kept its shape (it was refitted, not
+     * rebuilt): structures derived from the mesh trees can be refitted too. */
+    int shapes_kept;
 } rt_backend_layout;
 
 /* One frame's request. pixels is width x height x channels floats of the

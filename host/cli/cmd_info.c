@@ -71,10 +71,29 @@ int cmd_info(int argc, char **argv) {
            (unsigned long long)rt_scene_triangle_count(s), (unsigned long long)all_tris);
     printf("meshes       %u\n", s->mesh_count);
     for (uint32_t i = 0; i < s->mesh_count; i++)
-        printf("  %-24s %u triangles, %u vertices%s\n", s->meshes[i].name,
+        printf("  %-24s %u triangles, %u vertices%s%s%s\n", s->meshes[i].name,
                s->meshes[i].triangle_count, s->meshes[i].vertex_count,
-               s->meshes[i].normals ? ", normals" : "");
+               s->meshes[i].normals ? ", normals" : "",
+               s->meshes[i].update_policy ? ", update " : "",
+               s->meshes[i].update_policy
+                   ? rt_update_policy_name((rt_update_policy)s->meshes[i].update_policy)
+                   : "");
     printf("objects      %u\n", s->object_count);
+    uint32_t keyed = 0, blended = 0, switched = 0;
+    for (uint32_t i = 0; i < s->object_count; i++) {
+        const rt_object_data *o = &s->objects[i];
+        keyed += o->transform_key_count > 0;
+        if (o->keyframe_rate > 0.0f && o->mesh_count > 1) {
+            blended += o->interpolate != 0;
+            switched += o->interpolate == 0;
+        }
+    }
+    if (rt_scene_is_animated(s))
+        printf("animation    keyframes switched on %u objects, blended on %u; transform keys on %u "
+               "objects; camera path of %u keys\n",
+               switched, blended, keyed, s->camera_path_count);
+    else
+        printf("animation    none (the scene stays still)\n");
     printf("materials    %u\n", s->material_count);
     printf("lights       %u\n", s->light_count);
     const rt_camera *c = &s->camera;

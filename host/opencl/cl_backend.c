@@ -412,7 +412,37 @@ static rt_status upload_scene(cl_state *s, const rt_backend_layout *layout, uint
         {B_LIGHTS, f->lights, sizeof(rt_light_d) * f->hdr.light_count, 0},
     };
     rt_status st = RT_OK;
+    /* The layout was rewritten in place from the generation the device holds:
+     * copy only the changed node and triangle ranges, and the per-frame
+     * arrays. Any buffer that must grow makes it a whole upload. */
+    int partial =
+        s->uploaded && layout->base_generation && s->uploaded_generation == layout->base_generation;
+    for (size_t i = 0; partial && i < sizeof arrays / sizeof arrays[0]; i++)
+        partial = arrays[i].bytes <= s->cap[arrays[i].b] || arrays[i].bytes < 16;
+    if (partial) {
+        for (uint32_t r = 0; r < layout->dirty_node_ranges && st == RT_OK; r++) {
+            const rt_flat_range *g = &layout->dirty_nodes[r];
+            st = write_buf(s, B_NODES, sizeof(rt_node) * g->first, f->nodes + g->first,
+                           sizeof(rt_node) * g->count, bytes, err);
+        }
+        for (uint32_t r = 0; r < layout->dirty_tri_ranges && st == RT_OK; r++) {
+            const rt_flat_range *g = &layout->dirty_tris[r];
+            st = write_buf(s, B_TRIS, sizeof(rt_tri) * g->first, f->tris + g->first,
+                           sizeof(rt_tri) * g->count, bytes, err);
+            if (st == RT_OK && !g->moved)
+                st = write_buf(s, B_TRI_IDS, sizeof(uint32_t) * g->first, f->tri_ids + g->first,
+                               sizeof(uint32_t) * g->count, bytes, err);
+            if (st == RT_OK && f->tri_normals)
+                st = write_buf(s, B_NORMALS, 9 * sizeof(float) * g->first,
+                               f->tri_normals + 9 * (size_t)g->first, 9 * sizeof(float) * g->count,
+                               bytes, err);
+            if (st == RT_OK && f->tri_mats && !g->moved)
+                st = write_buf(s, B_TRI_MATS, sizeof(uint32_t) * g->first, f->tri_mats + g->first,
+                               sizeof(uint32_t) * g->count, bytes, err);
+        }
+    }
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0] && st == RT_OK; i++) {
+        if (partial && (arrays[i].mesh || arrays[i].b == B_NODES)) continue;
         int remade;
         st = ensure(s, arrays[i].b, arrays[i].bytes, &remade, err);
         if (st != RT_OK) break;

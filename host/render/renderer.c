@@ -169,5 +169,23 @@ rt_status rt_renderer_layout(rt_renderer *r, rt_scene *scene, rt_backend_layout 
     out->pool = r->pool;
     out->layout_generation = r->accel.layout_generation;
     out->mesh_generation = r->accel.mesh_generation;
+    out->base_generation = r->accel.base_generation;
+    out->dirty_nodes = r->accel.dirty_nodes;
+    out->dirty_node_ranges = r->accel.dirty_node_ranges;
+    out->dirty_tris = r->accel.dirty_tris;
+    out->dirty_tri_ranges = r->accel.dirty_tri_ranges;
+    out->shapes_kept = r->accel.shapes_kept;
+    return RT_OK;
+}
+
+rt_status rt_renderer_update_stats(const rt_renderer *r, rt_update_stats *out) {
+    if (!r || !out) return RT_ERROR_INVALID_ARGUMENT;
+    memset(out, 0, sizeof *out);
+    out->meshes = r->accel.updates;
+    out->mesh_count = r->accel.update_count;
+    out->object_bvh_ms = r->accel.object_bvh_ms;
+    out->layout_ms = r->accel.layout_ms;
+    out->layout_in_place = r->accel.layout_in_place;
+    out->layout_bytes = r->accel.layout_bytes;
     return RT_OK;
 }
