@@ -3,6 +3,7 @@
  * inclusive [tmin, tmax], both faces, and watertightness on a shared edge. */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "check.h"
 #include "rt_shared.h"
@@ -188,6 +189,15 @@ static void offset_any_normal(void) {
                   (double)o[k]);
         CHECK_MSG((o[k] > p[k]) == (n[k] > 0.0f), "axis %d: moved against the normal", k);
     }
+    /* -0 (its bits are INT_MIN) and a NaN with the largest payload: the
+     * bit arithmetic overflowed int (undefined; UBSan stops here). -0 is
+     * near the origin: moved by 2^-16 n. */
+    float edge[3] = {-0.0f, 0.0f, 0.0f};
+    const uint32_t nan_bits = 0x7fffffffu;
+    memcpy(&edge[1], &nan_bits, sizeof nan_bits);
+    const float down[3] = {-1.0f, 1.0f, 0.0f};
+    rt_offset_point(edge, down, 1.0f, o);
+    CHECK(o[0] == -0x1p-16f && isnan(o[1]) && o[2] == 0.0f);
     const float nan_n[3] = {NAN, 0.0f, 0.0f};
     rt_offset_point(p, nan_n, 1.0f, o);
     CHECK(isnan(o[0]) && o[1] == p[1] && o[2] == p[2]);
