@@ -23,10 +23,12 @@ for name in "${names[@]}"; do
     fi
     mkdir -p "$build/fuzz-corpus/$name"
     log="$build/fuzz-logs/$name.log"
-    # -rss_limit_mb: the loaders may allocate what a file asks for (within the
-    # documented limits); 2 GB catches a runaway allocation.
+    # -timeout: an input taking 30 s is a hang (each takes well under a second
+    # unless the machine is starved); -rss_limit_mb: the loaders may allocate
+    # what a file asks for (within the documented limits), 2 GB catches a
+    # runaway allocation.
     # shellcheck disable=SC2086
-    "$fuzzer" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+    "$fuzzer" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 -print_final_stats=1 \
         -dict="$here/$name.dict" -artifact_prefix="$build/fuzz-artifacts/$name-" \
         ${RT_FUZZ_FLAGS:-} "$build/fuzz-corpus/$name" "$here/corpus/$name" > "$log" 2>&1
     status=$?
