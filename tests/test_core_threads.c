@@ -1,6 +1,7 @@
 /* test_core_threads.c - a renderer's frames on several threads after scene
  * edits give the bits of one thread: the cpu and packet backends on 4 (and
- * 7) workers against the cpu backend on 1, frame after frame, while the
+ * 7) workers against the cpu backend on 1, and packet on 5 against cpu on 1
+ * with the flush-to-zero policy, frame after frame, while the
  * scene changes between frames (a queued transform, a keyframe switch,
  * triangles added to a mesh, which rebuilds its BVH on the pool's threads)
  * and rays are traced between renders.
@@ -46,7 +47,17 @@ static void edit(rt_scene *s, int f, uint32_t column, uint32_t grow_mesh) {
 static void check_frames(void) {
     rt_renderer *one = test_renderer("cpu", 1), *cpu4 = test_renderer("cpu", 4),
                 *cpu7 = test_renderer("cpu", 7), *pk4 = test_renderer("packet", 4);
-    if (!one || !cpu4 || !cpu7 || !pk4) return;
+    /* The flush-to-zero policy: its workers switch the FP mode per job. */
+    rt_renderer_options fo = rt_renderer_options_default();
+    fo.denormals = RT_DENORMALS_FLUSH;
+    fo.threads = 1;
+    rt_error err;
+    rt_renderer *one_flush = test_renderer_with(&fo, &err);
+    fo.backend = "packet";
+    fo.threads = 5;
+    rt_renderer *pk5_flush = test_renderer_with(&fo, &err);
+    CHECK_MSG(one_flush && pk5_flush, "flushing renderers: %s", err.message);
+    if (!one || !cpu4 || !cpu7 || !pk4 || !one_flush || !pk5_flush) return;
     rt_scene *s = test_builtin_scene("cornell", W, H);
     if (!s) return;
     /* The column (the object with keyframes) and a new mesh that grows. */
@@ -75,6 +86,15 @@ static void check_frames(void) {
         }
         rt_framebuffer_free(&prev);
         prev = ref;
+        rt_framebuffer flush_one, flush_many;
+        if (render(one_flush, s, &flush_one)) {
+            if (render(pk5_flush, s, &flush_many)) {
+                CHECK_MSG(same(&flush_one, &flush_many),
+                          "frame %d: packet on 5 threads differs from cpu on 1 (flush)", f);
+                rt_framebuffer_free(&flush_many);
+            }
+            rt_framebuffer_free(&flush_one);
+        }
 
         /* Rays between frames, on the same renderers. */
         rt_ray rays[300];

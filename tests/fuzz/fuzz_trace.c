@@ -5,7 +5,8 @@
  * by a transform, spheres, keyframes) plus a finely tessellated bumpy
  * surface about 1500 units from the origin, a copy of it under a rotation,
  * and degenerate and coincident triangles. The input is one flags byte (bit
- * 0: any hit; bits 1-2: the triangle test) and then rays of 8 floats each
+ * 0: any hit; bits 1-2: the triangle test; bit 3: a lane mask; bit 4: the
+ * flush-to-zero denormal policy) and then rays of 8 floats each
  * (org, dir, tmin, tmax: any bit pattern: NaN, infinities, denormals,
  * inverted ranges), at most 128.
  *
@@ -13,7 +14,8 @@
  * - the API: rt_trace_rays on a cpu renderer against packet renderers of
  *   every instruction set the CPU runs (generic, avx2, avx512): the closest
  *   hit's hit, t, u, v, prim and inst in every bit; for any-hit queries,
- *   whether there is a hit. A hit must also lie in [tmin, tmax].
+ *   whether there is a hit. A hit must also lie in [tmin, tmax]. With the
+ *   flush policy, cpu and packet both flush (RT_DENORMALS_FLUSH).
  * - the packet kernel, on the rays as they are (rt_trace_rays turns invalid
  *   rays into misses before a backend sees them; the renderer's own
  *   secondary rays do not pass that filter): packets of 64 lanes, the valid
@@ -35,8 +37,8 @@
 enum { MAX_RAYS = 128, MAX_ISAS = 3 };
 
 static rt_scene *scene;
-static rt_renderer *oracle;
-static rt_renderer *packet[MAX_ISAS];
+static rt_renderer *oracle, *oracle_flush;
+static rt_renderer *packet[MAX_ISAS], *packet_flush[MAX_ISAS];
 static const rt_pk_variant *isa[MAX_ISAS];
 static int isa_count;
 
@@ -107,12 +109,17 @@ static void set_up(void) {
     rt_renderer_options o = rt_renderer_options_default();
     o.threads = 1;
     must(rt_renderer_create(&o, &oracle, &err), "the cpu renderer");
-    o.backend = "packet";
+    o.denormals = RT_DENORMALS_FLUSH;
+    must(rt_renderer_create(&o, &oracle_flush, &err), "the flushing cpu renderer");
     for (int i = 0; rt_pk_isa_name(i) && isa_count < MAX_ISAS; i++) {
         const rt_pk_variant *v = rt_pk_variant_find(rt_pk_isa_name(i));
         if (!v) continue; /* this CPU lacks it */
+        o.backend = "packet";
         o.packet_isa = rt_pk_isa_name(i);
+        o.denormals = RT_DENORMALS_PRESERVE;
         must(rt_renderer_create(&o, &packet[isa_count], &err), "a packet renderer");
+        o.denormals = RT_DENORMALS_FLUSH;
+        must(rt_renderer_create(&o, &packet_flush[isa_count], &err), "a flushing packet renderer");
         isa[isa_count++] = v;
     }
 }
@@ -128,9 +135,10 @@ static int same_bits(float a, float b) {
 }
 
 /* The API level: rt_trace_rays, cpu against packet. */
-static void check_api(const rt_ray *rays, int n, const rt_trace_options *opt) {
+static void check_api(const rt_ray *rays, int n, const rt_trace_options *opt, int flush) {
     rt_hit want[MAX_RAYS], got[MAX_RAYS];
-    must(rt_trace_rays(oracle, scene, rays, (size_t)n, want, opt), "rt_trace_rays (cpu)");
+    must(rt_trace_rays(flush ? oracle_flush : oracle, scene, rays, (size_t)n, want, opt),
+         "rt_trace_rays (cpu)");
     for (int i = 0; i < n; i++)
         if (want[i].hit && !(want[i].t >= rays[i].tmin && want[i].t <= rays[i].tmax)) {
             report("the cpu backend's hit is outside [tmin, tmax]", "cpu", i, &rays[i]);
@@ -138,7 +146,8 @@ static void check_api(const rt_ray *rays, int n, const rt_trace_options *opt) {
             abort();
         }
     for (int k = 0; k < isa_count; k++) {
-        must(rt_trace_rays(packet[k], scene, rays, (size_t)n, got, opt), "rt_trace_rays (packet)");
+        must(rt_trace_rays(flush ? packet_flush[k] : packet[k], scene, rays, (size_t)n, got, opt),
+             "rt_trace_rays (packet)");
         for (int i = 0; i < n; i++) {
             const rt_hit *a = &want[i], *b = &got[i];
             int ok = a->hit == b->hit;
@@ -243,7 +252,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         memcpy(&bits, &rays[0].tmin, sizeof bits);
         valid = ~(uint64_t)(bits * 0x9E3779B97F4A7C15ull) | 1u;
     }
-    check_api(rays, n, &opt);
+    check_api(rays, n, &opt, (flags >> 4) & 1);
     check_kernel(rays, n, opt.any_hit, opt.tri_test, valid);
     return 0;
 }
