@@ -1,15 +1,13 @@
 /* cmd_trace.c - 'rtcl trace': rays from a text file through a scene, one hit
  * line per ray (rt_trace_rays). */
 #include <errno.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/file_read.h"
 #include "cli_util.h"
 #include "commands.h"
-#include "rt_shared.h"
+#include "formats/ray_file.h"
 #include "scene/scene.h"
 
 static const char usage_head[] =
@@ -44,85 +42,6 @@ static void print_usage(FILE *f) {
 }
 
 static const char *const tri_test_names[] = {"watertight", "mt", "pluecker", "badouel"};
-
-/* Reads the rays; on a bad line prints file:line and returns 0. */
-static int read_rays(const char *path, int offset, rt_ray **out, size_t *count) {
-    const int want = offset ? 11 : 8;
-    /* The whole file, a regular one of at most RT_MAX_RAY_FILE_BYTES. */
-    char *text;
-    size_t text_len;
-    rt_error rerr;
-    if (rt_read_file(path, "ray file", RT_MAX_RAY_FILE_BYTES, &text, &text_len, &rerr) != RT_OK) {
-        cli_error("trace", "%s", rerr.message);
-        return 0;
-    }
-    size_t n = 0, cap = 1024;
-    rt_ray *rays = malloc(cap * sizeof *rays);
-    int lineno = 0, ok = rays != NULL;
-    /* Line by line through the text, of any length; a line ends at '\n' or
-     * at the end of the file. The text is NUL-terminated, so strtof stops
-     * at the line's end once no NUL byte is inside the line. */
-    for (size_t at = 0; ok && at < text_len;) {
-        char *p = text + at, *eol = memchr(p, '\n', text_len - at);
-        const size_t line_len = eol ? (size_t)(eol - p) : text_len - at;
-        at += line_len + 1;
-        lineno++;
-        if (memchr(p, '\0', line_len)) {
-            cli_error("trace", "%s:%d: a NUL byte in the line (a binary file?)", path, lineno);
-            ok = 0;
-            break;
-        }
-        char *const end_of_line = p + line_len;
-        while (*p == ' ' || *p == '\t') p++;
-        if (p == end_of_line || *p == '#' || *p == '\r') continue;
-        float v[11];
-        int got = 0;
-        while (got < want + 1) {
-            char *end;
-            errno = 0;
-            float x = strtof(p, &end);
-            if (end == p || end > end_of_line) break;
-            if (got < want) v[got] = x;
-            got++;
-            p = end;
-        }
-        while (p < end_of_line && (*p == ' ' || *p == '\t' || *p == '\r')) p++;
-        if (got != want || p < end_of_line) {
-            const int rest = p < end_of_line ? (int)(end_of_line - p) : 0;
-            cli_error("trace", "%s:%d: expected %d numbers 'ox oy oz dx dy dz tmin tmax%s'%s%.*s%s",
-                      path, lineno, want, offset ? " nx ny nz" : "", rest ? ", found: " : "",
-                      rest > 40 ? 40 : rest, p, rest > 40 ? "..." : "");
-            ok = 0;
-            break;
-        }
-        if (n == cap) {
-            rt_ray *r = realloc(rays, 2 * cap * sizeof *rays);
-            if (!r) {
-                ok = 0;
-                break;
-            }
-            rays = r;
-            cap *= 2;
-        }
-        rt_ray *r = &rays[n++];
-        memcpy(r->org, v, sizeof r->org);
-        memcpy(r->dir, v + 3, sizeof r->dir);
-        r->tmin = v[6];
-        r->tmax = v[7];
-        if (offset) { /* off the surface, on the side the ray leaves to */
-            float d = rt_dot3(v + 8, r->dir);
-            rt_offset_point(v, v + 8, d >= 0.0f ? 1.0f : -1.0f, r->org);
-        }
-    }
-    free(text);
-    if (!ok) {
-        free(rays);
-        return 0;
-    }
-    *out = rays;
-    *count = n;
-    return 1;
-}
 
 int cmd_trace(int argc, char **argv) {
     const char *scene_path = NULL, *rays_path = NULL, *out_path = NULL;
@@ -179,7 +98,9 @@ int cmd_trace(int argc, char **argv) {
     if (!renderer) return 2;
     rt_ray *rays = NULL;
     size_t n = 0;
-    if (!read_rays(rays_path, offset, &rays, &n)) {
+    rt_error rerr;
+    if (rt_rays_load(rays_path, offset, &rays, &n, &rerr) != RT_OK) {
+        cli_error("trace", "%s", rerr.message);
         rt_renderer_destroy(renderer);
         return 2;
     }
