@@ -56,7 +56,8 @@ static int parse_aov(const char *name, rt_aov *out) {
 
 static int is_float_format(const char *path) {
     size_t n = strlen(path);
-    return n >= 4 && strcasecmp(path + n - 4, ".exr") == 0;
+    return n >= 4 &&
+           (strcasecmp(path + n - 4, ".exr") == 0 || strcasecmp(path + n - 4, ".pfm") == 0);
 }
 
 /* An id as a colour that tells neighbours apart; black for -1 (a miss). */
