@@ -24,6 +24,7 @@ typedef struct render_row {
 typedef struct bench_render_setup {
     int reps, threads, width, height;
     void (*progress)(const char *scene, const char *what);
+    int verbose; /* print the OpenCL build log on stderr after the warm-up frame */
 } bench_render_setup;
 
 /* Renders the scene at setup->width x height with direct_only (primary plus

@@ -94,6 +94,9 @@ const char cli_renderer_usage[] =
     "                 oracle, and --stats says so (the speed-versus-error study)\n"
     "  --packet-isa I the packet backend's instruction set: generic, avx2, avx512\n"
     "                 (x86-64) [the widest the CPU runs]; all give the same bits\n"
+    "  --verbose      print the OpenCL compiler's messages (build log, and what the\n"
+    "                 driver printed while building) on stderr; without it they are\n"
+    "                 shown only when the kernels fail to build\n"
     "For tests and comparisons (every choice gives the same bits):\n"
     "  --cl-one-ray   OpenCL: one ray per work-item on CPU devices too\n"
     "  --cl-packet-lanes N\n"
@@ -125,6 +128,8 @@ int cli_renderer_arg(int argc, char **argv, int *i, const char *command, cli_ren
         if (!(a->opt.device_options = cli_value(argc, argv, i, command))) return -1;
     } else if (!strcmp(o, "--packet-isa")) {
         if (!(a->opt.packet_isa = cli_value(argc, argv, i, command))) return -1;
+    } else if (!strcmp(o, "--verbose")) {
+        a->verbose = 1;
     } else if (!strcmp(o, "--cl-one-ray")) {
         a->opt.opencl.one_ray_kernels = 1;
     } else if (!strcmp(o, "--cl-no-wavefront")) {
@@ -167,4 +172,11 @@ rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a) {
         return NULL;
     }
     return r;
+}
+
+void cli_print_build_log(const char *command, const rt_renderer *renderer) {
+    const char *log = rt_renderer_build_log(renderer);
+    if (log[0])
+        fprintf(stderr, "rtcl %s: %s build log:\n%s\n", command, rt_renderer_backend(renderer),
+                log);
 }

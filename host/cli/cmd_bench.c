@@ -38,6 +38,7 @@ typedef struct row {
 
 typedef struct bench_args {
     int json, reps, threads, progress, render, width, height;
+    int verbose; /* --verbose: the OpenCL build log on stderr */
 } bench_args;
 
 static int cmp_double(const void *a, const void *b) {
@@ -53,7 +54,7 @@ static void summarize(row *r, double *times, int n) {
 
 static void usage(FILE *f) {
     fprintf(f, "usage: rtcl bench SCENE... [--json] [--reps N] [--threads N] [--no-render]\n"
-               "                 [--width W] [--height H]\n"
+               "                 [--width W] [--height H] [--verbose]\n"
                "\n"
                "Build: one BVH over all triangles of each scene with every builder\n"
                "(thesis-scalar, thesis-neon, thesis-mt, fast, and embree when available):\n"
@@ -76,7 +77,8 @@ static void usage(FILE *f) {
                "               (default: all cores; PoCL uses its own pool of all cores)\n"
                "  --no-render  build only\n"
                "  --width W, --height H\n"
-               "               render resolution [1024x576, the thesis's]\n");
+               "               render resolution [1024x576, the thesis's]\n"
+               "  --verbose    print the OpenCL compiler's messages (build log) on stderr\n");
 }
 
 /* The triangles of every mesh: boxes, and positions/indices for Embree. */
@@ -426,8 +428,9 @@ static int bench_scene(const char *path, const bench_args *a, rt_pool *pool) {
     int n_render = 0;
     char why[300] = "";
     if (a->render) {
-        bench_render_setup su = {a->reps, a->threads, a->width, a->height,
-                                 a->progress ? render_progress : NULL};
+        bench_render_setup su = {
+            a->reps,   a->threads, a->width, a->height, a->progress ? render_progress : NULL,
+            a->verbose};
         n_render = bench_render(path, &su, rrows, why, sizeof why);
     }
     if (a->progress) fprintf(stderr, "\r\033[K");
@@ -456,7 +459,7 @@ static int parse_int(const char *s, int lo, int hi, int *out) {
 }
 
 int cmd_bench(int argc, char **argv) {
-    bench_args a = {0, 5, 0, isatty(2), 1, 1024, 576};
+    bench_args a = {0, 5, 0, isatty(2), 1, 1024, 576, 0};
     const char **scenes = calloc((size_t)argc, sizeof *scenes);
     int n_scenes = 0;
     if (!scenes) return 2;
@@ -470,6 +473,8 @@ int cmd_bench(int argc, char **argv) {
             a.json = 1;
         } else if (!strcmp(s, "--no-render")) {
             a.render = 0;
+        } else if (!strcmp(s, "--verbose")) {
+            a.verbose = 1;
         } else if (!strcmp(s, "--reps") || !strcmp(s, "--threads") || !strcmp(s, "--width") ||
                    !strcmp(s, "--height")) {
             int *dst = s[2] == 'r'   ? &a.reps

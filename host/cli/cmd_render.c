@@ -12,7 +12,7 @@
 static const char usage_head[] =
     "usage: rtcl render SCENE [-o FILE] [--backend B] [--device D] [--width W] [--height H]\n"
     "                   [--aov AOV] [--threads N] [--frames N] [--direct]\n"
-    "                   [--cl-options OPTS] [--packet-isa I] [--stats] [--help]\n"
+    "                   [--cl-options OPTS] [--packet-isa I] [--stats] [--verbose] [--help]\n"
     "\n"
     "Renders SCENE (a .json scene, a bare .obj, or builtin:NAME) with Whitted-style\n"
     "shading (Phong, shadow rays, reflection, refraction). Options may come before or\n"
@@ -230,6 +230,7 @@ int cmd_render(int argc, char **argv) {
     memset(&fb, 0, sizeof fb);
     rt_status status = rt_render(renderer, scene, &opt, &fb);
     cli_progress_done();
+    if (ra.verbose && status == RT_OK) cli_print_build_log("render", renderer);
     if (status != RT_OK) {
         cli_error("render", "%s", rt_renderer_error(renderer));
         rt_scene_destroy(scene);
