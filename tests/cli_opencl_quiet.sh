@@ -32,7 +32,7 @@ printf '0.2 0.5 3 0 0 -1 0 inf\n-0.3 0.4 3 0.1 0 -1 0 inf\n' >"$tmp/rays.txt"
 quiet "render" "$RTCL" render builtin:cornell --backend opencl --width 48 --height 32 -o "$tmp/a.ppm"
 quiet "one-ray" "$RTCL" render builtin:keyframes --backend opencl --cl-one-ray --width 48 \
     --height 32 -o "$tmp/a.ppm"
-quiet "trace" "$RTCL" trace "$RT_SOURCE_DIR/scenes/cornell.json" --backend opencl \
+quiet "trace" "$RTCL" trace builtin:cornell --backend opencl \
     --rays "$tmp/rays.txt" --out "$tmp/hits.txt"
 [ -n "$(ls -A "$POCL_CACHE_DIR")" ] || echo "note: PoCL wrote no kernel cache (another driver?)"
 
