@@ -28,6 +28,7 @@ quiet() {
 }
 
 printf '0.2 0.5 3 0 0 -1 0 inf\n-0.3 0.4 3 0.1 0 -1 0 inf\n' >"$tmp/rays.txt"
+quiet "devices" "$RTCL" devices
 # The packet kernels (CPU devices), the one-ray and wavefront kernels, ray queries.
 quiet "render" "$RTCL" render builtin:cornell --backend opencl --width 48 --height 32 -o "$tmp/a.ppm"
 quiet "one-ray" "$RTCL" render builtin:keyframes --backend opencl --cl-one-ray --width 48 \
