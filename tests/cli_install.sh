@@ -80,4 +80,11 @@ if [ $has_module = 1 ]; then
     expect 0 'wrote' -- "$prefix/bin/rtcl" render builtin:cornell --width 32 --height 24 -o "$tmp/x.png"
 fi
 expect 0 'wrote' -- "$prefix/bin/rtcl" render builtin:cornell --width 32 --height 24 -o "$tmp/x.ppm"
+# Without the module a PNG is refused with the reason (unless the configured
+# prefix holds an install of its own, which the library would find).
+configured=$(sed -n 's/^CMAKE_INSTALL_PREFIX:PATH=//p' "$build/CMakeCache.txt")
+rm -f "$libdir/librtcl_image.so"
+ls "$configured"/lib*/librtcl_image.so "$configured"/lib/*/librtcl_image.so >/dev/null 2>&1 ||
+    expect 2 'cannot write PNG: .*(image module librtcl_image.so .*not found|no PNG or EXR support)' -- \
+    "$prefix/bin/rtcl" render builtin:cornell --width 32 --height 24 -o "$tmp/y.png"
 finish

@@ -42,7 +42,7 @@ static int try_module(const char *path, int must_exist) {
     if (!handle) {
         if (!must_exist) return 0; /* by bare name: not found is not an error */
         const char *why = dlerror();
-        snprintf(module_reason, sizeof module_reason, "%s does not load: %s", path,
+        snprintf(module_reason, sizeof module_reason, "%.400s does not load: %.300s", path,
                  why ? why : "no reason given");
         module_status = RT_ERROR_UNSUPPORTED;
         return -1;
@@ -54,7 +54,7 @@ static int try_module(const char *path, int must_exist) {
     if (!table || table->abi != RT_IMAGE_MODULE_ABI || table->image_size != sizeof(rt_image) ||
         table->error_size != sizeof(rt_error) || !table->read || !table->write) {
         snprintf(module_reason, sizeof module_reason,
-                 "%s is not this version's image module (interface %d, expected %d): "
+                 "%.500s is not this version's image module (interface %d, expected %d): "
                  "reinstall rtcl",
                  path, table ? table->abi : 0, RT_IMAGE_MODULE_ABI);
         dlclose(handle);
@@ -90,7 +90,7 @@ static void load_module(void) {
     if (try_module(path, 1)) return;
 #endif
     snprintf(module_reason, sizeof module_reason,
-             "the image module " RT_IMAGE_MODULE_FILE " (OpenImageIO) was not found beside %s"
+             "the image module " RT_IMAGE_MODULE_FILE " (OpenImageIO) was not found beside %.300s"
 #ifdef RT_IMAGE_MODULE_INSTALL_DIR
              " nor in " RT_IMAGE_MODULE_INSTALL_DIR
 #endif
