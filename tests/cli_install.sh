@@ -6,6 +6,7 @@
 # Embree or TBB; the installed rtcl writes a PNG through the installed module.
 source "$RT_SOURCE_DIR/tests/shell_check.sh"
 build=${RT_BINARY_DIR:?}
+unset LD_LIBRARY_PATH # the installed programs find the installed module, not the build's
 prefix="$tmp/prefix"
 # A sanitizer build's library needs the sanitizer runtime loaded first in
 # the user's program; the example is an ordinary program.
