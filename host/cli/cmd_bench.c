@@ -39,7 +39,7 @@ typedef struct row {
 typedef struct bench_args {
     int json, reps, threads, progress, render, width, height;
     int device_math, denormals; /* rt_device_math, rt_denormals */
-    int verbose; /* --verbose: the OpenCL build log on stderr */
+    int verbose;                /* --verbose: the OpenCL build log on stderr */
 } bench_args;
 
 static int cmp_double(const void *a, const void *b) {
@@ -472,7 +472,8 @@ static int parse_int(const char *s, int lo, int hi, int *out) {
 }
 
 int cmd_bench(int argc, char **argv) {
-    bench_args a = {0, 5, 0, isatty(2), 1, 1024, 576, RT_DEVICE_MATH_AUTO, RT_DENORMALS_PRESERVE, 0};
+    bench_args a = {0, 5, 0, isatty(2), 1, 1024, 576, RT_DEVICE_MATH_AUTO, RT_DENORMALS_PRESERVE,
+                    0};
     const char **scenes = calloc((size_t)argc, sizeof *scenes);
     int n_scenes = 0;
     if (!scenes) return 2;
