@@ -139,8 +139,8 @@ static void cpu_destroy(void *state) {
     (void)state;
 }
 
-const rt_backend_ops rt_backend_cpu = {"cpu",      always_available, cpu_create, cpu_prepare,
-                                       cpu_render, cpu_trace,        cpu_destroy};
+const rt_backend_ops rt_backend_cpu = {"cpu",      always_available, cpu_create,  cpu_prepare,
+                                       cpu_render, cpu_trace,        cpu_destroy, NULL};
 
 /* ---- packet: ray packets through wide BVHs ------------------------------ */
 
@@ -229,6 +229,6 @@ static void packet_destroy(void *state) {
     free(s);
 }
 
-const rt_backend_ops rt_backend_packet = {"packet",       always_available, packet_create,
-                                          packet_prepare, packet_render,    packet_trace,
-                                          packet_destroy};
+const rt_backend_ops rt_backend_packet = {
+    "packet",      always_available, packet_create,  packet_prepare,
+    packet_render, packet_trace,     packet_destroy, NULL};

@@ -291,6 +291,14 @@ rt_status rt_renderer_set_backend(rt_renderer *renderer, const char *backend);
 /* The backend that renders now ("cpu", "packet", "opencl"). */
 const char *rt_renderer_backend(const rt_renderer *renderer);
 
+/* The device compiler's messages from the current backend's last kernel
+ * build: the build log, then anything the driver printed on stderr during
+ * the build (the library captures that rather than let it reach the
+ * terminal). "" when there was none or the backend compiles nothing. Valid
+ * until the next call on the renderer. For callers that show it on request
+ * (rtcl --verbose); a failed build's error message includes it already. */
+const char *rt_renderer_build_log(const rt_renderer *renderer);
+
 /* Ray/triangle tests (rt_render_options.tri_test). Watertight is the default;
  * the others exist for the speed-versus-error study (docs/ROBUSTNESS.md). */
 typedef enum rt_triangle_test {

@@ -95,6 +95,10 @@ typedef struct rt_backend_ops {
     rt_status (*trace)(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
                        size_t count, rt_hit_d *hits, int any_hit, rt_error *err);
     void (*destroy)(void *state);
+    /* The device compiler's messages of the last program build: its log, then
+     * what the driver printed on stderr meanwhile (the library keeps that off
+     * the terminal); "" when none. NULL for backends that compile nothing. */
+    const char *(*build_log)(void *state);
 } rt_backend_ops;
 
 #endif /* RT_BACKEND_H */

@@ -26,6 +26,7 @@ typedef struct bench_render_setup {
     int device_math; /* rt_device_math of the "opencl" row */
     int denormals;   /* rt_denormals of every row */
     void (*progress)(const char *scene, const char *what);
+    int verbose; /* print the OpenCL build log on stderr after the warm-up frame */
 } bench_render_setup;
 
 /* Renders the scene at setup->width x height with direct_only (primary plus

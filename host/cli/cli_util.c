@@ -96,6 +96,9 @@ const char cli_renderer_usage[] =
     "                 oracle, and --stats says so (the speed-versus-error study)\n"
     "  --packet-isa I the packet backend's instruction set: generic, avx2, avx512\n"
     "                 (x86-64) [the widest the CPU runs]; all give the same bits\n"
+    "  --verbose      print the OpenCL compiler's messages (build log, and what the\n"
+    "                 driver printed while building) on stderr; without it they are\n"
+    "                 shown only when the kernels fail to build\n"
     "  --device-math M\n"
     "                 device backends' divide and sqrt: native (the device's, correctly\n"
     "                 rounded where it promises it), portable (software, from integer\n"
@@ -136,6 +139,8 @@ int cli_renderer_arg(int argc, char **argv, int *i, const char *command, cli_ren
         if (!(a->opt.device_options = cli_value(argc, argv, i, command))) return -1;
     } else if (!strcmp(o, "--packet-isa")) {
         if (!(a->opt.packet_isa = cli_value(argc, argv, i, command))) return -1;
+    } else if (!strcmp(o, "--verbose")) {
+        a->verbose = 1;
     } else if (!strcmp(o, "--device-math")) {
         if (!(v = cli_value(argc, argv, i, command))) return -1;
         if (!strcmp(v, "auto"))
@@ -201,4 +206,11 @@ rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a) {
         return NULL;
     }
     return r;
+}
+
+void cli_print_build_log(const char *command, const rt_renderer *renderer) {
+    const char *log = rt_renderer_build_log(renderer);
+    if (log[0])
+        fprintf(stderr, "rtcl %s: %s build log:\n%s\n", command, rt_renderer_backend(renderer),
+                log);
 }

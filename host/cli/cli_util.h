@@ -41,6 +41,7 @@ typedef struct cli_renderer_args {
     rt_renderer_options opt;
     const char *backend; /* --backend [cpu] */
     const char *device;  /* --device, or NULL */
+    int verbose;         /* --verbose: the device compiler's messages on stderr */
     char spec[256];      /* backend[:device], made by cli_renderer_create */
 } cli_renderer_args;
 
@@ -56,5 +57,10 @@ int cli_renderer_arg(int argc, char **argv, int *i, const char *command, cli_ren
 /* Creates the renderer the options ask for; prints the error and returns
  * NULL when it cannot. */
 rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a);
+
+/* Prints the renderer's last kernel build messages (rt_renderer_build_log)
+ * on stderr, "rtcl COMMAND: opencl build log:" and the lines, if there are
+ * any. For --verbose; a failed build's error carries them already. */
+void cli_print_build_log(const char *command, const rt_renderer *renderer);
 
 #endif /* RTCL_CLI_UTIL_H */

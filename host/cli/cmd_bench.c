@@ -39,6 +39,7 @@ typedef struct row {
 typedef struct bench_args {
     int json, reps, threads, progress, render, width, height;
     int device_math, denormals; /* rt_device_math, rt_denormals */
+    int verbose;                /* --verbose: the OpenCL build log on stderr */
 } bench_args;
 
 static int cmp_double(const void *a, const void *b) {
@@ -55,6 +56,7 @@ static void summarize(row *r, double *times, int n) {
 static void usage(FILE *f) {
     fprintf(f, "usage: rtcl bench SCENE... [--json] [--reps N] [--threads N] [--no-render]\n"
                "                 [--width W] [--height H] [--device-math M] [--denormals P]\n"
+               "                 [--verbose]\n"
                "\n"
                "Build: one BVH over all triangles of each scene with every builder\n"
                "(thesis-scalar, thesis-neon, thesis-mt, fast, and embree when available):\n"
@@ -84,7 +86,8 @@ static void usage(FILE *f) {
                "  --denormals P\n"
                "               preserve or flush, for every row [preserve]\n"
                "  --width W, --height H\n"
-               "               render resolution [1024x576, the thesis's]\n");
+               "               render resolution [1024x576, the thesis's]\n"
+               "  --verbose    print the OpenCL compiler's messages (build log) on stderr\n");
 }
 
 /* The triangles of every mesh: boxes, and positions/indices for Embree. */
@@ -440,7 +443,8 @@ static int bench_scene(const char *path, const bench_args *a, rt_pool *pool) {
                                  a->height,
                                  a->device_math,
                                  a->denormals,
-                                 a->progress ? render_progress : NULL};
+                                 a->progress ? render_progress : NULL,
+                                 a->verbose};
         n_render = bench_render(path, &su, rrows, why, sizeof why);
     }
     if (a->progress) fprintf(stderr, "\r\033[K");
@@ -469,7 +473,8 @@ static int parse_int(const char *s, int lo, int hi, int *out) {
 }
 
 int cmd_bench(int argc, char **argv) {
-    bench_args a = {0, 5, 0, isatty(2), 1, 1024, 576, RT_DEVICE_MATH_AUTO, RT_DENORMALS_PRESERVE};
+    bench_args a = {0, 5, 0, isatty(2), 1, 1024, 576, RT_DEVICE_MATH_AUTO, RT_DENORMALS_PRESERVE,
+                    0};
     const char **scenes = calloc((size_t)argc, sizeof *scenes);
     int n_scenes = 0;
     if (!scenes) return 2;
@@ -483,6 +488,8 @@ int cmd_bench(int argc, char **argv) {
             a.json = 1;
         } else if (!strcmp(s, "--no-render")) {
             a.render = 0;
+        } else if (!strcmp(s, "--verbose")) {
+            a.verbose = 1;
         } else if (!strcmp(s, "--device-math") || !strcmp(s, "--denormals")) {
             const char *v = i + 1 < argc ? argv[++i] : "";
             int math = !strcmp(s, "--device-math");

@@ -14,7 +14,7 @@ static const char usage_head[] =
     "usage: rtcl render SCENE [-o FILE] [--backend B] [--device D] [--width W] [--height H]\n"
     "                   [--aov AOV] [--threads N] [--frames N] [--direct] [--time T]\n"
     "                   [--update P]\n"
-    "                   [--cl-options OPTS] [--packet-isa I] [--stats] [--help]\n"
+    "                   [--cl-options OPTS] [--packet-isa I] [--stats] [--verbose] [--help]\n"
     "\n"
     "Renders SCENE (a .json scene, a bare .obj, or builtin:NAME) with Whitted-style\n"
     "shading (Phong, shadow rays, reflection, refraction). Options may come before or\n"
@@ -64,7 +64,8 @@ static int parse_aov(const char *name, rt_aov *out) {
 
 static int is_float_format(const char *path) {
     size_t n = strlen(path);
-    return n >= 4 && strcasecmp(path + n - 4, ".exr") == 0;
+    return n >= 4 &&
+           (strcasecmp(path + n - 4, ".exr") == 0 || strcasecmp(path + n - 4, ".pfm") == 0);
 }
 
 /* An id as a colour that tells neighbours apart; black for -1 (a miss). */
@@ -257,6 +258,7 @@ int cmd_render(int argc, char **argv) {
     memset(&fb, 0, sizeof fb);
     rt_status status = rt_render(renderer, scene, &opt, &fb);
     cli_progress_done();
+    if (ra.verbose && status == RT_OK) cli_print_build_log("render", renderer);
     if (status != RT_OK) {
         cli_error("render", "%s", rt_renderer_error(renderer));
         rt_scene_destroy(scene);

@@ -13,7 +13,7 @@
 static const char usage_head[] =
     "usage: rtcl trace SCENE --rays RAYS.txt --out HITS.txt [--backend B] [--device D]\n"
     "                  [--tri-test T] [--any-hit] [--offset-origins] [--threads N]\n"
-    "                  [--cl-options OPTS] [--packet-isa I] [--help]\n"
+    "                  [--cl-options OPTS] [--packet-isa I] [--verbose] [--help]\n"
     "\n"
     "Traces the rays of RAYS.txt through SCENE (a .json scene, a bare .obj, or\n"
     "builtin:NAME) and writes one line per ray to HITS.txt.\n"
@@ -115,6 +115,7 @@ int cmd_trace(int argc, char **argv) {
     rt_hit *hits = malloc((n ? n : 1) * sizeof *hits);
     rt_status st =
         hits ? rt_trace_rays(renderer, scene, rays, n, hits, &opt) : RT_ERROR_OUT_OF_MEMORY;
+    if (ra.verbose && st == RT_OK) cli_print_build_log("trace", renderer);
     if (st != RT_OK) {
         cli_error("trace", "%s", hits ? rt_renderer_error(renderer) : "out of memory");
         free(rays);

@@ -28,6 +28,12 @@ const char *rt_renderer_backend(const rt_renderer *r) {
     return r ? r->slots[r->current].ops->name : "";
 }
 
+const char *rt_renderer_build_log(const rt_renderer *r) {
+    if (!r || r->slot_count == 0) return "";
+    const rt_backend_slot *slot = &r->slots[r->current];
+    return slot->ops->build_log ? slot->ops->build_log(slot->state) : "";
+}
+
 /* The slot for a backend spec: the one made before for it, or a new one.
  * On failure the renderer is unchanged. */
 static rt_status find_slot(rt_renderer *r, const rt_backend_ops *ops, const char *spec,

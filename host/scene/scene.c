@@ -534,6 +534,8 @@ uint64_t rt_scene_triangle_count(const rt_scene *scene) {
     return n;
 }
 
+static int is_identity(const float m[16]);
+
 static void transform_point(const float m[16], const float p[3], float out[3]) {
     for (int r = 0; r < 3; r++)
         out[r] = m[r * 4 + 0] * p[0] + m[r * 4 + 1] * p[1] + m[r * 4 + 2] * p[2] + m[r * 4 + 3];
@@ -547,10 +549,18 @@ int rt_scene_bounds(const rt_scene *scene, float bmin[3], float bmax[3]) {
         if (!o->mesh_count) continue;
         const rt_mesh_data *m = &scene->meshes[rt_object_shown_mesh(o)];
         /* Only vertices that triangles use count: unused ones would move the
-         * default camera away from the model. */
+         * default camera away from the model. With the identity (most objects,
+         * every bare OBJ) transform_point's sums are x + (+-0) ... + 0: x itself,
+         * and +0 for either zero; x + 0.0f is that same float (positions are
+         * finite), without the twelve products per vertex. */
+        const int identity = is_identity(o->transform);
         for (uint64_t t = 0; t < 3 * (uint64_t)m->triangle_count; t++) {
             float p[3];
-            transform_point(o->transform, m->positions + 3 * (size_t)m->indices[t], p);
+            const float *v = m->positions + 3 * (size_t)m->indices[t];
+            if (identity)
+                for (int k = 0; k < 3; k++) p[k] = v[k] + 0.0f;
+            else
+                transform_point(o->transform, v, p);
             for (int k = 0; k < 3; k++) {
                 if (p[k] < bmin[k]) bmin[k] = p[k];
                 if (p[k] > bmax[k]) bmax[k] = p[k];
