@@ -865,5 +865,5 @@ rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size
     return named(err, st);
 }
 
-const rt_backend_ops rt_backend_vulkan = {"vulkan",  vk_available, vk_create, vk_prepare,
-                                          vk_render, vk_trace,     vk_destroy};
+const rt_backend_ops rt_backend_vulkan = {"vulkan",  vk_available, vk_create,  vk_prepare,
+                                          vk_render, vk_trace,     vk_destroy, NULL};
