@@ -136,12 +136,12 @@ typedef struct sw_ctx {
     uint64_t box_tests, tri_tests;
 } sw_ctx;
 
-/* The ray as the box test reads it: org and inv in every lane, the word
+/* The ray as the box test reads it: org and inv in every lane, the byte
  * offsets of each axis's near and far planes in a node (rt_box_test's a and
  * b: bmax first where inv < 0), and rt_box_lo(tmin). */
 typedef struct sw_ray {
     vf org[3], inv[3];
-    int near[3], far[3];
+    size_t near[3], far[3];
     float lo;
 } sw_ray;
 
@@ -149,31 +149,46 @@ static inline void sw_ray_setup(const rt_ray_d *r, const rt_ray_pre *p, sw_ray *
     for (int k = 0; k < 3; k++) {
         rv->org[k] = splat(r->org[k]);
         rv->inv[k] = splat(p->inv[k]);
-        rv->near[k] = (p->sign[k] ? 3 + k : k) * W;
-        rv->far[k] = (p->sign[k] ? k : 3 + k) * W;
+        rv->near[k] = (size_t)(p->sign[k] ? 3 + k : k) * W * 4;
+        rv->far[k] = (size_t)(p->sign[k] ? k : 3 + k) * W * 4;
     }
     rv->lo = rt_box_lo(r->tmin);
 }
 
 /* rt_box_test on every child of node n against [rv->lo, hi]: bit c set when
- * child c exists and passes; tnear gets each lane's entry distance. */
+ * child c exists and passes; tnear gets each lane's entry distance.
+ *
+ * The oracle folds the axes in one after the other, lo = (t0 > lo ? t0 :
+ * lo) from rt_box_lo(tmin) and hi = (t1 < hi ? t1 : hi) from inf; here each
+ * axis is folded into the start value first, then the three are folded
+ * together, which shortens the chain of dependent instructions. Either way
+ * a NaN t0 or t1 is skipped (each fold keeps the start value, never NaN
+ * unless the start value is NaN, which then stays NaN either way) and the
+ * result is the greatest (least) of the rest: the same number, up to the
+ * sign of a zero, which no comparison below can tell. */
 static inline uint32_t node_test(const uint32_t *n, const sw_ray *rv, float hi, vf *tnear,
                                  uint32_t *real) {
-    vf lo = splat(rv->lo), h = splat(RT_INF);
+    const char *base = (const char *)n;
+    const vf lo0 = splat(rv->lo), inf = splat(RT_INF);
+    vf lo[3], h[3];
     for (int k = 0; k < 3; k++) {
-        const vf a = ld(n + rv->near[k]), b = ld(n + rv->far[k]);
+        vf a, b;
+        memcpy(&a, base + rv->near[k], sizeof a);
+        memcpy(&b, base + rv->far[k], sizeof b);
         const vf t0 = (a - rv->org[k]) * rv->inv[k];
         const vf t1 = (b - rv->org[k]) * rv->inv[k];
-        lo = vmax_of(t0, lo);
-        h = vmin_of(t1, h);
+        lo[k] = vmax_of(t0, lo0);
+        h[k] = vmin_of(t1, inf);
     }
-    h = h * sel(h < splat(0.0f), splat(RT_BOX_FAR_SCALE_NEG), splat(RT_BOX_FAR_SCALE));
-    h = vmin_of(splat(hi), h);
-    *tnear = lo;
+    const vf l = vmax_of(lo[0], vmax_of(lo[1], lo[2]));
+    vf hh = vmin_of(h[0], vmin_of(h[1], h[2]));
+    hh = hh * sel(hh < splat(0.0f), splat(RT_BOX_FAR_SCALE_NEG), splat(RT_BOX_FAR_SCALE));
+    hh = vmin_of(splat(hi), hh);
+    *tnear = l;
     /* A NaN lane passes the oracle's test as it passes this one; an empty
      * slot must still never be entered. */
     *real = bits(ldi(n + 6 * W) != splat_i(-1));
-    return bits(lo <= h) & *real;
+    return bits(l <= hh) & *real;
 }
 
 /* Records a hit as rt_leaf_test accepts it: returns 1 when the ray is an
@@ -263,6 +278,23 @@ static int leaf_test(sw_ctx *x, rt_u32 first, rt_u32 count, rt_u32 inst, const r
     return 0;
 }
 
+/* Starts loading child s's node, or the first block of its leaf (not in
+ * the object BVH, whose leaves hold instances). */
+static inline void prefetch(const sw_ctx *x, const uint32_t *child, const uint32_t *info, int s,
+                            int top) {
+    const char *p;
+    int bytes = 4 * NODE_WORDS;
+    if (!(info[s] & RT_NODE_LEAF_FLAG)) {
+        p = (const char *)(x->nodes + (size_t)NODE_WORDS * child[s]);
+    } else if (!top) {
+        p = (const char *)(x->blocks + (size_t)BLOCK_WORDS * child[s]);
+        bytes = 4 * BLOCK_WORDS;
+    } else {
+        return;
+    }
+    for (int off = 0; off < bytes; off += 64) __builtin_prefetch(p + off);
+}
+
 typedef struct item {
     rt_u32 ref, info;
     float tnear;
@@ -307,28 +339,49 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
             x->box_tests += low_run(real);
             if (m) {
                 const uint32_t *child = n + 6 * W, *info = n + 7 * W;
+                /* Every entered child's lines are fetched now, while the
+                 * nearest is traversed (the others are probably next). */
+                for (uint32_t f = m; f; f &= f - 1) prefetch(x, child, info, lowest_bit(f), top);
                 int s0 = lowest_bit(m);
                 m &= m - 1;
                 if (!m) { /* one child: on with it */
                     cur = (item){child[s0], info[s0], tn[s0]};
                     continue;
                 }
+                float d[W];
+                memcpy(d, &tn, sizeof d);
+                const int s1 = lowest_bit(m);
+                m &= m - 1;
+                if (!m) { /* two: the nearer first (any-hit rays: in slot order) */
+                    const int near = x->any_hit || !(d[s1] < d[s0]) ? s0 : s1;
+                    const int far = near == s0 ? s1 : s0;
+                    stack[sp++] = (item){child[far], info[far], d[far]};
+                    cur = (item){child[near], info[near], d[near]};
+                    continue;
+                }
                 if (x->any_hit) { /* any order will do: slot order */
-                    for (uint32_t rest = m; rest; rest &= rest - 1) {
-                        const int s = lowest_bit(rest);
-                        stack[sp++] = (item){child[s], info[s], tn[s]};
+                    stack[sp++] = (item){child[s1], info[s1], d[s1]};
+                    for (; m; m &= m - 1) {
+                        const int s = lowest_bit(m);
+                        stack[sp++] = (item){child[s], info[s], d[s]};
                     }
-                    cur = (item){child[s0], info[s0], tn[s0]};
+                    cur = (item){child[s0], info[s0], d[s0]};
                     continue;
                 }
                 /* Nearest first: sort the entered children by entry
                  * distance, push all but the nearest, farthest first. */
                 item hit[W];
-                int h = 1;
-                hit[0] = (item){child[s0], info[s0], tn[s0]};
+                int h = 2;
+                if (d[s1] < d[s0]) {
+                    hit[0] = (item){child[s1], info[s1], d[s1]};
+                    hit[1] = (item){child[s0], info[s0], d[s0]};
+                } else {
+                    hit[0] = (item){child[s0], info[s0], d[s0]};
+                    hit[1] = (item){child[s1], info[s1], d[s1]};
+                }
                 for (; m; m &= m - 1) {
                     const int s = lowest_bit(m);
-                    const item it = {child[s], info[s], tn[s]};
+                    const item it = {child[s], info[s], d[s]};
                     int i = h++;
                     while (i > 0 && hit[i - 1].tnear > it.tnear) {
                         hit[i] = hit[i - 1];
