@@ -80,6 +80,15 @@ static inline vf sel(vi m, vf a, vf b) {
     return (vf)((m & (vi)a) | (~m & (vi)b));
 }
 
+/* Per lane: a where the sign bit of m is set, else b. */
+static inline vf sign_sel(vf m, vf a, vf b) {
+#if W == 8
+    return (vf)_mm256_blendv_ps((__m256)b, (__m256)a, (__m256)m);
+#else
+    return sel((vi)m < splat_i(0), a, b);
+#endif
+}
+
 /* 'a < b ? a : b' and 'a > b ? a : b' per lane (b where either is NaN):
  * exactly what x86's min and max instructions compute. */
 static inline vf vmin_of(vf a, vf b) {
@@ -166,7 +175,7 @@ static inline void sw_ray_setup(const rt_ray_d *r, const rt_ray_pre *p, sw_ray *
  * unless the start value is NaN, which then stays NaN either way) and the
  * result is the greatest (least) of the rest: the same number, up to the
  * sign of a zero, which no comparison below can tell. */
-static inline uint32_t node_test(const uint32_t *n, const sw_ray *rv, float hi, vf *tnear,
+static inline uint32_t node_test(const uint32_t *n, const sw_ray *rv, vf hi, vf *tnear,
                                  uint32_t *real) {
     const char *base = (const char *)n;
     const vf lo0 = splat(rv->lo), inf = splat(RT_INF);
@@ -181,14 +190,26 @@ static inline uint32_t node_test(const uint32_t *n, const sw_ray *rv, float hi, 
         h[k] = vmin_of(t1, inf);
     }
     const vf l = vmax_of(lo[0], vmax_of(lo[1], lo[2]));
-    vf hh = vmin_of(h[0], vmin_of(h[1], h[2]));
-    hh = hh * sel(hh < splat(0.0f), splat(RT_BOX_FAR_SCALE_NEG), splat(RT_BOX_FAR_SCALE));
-    hh = vmin_of(splat(hi), hh);
+    const vf hh = vmin_of(h[0], vmin_of(h[1], h[2]));
+    /* hi * (hi < 0 ? RT_BOX_FAR_SCALE_NEG : RT_BOX_FAR_SCALE), both
+     * products at once and chosen by the sign bit: -0 and a NaN come out
+     * the same either way. */
+    const vf far = sign_sel(hh, hh * splat(RT_BOX_FAR_SCALE_NEG), hh * splat(RT_BOX_FAR_SCALE));
     *tnear = l;
     /* A NaN lane passes the oracle's test as it passes this one; an empty
      * slot must still never be entered. */
     *real = bits(ldi(n + 6 * W) != splat_i(-1));
-    return bits(l <= hh) & *real;
+    /* lo <= (hi < far ? hi : far) as lo <= hi and lo <= far, hi never NaN
+     * here (see range_hi): the same for every lo and far, NaN included. */
+    return bits((l <= hi) & (l <= far)) & *real;
+}
+
+/* rt_box_hi(t) in every lane, as the box test's upper range end; a NaN
+ * (which limits nothing in rt_box_test's 'tmax < hi ? tmax : hi') as +inf,
+ * which limits nothing either. */
+static inline vf range_hi(float t) {
+    const float h = rt_box_hi(t);
+    return splat(h == h ? h : RT_INF);
 }
 
 /* Records a hit as rt_leaf_test accepts it: returns 1 when the ray is an
@@ -295,11 +316,6 @@ static inline void prefetch(const sw_ctx *x, const uint32_t *child, const uint32
     for (int off = 0; off < bytes; off += 64) __builtin_prefetch(p + off);
 }
 
-typedef struct item {
-    rt_u32 ref, info;
-    float tnear;
-} item;
-
 static int trace_instance(sw_ctx *x, rt_u32 inst, const rt_ray_d *r, const rt_ray_pre *p,
                           rt_hit_d *best);
 
@@ -318,88 +334,104 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
                                                           rt_hit_d *best, const int top) {
     sw_ray rv;
     sw_ray_setup(r, p, &rv);
-    item stack[(W - 1) * RT_STACK_SIZE + 1];
+    /* A child is one 64-bit word, its info above its ref, written and read
+     * whole (a push soon popped then forwards from the store). */
+    uint64_t stack[(W - 1) * RT_STACK_SIZE + 1];
+    float stack_t[(W - 1) * RT_STACK_SIZE + 1];
     int sp = 0;
-    float hi = rt_box_hi(best->t);
-    item cur = {entry, 0, 0.0f};
+    vf hi = range_hi(best->t);
+    /* The entry node only tests the root's box: skipping a box test lets
+     * a ray test more, never fewer, so the traversal starts at the root. */
+    const uint32_t *en = x->nodes + (size_t)NODE_WORDS * entry;
+    uint64_t cur = (uint64_t)en[7 * W] << 32 | en[6 * W];
+    uint64_t boxes = 0;
+    int found = 0;
+#define RT_SW_REF(s) ((uint64_t)info[s] << 32 | child[s])
+#define RT_SW_PUSH(s)                                                                              \
+    do {                                                                                           \
+        stack[sp] = RT_SW_REF(s);                                                                  \
+        stack_t[sp++] = d[s];                                                                      \
+    } while (0)
     for (;;) {
-        if (cur.info & RT_NODE_LEAF_FLAG) {
-            const rt_u32 count = cur.info & RT_NODE_COUNT_MASK;
+        const rt_u32 ref = (rt_u32)cur, cinfo = (rt_u32)(cur >> 32);
+        if (cinfo & RT_NODE_LEAF_FLAG) {
+            const rt_u32 count = cinfo & RT_NODE_COUNT_MASK;
             if (top) {
-                for (rt_u32 e = cur.ref; e < cur.ref + count; e++)
-                    if (trace_instance(x, x->s->inst_ids[e], r, p, best)) return 1;
-            } else if (leaf_test(x, cur.ref, count, inst, r, p, best)) {
-                return 1;
+                for (rt_u32 e = ref; e < ref + count && !found; e++)
+                    found = trace_instance(x, x->s->inst_ids[e], r, p, best);
+            } else {
+                found = leaf_test(x, ref, count, inst, r, p, best);
             }
-            hi = rt_box_hi(best->t);
+            if (found) break;
+            hi = range_hi(best->t);
         } else {
-            const uint32_t *n = x->nodes + (size_t)NODE_WORDS * cur.ref;
+            const uint32_t *n = x->nodes + (size_t)NODE_WORDS * ref;
             vf tn;
             uint32_t real, m = node_test(n, &rv, hi, &tn, &real);
-            x->box_tests += low_run(real);
+            boxes += low_run(real);
             if (m) {
                 const uint32_t *child = n + 6 * W, *info = n + 7 * W;
                 /* Every entered child's lines are fetched now, while the
                  * nearest is traversed (the others are probably next). */
                 for (uint32_t f = m; f; f &= f - 1) prefetch(x, child, info, lowest_bit(f), top);
-                int s0 = lowest_bit(m);
-                m &= m - 1;
-                if (!m) { /* one child: on with it */
-                    cur = (item){child[s0], info[s0], tn[s0]};
+                const int s0 = lowest_bit(m);
+                if (!(m & (m - 1))) { /* one child: on with it */
+                    cur = RT_SW_REF(s0);
                     continue;
                 }
                 float d[W];
                 memcpy(d, &tn, sizeof d);
-                const int s1 = lowest_bit(m);
-                m &= m - 1;
-                if (!m) { /* two: the nearer first (any-hit rays: in slot order) */
-                    const int near = x->any_hit || !(d[s1] < d[s0]) ? s0 : s1;
-                    const int far = near == s0 ? s1 : s0;
-                    stack[sp++] = (item){child[far], info[far], d[far]};
-                    cur = (item){child[near], info[near], d[near]};
+                if (x->any_hit) {
+                    /* Any order will do: leaves first (one may end the
+                     * ray at once), then inner nodes, each in slot order. */
+                    const uint32_t leaves = m & bits(ldi(info) < splat_i(0));
+                    const uint32_t inner = m & ~leaves;
+                    int order[W], k = 0;
+                    for (uint32_t q = leaves; q; q &= q - 1) order[k++] = lowest_bit(q);
+                    for (uint32_t q = inner; q; q &= q - 1) order[k++] = lowest_bit(q);
+                    for (int i = k - 1; i > 0; i--) RT_SW_PUSH(order[i]);
+                    cur = RT_SW_REF(order[0]);
                     continue;
                 }
-                if (x->any_hit) { /* any order will do: slot order */
-                    stack[sp++] = (item){child[s1], info[s1], d[s1]};
-                    for (; m; m &= m - 1) {
-                        const int s = lowest_bit(m);
-                        stack[sp++] = (item){child[s], info[s], d[s]};
-                    }
-                    cur = (item){child[s0], info[s0], d[s0]};
+                m &= m - 1;
+                const int s1 = lowest_bit(m);
+                m &= m - 1;
+                if (!m) { /* two: the nearer first */
+                    const int near = !(d[s1] < d[s0]) ? s0 : s1;
+                    RT_SW_PUSH(near == s0 ? s1 : s0);
+                    cur = RT_SW_REF(near);
                     continue;
                 }
                 /* Nearest first: sort the entered children by entry
                  * distance, push all but the nearest, farthest first. */
-                item hit[W];
-                int h = 2;
-                if (d[s1] < d[s0]) {
-                    hit[0] = (item){child[s1], info[s1], d[s1]};
-                    hit[1] = (item){child[s0], info[s0], d[s0]};
-                } else {
-                    hit[0] = (item){child[s0], info[s0], d[s0]};
-                    hit[1] = (item){child[s1], info[s1], d[s1]};
-                }
+                int order[W], h = 2;
+                order[0] = d[s1] < d[s0] ? s1 : s0;
+                order[1] = order[0] == s0 ? s1 : s0;
                 for (; m; m &= m - 1) {
                     const int s = lowest_bit(m);
-                    const item it = {child[s], info[s], d[s]};
                     int i = h++;
-                    while (i > 0 && hit[i - 1].tnear > it.tnear) {
-                        hit[i] = hit[i - 1];
+                    while (i > 0 && d[order[i - 1]] > d[s]) {
+                        order[i] = order[i - 1];
                         i--;
                     }
-                    hit[i] = it;
+                    order[i] = s;
                 }
                 assert(sp + h - 1 <= (int)(sizeof stack / sizeof stack[0]));
-                for (int i = h - 1; i > 0; i--) stack[sp++] = hit[i];
-                cur = hit[0];
+                for (int i = h - 1; i > 0; i--) RT_SW_PUSH(order[i]);
+                cur = RT_SW_REF(order[0]);
                 continue;
             }
         }
-        do {
-            if (sp == 0) return 0;
-            cur = stack[--sp];
-        } while (cur.tnear > hi); /* a NaN hi drops nothing, as in rt_box_test */
+        /* The next pushed child whose box test could still pass (a NaN hi
+         * drops nothing, as in rt_box_test). */
+        while (sp > 0 && stack_t[sp - 1] > hi[0]) sp--;
+        if (sp == 0) break;
+        cur = stack[--sp];
     }
+#undef RT_SW_REF
+#undef RT_SW_PUSH
+    x->box_tests += boxes;
+    return found;
 }
 
 /* rt_trace_instance: the ray moved into the instance's space unless it is
