@@ -1,8 +1,8 @@
 /* single_trace.h - incoherent rays one at a time through the two-level BVH
  * as 4- or 8-wide nodes (single_wide.h): one vector box test for all
  * children of a node, the hit children taken nearest first (any-hit rays
- * take them in slot order and stop at the first hit), one vector triangle
- * test for a block of 4 or 8 triangles.
+ * take leaves first, then the farthest, and stop at the first hit), one
+ * vector triangle test for a block of 4 or 8 triangles.
  *
  * Exact: each lane of a box test performs rt_box_test's operations on its
  * child (the same box, the same ray range [rt_box_lo(tmin),
