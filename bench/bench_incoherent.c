@@ -87,7 +87,7 @@ static int bench_scene(const char *path, size_t n, int reps, int threads, int js
         to_api(rd[s], n, rays[s]);
         for (int q = 0; q < QUERIES; q++) {
             ref[s][q] = malloc(sizeof(rt_hit) * n);
-            rt_trace_options o = {q, RT_TRI_TEST_WATERTIGHT};
+            rt_trace_options o = {q, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
             rt_trace_rays(oracle, scene, rays[s], n, ref[s][q], &o);
         }
     }
@@ -110,7 +110,7 @@ static int bench_scene(const char *path, size_t n, int reps, int threads, int js
                 for (int t = 0; t < TRACERS; t++) {
                     double dt = -1.0;
                     if (t == 0) {
-                        rt_trace_options o = {q, RT_TRI_TEST_WATERTIGHT};
+                        rt_trace_options o = {q, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
                         double t0 = rt_now_ms();
                         rt_trace_rays(packet, scene, rays[s], n, got, &o);
                         dt = rt_now_ms() - t0;

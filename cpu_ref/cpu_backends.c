@@ -20,6 +20,7 @@ typedef struct trace_job {
     rt_hit_d *hits;
     size_t count;
     int any_hit;
+    rt_trace_path path;
     atomic_size_t next;
     atomic_ullong packet_rays;
 } trace_job;
@@ -41,7 +42,7 @@ static void trace_chunk(void *ctx, int worker, int workers) {
         rt_counters c = {0, 0, 0};
         if (job->packets)
             rt_packet_trace_rays(job->tracers, job->rays + first, n, job->hits + first,
-                                 job->any_hit, &c, &packet_rays);
+                                 job->any_hit, job->path, &c, &packet_rays);
         else
             rt_cpu_trace_rays(job->tracers->flat, job->rays + first, n, job->hits + first,
                               job->any_hit, &c);
@@ -90,7 +91,8 @@ static rt_status render_frame(const rt_backend_layout *layout, const rt_backend_
  * packets and single rays as rt_packet_trace_rays chooses. Returns the
  * number of rays that went in packets. */
 static uint64_t trace_all(const rt_backend_layout *layout, const rt_cpu_frame *tracers,
-                          const rt_ray_d *rays, size_t count, rt_hit_d *hits, int any_hit) {
+                          const rt_ray_d *rays, size_t count, rt_hit_d *hits, int any_hit,
+                          rt_trace_path path) {
     trace_job job;
     memset(&job, 0, sizeof job);
     job.tracers = tracers;
@@ -99,6 +101,7 @@ static uint64_t trace_all(const rt_backend_layout *layout, const rt_cpu_frame *t
     job.hits = hits;
     job.count = count;
     job.any_hit = any_hit;
+    job.path = path;
     atomic_init(&job.next, 0);
     atomic_init(&job.packet_rays, 0);
     rt_pool_run(layout->pool, trace_chunk, &job);
@@ -135,13 +138,16 @@ static rt_status cpu_render(void *state, const rt_backend_layout *layout,
 }
 
 static rt_status cpu_trace(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
-                           size_t count, rt_hit_d *hits, int any_hit, rt_error *err) {
+                           size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
+                           rt_trace_stats *stats, rt_error *err) {
     (void)state;
     (void)err;
+    (void)path;
+    (void)stats;
     rt_cpu_frame tracers;
     memset(&tracers, 0, sizeof tracers);
     tracers.flat = layout->flat;
-    trace_all(layout, &tracers, rays, count, hits, any_hit);
+    trace_all(layout, &tracers, rays, count, hits, any_hit, RT_TRACE_PATH_AUTO);
     return RT_OK;
 }
 
@@ -165,7 +171,6 @@ typedef struct packet_state {
     rt_sw_bvh single;
     uint32_t single_generation;
     int have_single;
-    uint64_t last_packet_rays; /* of the last trace call: rays that went in packets */
 } packet_state;
 
 static rt_status packet_create(const rt_backend_config *config, void **state, rt_error *err) {
@@ -250,9 +255,12 @@ static rt_status packet_render(void *state, const rt_backend_layout *layout,
 }
 
 static rt_status packet_trace(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
-                              size_t count, rt_hit_d *hits, int any_hit, rt_error *err) {
+                              size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
+                              rt_trace_stats *stats, rt_error *err) {
     packet_state *s = state;
+    const double t0 = rt_now_ms();
     rt_status st = ensure_single(s, layout, NULL, err);
+    stats->build_ms += rt_now_ms() - t0;
     if (st != RT_OK) return st;
     rt_cpu_frame tracers;
     memset(&tracers, 0, sizeof tracers);
@@ -261,7 +269,9 @@ static rt_status packet_trace(void *state, const rt_backend_layout *layout, cons
     tracers.isa = s->isa;
     tracers.single = &s->single;
     tracers.single_isa = s->single_isa;
-    s->last_packet_rays = trace_all(layout, &tracers, rays, count, hits, any_hit);
+    stats->packet_rays = trace_all(layout, &tracers, rays, count, hits, any_hit, path);
+    stats->single_rays = count - stats->packet_rays;
+    stats->isa = rt_pk_variant_name(s->isa);
     return RT_OK;
 }
 

@@ -7,7 +7,9 @@
 source "$RT_SOURCE_DIR/tests/shell_check.sh"
 
 # The backends that run the suite: a new backend is one more word here.
-BACKENDS=${RT_ROBUST_BACKENDS:-"cpu packet opencl"}
+# packet:P runs the packet backend with --packet-path P: every ray in
+# packets, or every ray one at a time through the wide BVHs.
+BACKENDS=${RT_ROBUST_BACKENDS:-"cpu packet:packets packet:single opencl"}
 TRI_TESTS="watertight mt pluecker badouel"
 
 if ! command -v python3 > /dev/null; then
@@ -24,13 +26,15 @@ for backend in $BACKENDS; do
         echo "skipped backend opencl: $(head -1 "$tmp/devices.txt")"
         continue
     fi
+    path=()
+    if [ "${backend#packet:}" != "$backend" ]; then path=(--packet-path "${backend#packet:}"); fi
     for tri in $TRI_TESTS; do
-        out=$tmp/$backend-$tri
+        out=$tmp/${backend/:/-}-$tri
         mkdir -p "$out"
         while read -r name flags; do
             # shellcheck disable=SC2086
             expect 0 '' -- "$RTCL" trace "$cases/$name.obj" --rays "$cases/$name.rays" \
-                --out "$out/$name.hits" --backend "$backend" --tri-test "$tri" $flags
+                --out "$out/$name.hits" --backend "${backend%%:*}" "${path[@]}" --tri-test "$tri" $flags
         done <<< "$names"
         strict=""
         [ "$tri" = watertight ] && strict=--strict
@@ -45,6 +49,7 @@ done
 # cpu's (any-hit queries may report another hit in range; the check above
 # holds them to the expectations).
 for backend in $BACKENDS; do
+    backend=${backend/:/-}
     [ "$backend" = cpu ] || [ ! -d "$tmp/$backend-watertight" ] || [ ! -d "$tmp/cpu-watertight" ] && continue
     for tri in $TRI_TESTS; do
         while read -r name flags; do

@@ -364,7 +364,7 @@ static void check_hits(const char *name, rt_scene *s) {
         rays[i].tmax = r.tmax;
     }
     for (int any = 0; any <= 1; any++) {
-        rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT};
+        rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
         CHECK(rt_trace_rays(renderer_for("cpu"), s, rays, N, a, &q) == RT_OK);
         rt_status st = rt_trace_rays(renderer_for("opencl"), s, rays, N, b, &q);
         CHECK_MSG(st == RT_OK, "%s", error_of("opencl"));

@@ -77,8 +77,10 @@ static void check_scene(const char *name, rt_scene *scene) {
             tracers.single = mixed ? &single : NULL;
             tracers.single_isa = single_isa;
             uint64_t in_packets = 0;
-            rt_packet_trace_rays(&tracers, r, (size_t)rays, packet, 0, &c, &in_packets);
-            rt_packet_trace_rays(&tracers, r, (size_t)rays, any, 1, &c, &in_packets);
+            rt_packet_trace_rays(&tracers, r, (size_t)rays, packet, 0, RT_TRACE_PATH_AUTO, &c,
+                                 &in_packets);
+            rt_packet_trace_rays(&tracers, r, (size_t)rays, any, 1, RT_TRACE_PATH_AUTO, &c,
+                                 &in_packets);
             CHECK(mixed || in_packets == 2 * (uint64_t)rays);
             int bad_packet = 0, bad_any = 0;
             for (int i = 0; i < rays; i++) {
