@@ -226,8 +226,9 @@ void rt_packet_trace_rays(const rt_cpu_frame *tr, const rt_ray_d *rays, size_t n
     const float span = coherent_org_span(tr->flat);
     for (size_t i = 0; i < n; i += RT_PK_LANES) {
         size_t count = n - i < RT_PK_LANES ? n - i : RT_PK_LANES;
-        const int single = tr->single && path != RT_TRACE_PATH_PACKETS &&
-                           (path == RT_TRACE_PATH_SINGLE || !rt_rays_coherent(rays + i, count, span));
+        const int single =
+            tr->single && path != RT_TRACE_PATH_PACKETS &&
+            (path == RT_TRACE_PATH_SINGLE || !rt_rays_coherent(rays + i, count, span));
         if (single) {
             rt_sw_trace(tr->single_isa, &v, tr->single, rays + i, count, any_hit, hits + i, c);
             continue;

@@ -393,15 +393,7 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
                     const uint32_t leaves = m & bits(ldi(info) < splat_i(0));
                     const uint32_t inner = m & ~leaves;
                     int order[W], k = 0;
-                    for (uint32_t q = leaves; q; q &= q - 1) {
-                        const int c = lowest_bit(q);
-                        int i = k++;
-                        while (i > 0 && d[order[i - 1]] < d[c]) {
-                            order[i] = order[i - 1];
-                            i--;
-                        }
-                        order[i] = c;
-                    }
+                    for (uint32_t q = leaves; q; q &= q - 1) order[k++] = lowest_bit(q);
                     const int k0 = k;
                     for (uint32_t q = inner; q; q &= q - 1) {
                         const int c = lowest_bit(q);

@@ -27,8 +27,8 @@ rt_status rt_trace_rays(rt_renderer *r, rt_scene *scene, const rt_ray *rays, siz
     if (options) opt = *options;
     if (opt.packet_path != RT_TRACE_PATH_AUTO && opt.packet_path != RT_TRACE_PATH_PACKETS &&
         opt.packet_path != RT_TRACE_PATH_SINGLE)
-        return rt_fail(&r->error, RT_ERROR_INVALID_ARGUMENT, "rt_trace_rays: unknown packet path %d",
-                       (int)opt.packet_path);
+        return rt_fail(&r->error, RT_ERROR_INVALID_ARGUMENT,
+                       "rt_trace_rays: unknown packet path %d", (int)opt.packet_path);
     rt_frame_state fs;
     rt_status st = rt_frame_layout(r, scene, opt.tri_test, 0, &fs);
     if (st != RT_OK) return st;
@@ -61,8 +61,8 @@ rt_status rt_trace_rays(rt_renderer *r, rt_scene *scene, const rt_ray *rays, siz
     st = fs.ops->prepare(fs.state, &fs.layout, &prep, &r->error);
     const double t1 = rt_now_ms();
     if (st == RT_OK)
-        st = fs.ops->trace(fs.state, &fs.layout, in, count, out, opt.any_hit != 0,
-                           opt.packet_path, &ts, &r->error);
+        st = fs.ops->trace(fs.state, &fs.layout, in, count, out, opt.any_hit != 0, opt.packet_path,
+                           &ts, &r->error);
     /* The trace alone: the backend's builds inside it are build time. */
     ts.trace_ms = rt_now_ms() - t1 - ts.build_ms;
     ts.build_ms += fs.build_ms + prep.build_ms;
