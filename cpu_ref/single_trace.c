@@ -455,12 +455,23 @@ static int trace_instance(sw_ctx *x, rt_u32 inst, const rt_ray_d *r, const rt_ra
                           rt_hit_d *best) {
     const rt_instance *in = &x->s->instances[inst];
     const rt_u32 entry = x->inst_root[inst];
-    if (RT_INST_FLAGS(in) & RT_INST_IDENTITY) return traverse(x, entry, inst, r, p, best, 0);
+    /* A mesh whose root is a leaf (a wall, a box) is that leaf's blocks:
+     * no traversal to set up (skipping the root's box test only lets the
+     * ray test more). */
+    const uint32_t *en = x->nodes + (size_t)NODE_WORDS * entry;
+    const rt_u32 root_info = en[7 * W];
+    const int identity = (RT_INST_FLAGS(in) & RT_INST_IDENTITY) != 0;
     rt_ray_d o;
     rt_ray_pre op;
-    rt_ray_to_object(in, r, &o);
-    rt_ray_prepare(&o, &op);
-    return traverse(x, entry, inst, &o, &op, best, 0);
+    if (!identity) {
+        rt_ray_to_object(in, r, &o);
+        rt_ray_prepare(&o, &op);
+        r = &o;
+        p = &op;
+    }
+    if (root_info & RT_NODE_LEAF_FLAG)
+        return leaf_test(x, en[6 * W], root_info & RT_NODE_COUNT_MASK, inst, r, p, best);
+    return traverse(x, entry, inst, r, p, best, 0);
 }
 
 /* rt_trace. */
