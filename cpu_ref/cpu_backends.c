@@ -10,6 +10,7 @@
 #include "base/clock.h"
 #include "base/error.h"
 #include "cpu_render.h"
+#include "rt_fp_mode.h"
 
 /* ---- ray queries, shared by both -------------------------------------- */
 
@@ -64,7 +65,7 @@ static void fill_counts(rt_render_stats *stats, const rt_cpu_counts *counts) {
  * the build isa) when wide is given. */
 static rt_status render_frame(const rt_backend_layout *layout, const rt_backend_frame *frame,
                               const rt_pk_wide *wide, const rt_pk_variant *isa,
-                              const rt_sw_bvh *single, const rt_sw_variant *single_isa,
+                              const rt_sw_bvh *single, const rt_sw_variant *single_isa, int flush,
                               rt_render_stats *stats, rt_error *err) {
     rt_cpu_frame f = {layout->flat,
                       wide,
@@ -74,6 +75,7 @@ static rt_status render_frame(const rt_backend_layout *layout, const rt_backend_
                       frame->channels,
                       frame->progress,
                       frame->progress_user,
+                      flush,
                       single,
                       single_isa};
     rt_cpu_counts counts;
@@ -90,7 +92,7 @@ static rt_status render_frame(const rt_backend_layout *layout, const rt_backend_
 /* Ray queries on the pool: the scalar oracle, or (tracers->wide given)
  * packets and single rays as rt_packet_trace_rays chooses. Returns the
  * number of rays that went in packets. */
-static uint64_t trace_all(const rt_backend_layout *layout, const rt_cpu_frame *tracers,
+static uint64_t trace_all(const rt_backend_layout *layout, const rt_cpu_frame *tracers, int flush,
                           const rt_ray_d *rays, size_t count, rt_hit_d *hits, int any_hit,
                           rt_trace_path path) {
     trace_job job;
@@ -104,8 +106,18 @@ static uint64_t trace_all(const rt_backend_layout *layout, const rt_cpu_frame *t
     job.path = path;
     atomic_init(&job.next, 0);
     atomic_init(&job.packet_rays, 0);
-    rt_pool_run(layout->pool, trace_chunk, &job);
+    rt_pool_run_fp(layout->pool, trace_chunk, &job, flush);
     return atomic_load(&job.packet_rays);
+}
+
+/* "flush" needs a CPU whose denormal mode the backend can set. */
+static rt_status check_denormals(const char *name, const rt_backend_config *config, rt_error *err) {
+    if (config->flush_denormals && !rt_fp_can_flush())
+        return rt_fail(err, RT_ERROR_UNSUPPORTED,
+                       "%s: this CPU build cannot set flush-to-zero (denormals 'flush' needs "
+                       "x86 SSE or AArch64)",
+                       name);
+    return RT_OK;
 }
 
 static int always_available(rt_error *why) {
@@ -115,10 +127,14 @@ static int always_available(rt_error *why) {
 
 /* ---- cpu: the scalar oracle -------------------------------------------- */
 
+/* The oracle keeps one thing, its denormal mode: a state that is NULL
+ * preserves denormals, any other pointer flushes them. */
+static int cpu_flush_mark;
+
 static rt_status cpu_create(const rt_backend_config *config, void **state, rt_error *err) {
-    (void)config;
-    (void)err;
-    *state = NULL; /* nothing to keep: the layout is all it reads */
+    rt_status st = check_denormals("cpu", config, err);
+    if (st != RT_OK) return st;
+    *state = config->flush_denormals ? &cpu_flush_mark : NULL;
     return RT_OK;
 }
 
@@ -133,21 +149,19 @@ static rt_status cpu_prepare(void *state, const rt_backend_layout *layout, rt_re
 
 static rt_status cpu_render(void *state, const rt_backend_layout *layout,
                             const rt_backend_frame *frame, rt_render_stats *stats, rt_error *err) {
-    (void)state;
-    return render_frame(layout, frame, NULL, NULL, NULL, NULL, stats, err);
+    return render_frame(layout, frame, NULL, NULL, NULL, NULL, state != NULL, stats, err);
 }
 
 static rt_status cpu_trace(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
                            size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
                            rt_trace_stats *stats, rt_error *err) {
-    (void)state;
     (void)err;
     (void)path;
     (void)stats;
     rt_cpu_frame tracers;
     memset(&tracers, 0, sizeof tracers);
     tracers.flat = layout->flat;
-    trace_all(layout, &tracers, rays, count, hits, any_hit, RT_TRACE_PATH_AUTO);
+    trace_all(layout, &tracers, state != NULL, rays, count, hits, any_hit, RT_TRACE_PATH_AUTO);
     return RT_OK;
 }
 
@@ -171,6 +185,7 @@ typedef struct packet_state {
     rt_sw_bvh single;
     uint32_t single_generation;
     int have_single;
+    int flush; /* denormals */
 } packet_state;
 
 static rt_status packet_create(const rt_backend_config *config, void **state, rt_error *err) {
@@ -193,9 +208,12 @@ static rt_status packet_create(const rt_backend_config *config, void **state, rt
     if (!single_isa)
         return rt_fail(err, RT_ERROR_UNSUPPORTED, "packet: no single-ray build '%s'",
                        config->packet_isa ? config->packet_isa : "");
+    rt_status st = check_denormals("packet", config, err);
+    if (st != RT_OK) return st;
     packet_state *s = calloc(1, sizeof *s);
     if (!s) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "packet: out of memory");
     s->isa = isa;
+    s->flush = config->flush_denormals;
     s->single_isa = single_isa;
     *state = s;
     return RT_OK;
@@ -246,7 +264,7 @@ static rt_status packet_render(void *state, const rt_backend_layout *layout,
         if (st != RT_OK) return st;
     }
     rt_status st = render_frame(layout, frame, &s->wide, s->isa, secondary ? &s->single : NULL,
-                                s->single_isa, stats, err);
+                                s->single_isa, s->flush, stats, err);
     if (st != RT_OK) return st;
     stats->packet_rays = RT_PK_LANES;
     stats->packet_isa = rt_pk_variant_name(s->isa);
@@ -269,7 +287,7 @@ static rt_status packet_trace(void *state, const rt_backend_layout *layout, cons
     tracers.isa = s->isa;
     tracers.single = &s->single;
     tracers.single_isa = s->single_isa;
-    stats->packet_rays = trace_all(layout, &tracers, rays, count, hits, any_hit, path);
+    stats->packet_rays = trace_all(layout, &tracers, s->flush, rays, count, hits, any_hit, path);
     stats->single_rays = count - stats->packet_rays;
     stats->isa = rt_pk_variant_name(s->isa);
     return RT_OK;

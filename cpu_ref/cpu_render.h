@@ -28,6 +28,7 @@ typedef struct rt_cpu_frame {
     int channels;  /* 3 for the image and normals, else 1 */
     void (*progress)(void *user, double done);
     void *progress_user;
+    int flush_denormals; /* 1: the workers flush denormals (rt_pool_run_fp) */
     /* The packet backend's single-ray BVHs of flat, for incoherent rays
      * (reflections, refractions and their shadow rays), or NULL ... */
     const rt_sw_bvh *single;
