@@ -172,7 +172,7 @@ static void pk_prepare(pk_ray *p) {
     p->kz = kz;
     p->sx = PK_DIV(PK_PICK(p->dir[0], p->dir[1], p->dir[2], kx), dkz);
     p->sy = PK_DIV(PK_PICK(p->dir[0], p->dir[1], p->dir[2], ky), dkz);
-    p->sz = PK_DIV(1.0f, dkz);
+    p->sz = PK_PICK(p->inv[0], p->inv[1], p->inv[2], kz); /* 1 / dkz, as the oracle */
     p->box_lo = p->tmin - RT_FABS(p->tmin) * RT_BOX_T_MARGIN;
 }
 

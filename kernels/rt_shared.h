@@ -235,7 +235,7 @@ RT_FN void rt_ray_prepare(const rt_ray_d *r, rt_ray_pre *p) {
     p->kz = kz;
     p->sx = RT_DIV(r->dir[kx], r->dir[kz]);
     p->sy = RT_DIV(r->dir[ky], r->dir[kz]);
-    p->sz = RT_DIV(1.0f, r->dir[kz]);
+    p->sz = p->inv[kz]; /* 1 / dir[kz], the same operation: one division less */
 }
 
 /* The primary ray through the centre of pixel (px, py); see rt_layout.h. Its
