@@ -358,9 +358,35 @@ typedef struct rt_hit {
     int hit;
 } rt_hit;
 
+/* What one rt_trace_rays call did (rt_trace_options.stats). */
+typedef struct rt_trace_stats {
+    double trace_ms;      /* the backend's tracing alone: not the copies of rays and hits
+                             into and out of the library, not BVH builds */
+    double build_ms;      /* host builds this call needed (the backends' wide BVHs) */
+    uint64_t rays;        /* rays traced */
+    uint64_t packet_rays; /* of them, traced in packets (packet backend: coherent groups) */
+    uint64_t single_rays; /* of them, one at a time through wide BVHs (packet backend:
+                             incoherent groups, cpu_ref/single_trace.h) */
+    const char *backend;  /* the backend that traced */
+    const char *isa;      /* the packet backend's instruction set, else "" */
+} rt_trace_stats;
+
+/* How the packet backend traces a query's rays. AUTO: each group of 64
+ * consecutive rays that is coherent (one direction sign per axis, close
+ * directions and origins: cpu_ref/ray_coherence.h) as a packet, the others
+ * one at a time through wide BVHs. PACKETS and SINGLE force one path (for
+ * tests and measurements). Every path gives the same hits. */
+typedef enum rt_trace_path {
+    RT_TRACE_PATH_AUTO = 0,
+    RT_TRACE_PATH_PACKETS,
+    RT_TRACE_PATH_SINGLE
+} rt_trace_path;
+
 typedef struct rt_trace_options {
     int any_hit;               /* 1: any hit in range (occlusion), 0: the closest */
     rt_triangle_test tri_test; /* RT_TRI_TEST_WATERTIGHT (0) unless set */
+    rt_trace_stats *stats;     /* filled when not NULL */
+    rt_trace_path packet_path; /* the packet backend's path [auto] */
 } rt_trace_options;
 
 /* Traces count rays through scene (after applying its queued transforms) on

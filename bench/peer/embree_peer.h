@@ -67,6 +67,15 @@ void rt_embree_scene_destroy(rt_embree_scene *es);
 rt_status rt_embree_render(const rt_embree_scene *es, int lanes, rt_pool *pool, float *rgb,
                            uint64_t *rays, double *ms);
 
+/* The rays rays[0 .. n-1] as ray queries: closest hits through
+ * rtcIntersect1 (lanes 1) or rtcIntersect4/8/16 on consecutive rays (lanes
+ * 4, 8, 16: Embree's packets as streams of incoherent rays), or for any_hit
+ * rtcOccluded1/4/8/16 (then only whether hits[i].prim != RT_NO_HIT is
+ * set), with Embree's incoherent-ray hint, chunks of rays shared among the
+ * pool's workers. *ms is the wall time of the whole. */
+rt_status rt_embree_trace_rays(const rt_embree_scene *es, const rt_ray_d *rays, size_t n,
+                               int any_hit, int lanes, rt_pool *pool, rt_hit_d *hits, double *ms);
+
 /* Does the device trace packets of this width natively (1 always)? */
 int rt_embree_native_lanes(rt_embree *em, int lanes);
 

@@ -1050,8 +1050,11 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
 }
 
 static rt_status cl_trace(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
-                          size_t count, rt_hit_d *hits, int any_hit, rt_error *err) {
+                          size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
+                          rt_trace_stats *stats, rt_error *err) {
     cl_state *s = state;
+    (void)path;
+    (void)stats;
     (void)layout; /* cl_prepare uploaded it */
     rt_status st = ensure_ray_buffers(s, RT_CL_TILE_MAX, err);
     /* Closest hits on a CPU device: packets of consecutive rays
