@@ -805,8 +805,11 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
 }
 
 static rt_status vk_trace(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
-                          size_t count, rt_hit_d *hits, int any_hit, rt_error *err) {
+                          size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
+                          rt_trace_stats *stats, rt_error *err) {
     vk_state *s = state;
+    (void)path;   /* the packet backend's choice; one path here */
+    (void)stats;  /* the renderer times the call */
     (void)layout; /* vk_prepare uploaded it */
     int remade;
     rt_status st = ensure(s, B_RAYS, sizeof(rt_ray_d) * RT_VK_TILE_MAX, &remade, err);
