@@ -170,7 +170,7 @@ static int same_hit(const rt_hit *a, const rt_hit *b) {
 static int differing_hits(rt_renderer *ra, rt_renderer *rb, rt_scene *s, const rt_ray *rays, int n,
                           int any, int *hits, char *first, size_t first_size) {
     rt_hit *a = malloc(sizeof *a * (size_t)n), *b = malloc(sizeof *b * (size_t)n);
-    rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT};
+    rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
     int differ = -1;
     *hits = 0;
     if (a && b && rt_trace_rays(ra, s, rays, (size_t)n, a, &q) == RT_OK) {
