@@ -29,6 +29,18 @@ if [ -z "${RT_VIEW_UNDER_XVFB:-}" ]; then
     RT_VIEW_UNDER_XVFB=1 exec xvfb-run -a -s "-screen 0 640x480x24" bash "$0" "$@"
 fi
 
+# Present through SDL's software renderer into an X11 shared-memory image:
+# the frames' bits do not depend on it, and it keeps Mesa (which SDL would
+# otherwise load for an OpenGL texture, and which leaks when unloaded) out of
+# the sanitizer build's leak check.
+export SDL_RENDER_DRIVER=software SDL_FRAMEBUFFER_ACCELERATION=0
+# Sanitizer build: when PoCL starts on the viewer's render thread, LLVM
+# (llvm::sys::RemoveFileOnSignal) gives that thread an alternate signal stack
+# from malloc, and AddressSanitizer's thread exit then tries to unmap it as if
+# it were its own ("failed to deallocate ... unable to unmap"). Without ASan's
+# own alternate stacks it leaves the thread's alone. Ignored by other builds.
+export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}use_sigaltstack=0"
+
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 failures=0

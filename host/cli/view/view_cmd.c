@@ -41,7 +41,8 @@ static const char usage_head[] =
     "                 at the end, save the last frame at full resolution (a last full\n"
     "                 frame is rendered first if the last one was reduced): .png and\n"
     "                 .ppm 8-bit, .exr 32-bit float (AOVs raw), as 'rtcl render -o'\n"
-    "  --script FILE  replay timed input (format below); implies --step 33.333\n"
+    "  --script FILE  replay timed input (format below); implies --step 33.333 and\n"
+    "                 --move-scale 1 unless they are given, so that a replay is exact\n"
     "  --step MS      advance the camera and the timeline by MS milliseconds per\n"
     "                 frame instead of by the real time (replays exactly)\n"
     "  --move-scale D render at 1/D of the resolution while moving (1: never\n"
@@ -171,6 +172,9 @@ int cmd_view(int argc, char **argv) {
         print_usage(stderr);
         return 2;
     }
+    /* A script replays exactly: a fixed clock, and no divisor chosen from
+     * measured frame times (which would decide which frame is full). */
     if (o.script && !step_given) o.step_ms = 1000.0 / 30.0;
+    if (o.script && !o.move_divisor) o.move_divisor = 1;
     return view_run(&o);
 }
