@@ -522,9 +522,11 @@ static void take_shots(app *a, const view_result *r) {
     }
 }
 
-/* Takes a finished result: checks it, presents it, fulfils screenshots,
- * updates the numbers. Returns 0 when the session must end. */
-static int handle_result(app *a, const view_result *r) {
+/* Takes in a finished result before the next job is posted: a failed
+ * backend switch (the next job keeps the backend that works), a failed
+ * frame, the frame time that the next divisor is chosen by. Returns 0 when
+ * the session must end. */
+static int accept_result(app *a, const view_result *r) {
     if (r->backend_failed) {
         cli_error("view", "cannot switch to backend '%s': %s", r->job.backend, r->backend_error);
         snprintf(a->backend, sizeof a->backend, "%s", r->backend_spec);
@@ -534,6 +536,13 @@ static int handle_result(app *a, const view_result *r) {
         a->status = 2;
         return 0;
     }
+    a->est_full_ms = (r->update_ms + r->render_ms) * r->job.divisor * r->job.divisor;
+    return 1;
+}
+
+/* Presents a result, fulfils screenshots, updates the numbers (while the
+ * next job renders). Returns 0 when the session must end. */
+static int show_result(app *a, const view_result *r) {
     if (r->stats.notice && a->presented == 0) cli_error("view", "notice: %s", r->stats.notice);
     if (r->stats.backend && strcmp(r->stats.backend, a->last_backend) != 0) {
         if (a->last_backend[0]) {
@@ -555,8 +564,6 @@ static int handle_result(app *a, const view_result *r) {
     a->last_divisor = r->job.divisor;
     a->triangles = r->triangles;
     a->mrays = r->render_ms > 0 ? (double)r->stats.rays / (r->render_ms * 1000.0) : 0.0;
-    double full = (r->update_ms + r->render_ms) * r->job.divisor * r->job.divisor;
-    a->est_full_ms = full;
     describe_device(a, r);
     record_times(a, r->update_ms, r->render_ms, t1 - t0);
     a->present_times[a->present_count % FPS_WINDOW] = t1;
@@ -696,22 +703,9 @@ int view_run(view_options *o) {
         goto done;
     }
     a.status = 0;
-    int in_flight = 0, finishing = 0;
+    int finishing = 0;
+    post_job(&a, worker, 0);
     for (;;) {
-        if (!in_flight) {
-            int want_final = o->screenshot || a.shot_count;
-            if (a.quit || (o->frames && a.presented >= o->frames)) {
-                /* The end: one more full frame when a screenshot needs it. */
-                if (!want_final || finishing ||
-                    (a.last && a.last->job.divisor == 1 && !a.shot_count))
-                    break;
-                finishing = 1;
-                post_job(&a, worker, 1);
-            } else {
-                post_job(&a, worker, 0);
-            }
-            in_flight = 1;
-        }
         SDL_Event e;
         if (SDL_WaitEventTimeout(&e, 10)) {
             do {
@@ -720,8 +714,19 @@ int view_run(view_options *o) {
         }
         const view_result *r = view_worker_take(worker);
         if (!r) continue;
-        in_flight = 0;
-        if (!handle_result(&a, r)) break;
+        if (!accept_result(&a, r)) break;
+        /* The next job goes out before this frame is presented, so that the
+         * worker renders while this thread presents. */
+        int end = a.quit || (o->frames && a.presented + 1 >= o->frames);
+        if (!end) post_job(&a, worker, 0);
+        if (!show_result(&a, r)) break;
+        if (end) {
+            /* One more full frame when a screenshot still needs one. */
+            int want_final = (o->screenshot && r->job.divisor != 1) || a.shot_count;
+            if (finishing || !want_final) break;
+            finishing = 1;
+            post_job(&a, worker, 1);
+        }
     }
     if (a.status == 0 && o->screenshot && a.last) {
         rt_error err;

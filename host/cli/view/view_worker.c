@@ -18,7 +18,9 @@ struct view_worker {
     int phase; /* IDLE, QUEUED (job waits or renders), DONE (result not taken) */
     int quit;
     view_job job;
-    view_result result;
+    /* Two results, by the job's parity: the window thread presents one
+     * while the worker renders the next into the other. */
+    view_result results[2];
     rt_renderer *renderer;
     rt_scene *scene;
     view_timeline *timeline;
@@ -27,10 +29,10 @@ struct view_worker {
     void *user;
 };
 
-/* Renders w->job into w->result (called without the lock: the window thread
- * touches neither while the phase is QUEUED). */
+/* Renders w->job into its result slot (called without the lock: the window
+ * thread touches neither the job nor that slot while the phase is QUEUED). */
 static void render_job(view_worker *w) {
-    view_result *r = &w->result;
+    view_result *r = &w->results[w->job.seq & 1];
     const view_job *job = &w->job;
     rt_framebuffer fb = r->fb; /* reused from frame to frame */
     memset(r, 0, sizeof *r);
@@ -54,7 +56,12 @@ static void render_job(view_worker *w) {
     int d = job->divisor > 1 ? job->divisor : 1;
     cam.width = cam.width / d > 0 ? cam.width / d : 1;
     cam.height = cam.height / d > 0 ? cam.height / d : 1;
-    if (st == RT_OK) st = rt_camera_set(w->scene, &cam);
+    /* Set only a camera that changed: every rt_camera_set makes the
+     * renderer redo the object BVH and the layout (and a device backend
+     * upload it again), which a still view must not pay for. */
+    rt_camera now;
+    if (st == RT_OK && (rt_camera_get(w->scene, &now) != RT_OK || memcmp(&now, &cam, sizeof cam)))
+        st = rt_camera_set(w->scene, &cam);
     if (st != RT_OK) {
         r->ok = 0;
         snprintf(r->error, sizeof r->error, "%s", rt_scene_error(w->scene));
@@ -137,7 +144,7 @@ const view_result *view_worker_take(view_worker *w) {
     int done = w->phase == DONE;
     if (done) w->phase = IDLE;
     pthread_mutex_unlock(&w->lock);
-    return done ? &w->result : NULL;
+    return done ? &w->results[w->job.seq & 1] : NULL;
 }
 
 void view_worker_stop(view_worker *w) {
@@ -148,7 +155,8 @@ void view_worker_stop(view_worker *w) {
     pthread_cond_broadcast(&w->wake);
     pthread_mutex_unlock(&w->lock);
     pthread_join(w->thread, NULL);
-    rt_framebuffer_free(&w->result.fb);
+    rt_framebuffer_free(&w->results[0].fb);
+    rt_framebuffer_free(&w->results[1].fb);
     pthread_cond_destroy(&w->wake);
     pthread_mutex_destroy(&w->lock);
     free(w);

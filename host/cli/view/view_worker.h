@@ -2,8 +2,10 @@
  * renderer while it runs: the window's thread never calls the library, so
  * input and presenting never wait for a frame (a slow backend makes frames
  * late, not the window unresponsive). One job at a time: the window's thread
- * posts a job, the worker renders it and calls 'done'; the result is then
- * the window thread's to read until it posts the next job. */
+ * posts a job, the worker renders it and calls 'done'. Results alternate
+ * between two slots (by the job number's parity), so the window's thread may
+ * post job k+1 and then present result k while k+1 renders: a result stays
+ * valid until job k+2 is posted. */
 #ifndef RTCL_VIEW_WORKER_H
 #define RTCL_VIEW_WORKER_H
 
@@ -29,7 +31,7 @@ typedef struct view_result {
     int backend_failed; /* the switch to job.backend failed: backend_error says why */
     char backend_error[1024];
     char backend_spec[288]; /* the spec the renderer now renders with */
-    rt_framebuffer fb;      /* valid until the next job is posted */
+    rt_framebuffer fb;      /* valid until the job after next is posted */
     rt_render_stats stats;
     double update_ms;   /* timeline, BVH builds, layout (stats.build_ms) */
     double render_ms;   /* the rest of rt_render: uploads, tracing, shading */
@@ -50,7 +52,8 @@ rt_status view_worker_start(view_worker **out, rt_renderer *renderer, rt_scene *
 int view_worker_post(view_worker *w, const view_job *job);
 
 /* The finished result not yet taken, or NULL (busy, or taken already).
- * Taking it makes the worker idle. */
+ * Taking it makes the worker idle; the result stays valid while one more job
+ * renders. */
 const view_result *view_worker_take(view_worker *w);
 
 /* Waits for the job in flight, if any, and stops and frees the worker. */
