@@ -74,9 +74,8 @@ typedef struct app {
     double present_times[FPS_WINDOW];
     long present_count;
     double last_title_ms, last_update_ms, last_render_ms, last_present_ms;
-    double *totals; /* per presented frame: update + render + present */
-    double *parts;  /* per presented frame: update, render, present */
-    size_t totals_cap;
+    double *parts; /* per presented frame: update, render, present */
+    size_t parts_cap;
     double first_present_ms, final_present_ms;
     uint64_t triangles;
     char device[192];
@@ -465,35 +464,27 @@ static void update_title(app *a) {
         double oldest = a->present_times[(a->present_count - n) % FPS_WINDOW];
         if (newest > oldest) fps = (double)(n - 1) * 1000.0 / (newest - oldest);
     }
+    char res[32] = "full res";
+    if (a->last_divisor > 1) snprintf(res, sizeof res, "1/%d res", a->last_divisor);
     char title[512];
     snprintf(title, sizeof title,
-             "rtcl view | %.1f fps | %.1f ms = update %.1f + render %.1f + present %.1f | "
+             "rtcl view | %.1f fps | ms: update %.1f, render %.1f, present %.1f | "
              "%.1f Mrays/s | %s | oracle bits %s | %llu triangles | %s | %s | %s | t %.2f s%s",
-             fps, a->last_update_ms + a->last_render_ms + a->last_present_ms, a->last_update_ms,
-             a->last_render_ms, a->last_present_ms, a->mrays, a->device,
-             a->exact ? "promised" : "NOT promised", (unsigned long long)a->triangles,
-             a->last_divisor > 1 ? (a->last_divisor == 2   ? "1/2 res"
-                                    : a->last_divisor == 3 ? "1/3 res"
-                                    : a->last_divisor == 4 ? "1/4 res"
-                                                           : "1/8 res or less")
-                                 : "full res",
+             fps, a->last_update_ms, a->last_render_ms, a->last_present_ms, a->mrays, a->device,
+             a->exact ? "promised" : "NOT promised", (unsigned long long)a->triangles, res,
              cli_aov_name(a->aov), a->direct_only ? "direct" : "Whitted", a->time,
              a->playing ? " playing" : "");
     SDL_SetWindowTitle(a->window, title);
 }
 
 static void record_times(app *a, double update, double render, double present_ms) {
-    if ((size_t)a->presented >= a->totals_cap) {
-        size_t cap = a->totals_cap ? 2 * a->totals_cap : 256;
-        double *t = realloc(a->totals, cap * sizeof(double));
-        if (!t) return;
-        a->totals = t;
+    if ((size_t)a->presented >= a->parts_cap) {
+        size_t cap = a->parts_cap ? 2 * a->parts_cap : 256;
         double *p = realloc(a->parts, 3 * cap * sizeof(double));
         if (!p) return;
         a->parts = p;
-        a->totals_cap = cap;
+        a->parts_cap = cap;
     }
-    a->totals[a->presented] = update + render + present_ms;
     a->parts[3 * a->presented + 0] = update;
     a->parts[3 * a->presented + 1] = render;
     a->parts[3 * a->presented + 2] = present_ms;
@@ -596,16 +587,15 @@ static double median_of(double *v, size_t n, size_t stride, size_t offset) {
  * BVHs and, on a device, compiles and uploads) are the steady state. */
 static void print_summary(app *a) {
     long steady = a->presented - 1;
-    if (steady < 1 || (size_t)a->presented > a->totals_cap) {
+    if (steady < 1 || (size_t)a->presented > a->parts_cap) {
         printf("view: %ld frames\n", a->presented);
         return;
     }
     double span = a->final_present_ms - a->first_present_ms;
     double fps = span > 0 ? (double)steady * 1000.0 / span : 0.0;
-    printf("view: %ld frames; after the first: %.2f fps, median frame %.2f ms (update %.2f, "
-           "render %.2f, present %.2f), %s, %llu triangles\n",
-           a->presented, fps, median_of(a->totals + 1, (size_t)steady, 1, 0),
-           median_of(a->parts + 3, (size_t)steady, 3, 0),
+    printf("view: %ld frames; after the first: %.2f fps; median ms: update %.2f, render %.2f, "
+           "present %.2f (presenting overlaps the next frame's render); %s, %llu triangles\n",
+           a->presented, fps, median_of(a->parts + 3, (size_t)steady, 3, 0),
            median_of(a->parts + 3, (size_t)steady, 3, 1),
            median_of(a->parts + 3, (size_t)steady, 3, 2), a->device,
            (unsigned long long)a->triangles);
@@ -753,7 +743,6 @@ done:
     view_timeline_free(&timeline);
     view_script_free(&a.script);
     free(a.bytes);
-    free(a.totals);
     free(a.parts);
     rt_scene_destroy(a.rig);
     rt_scene_destroy(scene);
