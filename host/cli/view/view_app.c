@@ -439,18 +439,16 @@ static int present(app *a, const view_result *r) {
 
 static void describe_device(app *a, const view_result *r) {
     const rt_render_stats *s = &r->stats;
-    if (s->device[0]) {
-        snprintf(a->device, sizeof a->device, "%s on %s", s->backend ? s->backend : "?", s->device);
-        a->exact = s->exact;
-    } else if (s->packet_isa && s->backend && !strcmp(s->backend, "packet")) {
+    if (s->device[0])
+        snprintf(a->device, sizeof a->device, "%s on %s (%s maths)", s->backend ? s->backend : "?",
+                 s->device, s->math_profile ? s->math_profile : "?");
+    else if (s->packet_isa && s->backend && !strcmp(s->backend, "packet"))
         snprintf(a->device, sizeof a->device, "packet (%s x%d, %d threads)", s->packet_isa,
                  s->packet_vector, s->threads);
-        a->exact = 1; /* the packet tracer gives the oracle's bits on every CPU */
-    } else {
+    else
         snprintf(a->device, sizeof a->device, "%s (%d threads)", s->backend ? s->backend : "?",
                  s->threads);
-        a->exact = 1; /* the CPU backends are the oracle and its bit-identical SIMD twin */
-    }
+    a->exact = s->exact; /* the library's promise (the CPU backends always make it) */
 }
 
 static void update_title(app *a) {
