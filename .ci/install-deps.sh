@@ -9,6 +9,7 @@ $SUDO apt-get install -y -qq --no-install-recommends \
     build-essential cmake ninja-build pkg-config git ca-certificates \
     ocl-icd-opencl-dev opencl-c-headers pocl-opencl-icd clinfo \
     libvulkan-dev mesa-vulkan-drivers glslang-tools spirv-tools \
+    libsdl2-dev xvfb xauth \
     libopenimageio-dev openimageio-tools \
     libsimde-dev libembree-dev libjansson-dev \
     gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user \

@@ -1,14 +1,12 @@
 /* cmd_render.c - 'rtcl render': a scene to an image or an AOV. */
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 #include "cli_anim.h"
 #include "cli_util.h"
 #include "commands.h"
-#include "formats/image.h"
+#include "frame_image.h"
 
 static const char usage_head[] =
     "usage: rtcl render SCENE [-o FILE] [--backend B] [--device D] [--width W] [--height H]\n"
@@ -45,63 +43,6 @@ static const char usage_head[] =
 static void print_usage(FILE *f) {
     fputs(usage_head, f);
     fputs(cli_renderer_usage, f);
-}
-
-static int parse_aov(const char *name, rt_aov *out) {
-    static const struct {
-        const char *name;
-        rt_aov aov;
-    } aovs[] = {{"depth", RT_AOV_DEPTH},        {"primid", RT_AOV_PRIMID},
-                {"instid", RT_AOV_INSTID},      {"normal", RT_AOV_NORMAL},
-                {"boxtests", RT_AOV_BOX_TESTS}, {"tritests", RT_AOV_TRI_TESTS}};
-    for (size_t i = 0; i < sizeof aovs / sizeof aovs[0]; i++)
-        if (strcmp(name, aovs[i].name) == 0) {
-            *out = aovs[i].aov;
-            return 1;
-        }
-    return 0;
-}
-
-static int is_float_format(const char *path) {
-    size_t n = strlen(path);
-    return n >= 4 &&
-           (strcasecmp(path + n - 4, ".exr") == 0 || strcasecmp(path + n - 4, ".pfm") == 0);
-}
-
-/* An id as a colour that tells neighbours apart; black for -1 (a miss). */
-static void false_colour(float id, float rgb[3]) {
-    if (id < 0.0f) {
-        rgb[0] = rgb[1] = rgb[2] = 0.0f;
-        return;
-    }
-    uint32_t h = (uint32_t)id * 2654435761u;
-    rgb[0] = 0.25f + 0.75f * (float)((h >> 8) & 255) / 255.0f;
-    rgb[1] = 0.25f + 0.75f * (float)((h >> 16) & 255) / 255.0f;
-    rgb[2] = 0.25f + 0.75f * (float)((h >> 24) & 255) / 255.0f;
-}
-
-/* Makes an AOV displayable in an 8-bit file; returns a new 3-channel image. */
-static float *aov_to_display(const rt_framebuffer *fb, rt_aov aov) {
-    size_t n = (size_t)fb->width * fb->height;
-    float *rgb = malloc(3 * n * sizeof(float));
-    if (!rgb) return NULL;
-    float max = 0.0f;
-    if (aov == RT_AOV_DEPTH || aov == RT_AOV_BOX_TESTS || aov == RT_AOV_TRI_TESTS)
-        for (size_t i = 0; i < n; i++)
-            if (isfinite(fb->pixels[i]) && fb->pixels[i] > max) max = fb->pixels[i];
-    for (size_t i = 0; i < n; i++) {
-        float *o = rgb + 3 * i;
-        if (aov == RT_AOV_NORMAL) {
-            for (int c = 0; c < 3; c++) o[c] = 0.5f + 0.5f * fb->pixels[3 * i + c];
-        } else if (aov == RT_AOV_PRIMID || aov == RT_AOV_INSTID) {
-            false_colour(fb->pixels[i], o);
-        } else {
-            float v = fb->pixels[i];
-            float g = isfinite(v) && max > 0.0f ? v / max : (aov == RT_AOV_DEPTH ? 1.0f : 0.0f);
-            o[0] = o[1] = o[2] = g;
-        }
-    }
-    return rgb;
 }
 
 static void print_stats(const rt_render_stats *s, int width, int height) {
@@ -187,7 +128,7 @@ int cmd_render(int argc, char **argv) {
                 return 2;
         } else if (!strcmp(a, "--aov")) {
             if (!(v = cli_value(argc, argv, &i, "render"))) return 2;
-            if (!parse_aov(v, &opt.aov)) {
+            if (!cli_parse_aov(v, &opt.aov)) {
                 cli_error("render",
                           "unknown AOV '%s' (depth, primid, instid, normal, boxtests, "
                           "tritests)",
@@ -298,22 +239,7 @@ int cmd_render(int argc, char **argv) {
         free(ms);
     }
     if (st.notice) fprintf(stderr, "rtcl render: notice: %s\n", st.notice);
-    rt_image img = {fb.width, fb.height, fb.channels, fb.pixels};
-    float *display = NULL;
-    if (opt.aov != RT_AOV_NONE && !is_float_format(out_path)) {
-        display = aov_to_display(&fb, opt.aov);
-        if (!display) {
-            cli_error("render", "out of memory");
-            rt_framebuffer_free(&fb);
-            rt_scene_destroy(scene);
-            rt_renderer_destroy(renderer);
-            return 2;
-        }
-        img.channels = 3;
-        img.pixels = display;
-    }
-    status = rt_image_write(out_path, &img, &err);
-    free(display);
+    status = cli_frame_write(out_path, &fb, opt.aov, &err);
     rt_framebuffer_free(&fb);
     if (status != RT_OK) {
         cli_error("render", "%s", err.message);
