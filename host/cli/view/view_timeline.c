@@ -18,13 +18,25 @@ rt_status view_timeline_init(view_timeline *tl, const rt_scene *scene, double ra
         tl->base[o] = scene->objects[o].selected;
         if (scene->objects[o].mesh_count > 1) tl->animated = 1;
     }
+    if (rt_scene_is_animated(scene)) tl->animated = 1;
     return RT_OK;
 }
 
 rt_status view_timeline_apply(view_timeline *tl, rt_scene *scene, double t) {
-    /* Scene time: once rt_scene_set_time exists (branch 'dynamic'), call
-     * rt_scene_set_time(scene, t) here, before or instead of the keyframe
-     * stepping below, as that API defines keyframes over time. */
+    /* A scene with time (keyframe rates, morphing, transform keys:
+     * docs/SCENE_FORMAT.md) is put at time t by the library, exactly as
+     * 'rtcl render --time t' does. The camera stays the viewer's: the user
+     * flies, so a camera path is not followed here. */
+    if (rt_scene_is_animated(scene)) {
+        rt_camera cam;
+        rt_camera_get(scene, &cam);
+        rt_status st = rt_scene_set_time(scene, t);
+        rt_camera now;
+        rt_camera_get(scene, &now);
+        if (st == RT_OK && memcmp(&cam, &now, sizeof cam) != 0) st = rt_camera_set(scene, &cam);
+        return st;
+    }
+    /* Otherwise keyframe objects step at the viewer's rate (--keyframe-rate). */
     double step = floor(t * tl->rate);
     for (uint32_t o = 0; o < tl->objects && o < scene->object_count; o++) {
         uint32_t count = scene->objects[o].mesh_count;
