@@ -142,6 +142,57 @@ RT_SM_FN rt_u32 rt_sm_round_pack_(rt_u32 sign, rt_i32 e, rt_u32 sig, rt_u32 stic
 
 /* ---- division --------------------------------------------------------- */
 
+/* The slow, self-contained path: restoring division, one quotient bit per
+ * step. q = floor(ma 2^24 / mb) in [2^24, 2^25) for ma in [mb, 2 mb), and
+ * the remainder in *r. Invariant: r < mb < 2^24, so 2r < 2^25 fits. */
+RT_SM_FN rt_u32 rt_sm_div_serial_(rt_u32 ma, rt_u32 mb, rt_u32 *rem) {
+    rt_u32 r = ma - mb, q = 1u;
+    for (int i = 0; i < 24; i++) {
+        r <<= 1;
+        rt_u32 t = r - mb;
+        rt_u32 bit = (t >> 31) ^ 1u; /* r >= mb: no wrap-around (both < 2^25) */
+        q = (q << 1) | bit;
+        r = bit ? t : r;
+    }
+    *rem = r;
+    return q;
+}
+
+/* 1 / fb for fb in [1, 2), with |y fb - 1| < 2^-23.4 (tests check every fb):
+ * the linear minimax start 24/17 - 8/17 fb (relative error at most 1/17),
+ * then three Newton steps y += y (1 - fb y). Every intermediate lies in
+ * [2^-30, 2]: no subnormal, no overflow, so a device's denormal flushing
+ * cannot change it; 1 - fb y is exact (Sterbenz). */
+RT_SM_FN float rt_sm_recip_(float fb) {
+    float y = 1.41176471f - 0.470588235f * fb;
+    float e = 1.0f - fb * y;
+    y = y + y * e;
+    e = 1.0f - fb * y;
+    y = y + y * e;
+    e = 1.0f - fb * y;
+    y = y + y * e;
+    return y;
+}
+
+/* A positive float q in [2^-1, 2^1] as the integer q 2^24, and whether its
+ * exponent was outside that range (*bad, then the value is meaningless). */
+RT_SM_FN rt_u32 rt_sm_fix24_(float q, rt_u32 *bad) {
+    rt_u32 qb = RT_SM_BITS(q), sh = (qb >> 23) - 126u; /* 0, 1 or 2 */
+    *bad |= sh > 2u ? 1u : 0u;
+    return ((qb & RT_SM_FRAC) | 0x00800000u) << (sh & 3u);
+}
+
+/* The quotient's first guess: ma 2^24 / mb (ma doubled if dbl) to within
+ * 4.03 units, for ma, mb in [2^23, 2^24) with ma 2^dbl in [mb, 2 mb).
+ * The significands as floats fa = ma 2^(dbl - 23) in [1, 4) and fb in
+ * [1, 2) (integer bit manipulation, so no subnormal ever reaches the float
+ * unit); the quotient fa / fb in [1, 2) as fa * (1 / fb), rounded once. */
+RT_SM_FN rt_u32 rt_sm_div_guess_(rt_u32 ma, rt_u32 mb, rt_u32 dbl, rt_u32 *bad) {
+    float fa = RT_SM_FLOAT(((127u + dbl) << 23) | (ma & RT_SM_FRAC));
+    float fb = RT_SM_FLOAT(0x3f800000u | (mb & RT_SM_FRAC));
+    return rt_sm_fix24_(fa * rt_sm_recip_(fb), bad);
+}
+
 RT_SM_FN rt_u32 rt_sm_div_bits_(rt_u32 a, rt_u32 b, int ftz) {
     if (ftz) {
         a = rt_sm_daz_(a);
@@ -162,25 +213,66 @@ RT_SM_FN rt_u32 rt_sm_div_bits_(rt_u32 a, rt_u32 b, int ftz) {
     rt_sm_unpack_(ab, &mb, &eb);
     /* a / b = (ma / mb) 2^(ea - eb); with ma in [mb, 2 mb) the quotient's
      * biased exponent is ea - eb + 127. */
-    rt_i32 e = ea - eb + 127;
-    if (ma < mb) {
-        ma <<= 1;
-        e -= 1;
-    }
-    /* Restoring division: q = floor(ma 2^24 / mb) in [2^24, 2^25), r the
-     * remainder. Invariant: r < mb < 2^24, so 2r < 2^25 fits. */
-    rt_u32 r = ma - mb, q = 1u;
-    for (int i = 0; i < 24; i++) {
-        r <<= 1;
-        rt_u32 t = r - mb;
-        rt_u32 bit = (t >> 31) ^ 1u; /* r >= mb: no wrap-around (both < 2^25) */
-        q = (q << 1) | bit;
+    rt_u32 dbl = ma < mb ? 1u : 0u;
+    rt_i32 e = ea - eb + 127 - (rt_i32)dbl;
+    rt_u32 bad = 0u;
+    rt_u32 q = rt_sm_div_guess_(ma, mb, dbl, &bad) - 8u;
+    ma <<= dbl;
+    /* Q lies in [q, q + 16): then R' = ma 2^24 - q mb is in [0, 16 mb),
+     * below 2^28, and the 32-bit wrapped products give it exactly. Four
+     * restoring steps of 8, 4, 2 and 1 times mb bring it into [0, mb). */
+    rt_u32 r = (ma << 24) - q * mb;
+    bad |= r >= (mb << 4) ? 1u : 0u;
+    for (int k = 3; k >= 0; k--) {
+        rt_u32 t = r - (mb << k);
+        rt_u32 bit = (t >> 31) ^ 1u; /* r >= mb 2^k (r, t below 2^28) */
+        q += bit << k;
         r = bit ? t : r;
     }
+    /* Never taken (the bound is proven); a guard, not a path to rely on. */
+    if (bad) q = rt_sm_div_serial_(ma, mb, &r);
     return rt_sm_round_pack_(sign, e, q, r, ftz);
 }
 
 /* ---- square root ------------------------------------------------------- */
+
+/* The slow, self-contained path: digit by digit, root = floor(sqrt(t 2^24))
+ * for t in [2^24, 2^26), and the remainder in *rem. */
+RT_SM_FN rt_u32 rt_sm_sqrt_serial_(rt_u32 t, rt_u32 *rem_out) {
+    rt_u32 root = 0u, rem = 0u;
+    /* 13 bit pairs of t, then 12 zero pairs. After each step root =
+     * floor(sqrt(leading pairs)) and rem = leading pairs - root^2 <= 2 root,
+     * below 2^26. */
+    for (int i = 0; i < 25; i++) {
+        rt_u32 pair = i < 13 ? (t >> (24 - 2 * i)) & 3u : 0u;
+        rem = (rem << 2) | pair;
+        rt_u32 trial = (root << 2) | 1u;
+        root <<= 1;
+        rt_u32 d = rem - trial;
+        rt_u32 bit = (d >> 31) ^ 1u; /* rem < 2^28, trial < 2^27 */
+        root |= bit;
+        rem = bit ? d : rem;
+    }
+    *rem_out = rem;
+    return root;
+}
+
+/* The square root's first guess: sqrt(t 2^24) for t = m 2^(1 + odd), m in
+ * [2^23, 2^24), to within 1.7 units (tests check all 2^24 inputs). fx = t
+ * 2^-24 in [1, 4) as a float; y ~ 1 / sqrt(fx) from the integer estimate
+ * and two Newton steps y *= 1.5 - (fx / 2) y y; s = fx y, then one Newton
+ * step on s: s += (y / 2) (fx - s s). Every intermediate is a normal float
+ * of magnitude in [2^-30, 4]. */
+RT_SM_FN rt_u32 rt_sm_sqrt_guess_(rt_u32 m, rt_u32 odd, rt_u32 *bad) {
+    float fx = RT_SM_FLOAT(((127u + odd) << 23) | (m & RT_SM_FRAC));
+    float hx = 0.5f * fx;
+    float y = RT_SM_FLOAT(0x5f3759dfu - (RT_SM_BITS(fx) >> 1));
+    y = y * (1.5f - hx * y * y);
+    y = y * (1.5f - hx * y * y);
+    float s = fx * y;
+    s = s + (0.5f * y) * (fx - s * s);
+    return rt_sm_fix24_(s, bad);
+}
 
 RT_SM_FN rt_u32 rt_sm_sqrt_bits_(rt_u32 x, int ftz) {
     if (ftz) x = rt_sm_daz_(x);
@@ -195,23 +287,25 @@ RT_SM_FN rt_u32 rt_sm_sqrt_bits_(rt_u32 x, int ftz) {
     /* x = m 2^(E - 23), E = e - 127 unbiased. Shift m left by k = 25 (E
      * even) or 26 (E odd): M = m 2^k in [2^48, 2^50) and E - 23 - k is even,
      * so sqrt(x) = sqrt(M) 2^((E - 23 - k) / 2) with sqrt(M) in [2^24, 2^25).
-     * M = t 2^24 with t = m 2^(k - 24) below 2^26: 13 bit pairs of t, then
-     * 12 zero pairs. */
+     * M = t 2^24 with t = m 2^(k - 24) below 2^26. */
     rt_u32 odd = (rt_u32)(e + 1) & 1u; /* E = e - 127 is odd when e is even */
     rt_u32 t = m << (1u + odd);
-    rt_u32 root = 0u, rem = 0u;
-    /* Digit by digit: after each step root = floor(sqrt(M's leading pairs))
-     * and rem = leading pairs - root^2 <= 2 root, below 2^26. */
-    for (int i = 0; i < 25; i++) {
-        rt_u32 pair = i < 13 ? (t >> (24 - 2 * i)) & 3u : 0u;
-        rem = (rem << 2) | pair;
-        rt_u32 trial = (root << 2) | 1u;
-        root <<= 1;
-        rt_u32 d = rem - trial;
-        rt_u32 bit = (d >> 31) ^ 1u; /* rem < 2^28, trial < 2^27 */
-        root |= bit;
+    rt_u32 bad = 0u;
+    rt_u32 root = rt_sm_sqrt_guess_(m, odd, &bad) - 4u;
+    /* The root lies in [r0, r0 + 8) for r0 the guess less 4: then M - r0^2
+     * is in [0, 16 r0 + 64), below 2^30, and the 32-bit wrapped products
+     * give it exactly (M = t 2^24). Steps of 4, 2, 1: (r + j)^2 - r^2 =
+     * 2 j r + j^2. */
+    rt_u32 rem = (t << 24) - root * root;
+    bad |= rem >= (root << 4) + 64u ? 1u : 0u;
+    for (int k = 2; k >= 0; k--) {
+        rt_u32 d = rem - ((root << (k + 1u)) + (1u << (2u * k)));
+        rt_u32 bit = (d >> 31) ^ 1u; /* rem, d below 2^30 */
+        root += bit << k;
         rem = bit ? d : rem;
     }
+    /* Never taken (every fx is checked); a guard, not a path to rely on. */
+    if (bad) root = rt_sm_sqrt_serial_(t, &rem);
     /* Result exponent floor(E / 2), biased: floor((e - 127) / 2) + 127 =
      * floor((e + 149) / 2) - 11, with e + 149 > 0 (e >= -22). */
     rt_i32 er = (rt_i32)((rt_u32)(e + 149) >> 1) - 11;
