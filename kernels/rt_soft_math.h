@@ -41,6 +41,9 @@
 #include "rt_layout.h"
 
 #ifdef RT_OPENCL
+/* The float steps assume each + - * is rounded on its own (OpenCL C lets the
+ * compiler fuse a * b + c unless told not to). The kernels set this too. */
+#pragma OPENCL FP_CONTRACT OFF
 #define RT_SM_FN
 #define RT_SM_BITS(f)  as_uint(f)
 #define RT_SM_FLOAT(u) as_float(u)
