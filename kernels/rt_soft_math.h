@@ -196,6 +196,30 @@ RT_SM_FN rt_u32 rt_sm_div_guess_(rt_u32 ma, rt_u32 mb, rt_u32 dbl, rt_u32 *bad) 
     return rt_sm_fix24_(fa * rt_sm_recip_(fb), bad);
 }
 
+/* Q = floor(ma 2^(24 + dbl) / mb) in [2^24, 2^25) and the remainder in *rem,
+ * for ma, mb in [2^23, 2^24) with ma 2^dbl in [mb, 2 mb): the guess, the
+ * exact remainder, then restoring steps (docs/PORTABLE_MATH.md). */
+RT_SM_FN rt_u32 rt_sm_div_sig_(rt_u32 ma, rt_u32 mb, rt_u32 dbl, rt_u32 *rem) {
+    rt_u32 bad = 0u;
+    rt_u32 q = rt_sm_div_guess_(ma, mb, dbl, &bad) - 8u;
+    ma <<= dbl;
+    /* Q lies in [q, q + 16): then R' = ma 2^24 - q mb is in [0, 16 mb),
+     * below 2^28, and the 32-bit wrapped products give it exactly. Four
+     * restoring steps of 8, 4, 2 and 1 times mb bring it into [0, mb). */
+    rt_u32 r = (ma << 24) - q * mb;
+    bad |= r >= (mb << 4) ? 1u : 0u;
+    for (int k = 3; k >= 0; k--) {
+        rt_u32 t = r - (mb << k);
+        rt_u32 bit = (t >> 31) ^ 1u; /* r >= mb 2^k (r, t below 2^28) */
+        q += bit << k;
+        r = bit ? t : r;
+    }
+    /* Never taken (the bound is proven); a guard, not a path to rely on. */
+    if (bad) q = rt_sm_div_serial_(ma, mb, &r);
+    *rem = r;
+    return q;
+}
+
 RT_SM_FN rt_u32 rt_sm_div_bits_(rt_u32 a, rt_u32 b, int ftz) {
     if (ftz) {
         a = rt_sm_daz_(a);
@@ -218,22 +242,7 @@ RT_SM_FN rt_u32 rt_sm_div_bits_(rt_u32 a, rt_u32 b, int ftz) {
      * biased exponent is ea - eb + 127. */
     rt_u32 dbl = ma < mb ? 1u : 0u;
     rt_i32 e = ea - eb + 127 - (rt_i32)dbl;
-    rt_u32 bad = 0u;
-    rt_u32 q = rt_sm_div_guess_(ma, mb, dbl, &bad) - 8u;
-    ma <<= dbl;
-    /* Q lies in [q, q + 16): then R' = ma 2^24 - q mb is in [0, 16 mb),
-     * below 2^28, and the 32-bit wrapped products give it exactly. Four
-     * restoring steps of 8, 4, 2 and 1 times mb bring it into [0, mb). */
-    rt_u32 r = (ma << 24) - q * mb;
-    bad |= r >= (mb << 4) ? 1u : 0u;
-    for (int k = 3; k >= 0; k--) {
-        rt_u32 t = r - (mb << k);
-        rt_u32 bit = (t >> 31) ^ 1u; /* r >= mb 2^k (r, t below 2^28) */
-        q += bit << k;
-        r = bit ? t : r;
-    }
-    /* Never taken (the bound is proven); a guard, not a path to rely on. */
-    if (bad) q = rt_sm_div_serial_(ma, mb, &r);
+    rt_u32 r, q = rt_sm_div_sig_(ma, mb, dbl, &r);
     return rt_sm_round_pack_(sign, e, q, r, ftz);
 }
 
@@ -277,21 +286,10 @@ RT_SM_FN rt_u32 rt_sm_sqrt_guess_(rt_u32 m, rt_u32 odd, rt_u32 *bad) {
     return rt_sm_fix24_(s, bad);
 }
 
-RT_SM_FN rt_u32 rt_sm_sqrt_bits_(rt_u32 x, int ftz) {
-    if (ftz) x = rt_sm_daz_(x);
-    if (rt_sm_is_nan_(x)) return x | RT_SM_QUIET;
-    if ((x & ~RT_SM_SIGN) == 0u) return x; /* sqrt(+-0) = +-0 */
-    if (x & RT_SM_SIGN) return RT_SM_QNAN;
-    if (x == RT_SM_INF) return x;
-
-    rt_u32 m;
-    rt_i32 e;
-    rt_sm_unpack_(x, &m, &e);
-    /* x = m 2^(E - 23), E = e - 127 unbiased. Shift m left by k = 25 (E
-     * even) or 26 (E odd): M = m 2^k in [2^48, 2^50) and E - 23 - k is even,
-     * so sqrt(x) = sqrt(M) 2^((E - 23 - k) / 2) with sqrt(M) in [2^24, 2^25).
-     * M = t 2^24 with t = m 2^(k - 24) below 2^26. */
-    rt_u32 odd = (rt_u32)(e + 1) & 1u; /* E = e - 127 is odd when e is even */
+/* root = floor(sqrt(t 2^24)) in [2^24, 2^25) for t = m 2^(1 + odd), m in
+ * [2^23, 2^24), and the remainder t 2^24 - root^2 in *rem_out: the guess,
+ * the exact remainder, then restoring steps (docs/PORTABLE_MATH.md). */
+RT_SM_FN rt_u32 rt_sm_sqrt_sig_(rt_u32 m, rt_u32 odd, rt_u32 *rem_out) {
     rt_u32 t = m << (1u + odd);
     rt_u32 bad = 0u;
     rt_u32 root = rt_sm_sqrt_guess_(m, odd, &bad) - 4u;
@@ -309,6 +307,26 @@ RT_SM_FN rt_u32 rt_sm_sqrt_bits_(rt_u32 x, int ftz) {
     }
     /* Never taken (every fx is checked); a guard, not a path to rely on. */
     if (bad) root = rt_sm_sqrt_serial_(t, &rem);
+    *rem_out = rem;
+    return root;
+}
+
+RT_SM_FN rt_u32 rt_sm_sqrt_bits_(rt_u32 x, int ftz) {
+    if (ftz) x = rt_sm_daz_(x);
+    if (rt_sm_is_nan_(x)) return x | RT_SM_QUIET;
+    if ((x & ~RT_SM_SIGN) == 0u) return x; /* sqrt(+-0) = +-0 */
+    if (x & RT_SM_SIGN) return RT_SM_QNAN;
+    if (x == RT_SM_INF) return x;
+
+    rt_u32 m;
+    rt_i32 e;
+    rt_sm_unpack_(x, &m, &e);
+    /* x = m 2^(E - 23), E = e - 127 unbiased. Shift m left by k = 25 (E
+     * even) or 26 (E odd): M = m 2^k in [2^48, 2^50) and E - 23 - k is even,
+     * so sqrt(x) = sqrt(M) 2^((E - 23 - k) / 2) with sqrt(M) in [2^24, 2^25).
+     * M = t 2^24 with t = m 2^(k - 24) below 2^26. */
+    rt_u32 odd = (rt_u32)(e + 1) & 1u; /* E = e - 127 is odd when e is even */
+    rt_u32 rem, root = rt_sm_sqrt_sig_(m, odd, &rem);
     /* Result exponent floor(E / 2), biased: floor((e - 127) / 2) + 127 =
      * floor((e + 149) / 2) - 11, with e + 149 > 0 (e >= -22). */
     rt_i32 er = (rt_i32)((rt_u32)(e + 149) >> 1) - 11;
