@@ -1,17 +1,21 @@
 /* rt_soft_math.h - IEEE 754 binary32 division, square root and difference of
- * products, correctly rounded (round to nearest, ties to even), computed with
- * 32-bit integer arithmetic only.
+ * products, correctly rounded (round to nearest, ties to even), from exact
+ * 32-bit integer arithmetic and correctly rounded float + - *.
  *
- * Valid C99 and valid OpenCL C (1.2 and later, embedded profile included).
- * For devices without fp64 and without a correctly rounded divide or sqrt
- * (OpenCL allows 2.5 ulp division and 3 ulp sqrt, Vulkan 2.5 ulp division):
- * the functions need nothing but exact 32-bit integer arithmetic (unsigned
- * add, subtract, shifts, bitwise operations, compare; 12 x 12-bit products in
- * 32-bit ints). They use no float arithmetic at all, so FP contraction, the
- * device's denormal handling and its rounding of float operations cannot
- * change a result; no double, no 64-bit integers, no division of any kind.
- * docs/PORTABLE_MATH.md has the algorithms and why each result is the
- * correctly rounded one.
+ * Valid C99 and valid OpenCL C (1.2 and later). For devices without fp64
+ * and without a correctly rounded divide or sqrt (OpenCL allows 2.5 ulp
+ * division and 3 ulp sqrt, Vulkan 2.5 ulp division). What the functions use:
+ * 32-bit unsigned add, subtract, multiply (the low 32 bits, wrapping),
+ * shifts, bitwise operations, compare; and, in division and sqrt only, float
+ * add, subtract and multiply on operands scaled to [1, 4), so that no
+ * intermediate is ever subnormal or overflows (the device's denormal mode
+ * cannot change it). The float steps only guess the significand; the exact
+ * integer remainder then fixes it, and the result is correctly rounded for
+ * every input (the guesses' error bounds are checked for every divisor and
+ * every sqrt operand by tests/test_core_soft_math.c). No double, no 64-bit
+ * integers, no division, no sqrt or fma; FP contraction off (set below for
+ * OpenCL; C builds use -ffp-contract=off). docs/PORTABLE_MATH.md has the
+ * algorithms and why each result is the correctly rounded one.
  *
  * API (each also as a _bits function on the raw binary32 bit patterns):
  *   rt_soft_div(a, b)                    a / b
