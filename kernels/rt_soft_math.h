@@ -84,6 +84,12 @@ static inline rt_u32 rt_sm_clz_(rt_u32 x) {
 #endif
 #endif
 
+/* Called where a fast path's guard sends an operand to the bit-serial path;
+ * the test counts them (there must be none). */
+#ifndef RT_SM_GUARD_HOOK
+#define RT_SM_GUARD_HOOK() ((void)0)
+#endif
+
 #define RT_SM_SIGN  0x80000000u
 #define RT_SM_INF   0x7f800000u
 #define RT_SM_QNAN  0x7fc00000u /* the default NaN */
@@ -194,7 +200,7 @@ RT_SM_FN rt_u32 rt_sm_fix24_(float q, rt_u32 *bad) {
 }
 
 /* The quotient's first guess: ma 2^24 / mb (ma doubled if dbl) to within
- * 4.03 units, for ma, mb in [2^23, 2^24) with ma 2^dbl in [mb, 2 mb).
+ * less than 4 units, for ma, mb in [2^23, 2^24) with ma 2^dbl in [mb, 2 mb).
  * The significands as floats fa = ma 2^(dbl - 23) in [1, 4) and fb in
  * [1, 2) (integer bit manipulation, so no subnormal ever reaches the float
  * unit); the quotient fa / fb in [1, 2) as fa * (1 / fb), rounded once. */
@@ -209,21 +215,25 @@ RT_SM_FN rt_u32 rt_sm_div_guess_(rt_u32 ma, rt_u32 mb, rt_u32 dbl, rt_u32 *bad) 
  * exact remainder, then restoring steps (docs/PORTABLE_MATH.md). */
 RT_SM_FN rt_u32 rt_sm_div_sig_(rt_u32 ma, rt_u32 mb, rt_u32 dbl, rt_u32 *rem) {
     rt_u32 bad = 0u;
-    rt_u32 q = rt_sm_div_guess_(ma, mb, dbl, &bad) - 8u;
+    rt_u32 q = rt_sm_div_guess_(ma, mb, dbl, &bad) - 4u;
     ma <<= dbl;
-    /* Q lies in [q, q + 16): then R' = ma 2^24 - q mb is in [0, 16 mb),
-     * below 2^28, and the 32-bit wrapped products give it exactly. Four
-     * restoring steps of 8, 4, 2 and 1 times mb bring it into [0, mb). */
+    /* Q lies in [q, q + 8) (the guess G is within 4 units: Q in [G - 4,
+     * G + 3]): then R' = ma 2^24 - q mb is in [0, 8 mb), below 2^27, and the
+     * 32-bit wrapped products give it exactly. Three restoring steps of 4,
+     * 2 and 1 times mb bring it into [0, mb). */
     rt_u32 r = (ma << 24) - q * mb;
-    bad |= r >= (mb << 4) ? 1u : 0u;
-    for (int k = 3; k >= 0; k--) {
+    bad |= r >= (mb << 3) ? 1u : 0u;
+    for (int k = 2; k >= 0; k--) {
         rt_u32 t = r - (mb << k);
-        rt_u32 bit = (t >> 31) ^ 1u; /* r >= mb 2^k (r, t below 2^28) */
+        rt_u32 bit = (t >> 31) ^ 1u; /* r >= mb 2^k (r, t below 2^27) */
         q += bit << k;
         r = bit ? t : r;
     }
     /* Never taken (the bound is proven); a guard, not a path to rely on. */
-    if (bad) q = rt_sm_div_serial_(ma, mb, &r);
+    if (bad) {
+        RT_SM_GUARD_HOOK();
+        q = rt_sm_div_serial_(ma, mb, &r);
+    }
     *rem = r;
     return q;
 }
@@ -300,21 +310,24 @@ RT_SM_FN rt_u32 rt_sm_sqrt_guess_(rt_u32 m, rt_u32 odd, rt_u32 *bad) {
 RT_SM_FN rt_u32 rt_sm_sqrt_sig_(rt_u32 m, rt_u32 odd, rt_u32 *rem_out) {
     rt_u32 t = m << (1u + odd);
     rt_u32 bad = 0u;
-    rt_u32 root = rt_sm_sqrt_guess_(m, odd, &bad) - 4u;
-    /* The root lies in [r0, r0 + 8) for r0 the guess less 4: then M - r0^2
-     * is in [0, 16 r0 + 64), below 2^30, and the 32-bit wrapped products
-     * give it exactly (M = t 2^24). Steps of 4, 2, 1: (r + j)^2 - r^2 =
-     * 2 j r + j^2. */
+    rt_u32 root = rt_sm_sqrt_guess_(m, odd, &bad) - 2u;
+    /* The guess G is within 1.7 units of sqrt(M), so the root is in [G - 2,
+     * G + 1], in [r0, r0 + 4) for r0 = G - 2: then M - r0^2 is in [0, 8 r0 +
+     * 16), below 2^29, and the 32-bit wrapped products give it exactly (M =
+     * t 2^24). Steps of 2 and 1: (r + j)^2 - r^2 = 2 j r + j^2. */
     rt_u32 rem = (t << 24) - root * root;
-    bad |= rem >= (root << 4) + 64u ? 1u : 0u;
-    for (int k = 2; k >= 0; k--) {
+    bad |= rem >= (root << 3) + 16u ? 1u : 0u;
+    for (int k = 1; k >= 0; k--) {
         rt_u32 d = rem - ((root << (k + 1u)) + (1u << (2u * k)));
-        rt_u32 bit = (d >> 31) ^ 1u; /* rem, d below 2^30 */
+        rt_u32 bit = (d >> 31) ^ 1u; /* rem, d below 2^29 */
         root += bit << k;
         rem = bit ? d : rem;
     }
     /* Never taken (every fx is checked); a guard, not a path to rely on. */
-    if (bad) root = rt_sm_sqrt_serial_(t, &rem);
+    if (bad) {
+        RT_SM_GUARD_HOOK();
+        root = rt_sm_sqrt_serial_(t, &rem);
+    }
     *rem_out = rem;
     return root;
 }
