@@ -334,6 +334,34 @@ typedef struct rt_trace_options {
 rt_status rt_trace_rays(rt_renderer *renderer, rt_scene *scene, const rt_ray *rays, size_t count,
                         rt_hit *hits, const rt_trace_options *options);
 
+/* ---- acceleration structure per mesh ------------------------------------ */
+
+/* The structure a renderer builds for a mesh: a BVH (the default), or an SAH
+ * kd-tree built exactly (Wald and Havran 2006) or by binning. Every choice
+ * gives identical hits and images; it changes build time, memory and
+ * tracing speed. Meant for static meshes: a kd-tree is rebuilt whole when its
+ * mesh changes. */
+typedef enum rt_accel {
+    RT_ACCEL_BVH = 0,
+    RT_ACCEL_KD = 1,       /* exact SAH kd-tree */
+    RT_ACCEL_KD_BINNED = 2 /* binned SAH kd-tree */
+} rt_accel;
+
+/* Sets mesh_id's structure (the next frame builds it). */
+rt_status rt_mesh_set_accel(rt_scene *scene, uint32_t mesh_id, rt_accel accel);
+
+/* Sets the structure of every static mesh: every mesh that is no keyframe
+ * of an object with several (deforming meshes keep theirs, a BVH unless
+ * set). */
+rt_status rt_scene_set_static_accel(rt_scene *scene, rt_accel accel);
+
+/* mesh_id's structure, RT_ACCEL_BVH for a mesh that does not exist. */
+rt_accel rt_mesh_accel(const rt_scene *scene, uint32_t mesh_id);
+
+/* "bvh", "kd", "kd-binned"; rt_accel_parse gives 0 for an unknown name. */
+const char *rt_accel_name(rt_accel accel);
+int rt_accel_parse(const char *name, rt_accel *accel);
+
 #ifdef __cplusplus
 }
 #endif

@@ -41,6 +41,8 @@ typedef struct cli_renderer_args {
     rt_renderer_options opt;
     const char *backend; /* --backend [cpu] */
     const char *device;  /* --device, or NULL */
+    int accel_set;       /* --accel given: */
+    rt_accel accel;      /* the structure of every static mesh */
     char spec[256];      /* backend[:device], made by cli_renderer_create */
 } cli_renderer_args;
 
@@ -56,5 +58,9 @@ int cli_renderer_arg(int argc, char **argv, int *i, const char *command, cli_ren
 /* Creates the renderer the options ask for; prints the error and returns
  * NULL when it cannot. */
 rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a);
+
+/* Applies --accel (if given) to the scene's static meshes; prints the error
+ * and returns 0 on failure. */
+int cli_apply_accel(const char *command, const cli_renderer_args *a, rt_scene *scene);
 
 #endif /* RTCL_CLI_UTIL_H */

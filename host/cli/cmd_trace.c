@@ -15,7 +15,7 @@
 static const char usage_head[] =
     "usage: rtcl trace SCENE --rays RAYS.txt --out HITS.txt [--backend B] [--device D]\n"
     "                  [--tri-test T] [--any-hit] [--offset-origins] [--threads N]\n"
-    "                  [--cl-options OPTS] [--packet-isa I] [--help]\n"
+    "                  [--accel A] [--cl-options OPTS] [--packet-isa I] [--help]\n"
     "\n"
     "Traces the rays of RAYS.txt through SCENE (a .json scene, a bare .obj, or\n"
     "builtin:NAME) and writes one line per ray to HITS.txt.\n"
@@ -187,6 +187,12 @@ int cmd_trace(int argc, char **argv) {
     rt_error err;
     if (cli_load_scene(scene_path, &scene, &err) != RT_OK) {
         cli_error("trace", "%s", err.message);
+        free(rays);
+        rt_renderer_destroy(renderer);
+        return 2;
+    }
+    if (!cli_apply_accel("trace", &ra, scene)) {
+        rt_scene_destroy(scene);
         free(rays);
         rt_renderer_destroy(renderer);
         return 2;

@@ -6,6 +6,7 @@
 #include <stdint.h>
 
 #include "accel/bvh.h"
+#include "accel/kd.h"
 #include "layout/flat.h"
 #include "scene/scene.h"
 
@@ -24,5 +25,13 @@ rt_flat_options rt_flat_options_default(void);
  * be NULL when the scene has one object with the identity transform. */
 rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bvh *top,
                      const rt_flat_options *options, rt_flat *out, rt_error *err);
+
+/* As rt_flatten, with a choice of structure per mesh: where mesh_kds is not
+ * NULL and mesh_kds[m] has nodes, mesh m goes into the layout as that
+ * kd-tree (RT_INST_KD; its leaves' entries in 'tris', a triangle once per
+ * leaf) and mesh_bvhs[m] is not read. */
+rt_status rt_flatten_accel(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_kd *mesh_kds,
+                           const rt_bvh *top, const rt_flat_options *options, rt_flat *out,
+                           rt_error *err);
 
 #endif /* RT_FLATTEN_H */

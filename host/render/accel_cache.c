@@ -12,8 +12,12 @@
 #include "layout/flatten.h"
 
 void rt_accel_cache_clear(rt_accel_cache *c) {
-    for (uint32_t i = 0; i < c->mesh_count; i++) rt_bvh_free(&c->bvhs[i]);
+    for (uint32_t i = 0; i < c->mesh_count; i++) {
+        rt_bvh_free(&c->bvhs[i]);
+        rt_kd_free(&c->kds[i]);
+    }
     free(c->bvhs);
+    free(c->kds);
     free(c->built_version);
     free(c->built);
     free(c->sah);
@@ -33,6 +37,9 @@ static int grow(rt_accel_cache *c, uint32_t meshes) {
     rt_bvh *b = realloc(c->bvhs, sizeof(rt_bvh) * meshes);
     if (!b) return 0;
     c->bvhs = b;
+    rt_kd *k = realloc(c->kds, sizeof(rt_kd) * meshes);
+    if (!k) return 0;
+    c->kds = k;
     uint32_t *v = realloc(c->built_version, sizeof(uint32_t) * meshes);
     if (!v) return 0;
     c->built_version = v;
@@ -44,6 +51,7 @@ static int grow(rt_accel_cache *c, uint32_t meshes) {
     c->sah = h;
     for (uint32_t i = c->mesh_count; i < meshes; i++) {
         memset(&c->bvhs[i], 0, sizeof(rt_bvh));
+        memset(&c->kds[i], 0, sizeof(rt_kd));
         c->built[i] = 0;
         c->sah[i] = 0.0;
     }
@@ -56,8 +64,32 @@ static rt_status build_mesh(rt_accel_cache *c, const rt_scene *scene, uint32_t m
     const rt_mesh_data *md = &scene->meshes[m];
     if (c->built[m] && c->built_version[m] == md->version) return RT_OK;
     rt_bvh_free(&c->bvhs[m]);
+    rt_kd_free(&c->kds[m]);
     c->built[m] = 0;
-    if (md->triangle_count) {
+    if (md->accel == RT_ACCEL_KD || md->accel == RT_ACCEL_KD_BINNED) {
+        rt_kd_options ko = rt_kd_options_default();
+        ko.builder = md->accel == RT_ACCEL_KD ? RT_KD_EXACT : RT_KD_BINNED;
+        rt_error why;
+        rt_error_clear(&why);
+        rt_status st = rt_kd_build(md->positions, md->vertex_count, md->indices, md->triangle_count,
+                                   &ko, pool, &c->kds[m], &why);
+        if (st != RT_OK) return rt_fail(err, st, "kd-tree of mesh '%s': %s", md->name, why.message);
+        /* The object BVH takes each mesh's box from its BVH's root: a kd
+         * mesh gets a BVH of that one node (no entries, never traversed:
+         * the layout holds the kd-tree). A tree with no triangle of any
+         * area has no box, and the object BVH then leaves the object out,
+         * as nothing can hit it. */
+        const rt_aabb *bb = &c->kds[m].bounds;
+        if (bb->bmin[0] <= bb->bmax[0]) {
+            rt_bvh *b = &c->bvhs[m];
+            b->nodes = calloc(1, sizeof(rt_node));
+            if (!b->nodes) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+            memcpy(b->nodes[0].bmin, bb->bmin, sizeof bb->bmin);
+            memcpy(b->nodes[0].bmax, bb->bmax, sizeof bb->bmax);
+            b->nodes[0].b = RT_NODE_LEAF_FLAG;
+            b->node_count = 1;
+        }
+    } else if (md->triangle_count) {
         rt_aabb *boxes = malloc(sizeof(rt_aabb) * md->triangle_count);
         if (!boxes) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
         rt_mesh_tri_boxes(md, boxes);
@@ -71,7 +103,9 @@ static rt_status build_mesh(rt_accel_cache *c, const rt_scene *scene, uint32_t m
     c->built[m] = 1;
     c->built_version[m] = md->version;
     /* Measured once per build, not per frame: it walks the whole tree. */
-    c->sah[m] = md->triangle_count ? rt_bvh_measure(&c->bvhs[m], 1.0f, 2.0f).sah : 0.0;
+    c->sah[m] = c->kds[m].node_count ? rt_kd_measure(&c->kds[m], 1.0f, 2.0f).sah
+                : md->triangle_count ? rt_bvh_measure(&c->bvhs[m], 1.0f, 2.0f).sah
+                                     : 0.0;
     c->mesh_generation++;
     return RT_OK;
 }
@@ -114,7 +148,7 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
         }
         rt_flat_free(&c->flat);
         c->flat_valid = 0;
-        rt_status st = rt_flatten(scene, c->bvhs, &c->top, NULL, &c->flat, &why);
+        rt_status st = rt_flatten_accel(scene, c->bvhs, c->kds, &c->top, NULL, &c->flat, &why);
         if (st != RT_OK) return rt_fail(err, st, "%s", why.message);
         c->flat_valid = 1;
         c->flat_scene_version = scene->version;

@@ -12,6 +12,7 @@
 #include <stdint.h>
 
 #include "accel/bvh.h"
+#include "accel/kd.h"
 #include "base/thread_pool.h"
 #include "layout/flat.h"
 #include "scene/scene.h"
@@ -19,7 +20,8 @@
 typedef struct rt_accel_cache {
     uint64_t scene_uid; /* the scene these structures belong to (0: none) */
     uint32_t mesh_count;
-    rt_bvh *bvhs;            /* per mesh */
+    rt_bvh *bvhs;            /* per mesh (empty where the mesh has a kd-tree) */
+    rt_kd *kds;              /* per mesh (empty where the mesh has a BVH) */
     uint32_t *built_version; /* the mesh version its BVH was built from */
     uint8_t *built;
     double *sah; /* per mesh: its BVH's SAH cost, measured once per build */
@@ -32,7 +34,8 @@ typedef struct rt_accel_cache {
 } rt_accel_cache;
 
 /* Brings the cache up to date with scene (whose queued transforms must be
- * applied): rebuilds the BVHs of meshes that changed, the object BVH and the
+ * applied): rebuilds the structures (BVH or kd-tree, as each mesh's accel
+ * says) of meshes that changed, the object BVH and the
  * layout when the scene changed. A scene other than the cached one starts
  * afresh. *build_ms gets the time spent, *sah_cost the triangle-weighted mean
  * SAH cost of the shown meshes' BVHs. */

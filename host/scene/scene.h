@@ -26,6 +26,7 @@ typedef struct rt_mesh_data {
     /* Bumped by every change of the mesh's geometry, so that a renderer
      * knows when its BVH is stale. */
     uint32_t version;
+    uint32_t accel; /* rt_accel: the structure a renderer builds for it */
 } rt_mesh_data;
 
 typedef struct rt_object_data {
