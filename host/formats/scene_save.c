@@ -88,8 +88,10 @@ rt_status rt_scene_save_json(const rt_scene *s, const char *dir, const char *nam
     }
     fprintf(f, "  ],\n  \"meshes\": {\n");
     for (uint32_t i = 0; i < s->mesh_count; i++)
-        fprintf(f, "    \"%s\": {\"file\": \"%s_%s.obj\"}%s\n", s->meshes[i].name, name,
-                s->meshes[i].name, i + 1 < s->mesh_count ? "," : "");
+        fprintf(f, "    \"%s\": {\"file\": \"%s_%s.obj\"%s%s%s}%s\n", s->meshes[i].name, name,
+                s->meshes[i].name, s->meshes[i].accel ? ", \"accel\": \"" : "",
+                s->meshes[i].accel ? rt_accel_name((rt_accel)s->meshes[i].accel) : "",
+                s->meshes[i].accel ? "\"" : "", i + 1 < s->mesh_count ? "," : "");
     fprintf(f, "  },\n  \"objects\": [\n");
     for (uint32_t i = 0; i < s->object_count; i++) {
         const rt_object_data *o = &s->objects[i];
