@@ -7,25 +7,34 @@
 #include "scene/scene.h"
 
 static const char usage[] =
-    "usage: rtcl info SCENE [--cl-options OPTS] [--help]\n"
+    "usage: rtcl info SCENE [--accel A] [--cl-options OPTS] [--help]\n"
     "\n"
     "Prints the triangles, meshes, objects, materials and lights of SCENE (a .json\n"
     "scene, a bare .obj, or builtin:NAME), its camera, and the features it uses:\n"
     "backends specialise to these (no secondary rays without reflective or\n"
     "refractive materials, no instance transforms for one identity object, no\n"
     "normal interpolation without normals), and whether the OpenCL kernels are\n"
-    "the exact build.\n"
+    "the exact build. Each mesh's line ends with the structure a renderer builds\n"
+    "for it (bvh, kd or kd-binned).\n"
     "\n"
+    "  --accel A          as for rtcl render: bvh, kd or kd-binned for every static\n"
+    "                     mesh; info then shows that choice\n"
     "  --cl-options OPTS  the extra OpenCL compiler options rtcl render would be\n"
     "                     given (the speed-versus-error study): info then says the\n"
     "                     kernels are not the exact build\n";
 
 int cmd_info(int argc, char **argv) {
     const char *path = NULL, *cl_options = NULL;
+    cli_renderer_args ra;
+    cli_renderer_args_init(&ra);
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             fputs(usage, stdout);
             return 0;
+        }
+        if (!strcmp(argv[i], "--accel")) {
+            if (cli_renderer_arg(argc, argv, &i, "info", &ra) < 0) return 2;
+            continue;
         }
         if (!strcmp(argv[i], "--cl-options")) {
             if (!(cl_options = cli_value(argc, argv, &i, "info"))) return 2;
@@ -47,6 +56,10 @@ int cmd_info(int argc, char **argv) {
         cli_error("info", "%s", err.message);
         return 2;
     }
+    if (!cli_apply_accel("info", &ra, s)) {
+        rt_scene_destroy(s);
+        return 2;
+    }
     uint64_t all_tris = 0;
     for (uint32_t i = 0; i < s->mesh_count; i++) all_tris += s->meshes[i].triangle_count;
     printf("scene        %s\n", path);
@@ -54,9 +67,9 @@ int cmd_info(int argc, char **argv) {
            (unsigned long long)rt_scene_triangle_count(s), (unsigned long long)all_tris);
     printf("meshes       %u\n", s->mesh_count);
     for (uint32_t i = 0; i < s->mesh_count; i++)
-        printf("  %-24s %u triangles, %u vertices%s\n", s->meshes[i].name,
+        printf("  %-24s %u triangles, %u vertices%s, %s\n", s->meshes[i].name,
                s->meshes[i].triangle_count, s->meshes[i].vertex_count,
-               s->meshes[i].normals ? ", normals" : "");
+               s->meshes[i].normals ? ", normals" : "", rt_accel_name(rt_mesh_accel(s, i)));
     printf("objects      %u\n", s->object_count);
     printf("materials    %u\n", s->material_count);
     printf("lights       %u\n", s->light_count);
