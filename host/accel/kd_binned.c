@@ -27,9 +27,9 @@ static void binned_find(const kd_ctx *c, const kd_node_in *in, kd_split *best) {
     const kd_item *it = in->data;
     uint32_t n = in->tris;
     int bins = c->opt.bins;
-    double av = kd_area(&in->cell);
+    kd_cell cell;
     best->cost = INFINITY;
-    if (!(av > 0.0)) return;
+    if (!kd_cell_init(&cell, &in->cell)) return;
     for (int k = 0; k < 3; k++) {
         float lo = in->cell.bmin[k], hi = in->cell.bmax[k];
         if (!(hi > lo)) continue;
@@ -49,7 +49,7 @@ static void binned_find(const kd_ctx *c, const kd_node_in *in, kd_split *best) {
             right -= end[j - 1];
             float pos = (float)((double)lo + ((double)hi - (double)lo) * j / bins);
             if (!(pos > lo && pos < hi)) continue;
-            kd_offer(c, &in->cell, av, k, pos, left, right, 0, n, best);
+            kd_offer(c, &cell, k, pos, left, right, 0, n, best);
         }
     }
 }

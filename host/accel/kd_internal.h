@@ -64,14 +64,24 @@ int kd_side(float lo, float hi, float pos, int planar_left);
 /* Surface area of a box (double). */
 double kd_area(const rt_aabb *b);
 
-/* Offers the plane pos on axis k of cell v (area av) to best: nl triangles
+/* What pricing a plane needs of a cell, computed once per node. */
+typedef struct kd_cell {
+    const rt_aabb *box;
+    double ext[3];   /* extents */
+    double inv_area; /* 1 / surface area (0 when the area is 0: no split) */
+} kd_cell;
+
+/* Fills c for box; returns 0 when the box has no area (a leaf). */
+int kd_cell_init(kd_cell *c, const rt_aabb *box);
+
+/* Offers the plane pos on axis k of the cell to best: nl triangles
  * entirely left, nr entirely right, np lying in the plane, n in all. Both
  * places for the planar ones are priced, with the empty-space bonus when a
  * side is empty; a split that leaves one child equal to the cell with every
  * triangle (a plane on the cell's face) is refused, so recursion always
  * progresses. Ties keep the earlier offer. */
-void kd_offer(const kd_ctx *c, const rt_aabb *v, double av, int k, float pos, uint32_t nl,
-              uint32_t nr, uint32_t np, uint32_t n, kd_split *best);
+void kd_offer(const kd_ctx *c, const kd_cell *v, int k, float pos, uint32_t nl, uint32_t nr,
+              uint32_t np, uint32_t n, kd_split *best);
 
 /* ---- perfect splits (kd_clip.c) --------------------------------------------- */
 

@@ -50,9 +50,9 @@ static uint32_t box_events(const rt_aabb *b, uint32_t tri, kd_event *e, uint32_t
 static void sweep_find(const kd_ctx *c, const kd_node_in *in, kd_split *best) {
     const kd_event *e = in->data;
     uint32_t n = in->tris, size = in->size;
-    double av = kd_area(&in->cell);
+    kd_cell cell;
     best->cost = INFINITY;
-    if (!(av > 0.0)) return;
+    if (!kd_cell_init(&cell, &in->cell)) return;
     uint32_t i = 0;
     while (i < size) {
         int k = e[i].axis;
@@ -66,7 +66,7 @@ static void sweep_find(const kd_ctx *c, const kd_node_in *in, kd_split *best) {
             while (i < size && e[i].axis == k && e[i].pos == p && e[i].type == EV_PLANAR) pp++, i++;
             while (i < size && e[i].axis == k && e[i].pos == p && e[i].type == EV_START) ps++, i++;
             nr -= pp + pe;
-            kd_offer(c, &in->cell, av, k, p, nl, nr, pp, n, best);
+            kd_offer(c, &cell, k, p, nl, nr, pp, n, best);
             nl += ps + pp;
         }
     }

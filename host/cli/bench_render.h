@@ -23,6 +23,7 @@ typedef struct render_row {
 
 typedef struct bench_render_setup {
     int reps, threads, width, height;
+    int accel; /* rt_accel for every static mesh, or -1: the scene's own */
     void (*progress)(const char *scene, const char *what);
 } bench_render_setup;
 

@@ -16,6 +16,7 @@
 
 #include "bench_render.h"
 #include "accel/bvh.h"
+#include "accel/kd.h"
 #include "base/clock.h"
 #include "commands.h"
 #include "rt.h"
@@ -25,7 +26,7 @@
 #include "peer/embree_peer.h"
 #endif
 
-enum { MAX_ROWS = 8 };
+enum { MAX_ROWS = 10 };
 
 typedef struct row {
     const char *builder;
@@ -33,11 +34,13 @@ typedef struct row {
     double ms_min, ms_median;
     double sah;
     long nodes;      /* -1 for reference rows (no tree) */
+    double bytes;    /* the tree's memory (nodes and leaf entries); 0: not known */
     char error[200]; /* non-empty: this builder failed or is unavailable */
 } row;
 
 typedef struct bench_args {
     int json, reps, threads, progress, render, width, height;
+    int accel; /* --accel: rt_accel, or -1 */
 } bench_args;
 
 static int cmp_double(const void *a, const void *b) {
@@ -53,7 +56,7 @@ static void summarize(row *r, double *times, int n) {
 
 static void usage(FILE *f) {
     fprintf(f, "usage: rtcl bench SCENE... [--json] [--reps N] [--threads N] [--no-render]\n"
-               "                 [--width W] [--height H]\n"
+               "                 [--width W] [--height H] [--accel A]\n"
                "\n"
                "Build: one BVH over all triangles of each scene with every builder\n"
                "(thesis-scalar, thesis-neon, thesis-mt, fast, and embree when available):\n"
@@ -76,7 +79,11 @@ static void usage(FILE *f) {
                "               (default: all cores; PoCL uses its own pool of all cores)\n"
                "  --no-render  build only\n"
                "  --width W, --height H\n"
-               "               render resolution [1024x576, the thesis's]\n");
+               "               render resolution [1024x576, the thesis's]\n"
+               "  --accel A    bvh, kd or kd-binned: the structure of every static mesh in\n"
+               "               the render part; kd and kd-binned also add the build rows\n"
+               "               kd-exact and kd-binned (one SAH kd-tree over all triangles,\n"
+               "               SAH with Ct = 1, Ci = 2 as for the BVH rows, and bytes)\n");
 }
 
 /* The triangles of every mesh: boxes, and positions/indices for Embree. */
@@ -170,8 +177,48 @@ static void bench_ours(const bench_args *a, const tri_input *in, rt_builder buil
             rt_bvh_quality q = rt_bvh_measure(&bvh, o.cost_box, o.cost_tri);
             r->sah = q.sah;
             r->nodes = q.nodes;
+            r->bytes = (double)q.bytes;
         }
         rt_bvh_free(&bvh);
+    }
+    summarize(r, times, a->reps);
+    free(times);
+}
+
+/* A kd-tree over all triangles, timed like bench_ours. */
+static void bench_kd(const bench_args *a, const tri_input *in, rt_kd_builder builder, rt_pool *pool,
+                     row *r) {
+    rt_kd_options o = rt_kd_options_default();
+    o.builder = builder;
+    r->builder = rt_kd_builder_name(builder);
+    r->threads = a->threads;
+    double *times = malloc(sizeof(double) * (size_t)a->reps);
+    if (!times) {
+        snprintf(r->error, sizeof r->error, "out of memory");
+        return;
+    }
+    for (int i = -1; i < a->reps; i++) {
+        rt_kd kd;
+        rt_error msg;
+        memset(&msg, 0, sizeof msg);
+        double t0 = rt_now_ms();
+        rt_status st = rt_kd_build(in->positions, in->vertex_count, in->indices, in->count, &o,
+                                   pool, &kd, &msg);
+        double t = rt_now_ms() - t0;
+        if (st != RT_OK) {
+            snprintf(r->error, sizeof r->error, "%.199s",
+                     msg.message[0] ? msg.message : rt_status_string(st));
+            free(times);
+            return;
+        }
+        if (i >= 0) times[i] = t;
+        if (i == a->reps - 1) {
+            rt_kd_quality q = rt_kd_measure(&kd, 1.0f, 2.0f);
+            r->sah = q.sah;
+            r->nodes = q.nodes;
+            r->bytes = (double)q.bytes;
+        }
+        rt_kd_free(&kd);
     }
     summarize(r, times, a->reps);
     free(times);
@@ -264,6 +311,7 @@ static void print_json_row(const row *r) {
             printf(", \"sah\": null, \"nodes\": null");
         else
             printf(", \"sah\": %.4f, \"nodes\": %ld", r->sah, r->nodes);
+        if (!r->error[0] && r->bytes > 0) printf(", \"bytes\": %.0f", r->bytes);
     }
     putchar('}');
 }
@@ -413,6 +461,12 @@ static int bench_scene(const char *path, const bench_args *a, rt_pool *pool) {
         progress(a, path, rt_builder_name(ours[i]));
         bench_ours(a, &in, ours[i], pool, &rows[n++]);
     }
+    if (a->accel == RT_ACCEL_KD || a->accel == RT_ACCEL_KD_BINNED) {
+        progress(a, path, "kd-exact");
+        bench_kd(a, &in, RT_KD_EXACT, pool, &rows[n++]);
+        progress(a, path, "kd-binned");
+        bench_kd(a, &in, RT_KD_BINNED, pool, &rows[n++]);
+    }
     int n_build = n, n_rows = n;
 #ifdef RT_HAVE_EMBREE
     progress(a, path, "embree");
@@ -426,8 +480,8 @@ static int bench_scene(const char *path, const bench_args *a, rt_pool *pool) {
     int n_render = 0;
     char why[300] = "";
     if (a->render) {
-        bench_render_setup su = {a->reps, a->threads, a->width, a->height,
-                                 a->progress ? render_progress : NULL};
+        bench_render_setup su = {a->reps,   a->threads, a->width,
+                                 a->height, a->accel,   a->progress ? render_progress : NULL};
         n_render = bench_render(path, &su, rrows, why, sizeof why);
     }
     if (a->progress) fprintf(stderr, "\r\033[K");
@@ -456,7 +510,7 @@ static int parse_int(const char *s, int lo, int hi, int *out) {
 }
 
 int cmd_bench(int argc, char **argv) {
-    bench_args a = {0, 5, 0, isatty(2), 1, 1024, 576};
+    bench_args a = {0, 5, 0, isatty(2), 1, 1024, 576, -1};
     const char **scenes = calloc((size_t)argc, sizeof *scenes);
     int n_scenes = 0;
     if (!scenes) return 2;
@@ -470,6 +524,15 @@ int cmd_bench(int argc, char **argv) {
             a.json = 1;
         } else if (!strcmp(s, "--no-render")) {
             a.render = 0;
+        } else if (!strcmp(s, "--accel")) {
+            rt_accel acc;
+            if (i + 1 >= argc || !rt_accel_parse(argv[i + 1], &acc)) {
+                fprintf(stderr, "rtcl bench: --accel takes bvh, kd or kd-binned\n");
+                free(scenes);
+                return 2;
+            }
+            a.accel = (int)acc;
+            i++;
         } else if (!strcmp(s, "--reps") || !strcmp(s, "--threads") || !strcmp(s, "--width") ||
                    !strcmp(s, "--height")) {
             int *dst = s[2] == 'r'   ? &a.reps
