@@ -40,7 +40,7 @@ typedef enum rt_kd_builder {
 typedef struct rt_kd_options {
     rt_kd_builder builder;
     float cost_traverse;  /* KT, cost of one inner node step [1] */
-    float cost_intersect; /* KI, cost of one triangle test [1.5] */
+    float cost_intersect; /* KI, cost of one triangle test [1] */
     float empty_bonus;    /* the cost factor of a split with an empty side [0.8] */
     int max_depth;        /* <= 0: 8 + 1.3 log2 N, at most RT_KD_MAX_DEPTH */
     int bins;             /* binned builder: bins per axis [32], 2..256 */

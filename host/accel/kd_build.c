@@ -24,7 +24,7 @@ rt_kd_options rt_kd_options_default(void) {
     rt_kd_options o;
     o.builder = RT_KD_EXACT;
     o.cost_traverse = 1.0f;
-    o.cost_intersect = 1.5f;
+    o.cost_intersect = 1.0f;
     o.empty_bonus = 0.8f;
     o.max_depth = 0;
     o.bins = 32;
