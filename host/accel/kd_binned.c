@@ -108,7 +108,7 @@ static uint32_t binned_leaf(const kd_ctx *c, const kd_node_in *in, kd_scratch *w
     const kd_item *it = in->data;
     if (!kd_scratch_list(w, in->tris)) return UINT32_MAX;
     for (uint32_t i = 0; i < in->tris; i++) w->list[i] = it[i].tri;
-    qsort(w->list, in->tris, sizeof(uint32_t), u32_cmp);
+    if (in->tris) qsort(w->list, in->tris, sizeof(uint32_t), u32_cmp);
     return in->tris;
 }
 

@@ -77,7 +77,7 @@ void kd_out_leaf(kd_out *o, const uint32_t *tris, uint32_t n) {
         o->prims = p;
         o->prim_cap = cap;
     }
-    memcpy(o->prims + o->prim_count, tris, sizeof(uint32_t) * n);
+    if (n) memcpy(o->prims + o->prim_count, tris, sizeof(uint32_t) * n);
     o->nodes[o->node_count].a = o->prim_count;
     o->nodes[o->node_count].b = (n << 2) | RT_KD_LEAF;
     o->node_count++;
@@ -244,11 +244,11 @@ static int assemble(const kd_out *top, const kd_tasks *tasks, rt_kd *out) {
                     x.b = (((x.b >> 2) + at[i]) << 2) | (x.b & 3u);
                 dst[k] = x;
             }
-            memcpy(out->prims + pn, s->prims, sizeof(uint32_t) * s->prim_count);
+            if (s->prim_count) memcpy(out->prims + pn, s->prims, sizeof(uint32_t) * s->prim_count);
             pn += s->prim_count;
         } else if ((d->b & 3u) == RT_KD_LEAF) {
             uint32_t cnt = d->b >> 2;
-            memcpy(out->prims + pn, top->prims + d->a, sizeof(uint32_t) * cnt);
+            if (cnt) memcpy(out->prims + pn, top->prims + d->a, sizeof(uint32_t) * cnt);
             dst->a = pn;
             dst->b = d->b;
             pn += cnt;

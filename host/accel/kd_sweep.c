@@ -191,7 +191,7 @@ static uint32_t sweep_leaf(const kd_ctx *c, const kd_node_in *in, kd_scratch *w)
     uint32_t n = 0;
     for (uint32_t i = 0; i < in->size; i++)
         if (e[i].axis == 0 && e[i].type != EV_END) w->list[n++] = e[i].tri;
-    qsort(w->list, n, sizeof(uint32_t), u32_cmp);
+    if (n) qsort(w->list, n, sizeof(uint32_t), u32_cmp);
     return n;
 }
 
