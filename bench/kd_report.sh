@@ -8,6 +8,7 @@
 # rays, the thesis's set-up), each against Embree in the same run.
 #
 # usage: bench/kd_report.sh RTCL ROUNDS REPS SCENE...
+# KD_BENCH_ARGS: more rtcl bench options (e.g. "--width 512 --height 288")
 set -eu
 RTCL=$1 ROUNDS=$2 REPS=$3
 shift 3
@@ -16,7 +17,8 @@ trap 'rm -rf "$tmp"' EXIT
 for scene in "$@"; do
     for r in $(seq "$ROUNDS"); do
         for accel in bvh kd; do
-            "$RTCL" bench "$scene" --json --reps "$REPS" --accel $accel >> "$tmp/$accel.jsonl"
+            "$RTCL" bench "$scene" --json --reps "$REPS" --accel $accel ${KD_BENCH_ARGS:-} \
+                >> "$tmp/$accel.jsonl"
         done
     done
 done
@@ -37,9 +39,9 @@ for scene in dict.fromkeys(r["scene"] for r in runs["bvh"]):
             rows.setdefault(b["builder"], []).append(b)
     for name, bs in rows.items():
         mins = [b["ms_min"] for b in bs]; meds = [b["ms_median"] for b in bs]
-        mib = bs[-1].get("bytes", 0) / 1048576
+        mib = f"{bs[-1]['bytes'] / 1048576:.2f}" if "bytes" in bs[-1] else "-"
         print(f"| {name} | {bs[-1]['threads']} | {min(mins):.1f} | {statistics.median(meds):.1f} | "
-              f"{bs[-1]['sah']:.2f} | {bs[-1]['nodes']} | {mib:.2f} |")
+              f"{bs[-1]['sah']:.2f} | {bs[-1]['nodes']} | {mib} |")
     print(f"\n| backend | meshes | min ms | median ms | Mrays/s (median) | box or node steps / ray | tri tests / ray | vs embree (median) |")
     print("|---|---|---:|---:|---:|---:|---:|---:|")
     for label, group in (("bvh", bvh), ("kd", kd)):
@@ -55,7 +57,8 @@ for scene in dict.fromkeys(r["scene"] for r in runs["bvh"]):
             med = statistics.median(r["ms_median"] for r in rs)
             mr = statistics.median(r["mrays"] for r in rs)
             bt = rs[-1].get("box_tests"); tt = rs[-1].get("tri_tests")
+            bt = "-" if bt is None else round(bt, 1); tt = "-" if tt is None else round(tt, 1)
             ratio = f"{med / emb_med:.2f}x" if emb_med else "-"
             print(f"| {name} | {label} | {min(r['ms_min'] for r in rs):.1f} | {med:.1f} | {mr:.2f} | "
-                  f"{bt if bt is None else round(bt, 1)} | {tt if tt is None else round(tt, 1)} | {ratio} |")
+                  f"{bt} | {tt} | {ratio} |")
 PY

@@ -365,7 +365,36 @@ static void test_degenerate_builds(void) {
     }
 }
 
+/* The per-mesh choice (rt.h): set, read, refused values, names, and the
+ * static-mesh rule (keyframes of an animated object keep theirs). */
+static void test_api(void) {
+    rt_scene *s;
+    CHECK(rt_scene_builtin("cornell", &s, &lib_err) == RT_OK);
+    uint32_t v = s->meshes[0].version, sv = s->version;
+    CHECK(rt_mesh_accel(s, 0) == RT_ACCEL_BVH);
+    CHECK(rt_mesh_set_accel(s, 0, RT_ACCEL_KD) == RT_OK);
+    CHECK(rt_mesh_accel(s, 0) == RT_ACCEL_KD);
+    CHECK(s->meshes[0].version != v && s->version != sv); /* renderers rebuild it */
+    CHECK(rt_mesh_set_accel(s, 0, (rt_accel)7) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK(rt_mesh_set_accel(s, s->mesh_count, RT_ACCEL_KD) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK(rt_mesh_accel(s, s->mesh_count) == RT_ACCEL_BVH);
+    CHECK(rt_scene_set_static_accel(s, RT_ACCEL_KD_BINNED) == RT_OK);
+    for (uint32_t o = 0; o < s->object_count; o++) {
+        const rt_object_data *ob = &s->objects[o];
+        for (uint32_t k = 0; k < ob->mesh_count; k++)
+            CHECK(rt_mesh_accel(s, ob->meshes[k]) ==
+                  (ob->mesh_count > 1 ? RT_ACCEL_BVH : RT_ACCEL_KD_BINNED));
+    }
+    rt_accel a;
+    CHECK(rt_accel_parse("kd", &a) && a == RT_ACCEL_KD);
+    CHECK(rt_accel_parse("kd-binned", &a) && a == RT_ACCEL_KD_BINNED);
+    CHECK(rt_accel_parse("bvh", &a) && a == RT_ACCEL_BVH);
+    CHECK(!rt_accel_parse("KD", &a) && !rt_accel_parse("", &a) && !rt_accel_parse(NULL, &a));
+    rt_scene_destroy(s);
+}
+
 int main(void) {
+    test_api();
     test_degenerate_builds();
     test_determinism();
     int bad = 0;

@@ -97,15 +97,6 @@ void kd_out_free(kd_out *o) {
     memset(o, 0, sizeof *o);
 }
 
-int kd_scratch_list(kd_scratch *w, uint32_t n) {
-    if (n <= w->list_cap) return 1;
-    uint32_t *l = realloc(w->list, sizeof(uint32_t) * (n + 1));
-    if (!l) return 0;
-    w->list = l;
-    w->list_cap = n;
-    return 1;
-}
-
 /* ---- the recursion ------------------------------------------------------------ */
 
 typedef struct kd_task {

@@ -28,9 +28,38 @@ static int ev_before(const kd_event *a, const kd_event *b) {
     return a->tri < b->tri;
 }
 
-static int ev_cmp(const void *pa, const void *pb) {
-    const kd_event *a = pa, *b = pb;
-    return ev_before(a, b) ? -1 : ev_before(b, a) ? 1 : 0;
+/* Sorts e[0..n) by ev_before: insertion sort for short runs, then
+ * bottom-up merging through tmp (n entries). The order is total (the
+ * triangle index breaks ties), so the result is unique. Faster than qsort,
+ * whose comparison goes through a function pointer. */
+static void ev_sort(kd_event *e, uint32_t n, kd_event *tmp) {
+    const uint32_t run = 16;
+    for (uint32_t lo = 0; lo < n; lo += run) {
+        uint32_t hi = lo + run < n ? lo + run : n;
+        for (uint32_t i = lo + 1; i < hi; i++) {
+            kd_event x = e[i];
+            uint32_t j = i;
+            while (j > lo && ev_before(&x, &e[j - 1])) {
+                e[j] = e[j - 1];
+                j--;
+            }
+            e[j] = x;
+        }
+    }
+    kd_event *src = e, *dst = tmp;
+    for (uint32_t w = run; w < n; w *= 2) {
+        for (uint32_t lo = 0; lo < n; lo += 2 * w) {
+            uint32_t mid = lo + w < n ? lo + w : n, hi = lo + 2 * w < n ? lo + 2 * w : n;
+            uint32_t i = lo, j = mid, o = lo;
+            while (i < mid && j < hi) dst[o++] = ev_before(&src[j], &src[i]) ? src[j++] : src[i++];
+            while (i < mid) dst[o++] = src[i++];
+            while (j < hi) dst[o++] = src[j++];
+        }
+        kd_event *t = src;
+        src = dst;
+        dst = t;
+    }
+    if (src != e) memcpy(e, src, sizeof(kd_event) * n);
 }
 
 /* Appends the events of one triangle's box: a planar event on an axis where
@@ -137,11 +166,15 @@ static int sweep_split(const kd_ctx *c, kd_node_in *in, const kd_split *s, kd_sc
         }
     }
     if (ok) {
-        qsort(bl, nbl, sizeof(kd_event), ev_cmp);
-        qsort(br, nbr, sizeof(kd_event), ev_cmp);
+        /* The children's lists, with room in front for the merge; they
+         * serve as the sort's scratch first. */
         le = malloc(sizeof(kd_event) * ((size_t)nl_ev + nbl + 1));
         re = malloc(sizeof(kd_event) * ((size_t)nr_ev + nbr + 1));
         ok = le && re;
+    }
+    if (ok) {
+        ev_sort(bl, nbl, le);
+        ev_sort(br, nbr, re);
     }
     if (ok) {
         /* The one-sided events, in order, straight into the front of the
@@ -200,10 +233,16 @@ static int sweep_root(const kd_ctx *c, const uint32_t *ids, const rt_aabb *boxes
     (void)c;
     memset(out, 0, sizeof *out);
     kd_event *e = malloc(sizeof(kd_event) * (6 * (size_t)n + 1));
-    if (!e) return 0;
+    kd_event *tmp = malloc(sizeof(kd_event) * (6 * (size_t)n + 1));
+    if (!e || !tmp) {
+        free(e);
+        free(tmp);
+        return 0;
+    }
     uint32_t size = 0;
     for (uint32_t i = 0; i < n; i++) size = box_events(&boxes[i], ids[i], e, size);
-    qsort(e, size, sizeof(kd_event), ev_cmp);
+    ev_sort(e, size, tmp);
+    free(tmp);
     out->cell = *cell;
     out->data = e;
     out->size = size;
