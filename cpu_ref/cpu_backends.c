@@ -9,6 +9,7 @@
 #include "base/clock.h"
 #include "base/error.h"
 #include "cpu_render.h"
+#include "rt_fp_mode.h"
 
 /* ---- ray queries, shared by both -------------------------------------- */
 
@@ -52,11 +53,17 @@ static void fill_counts(rt_render_stats *stats, const rt_cpu_counts *counts) {
 /* One frame on the pool: the scalar oracle, or packets through wide (with
  * the build isa) when wide is given. */
 static rt_status render_frame(const rt_backend_layout *layout, const rt_backend_frame *frame,
-                              const rt_pk_wide *wide, const rt_pk_variant *isa,
+                              const rt_pk_wide *wide, const rt_pk_variant *isa, int flush,
                               rt_render_stats *stats, rt_error *err) {
-    rt_cpu_frame f = {
-        layout->flat,        wide, isa, frame->aov, frame->pixels, frame->channels, frame->progress,
-        frame->progress_user};
+    rt_cpu_frame f = {layout->flat,
+                      wide,
+                      isa,
+                      frame->aov,
+                      frame->pixels,
+                      frame->channels,
+                      frame->progress,
+                      frame->progress_user,
+                      flush};
     rt_cpu_counts counts;
     double t0 = rt_now_ms();
     rt_status st = wide ? rt_packet_render(&f, layout->pool, &counts)
@@ -65,15 +72,28 @@ static rt_status render_frame(const rt_backend_layout *layout, const rt_backend_
     stats->render_ms = rt_now_ms() - t0;
     fill_counts(stats, &counts);
     stats->threads = rt_pool_size(layout->pool);
+    stats->exact = 1; /* the oracle, in the denormal mode asked for */
+    stats->math_profile = "ieee";
+    stats->denormals = flush ? "flush" : "preserve";
     return RT_OK;
 }
 
 /* Ray queries on the pool, as render_frame chooses. */
 static void trace_all(const rt_backend_layout *layout, const rt_pk_wide *wide,
-                      const rt_pk_variant *isa, const rt_ray_d *rays, size_t count, rt_hit_d *hits,
-                      int any_hit) {
+                      const rt_pk_variant *isa, int flush, const rt_ray_d *rays, size_t count,
+                      rt_hit_d *hits, int any_hit) {
     trace_job job = {layout->flat, wide, isa, rays, hits, count, any_hit};
-    rt_pool_run(layout->pool, trace_chunk, &job);
+    rt_pool_run_fp(layout->pool, trace_chunk, &job, flush);
+}
+
+/* "flush" needs a CPU whose denormal mode the backend can set. */
+static rt_status check_denormals(const char *name, const rt_backend_config *config, rt_error *err) {
+    if (config->flush_denormals && !rt_fp_can_flush())
+        return rt_fail(err, RT_ERROR_UNSUPPORTED,
+                       "%s: this CPU build cannot set flush-to-zero (denormals 'flush' needs "
+                       "x86 SSE or AArch64)",
+                       name);
+    return RT_OK;
 }
 
 static int always_available(rt_error *why) {
@@ -83,10 +103,14 @@ static int always_available(rt_error *why) {
 
 /* ---- cpu: the scalar oracle -------------------------------------------- */
 
+/* The oracle keeps one thing, its denormal mode: a state that is NULL
+ * preserves denormals, any other pointer flushes them. */
+static int cpu_flush_mark;
+
 static rt_status cpu_create(const rt_backend_config *config, void **state, rt_error *err) {
-    (void)config;
-    (void)err;
-    *state = NULL; /* nothing to keep: the layout is all it reads */
+    rt_status st = check_denormals("cpu", config, err);
+    if (st != RT_OK) return st;
+    *state = config->flush_denormals ? &cpu_flush_mark : NULL;
     return RT_OK;
 }
 
@@ -101,15 +125,13 @@ static rt_status cpu_prepare(void *state, const rt_backend_layout *layout, rt_re
 
 static rt_status cpu_render(void *state, const rt_backend_layout *layout,
                             const rt_backend_frame *frame, rt_render_stats *stats, rt_error *err) {
-    (void)state;
-    return render_frame(layout, frame, NULL, NULL, stats, err);
+    return render_frame(layout, frame, NULL, NULL, state != NULL, stats, err);
 }
 
 static rt_status cpu_trace(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
                            size_t count, rt_hit_d *hits, int any_hit, rt_error *err) {
-    (void)state;
     (void)err;
-    trace_all(layout, NULL, NULL, rays, count, hits, any_hit);
+    trace_all(layout, NULL, NULL, state != NULL, rays, count, hits, any_hit);
     return RT_OK;
 }
 
@@ -127,6 +149,7 @@ typedef struct packet_state {
     rt_pk_wide wide;          /* the wide BVHs of the layout ... */
     uint32_t wide_generation; /* ... of this generation */
     int have_wide;
+    int flush; /* denormals */
 } packet_state;
 
 static rt_status packet_create(const rt_backend_config *config, void **state, rt_error *err) {
@@ -143,9 +166,12 @@ static rt_status packet_create(const rt_backend_config *config, void **state, rt
                        "(here: %s)",
                        config->packet_isa, names);
     }
+    rt_status st = check_denormals("packet", config, err);
+    if (st != RT_OK) return st;
     packet_state *s = calloc(1, sizeof *s);
     if (!s) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "packet: out of memory");
     s->isa = isa;
+    s->flush = config->flush_denormals;
     *state = s;
     return RT_OK;
 }
@@ -171,7 +197,7 @@ static rt_status packet_render(void *state, const rt_backend_layout *layout,
                                const rt_backend_frame *frame, rt_render_stats *stats,
                                rt_error *err) {
     packet_state *s = state;
-    rt_status st = render_frame(layout, frame, &s->wide, s->isa, stats, err);
+    rt_status st = render_frame(layout, frame, &s->wide, s->isa, s->flush, stats, err);
     if (st != RT_OK) return st;
     stats->packet_rays = RT_PK_LANES;
     stats->packet_isa = rt_pk_variant_name(s->isa);
@@ -183,7 +209,7 @@ static rt_status packet_trace(void *state, const rt_backend_layout *layout, cons
                               size_t count, rt_hit_d *hits, int any_hit, rt_error *err) {
     packet_state *s = state;
     (void)err;
-    trace_all(layout, &s->wide, s->isa, rays, count, hits, any_hit);
+    trace_all(layout, &s->wide, s->isa, s->flush, rays, count, hits, any_hit);
     return RT_OK;
 }
 

@@ -76,10 +76,9 @@ rt_status rt_cpu_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts 
     cpu_job *job = calloc(1, sizeof *job);
     if (!job) return RT_ERROR_OUT_OF_MEMORY;
     job->frame = frame;
-    if (pool && rt_pool_size(pool) <= 256)
-        rt_pool_run(pool, cpu_rows, job);
-    else
-        cpu_rows(job, 0, 1);
+    /* Counts are kept for at most 256 workers; beyond, one thread renders. */
+    rt_pool_run_fp(pool && rt_pool_size(pool) <= 256 ? pool : NULL, cpu_rows, job,
+                   frame->flush_denormals);
     memset(counts, 0, sizeof *counts);
     for (int i = 0; i < 256; i++) {
         counts->rays += job->per_worker[i].rays;

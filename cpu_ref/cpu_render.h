@@ -27,6 +27,7 @@ typedef struct rt_cpu_frame {
     int channels;  /* 3 for the image and normals, else 1 */
     void (*progress)(void *user, double done);
     void *progress_user;
+    int flush_denormals; /* 1: the workers flush denormals (rt_pool_run_fp) */
 } rt_cpu_frame;
 
 /* Renders with the scalar oracle on the pool's workers (interleaved rows).

@@ -184,10 +184,7 @@ rt_status rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_coun
     atomic_init(&job.next_block, 0);
     memset(counts, 0, sizeof *counts);
     if (!job.per_worker) return RT_ERROR_OUT_OF_MEMORY;
-    if (pool)
-        rt_pool_run(pool, packet_blocks, &job);
-    else
-        packet_blocks(&job, 0, 1);
+    rt_pool_run_fp(pool, packet_blocks, &job, frame->flush_denormals);
     for (int i = 0; i < workers; i++) {
         counts->rays += job.per_worker[i].rays;
         counts->primary_rays += job.per_worker[i].primary_rays;

@@ -186,7 +186,10 @@ typedef struct rt_render_stats {
     const char *notice;
     /* Device backends (opencl); zero or empty on the CPU. */
     char device[128]; /* the device that ran */
-    int exact;        /* the device promises the CPU oracle's bits (0 with device_options) */
+    int exact;        /* the backend promises the CPU oracle's bits (0 with device_options); the
+                         CPU backends always (they are the oracle, in the denormal mode asked for) */
+    const char *math_profile; /* "native" or "portable" (device backends), "ieee" (CPU) */
+    const char *denormals;    /* "preserve" or "flush" */
     char specialisation[192]; /* the -D feature switches of the kernels */
     char device_options[256]; /* the extra options the kernels were built with ("": none) */
     double compile_ms;        /* kernel program builds done for this frame */
@@ -222,6 +225,29 @@ typedef struct rt_opencl_tuning {
     uint32_t wave_queue_cap;
 } rt_opencl_tuning;
 
+/* How a device divides and takes square roots (docs/PORTABLE_MATH.md). Both
+ * profiles give the CPU oracle's bits where the device qualifies:
+ * native needs correctly rounded fp32 divide/sqrt from the device;
+ * portable computes them in software from 32-bit integer operations and
+ * needs nothing beyond correctly rounded + - * (every conforming device). */
+typedef enum rt_device_math {
+    RT_DEVICE_MATH_AUTO = 0, /* native where the device promises correctly rounded
+                                divide/sqrt, else portable */
+    RT_DEVICE_MATH_NATIVE,
+    RT_DEVICE_MATH_PORTABLE
+} rt_device_math;
+
+/* Denormal policy of every backend (docs/PORTABLE_MATH.md). */
+typedef enum rt_denormals {
+    RT_DENORMALS_PRESERVE = 0, /* IEEE gradual underflow (the CPU's default) */
+    /* Flush results to zero and read denormal inputs as zero, as most GPUs
+     * do: the CPU backends set FTZ/DAZ (x86 MXCSR) or FZ (AArch64 FPCR) on
+     * their threads; kernels are built with -cl-denorms-are-zero and the
+     * software division and sqrt flush too. Compare a flushing device with
+     * a flushing oracle. */
+    RT_DENORMALS_FLUSH
+} rt_denormals;
+
 typedef struct rt_renderer_options {
     /* "cpu" (the scalar oracle, the default), "packet", "opencl" (or
      * "opencl:DEVICE", a device index or a part of its name), "auto" (a device
@@ -240,6 +266,8 @@ typedef struct rt_renderer_options {
      * lacks is RT_ERROR_UNSUPPORTED. All give the same bits. */
     const char *packet_isa;
     rt_opencl_tuning opencl;
+    rt_device_math device_math; /* device backends; the CPU is IEEE, the oracle */
+    rt_denormals denormals;     /* every backend */
 } rt_renderer_options;
 
 /* cpu, all cores, no device options. */

@@ -21,7 +21,7 @@
  * -cl-mad-enable option; correctly rounded division and sqrt), choosing between
  * values with select() where the scalar code branches or indexes (the
  * watertight test's per-ray axes kx, ky, kz), so each lane computes its own
- * scalar values; the watertight test's double re-check of zero edge
+ * scalar values; the watertight test's exact re-check of zero edge
  * functions is done for the lanes that have one. Per lane the traversal is
  * then the scalar traversal in another order, each node tested against the
  * lane's own current range [tmin, best t]. Closest hit has a total order
@@ -59,11 +59,6 @@ typedef uint16 pk_u;
 #define pk_as_i   as_int16
 #define pk_as_f   as_float16
 #define pk_to_i   convert_int16 /* towards zero, as C's (int) */
-#if RT_HAVE_DOUBLE
-typedef double16 pk_d;
-#define pk_to_d convert_double16
-#define pk_to_f convert_float16
-#endif
 #elif RT_PK_LANES == 8
 typedef float8 pk_f;
 typedef int8 pk_i;
@@ -74,11 +69,6 @@ typedef uint8 pk_u;
 #define pk_as_i   as_int8
 #define pk_as_f   as_float8
 #define pk_to_i   convert_int8 /* towards zero, as C's (int) */
-#if RT_HAVE_DOUBLE
-typedef double8 pk_d;
-#define pk_to_d convert_double8
-#define pk_to_f convert_float8
-#endif
 #elif RT_PK_LANES == 4
 typedef float4 pk_f;
 typedef int4 pk_i;
@@ -89,15 +79,35 @@ typedef uint4 pk_u;
 #define pk_as_i   as_int4
 #define pk_as_f   as_float4
 #define pk_to_i   convert_int4 /* towards zero, as C's (int) */
-#if RT_HAVE_DOUBLE
-typedef double4 pk_d;
-#define pk_to_d convert_double4
-#define pk_to_f convert_float4
-#endif
 #else
 #error "RT_PK_LANES must be 4, 8 or 16"
 #endif
 #define PK_H (RT_PK_LANES / PK_W)
+
+/* Division and sqrt per lane. In the portable profile they are the shared
+ * integer-only functions (RT_DIV, RT_SQRT), which branch, so each lane calls
+ * them in turn; otherwise the device's vector operations, correctly rounded
+ * under -cl-fp32-correctly-rounded-divide-sqrt. */
+#ifdef RT_PORTABLE_MATH
+static pk_f pk_div_lanes(pk_f a, pk_f b) {
+    float x[RT_PK_LANES], y[RT_PK_LANES];
+    pk_vstore(a, 0, x);
+    pk_vstore(b, 0, y);
+    for (int l = 0; l < RT_PK_LANES; l++) x[l] = RT_DIV(x[l], y[l]);
+    return pk_vload(0, x);
+}
+static pk_f pk_sqrt_lanes(pk_f a) {
+    float x[RT_PK_LANES];
+    pk_vstore(a, 0, x);
+    for (int l = 0; l < RT_PK_LANES; l++) x[l] = RT_SQRT(x[l]);
+    return pk_vload(0, x);
+}
+#define PK_DIV(a, b) pk_div_lanes((pk_f)(a), (pk_f)(b))
+#define PK_SQRT(x)   pk_sqrt_lanes((pk_f)(x))
+#else
+#define PK_DIV(a, b) RT_DIV((a), (b))
+#define PK_SQRT(x)   RT_SQRT(x)
+#endif
 
 /* A packet of rays: rt_ray_d and rt_ray_pre per lane, as vectors. Masks are
  * integer vectors, -1 in a lane where true (OpenCL's vector comparisons). */
@@ -144,7 +154,7 @@ static int pk_any(pk_i m) {
 /* Mirrors rt_ray_prepare, and rt_box_lo(tmin). */
 static void pk_prepare(pk_ray *p) {
     for (int i = 0; i < 3; i++) {
-        p->inv[i] = RT_DIV(1.0f, p->dir[i]);
+        p->inv[i] = PK_DIV(1.0f, p->dir[i]);
         p->neg[i] = p->inv[i] < 0.0f;
     }
     pk_f ax = RT_FABS(p->dir[0]), ay = RT_FABS(p->dir[1]), az = RT_FABS(p->dir[2]);
@@ -160,9 +170,9 @@ static void pk_prepare(pk_ray *p) {
     p->kx = kx;
     p->ky = ky;
     p->kz = kz;
-    p->sx = RT_DIV(PK_PICK(p->dir[0], p->dir[1], p->dir[2], kx), dkz);
-    p->sy = RT_DIV(PK_PICK(p->dir[0], p->dir[1], p->dir[2], ky), dkz);
-    p->sz = RT_DIV(1.0f, dkz);
+    p->sx = PK_DIV(PK_PICK(p->dir[0], p->dir[1], p->dir[2], kx), dkz);
+    p->sy = PK_DIV(PK_PICK(p->dir[0], p->dir[1], p->dir[2], ky), dkz);
+    p->sz = PK_PICK(p->inv[0], p->inv[1], p->inv[2], kz); /* 1 / dkz, as the oracle */
     p->box_lo = p->tmin - RT_FABS(p->tmin) * RT_BOX_T_MARGIN;
 }
 
@@ -232,8 +242,32 @@ static void pk_cross3(const pk_f *a, const pk_f *b, pk_f *out) {
     out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-/* Mirrors rt_tri_watertight; the exact double re-check of zero edge
- * functions is done for the lanes that have one (rare). */
+/* rt_edge_recheck for the lanes of m (rare): per lane, the shared scalar
+ * function, since the exact difference of products is integer code. */
+static void pk_edge_recheck(pk_i m, pk_f Ax, pk_f Ay, pk_f Bx, pk_f By, pk_f Cx, pk_f Cy, pk_f *U,
+                            pk_f *V, pk_f *W) {
+    float ax[RT_PK_LANES], ay[RT_PK_LANES], bx[RT_PK_LANES], by[RT_PK_LANES], cx[RT_PK_LANES],
+        cy[RT_PK_LANES], u[RT_PK_LANES], v[RT_PK_LANES], w[RT_PK_LANES];
+    int mm[RT_PK_LANES];
+    pk_vstore(Ax, 0, ax);
+    pk_vstore(Ay, 0, ay);
+    pk_vstore(Bx, 0, bx);
+    pk_vstore(By, 0, by);
+    pk_vstore(Cx, 0, cx);
+    pk_vstore(Cy, 0, cy);
+    pk_vstore(*U, 0, u);
+    pk_vstore(*V, 0, v);
+    pk_vstore(*W, 0, w);
+    pk_vstore(m, 0, mm);
+    for (int l = 0; l < RT_PK_LANES; l++)
+        if (mm[l]) rt_edge_recheck(ax[l], ay[l], bx[l], by[l], cx[l], cy[l], &u[l], &v[l], &w[l]);
+    *U = pk_vload(0, u);
+    *V = pk_vload(0, v);
+    *W = pk_vload(0, w);
+}
+
+/* Mirrors rt_tri_watertight; the exact re-check of zero edge functions is
+ * done for the lanes that have one. */
 static pk_i pk_tri_watertight(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f tmin, pk_f tmax,
                               pk_i act, pk_f *t, pk_f *u, pk_f *v) {
     pk_f A[3], B[3], C[3];
@@ -253,17 +287,8 @@ static pk_i pk_tri_watertight(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f
     pk_f U = Cx * By - Cy * Bx;
     pk_f V = Ax * Cy - Ay * Cx;
     pk_f W = Bx * Ay - By * Ax;
-#if RT_HAVE_DOUBLE
     pk_i zero = (U == 0.0f) | (V == 0.0f) | (W == 0.0f);
-    if (pk_any(zero & act)) {
-        pk_f Ud = pk_to_f(pk_to_d(Cx) * pk_to_d(By) - pk_to_d(Cy) * pk_to_d(Bx));
-        pk_f Vd = pk_to_f(pk_to_d(Ax) * pk_to_d(Cy) - pk_to_d(Ay) * pk_to_d(Cx));
-        pk_f Wd = pk_to_f(pk_to_d(Bx) * pk_to_d(Ay) - pk_to_d(By) * pk_to_d(Ax));
-        U = select(U, Ud, zero);
-        V = select(V, Vd, zero);
-        W = select(W, Wd, zero);
-    }
-#endif
+    if (pk_any(zero & act)) pk_edge_recheck(zero & act, Ax, Ay, Bx, By, Cx, Cy, &U, &V, &W);
     pk_i ok =
         act & ~(((U < 0.0f) | (V < 0.0f) | (W < 0.0f)) & ((U > 0.0f) | (V > 0.0f) | (W > 0.0f)));
     if (!pk_any(ok)) return ok;
@@ -272,12 +297,12 @@ static pk_i pk_tri_watertight(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f
     if (!pk_any(ok)) return ok;
     pk_f Az = p->sz * Akz, Bz = p->sz * Bkz, Cz = p->sz * Ckz;
     pk_f T = (U * Az + V * Bz) + W * Cz;
-    pk_f tt = RT_DIV(T, det);
+    pk_f tt = PK_DIV(T, det);
     ok &= (tt >= tmin) & (tt <= tmax);
     if (!pk_any(ok)) return ok;
     *t = tt;
-    *u = RT_DIV(V, det);
-    *v = RT_DIV(W, det);
+    *u = PK_DIV(V, det);
+    *v = PK_DIV(W, det);
     return ok;
 }
 
@@ -294,7 +319,7 @@ static pk_i pk_tri_moller(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f tmi
     pk_f det = pk_dot3(e1, pv);
     pk_i ok = act & (det != 0.0f);
     if (!pk_any(ok)) return ok;
-    pk_f inv = RT_DIV(1.0f, det);
+    pk_f inv = PK_DIV(1.0f, det);
     pk_f uu = pk_dot3(s, pv) * inv;
     ok &= (uu >= 0.0f) & (uu <= 1.0f);
     if (!pk_any(ok)) return ok;
@@ -329,12 +354,12 @@ static pk_i pk_tri_pluecker(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f t
     pk_f det = (U + V) + W;
     ok &= det != 0.0f;
     if (!pk_any(ok)) return ok;
-    pk_f tt = RT_DIV(pk_dot3(a, bc), det);
+    pk_f tt = PK_DIV(pk_dot3(a, bc), det);
     ok &= (tt >= tmin) & (tt <= tmax);
     if (!pk_any(ok)) return ok;
     *t = tt;
-    *u = RT_DIV(V, det);
-    *v = RT_DIV(W, det);
+    *u = PK_DIV(V, det);
+    *v = PK_DIV(W, det);
     return ok;
 }
 
@@ -354,7 +379,7 @@ static pk_i pk_tri_badouel(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f tm
     pk_f nd = pk_dot3(nv, p->dir);
     pk_i ok = act & (nd != 0.0f);
     if (!pk_any(ok)) return ok;
-    pk_f tt = RT_DIV(pk_dot3(nv, a), nd);
+    pk_f tt = PK_DIV(pk_dot3(nv, a), nd);
     ok &= (tt >= tmin) & (tt <= tmax);
     if (!pk_any(ok)) return ok;
     float nx = RT_FABS(n[0]), ny = RT_FABS(n[1]), nz = RT_FABS(n[2]);
@@ -365,8 +390,8 @@ static pk_i pk_tri_badouel(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f tm
     pk_f p1 = (p->org[i1] + tt * p->dir[i1]) - tri->v0[i1];
     pk_f p2 = (p->org[i2] + tt * p->dir[i2]) - tri->v0[i2];
     float det = e1[i1] * e2[i2] - e1[i2] * e2[i1];
-    pk_f uu = RT_DIV(p1 * e2[i2] - p2 * e2[i1], (pk_f)det);
-    pk_f vv = RT_DIV(e1[i1] * p2 - e1[i2] * p1, (pk_f)det);
+    pk_f uu = PK_DIV(p1 * e2[i2] - p2 * e2[i1], (pk_f)det);
+    pk_f vv = PK_DIV(e1[i1] * p2 - e1[i2] * p1, (pk_f)det);
     ok &= (uu >= 0.0f) & (vv >= 0.0f) & (uu + vv <= 1.0f);
     *t = tt;
     *u = uu;
@@ -543,9 +568,9 @@ static void pk_trace(const rt_scene_view *s, const pk_ray *p, pk_i active, int a
 
 /* Mirrors rt_normalize3. */
 static void pk_normalize3(pk_f *v) {
-    pk_f len = RT_SQRT(pk_dot3(v, v));
+    pk_f len = PK_SQRT(pk_dot3(v, v));
     pk_i pos = len > 0.0f;
-    for (int k = 0; k < 3; k++) v[k] = select(v[k], RT_DIV(v[k], len), pos);
+    for (int k = 0; k < 3; k++) v[k] = select(v[k], PK_DIV(v[k], len), pos);
 }
 
 /* Mirrors rt_offset_point. */
@@ -583,6 +608,7 @@ static void pk_surface_at(const rt_scene_view *s, const pk_ray *r, const pk_stat
     uint ent[RT_PK_LANES], ins[RT_PK_LANES], mi[RT_PK_LANES];
     int hm[RT_PK_LANES], fl[RT_PK_LANES], shin[RT_PK_LANES];
     float v[9][RT_PK_LANES], m[9][RT_PK_LANES], vn[9][RT_PK_LANES], mf[8][RT_PK_LANES];
+    float om[12][RT_PK_LANES];
     pk_vstore(h->entry, 0, ent);
     pk_vstore(h->inst, 0, ins);
     pk_vstore(hit, 0, hm);
@@ -596,6 +622,7 @@ static void pk_surface_at(const rt_scene_view *s, const pk_ray *r, const pk_stat
             v[6 + k][l] = tri->v2[k];
             for (int j = 0; j < 3; j++) m[3 * j + k][l] = in->world_to_object[4 * j + k];
         }
+        for (int k = 0; k < 12; k++) om[k][l] = in->object_to_world[k];
         fl[l] = (int)RT_INST_FLAGS(in);
         for (int k = 0; k < 9; k++)
             vn[k][l] = (RT_INST_FLAGS(in) & RT_INST_NORMALS) ? s->tri_normals[9 * e + k] : 0.0f;
@@ -627,12 +654,23 @@ static void pk_surface_at(const rt_scene_view *s, const pk_ray *r, const pk_stat
     if (transform)
         for (int j = 0; j < 3; j++)
             for (int k = 0; k < 3; k++) wm[j][k] = pk_vload(0, m[3 * j + k]);
-    pk_f e1[3], e2[3], n[3], w[3];
+    pk_f e1[3], e2[3], n[3], w[3], po[3];
+    pk_f b0 = (1.0f - h->u) - h->v;
     for (int k = 0; k < 3; k++) {
-        pk_f v0 = pk_vload(0, v[k]);
-        e1[k] = pk_vload(0, v[3 + k]) - v0;
-        e2[k] = pk_vload(0, v[6 + k]) - v0;
-        sf->p[k] = r->org[k] + h->t * r->dir[k];
+        pk_f v0 = pk_vload(0, v[k]), v1 = pk_vload(0, v[3 + k]), v2 = pk_vload(0, v[6 + k]);
+        e1[k] = v1 - v0;
+        e2[k] = v2 - v0;
+        po[k] = (b0 * v0 + h->u * v1) + h->v * v2;
+    }
+    /* rt_point_to_world where a lane has a transform. */
+    for (int i = 0; i < 3; i++) {
+        sf->p[i] = po[i];
+        if (transform) {
+            pk_f pw = ((pk_vload(0, om[4 * i]) * po[0] + pk_vload(0, om[4 * i + 1]) * po[1]) +
+                       pk_vload(0, om[4 * i + 2]) * po[2]) +
+                      pk_vload(0, om[4 * i + 3]);
+            sf->p[i] = select(pw, po[i], identity);
+        }
     }
     pk_cross3(e1, e2, n);
     if (transform) {
@@ -709,9 +747,9 @@ static void pk_shade_root(const rt_scene_view *s, const pk_ray *p, const pk_stat
         RT_GLOBAL const rt_light_d *light = &s->lights[li];
         pk_f L[3], Ln[3];
         for (int k = 0; k < 3; k++) L[k] = light->position[k] - sf->p[k];
-        pk_f dist = RT_SQRT(pk_dot3(L, L));
+        pk_f dist = PK_SQRT(pk_dot3(L, L));
         pk_i ok = lighting & (dist > 0.0f);
-        for (int k = 0; k < 3; k++) Ln[k] = RT_DIV(L[k], dist);
+        for (int k = 0; k < 3; k++) Ln[k] = PK_DIV(L[k], dist);
         pk_f ndl = pk_dot3(sf->ns, Ln);
         ok &= ndl > 0.0f;
         if (!pk_any(ok)) continue;

@@ -13,7 +13,7 @@
 
 /* The surface at a hit, in world space. */
 typedef struct rt_surface {
-    float p[3];   /* org + t * dir */
+    float p[3];   /* the hit point: see rt_surface_at */
     float ng[3];  /* unit geometric normal, facing the ray's origin side */
     float ns[3];  /* unit shading normal (interpolated when the mesh has
                      normals), facing the ray's origin side */
@@ -28,16 +28,35 @@ RT_FN void rt_normal_to_world(RT_GLOBAL const rt_instance *in, const float *n, f
     for (int i = 0; i < 3; i++) out[i] = (m[i] * n[0] + m[4 + i] * n[1]) + m[8 + i] * n[2];
 }
 
+/* p_world = M p + m for a point in object space (M | m: object_to_world). */
+RT_FN void rt_point_to_world(RT_GLOBAL const rt_instance *in, const float *p, float *out) {
+    RT_GLOBAL const float *m = in->object_to_world;
+    for (int i = 0; i < 3; i++)
+        out[i] = ((m[4 * i] * p[0] + m[4 * i + 1] * p[1]) + m[4 * i + 2] * p[2]) + m[4 * i + 3];
+}
+
+/* The hit point is the barycentric combination of the triangle's vertices in
+ * object space, then transformed (Waechter and Binder 2019), not o + t d:
+ * that point's rounding error grows with the distance the ray travelled,
+ * while rt_offset_point moves the point off the surface by an amount sized
+ * for the point's own magnitude, so a ray from afar left points below the
+ * surface and their shadow rays hit it (tests/test_surface_points.c). */
 RT_FN void rt_surface_at(const rt_scene_view *s, const rt_ray_d *r, const rt_hit_d *h,
                          rt_surface *sf) {
     RT_GLOBAL const rt_tri *tri = &s->tris[h->entry];
     RT_GLOBAL const rt_instance *in = &s->instances[h->inst];
     int identity = (RT_INST_FLAGS(in) & RT_INST_IDENTITY) != 0;
-    float e1[3], e2[3], n[3], ns[3];
+    float e1[3], e2[3], n[3], ns[3], po[3];
+    float b0 = (1.0f - h->u) - h->v;
     for (int k = 0; k < 3; k++) {
         e1[k] = tri->v1[k] - tri->v0[k];
         e2[k] = tri->v2[k] - tri->v0[k];
-        sf->p[k] = r->org[k] + h->t * r->dir[k];
+        po[k] = (b0 * tri->v0[k] + h->u * tri->v1[k]) + h->v * tri->v2[k];
+    }
+    if (identity) {
+        for (int k = 0; k < 3; k++) sf->p[k] = po[k];
+    } else {
+        rt_point_to_world(in, po, sf->p);
     }
     rt_cross3(e1, e2, n);
     if (identity) {

@@ -6,15 +6,25 @@
  * the OpenCL kernels include it, so they evaluate the same operations in the
  * same order and get the same bits. Rules that keep it so:
  * - only + - * /, sqrt, comparisons, fabs (division as RT_DIV and square
- *   root as RT_SQRT, which are exact everywhere but in the OpenCL study build
- *   with -DRT_NATIVE_MATH); minimum and maximum written as
+ *   root as RT_SQRT: correctly rounded in every profile but the OpenCL
+ *   study build with -DRT_NATIVE_MATH); minimum and maximum written as
  *   comparisons (so NaN handling is spelled out); integer powers by repeated
  *   multiplication; no vector operators; no recursion, no function pointers,
- *   no allocation;
+ *   no allocation; no double anywhere;
  * - C builds with -ffp-contract=off and without fast-math; OpenCL builds with
- *   '#pragma OPENCL FP_CONTRACT OFF', without the options -cl-mad-enable or fast-relaxed
- *   maths, and with -cl-fp32-correctly-rounded-divide-sqrt (OpenCL's default
- *   division and sqrt may be off by up to 3 ulp);
+ *   '#pragma OPENCL FP_CONTRACT OFF', without the options -cl-mad-enable or
+ *   fast-relaxed maths.
+ *
+ * Two maths profiles give the same bits (docs/PORTABLE_MATH.md):
+ * - native: the device's division and sqrt, built with
+ *   -cl-fp32-correctly-rounded-divide-sqrt; only where the device promises
+ *   them correctly rounded (the C oracle: IEEE hardware);
+ * - portable (-DRT_PORTABLE_MATH): division and sqrt in software from 32-bit
+ *   integer operations (rt_soft_math.h), for devices whose division and
+ *   sqrt may be off by ulps (OpenCL allows 2.5 and 3, Vulkan 2.5).
+ * Denormals: -DRT_FLUSH_DENORMALS (OpenCL, with -cl-denorms-are-zero) picks
+ * the flush-to-zero variants of the software functions; the C oracle follows
+ * its thread's mode (rt_fp_mode.h), which the CPU backends set.
  * - the evaluation order of every sum is written out (a + b + c is (a + b) + c).
  *
  * Closest hit has a total order: smaller t wins; equal t goes to the lower
@@ -27,10 +37,21 @@
 
 #include "rt_layout.h"
 
+#include "rt_soft_math.h"
+
 #ifdef RT_OPENCL
 #define RT_GLOBAL __global
 #define RT_FN
-#ifdef RT_NATIVE_MATH
+#if defined(RT_PORTABLE_MATH) && defined(RT_NATIVE_MATH)
+#error "RT_PORTABLE_MATH and RT_NATIVE_MATH exclude each other"
+#endif
+#if defined(RT_PORTABLE_MATH) && defined(RT_FLUSH_DENORMALS)
+#define RT_DIV(a, b) rt_soft_div_ftz((a), (b))
+#define RT_SQRT(x)   rt_soft_sqrt_ftz(x)
+#elif defined(RT_PORTABLE_MATH)
+#define RT_DIV(a, b) rt_soft_div((a), (b))
+#define RT_SQRT(x)   rt_soft_sqrt(x)
+#elif defined(RT_NATIVE_MATH)
 /* Only for the speed-versus-error study (bench/study_opencl_options.sh): the
  * device's own, faster division and square root, whose error the
  * implementation defines. Never in a build that claims the oracle's bits. */
@@ -40,21 +61,21 @@
 #define RT_DIV(a, b) ((a) / (b))
 #define RT_SQRT(x)   sqrt(x)
 #endif
+#ifdef RT_FLUSH_DENORMALS
+#define RT_DOP(a, b, c, d) rt_soft_diff_of_products_ftz((a), (b), (c), (d))
+#else
+#define RT_DOP(a, b, c, d) rt_soft_diff_of_products((a), (b), (c), (d))
+#endif
 #define RT_FABS(x)     fabs(x)
 #define RT_AS_INT(x)   as_int(x)
 #define RT_AS_FLOAT(x) as_float(x)
 #define RT_INF         INFINITY
-#ifdef cl_khr_fp64
-#pragma OPENCL EXTENSION cl_khr_fp64 : enable
-#define RT_HAVE_DOUBLE 1
 #else
-#define RT_HAVE_DOUBLE 0
-#endif
-#else
-#define RT_HAVE_DOUBLE 1
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
+
+#include "rt_fp_mode.h"
 #define RT_GLOBAL
 #define RT_FN          static inline
 #define RT_DIV(a, b)   ((a) / (b))
@@ -63,6 +84,11 @@
 #define RT_AS_INT(x)   rt_as_int_(x)
 #define RT_AS_FLOAT(x) rt_as_float_(x)
 #define RT_INF         INFINITY
+/* The hardware's division and sqrt flush when the thread's mode does; the
+ * integer-only difference of products follows that mode explicitly. */
+#define RT_DOP(a, b, c, d)                                                                         \
+    (rt_fp_flushing() ? rt_soft_diff_of_products_ftz((a), (b), (c), (d))                           \
+                      : rt_soft_diff_of_products((a), (b), (c), (d)))
 static inline rt_i32 rt_as_int_(float f) {
     rt_i32 i;
     memcpy(&i, &f, sizeof i);
@@ -210,7 +236,7 @@ RT_FN void rt_ray_prepare(const rt_ray_d *r, rt_ray_pre *p) {
     p->kz = kz;
     p->sx = RT_DIV(r->dir[kx], r->dir[kz]);
     p->sy = RT_DIV(r->dir[ky], r->dir[kz]);
-    p->sz = RT_DIV(1.0f, r->dir[kz]);
+    p->sz = p->inv[kz]; /* 1 / dir[kz], the same operation: one division less */
 }
 
 /* The primary ray through the centre of pixel (px, py); see rt_layout.h. Its
@@ -277,9 +303,19 @@ RT_FN int rt_box_test(RT_GLOBAL const rt_node *n, const rt_ray_d *r, const rt_ra
 /* Woop, Benthin and Wald 2013: shear and scale so the ray is the +z axis, then
  * 2D edge functions. Watertight: a ray through a shared edge or vertex hits at
  * least one of the triangles. Edge functions that come out exactly zero are
- * recomputed in double where doubles exist (RT_HAVE_DOUBLE: always in C; in
- * OpenCL with cl_khr_fp64); a device without doubles can differ from the
- * oracle on such rare rays. */
+ * recomputed exactly (rt_edge_recheck). */
+/* An edge function of exactly zero may be rounding (two equal products):
+ * all three are recomputed as a*b - c*d with exact products, rounded once
+ * (rt_soft_math.h: integer operations, no fp64, the same bits on every
+ * device), as the paper does in double. Without this, sliver triangles of
+ * scanned meshes report hits for rays that pass far from them. */
+RT_FN void rt_edge_recheck(float Ax, float Ay, float Bx, float By, float Cx, float Cy, float *U,
+                           float *V, float *W) {
+    *U = RT_DOP(Cx, By, Cy, Bx);
+    *V = RT_DOP(Ax, Cy, Ay, Cx);
+    *W = RT_DOP(Bx, Ay, By, Ax);
+}
+
 RT_FN int rt_tri_watertight(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, const rt_ray_pre *p,
                             float tmin, float tmax, float *t, float *u, float *v) {
     float A[3], B[3], C[3];
@@ -295,17 +331,7 @@ RT_FN int rt_tri_watertight(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, cons
     float U = Cx * By - Cy * Bx;
     float V = Ax * Cy - Ay * Cx;
     float W = Bx * Ay - By * Ax;
-#if RT_HAVE_DOUBLE
-    /* An edge function of exactly zero may be rounding (two equal products):
-     * recompute all three with exact products (float * float is exact in
-     * double), as the paper does. Without this, sliver triangles of scanned
-     * meshes report hits for rays that pass far from them. */
-    if (U == 0.0f || V == 0.0f || W == 0.0f) {
-        U = (float)((double)Cx * (double)By - (double)Cy * (double)Bx);
-        V = (float)((double)Ax * (double)Cy - (double)Ay * (double)Cx);
-        W = (float)((double)Bx * (double)Ay - (double)By * (double)Ax);
-    }
-#endif
+    if (U == 0.0f || V == 0.0f || W == 0.0f) rt_edge_recheck(Ax, Ay, Bx, By, Cx, Cy, &U, &V, &W);
     if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) return 0;
     float det = (U + V) + W;
     if (det == 0.0f) return 0;

@@ -6,9 +6,26 @@
 # any backend; the other tests' failures are printed, not fatal.
 source "$RT_SOURCE_DIR/tests/shell_check.sh"
 
-# The backends that run the suite: a new backend is one more word here.
-BACKENDS=${RT_ROBUST_BACKENDS:-"cpu packet opencl"}
-TRI_TESTS="watertight mt pluecker badouel"
+# The backends that run the suite: a new backend is one more word here. A
+# word BACKEND+portable runs the portable maths profile (--device-math
+# portable), +flush the flushing denormal policy (--denormals flush); each
+# is held to the oracle in its own denormal policy (cpu or cpu+flush).
+BACKENDS=${RT_ROBUST_BACKENDS:-"cpu packet opencl opencl+portable cpu+flush packet+flush opencl+portable+flush"}
+
+# The rtcl options of a word, and the oracle it is compared with.
+word_args() {
+    local parts w
+    IFS=+ read -r -a parts <<< "$1"
+    echo -n "--backend ${parts[0]}"
+    for w in "${parts[@]:1}"; do
+        case $w in
+            portable | native) echo -n " --device-math $w" ;;
+            flush) echo -n " --denormals flush" ;;
+        esac
+    done
+}
+word_oracle() { case $1 in *+flush*) echo cpu+flush ;; *) echo cpu ;; esac; }
+TRI_TESTS=${RT_ROBUST_TRI_TESTS:-"watertight mt pluecker badouel"}
 
 if ! command -v python3 > /dev/null; then
     echo "python3 not found: the robustness suite needs it"; exit 77
@@ -19,7 +36,7 @@ names=$(python3 -c 'import json, sys
 for c in json.load(open(sys.argv[1]))["cases"]: print(c["name"], " ".join(c["flags"]))' "$cases/manifest.json")
 
 for backend in $BACKENDS; do
-    if [ "$backend" = opencl ] && ! "$RTCL" devices > "$tmp/devices.txt" 2>&1; then
+    if [ "${backend%%+*}" = opencl ] && ! "$RTCL" devices > "$tmp/devices.txt" 2>&1; then
         # Only a build or machine without any OpenCL device gets here; CI has PoCL.
         echo "skipped backend opencl: $(head -1 "$tmp/devices.txt")"
         continue
@@ -30,7 +47,7 @@ for backend in $BACKENDS; do
         while read -r name flags; do
             # shellcheck disable=SC2086
             expect 0 '' -- "$RTCL" trace "$cases/$name.obj" --rays "$cases/$name.rays" \
-                --out "$out/$name.hits" --backend "$backend" --tri-test "$tri" $flags
+                --out "$out/$name.hits" $(word_args "$backend") --tri-test "$tri" $flags
         done <<< "$names"
         strict=""
         [ "$tri" = watertight ] && strict=--strict
@@ -42,16 +59,17 @@ for backend in $BACKENDS; do
 done
 
 # Every backend is bit-exact with the oracle: the same closest-hit files as
-# cpu's (any-hit queries may report another hit in range; the check above
-# holds them to the expectations).
+# cpu's in the same denormal policy (any-hit queries may report another hit
+# in range; the check above holds them to the expectations).
 for backend in $BACKENDS; do
-    [ "$backend" = cpu ] || [ ! -d "$tmp/$backend-watertight" ] || [ ! -d "$tmp/cpu-watertight" ] && continue
+    oracle=$(word_oracle "$backend")
+    [ "$backend" = "$oracle" ] || [ ! -d "$tmp/$backend-watertight" ] || [ ! -d "$tmp/$oracle-watertight" ] && continue
     for tri in $TRI_TESTS; do
         while read -r name flags; do
             case " $flags " in *" --any-hit "*) continue ;; esac
             checks=$((checks + 1))
-            cmp -s "$tmp/cpu-$tri/$name.hits" "$tmp/$backend-$tri/$name.hits" ||
-                { echo "FAIL: $backend/$tri $name: hits differ from cpu's"; fails=$((fails + 1)); }
+            cmp -s "$tmp/$oracle-$tri/$name.hits" "$tmp/$backend-$tri/$name.hits" ||
+                { echo "FAIL: $backend/$tri $name: hits differ from $oracle's"; fails=$((fails + 1)); }
         done <<< "$names"
     done
 done

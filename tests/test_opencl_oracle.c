@@ -17,7 +17,17 @@
  * (partial blocks), with every triangle test and every block size; its test
  * counters count per lane (they differ from the oracle's), so they are
  * checked for consistency instead, and exactly with the one-ray kernels (rt_opencl_tuning)
- * (the one-ray kernels, which must stay exact too). */
+ * (the one-ray kernels, which must stay exact too).
+ *
+ * Maths profiles (docs/PORTABLE_MATH.md): RT_TEST_DEVICE_MATH=portable runs
+ * the OpenCL side in the portable profile (software divide and sqrt) and
+ * RT_TEST_DENORMALS=flush both sides with denormals flushed (the oracle with
+ * FTZ/DAZ); ctest runs those as test_opencl_oracle_portable and
+ * test_opencl_oracle_portable_flush: every AOV of every built-in and shipped
+ * scene with the packet and the one-ray kernels, and 20,000 ray queries per
+ * scene. Then a scene 1e-13 across traced with rays of unit directions (t's
+ * numerator in the denormal range), on which the flushing and the IEEE oracle disagree (so the
+ * denormal policy is seen to matter), must still match in both policies. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -51,9 +61,25 @@ static const mode whitted = {0, RT_TRI_TEST_WATERTIGHT};
 /* The OpenCL kernel choices the checks run with now (rt_opencl_tuning). */
 static rt_opencl_tuning cl_tune;
 
+/* The maths profile of the OpenCL side and the denormal policy of both
+ * (RT_TEST_DEVICE_MATH, RT_TEST_DENORMALS). */
+static rt_device_math cl_math = RT_DEVICE_MATH_AUTO;
+static rt_denormals denormals = RT_DENORMALS_PRESERVE;
+
 /* The renderer of a backend: "cpu", or "opencl" with the current kernel
  * choices (one renderer per choice, kept: its device state is reused). */
 static rt_renderer *renderer_for(const char *backend) {
+    if (strcmp(backend, "cpu") == 0 && denormals == RT_DENORMALS_FLUSH) {
+        static rt_renderer *flushing;
+        if (!flushing) {
+            rt_renderer_options o = rt_renderer_options_default();
+            o.denormals = denormals;
+            rt_error err;
+            flushing = test_renderer_with(&o, &err);
+            CHECK_MSG(flushing != NULL, "flushing cpu renderer: %s", err.message);
+        }
+        return flushing;
+    }
     if (strcmp(backend, "opencl") != 0) return test_renderer(backend, 0);
     static struct {
         rt_opencl_tuning tune;
@@ -65,6 +91,8 @@ static rt_renderer *renderer_for(const char *backend) {
     rt_renderer_options o = rt_renderer_options_default();
     o.backend = "opencl";
     o.opencl = cl_tune;
+    o.device_math = cl_math;
+    o.denormals = denormals;
     rt_error err;
     rt_renderer *r = count < 8 ? test_renderer_with(&o, &err) : NULL;
     CHECK_MSG(r != NULL, "opencl renderer: %s", count < 8 ? err.message : "too many");
@@ -186,6 +214,11 @@ static void check_images_mode(const char *name, rt_scene *s, mode m) {
                  m.direct ? "direct" : "Whitted", packet ? ", packet" : "", cpu.width, cpu.height,
                  tri_names[m.tri]);
         CHECK(strcmp(st.backend, "opencl") == 0 && st.device[0] && st.exact);
+        CHECK_MSG(
+            strcmp(st.math_profile, cl_math == RT_DEVICE_MATH_PORTABLE ? "portable" : "native") ==
+                    0 &&
+                strcmp(st.denormals, denormals == RT_DENORMALS_FLUSH ? "flush" : "preserve") == 0,
+            "%s: profile %s, denormals %s", name, st.math_profile, st.denormals);
         CHECK(st.primary_rays == (uint64_t)cpu.width * (uint64_t)cpu.height);
         CHECK_MSG((strncmp(st.kernels, "packet", 6) == 0) == packet, "%s %s: kernels '%s'", name,
                   label, st.kernels);
@@ -200,6 +233,8 @@ static void check_images_mode(const char *name, rt_scene *s, mode m) {
             char pa[64], pb[64];
             snprintf(pa, sizeof pa, "%s_cpu.png", name);
             snprintf(pb, sizeof pb, "%s_cl.png", name);
+            for (char *c = pa; *c; c++) *c = *c == '/' ? '_' : *c;
+            for (char *c = pb; *c; c++) *c = *c == '/' ? '_' : *c;
             char a[512], b[512];
             snprintf(a, sizeof a, "%s", test_write_temp(pa, ""));
             snprintf(b, sizeof b, "%s", test_write_temp(pb, ""));
@@ -346,7 +381,26 @@ static void check_wavefront(rt_scene *s) {
     cl_tune.one_ray_kernels = 0;
 }
 
-static void check_hits(const char *name, rt_scene *s) {
+/* Makes ray i of a test over a scene of bounds lo..hi. */
+typedef void (*ray_maker)(const rt_scene_header *h, const float lo[3], const float hi[3], int i,
+                          rt_ray_d *r);
+
+/* Rays from inside the bounds in directions of unit size, whatever the
+ * scene's size (the denormal scene's edge functions times z then fall below
+ * the smallest normal float). */
+static void unit_ray(const rt_scene_header *h, const float lo[3], const float hi[3], int i,
+                     rt_ray_d *r) {
+    (void)h;
+    (void)i;
+    for (int k = 0; k < 3; k++) {
+        r->org[k] = lo[k] + (hi[k] - lo[k]) * oracle_rnd();
+        r->dir[k] = oracle_rnd() - 0.5f;
+    }
+    r->tmin = 0.0f;
+    r->tmax = INFINITY;
+}
+
+static void check_hits_with(const char *name, rt_scene *s, ray_maker make) {
     const rt_flat *flat = test_layout(s, 0);
     if (!flat) return;
     const rt_scene_header *h = &flat->hdr;
@@ -357,7 +411,7 @@ static void check_hits(const char *name, rt_scene *s) {
     rt_hit *a = malloc(sizeof *a * N), *b = malloc(sizeof *b * N);
     for (int i = 0; i < N; i++) {
         rt_ray_d r;
-        oracle_ray(h, lo, hi, i, &r);
+        make(h, lo, hi, i, &r);
         memcpy(rays[i].org, r.org, sizeof r.org);
         memcpy(rays[i].dir, r.dir, sizeof r.dir);
         rays[i].tmin = r.tmin;
@@ -383,11 +437,17 @@ static void check_hits(const char *name, rt_scene *s) {
                 break;
             }
         }
-        CHECK_MSG(hits > N / 10, "%s: only %d of %d rays hit: a weak test", name, hits, N);
+        /* Flushed, most of the denormal scene's edge functions are zero. */
+        int want = denormals == RT_DENORMALS_FLUSH && strstr(name, "denormal") ? N / 1000 : N / 10;
+        CHECK_MSG(hits > want, "%s: only %d of %d rays hit: a weak test", name, hits, N);
     }
     free(rays);
     free(a);
     free(b);
+}
+
+static void check_hits(const char *name, rt_scene *s) {
+    check_hits_with(name, s, oracle_ray);
 }
 
 /* device_options: appended to the build (a bad option fails the build and
@@ -490,6 +550,118 @@ static void check_uploads(void) {
 }
 #endif
 
+/* Random triangles in a box a few 1e-13 across: edge functions near 1e-26
+ * and their products with z (t's numerator) near 1e-39, below the smallest
+ * normal float, so the denormal policy decides many bits of t. */
+static rt_scene *denormal_scene(void) {
+    rt_scene *s = NULL;
+    uint32_t mesh, mat, obj;
+    rt_material m = rt_material_default();
+    CHECK(rt_scene_create(&s) == RT_OK);
+    if (!s) return NULL;
+    CHECK(rt_mesh_create(s, &mesh) == RT_OK);
+    enum { TRIS = 200 };
+    float pos[9 * TRIS];
+    uint32_t idx[3 * TRIS];
+    for (uint32_t i = 0; i < 3 * TRIS; i++) idx[i] = i;
+    uint32_t seed = 12345u;
+    for (int i = 0; i < 9 * TRIS; i++) {
+        seed = seed * 1664525u + 1013904223u;
+        pos[i] = (float)(seed >> 8) * (1e-13f / 16777216.0f);
+    }
+    CHECK(rt_mesh_add_triangles(s, mesh, pos, NULL, 3 * TRIS, idx, TRIS) == RT_OK);
+    CHECK(rt_material_add(s, &m, &mat) == RT_OK);
+    CHECK(rt_object_create(s, mat, &obj) == RT_OK);
+    CHECK(rt_object_add_mesh(s, obj, mesh) == RT_OK);
+    CHECK(rt_scene_commit(s) == RT_OK);
+    return s;
+}
+
+/* Every AOV with the packet and the one-ray kernels, and ray queries. */
+static void check_scene_profile(const char *name, rt_scene *s) {
+    cl_tune.one_ray_kernels = 0;
+    check_images(name, s);
+    cl_tune.one_ray_kernels = 1;
+    check_images(name, s);
+    cl_tune.one_ray_kernels = 0;
+    check_hits(name, s);
+}
+
+/* Closest hits of the oracle in the other denormal policy: some differ on
+ * the denormal scene, or that scene would not test the policy. */
+static void check_policy_matters(rt_scene *s) {
+    enum { N = 4000 };
+    const rt_flat *flat = test_layout(s, 0);
+    if (!flat) return;
+    float lo[3], hi[3];
+    CHECK(rt_scene_bounds(s, lo, hi));
+    rt_ray *rays = malloc(sizeof *rays * N);
+    rt_hit *a = malloc(sizeof *a * N), *b = malloc(sizeof *b * N);
+    for (int i = 0; i < N; i++) {
+        rt_ray_d r;
+        unit_ray(&flat->hdr, lo, hi, i, &r);
+        memcpy(rays[i].org, r.org, sizeof r.org);
+        memcpy(rays[i].dir, r.dir, sizeof r.dir);
+        rays[i].tmin = r.tmin;
+        rays[i].tmax = r.tmax;
+    }
+    rt_renderer_options o = rt_renderer_options_default();
+    o.denormals = denormals == RT_DENORMALS_FLUSH ? RT_DENORMALS_PRESERVE : RT_DENORMALS_FLUSH;
+    rt_error err;
+    rt_renderer *other = test_renderer_with(&o, &err);
+    rt_trace_options q = {0, RT_TRI_TEST_WATERTIGHT};
+    int differ = 0;
+    if (other && rt_trace_rays(renderer_for("cpu"), s, rays, N, a, &q) == RT_OK &&
+        rt_trace_rays(other, s, rays, N, b, &q) == RT_OK)
+        for (int i = 0; i < N; i++)
+            differ += a[i].hit != b[i].hit || memcmp(&a[i].t, &b[i].t, 4) != 0;
+    CHECK_MSG(differ > 0, "the denormal scene gives the same hits in both policies");
+    printf("denormal scene: %d of %d closest hits differ between the policies\n", differ, N);
+    free(rays);
+    free(a);
+    free(b);
+}
+
+/* The profile run (RT_TEST_DEVICE_MATH / RT_TEST_DENORMALS). */
+static void check_profile(void) {
+    for (int i = 0; rt_builtin_scene_names[i]; i++) {
+        rt_scene *s = test_builtin_scene(rt_builtin_scene_names[i], 96, 54);
+        if (s) check_scene_profile(rt_builtin_scene_names[i], s);
+        rt_scene_destroy(s);
+    }
+    static const char *const shipped[] = {"scenes/cornell.json", "scenes/keyframes.json"};
+    for (int i = 0; i < 2; i++) {
+        rt_scene *s = NULL;
+        rt_error err;
+        CHECK_MSG(rt_scene_load(test_source_path(shipped[i]), &s, &err) == RT_OK, "%s",
+                  err.message);
+        if (!s) continue;
+        rt_camera cam;
+        rt_camera_get(s, &cam);
+        cam.width = 96;
+        cam.height = 54;
+        CHECK(rt_camera_set(s, &cam) == RT_OK);
+        check_scene_profile(shipped[i], s);
+        rt_scene_destroy(s);
+    }
+    /* Flushing on this scene breaks what makes the closest hit independent
+     * of traversal order: a triangle's t numerator flushed to zero gives
+     * t = 0 in a box whose entry distance is positive, so which of several
+     * such triangles wins depends on which box is opened first. The one-ray
+     * kernels traverse in the oracle's order and must match it; the packet
+     * kernels are held to it only where denormals are kept
+     * (docs/PORTABLE_MATH.md, "Flushing"). */
+    rt_scene *s = denormal_scene();
+    if (s) {
+        cl_tune.one_ray_kernels = 1;
+        check_hits_with("denormal scene (one-ray kernels)", s, unit_ray);
+        cl_tune.one_ray_kernels = 0;
+        if (denormals == RT_DENORMALS_PRESERVE) check_hits_with("denormal scene", s, unit_ray);
+        check_policy_matters(s);
+    }
+    rt_scene_destroy(s);
+}
+
 int main(void) {
 #ifndef RT_HAVE_OPENCL
     test_skip("this build has no OpenCL backend (RT_OPENCL=OFF or no ICD loader)");
@@ -498,6 +670,14 @@ int main(void) {
     int count;
     if (rt_cl_devices(&devs, &count, &lib_err) != RT_OK) test_skip(lib_err.message);
     free(devs);
+    const char *math = getenv("RT_TEST_DEVICE_MATH"), *dn = getenv("RT_TEST_DENORMALS");
+    if (math && strcmp(math, "portable") == 0) cl_math = RT_DEVICE_MATH_PORTABLE;
+    if (dn && strcmp(dn, "flush") == 0) denormals = RT_DENORMALS_FLUSH;
+    if (cl_math != RT_DEVICE_MATH_AUTO || denormals != RT_DENORMALS_PRESERVE) {
+        printf("profile: device maths %s, denormals %s\n", math, dn ? dn : "preserve");
+        check_profile();
+        return TEST_END();
+    }
     for (int i = 0; rt_builtin_scene_names[i]; i++) {
         const char *name = rt_builtin_scene_names[i];
         rt_scene *s;

@@ -33,6 +33,8 @@ typedef struct rt_backend_config {
                                    the renderer refuses longer ones), or NULL */
     const char *packet_isa;     /* the packet backend's instruction set, or NULL */
     rt_opencl_tuning opencl;
+    rt_device_math device_math;
+    int flush_denormals; /* rt_denormals: 1 for RT_DENORMALS_FLUSH */
 } rt_backend_config;
 
 /* The layout of the frame and what changed since the backend last saw one. */

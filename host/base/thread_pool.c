@@ -13,6 +13,8 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+#include "rt_fp_mode.h"
+
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #define cpu_relax() _mm_pause()
@@ -172,4 +174,22 @@ void rt_pool_run(rt_pool *pool, rt_pool_fn fn, void *ctx) {
         pthread_mutex_unlock(&pool->mutex);
     }
     pthread_mutex_unlock(&pool->run_lock);
+}
+
+typedef struct fp_job {
+    rt_pool_fn fn;
+    void *ctx;
+    int flush;
+} fp_job;
+
+static void fp_job_run(void *ctx, int worker, int worker_count) {
+    const fp_job *job = ctx;
+    rt_fp_saved saved = rt_fp_set_flush(job->flush);
+    job->fn(job->ctx, worker, worker_count);
+    rt_fp_restore(saved);
+}
+
+void rt_pool_run_fp(rt_pool *pool, rt_pool_fn fn, void *ctx, int flush) {
+    fp_job job = {fn, ctx, flush};
+    rt_pool_run(pool, fp_job_run, &job);
 }

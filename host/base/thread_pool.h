@@ -25,6 +25,12 @@ int rt_pool_size(const rt_pool *pool);
 /* Calls fn(ctx, w, n) once for each worker w and returns when all are done. */
 void rt_pool_run(rt_pool *pool, rt_pool_fn fn, void *ctx);
 
+/* As rt_pool_run, with each worker's denormal mode set for the job (flush 1:
+ * flush-to-zero and denormals-are-zero; 0: IEEE gradual underflow, whatever
+ * the thread had) and restored afterwards; see kernels/rt_fp_mode.h. The
+ * CPU backends trace so, and nothing else runs in that mode. */
+void rt_pool_run_fp(rt_pool *pool, rt_pool_fn fn, void *ctx, int flush);
+
 /* Number of online cores. */
 int rt_cpu_count(void);
 

@@ -5,7 +5,7 @@
 
 #include <stdint.h>
 
-enum { BENCH_RENDER_MAX_ROWS = 10 };
+enum { BENCH_RENDER_MAX_ROWS = 11 };
 
 typedef struct render_row {
     char backend[24]; /* cpu, packet, opencl, embree-1/4/8/16, embree (its best) */
@@ -23,12 +23,16 @@ typedef struct render_row {
 
 typedef struct bench_render_setup {
     int reps, threads, width, height;
-    int accel; /* rt_accel for every static mesh, or -1: the scene's own */
+    int device_math; /* rt_device_math of the "opencl" row */
+    int denormals;   /* rt_denormals of every row */
+    int accel;       /* rt_accel for every static mesh, or -1: the scene's own */
     void (*progress)(const char *scene, const char *what);
 } bench_render_setup;
 
 /* Renders the scene at setup->width x height with direct_only (primary plus
- * shadow rays, Phong) on cpu, packet and opencl, one warm-up frame each (not
+ * shadow rays, Phong) on cpu, packet and opencl (in setup->device_math) and,
+ * unless that is portable already, opencl-portable (the portable maths
+ * profile, for its cost), one warm-up frame each (not
  * counted: it builds the BVHs, compiles and uploads) then reps frames; with
  * Embree in the build, also rtcIntersect1/4/8(/16) frames and a row "embree"
  * for its fastest width. Frames are interleaved round by round (every row's

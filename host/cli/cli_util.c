@@ -98,6 +98,15 @@ const char cli_renderer_usage[] =
     "                 oracle, and --stats says so (the speed-versus-error study)\n"
     "  --packet-isa I the packet backend's instruction set: generic, avx2, avx512\n"
     "                 (x86-64) [the widest the CPU runs]; all give the same bits\n"
+    "  --device-math M\n"
+    "                 device backends' divide and sqrt: native (the device's, correctly\n"
+    "                 rounded where it promises it), portable (software, from integer\n"
+    "                 operations: exact on any conforming device), or auto (native\n"
+    "                 where promised, else portable) [auto]; --stats says which ran\n"
+    "  --denormals P  preserve (IEEE) or flush (flush-to-zero and denormals-are-zero,\n"
+    "                 as most GPUs: the CPU backends set their threads' FTZ/DAZ and\n"
+    "                 kernels are built with -cl-denorms-are-zero) [preserve]; compare a\n"
+    "                 device with the oracle in the mode 'rtcl devices' names\n"
     "For tests and comparisons (every choice gives the same bits):\n"
     "  --cl-one-ray   OpenCL: one ray per work-item on CPU devices too\n"
     "  --cl-packet-lanes N\n"
@@ -136,6 +145,28 @@ int cli_renderer_arg(int argc, char **argv, int *i, const char *command, cli_ren
         if (!(a->opt.device_options = cli_value(argc, argv, i, command))) return -1;
     } else if (!strcmp(o, "--packet-isa")) {
         if (!(a->opt.packet_isa = cli_value(argc, argv, i, command))) return -1;
+    } else if (!strcmp(o, "--device-math")) {
+        if (!(v = cli_value(argc, argv, i, command))) return -1;
+        if (!strcmp(v, "auto"))
+            a->opt.device_math = RT_DEVICE_MATH_AUTO;
+        else if (!strcmp(v, "native"))
+            a->opt.device_math = RT_DEVICE_MATH_NATIVE;
+        else if (!strcmp(v, "portable"))
+            a->opt.device_math = RT_DEVICE_MATH_PORTABLE;
+        else {
+            cli_error(command, "--device-math takes auto, native or portable, not '%s'", v);
+            return -1;
+        }
+    } else if (!strcmp(o, "--denormals")) {
+        if (!(v = cli_value(argc, argv, i, command))) return -1;
+        if (!strcmp(v, "preserve"))
+            a->opt.denormals = RT_DENORMALS_PRESERVE;
+        else if (!strcmp(v, "flush"))
+            a->opt.denormals = RT_DENORMALS_FLUSH;
+        else {
+            cli_error(command, "--denormals takes preserve or flush, not '%s'", v);
+            return -1;
+        }
     } else if (!strcmp(o, "--cl-one-ray")) {
         a->opt.opencl.one_ray_kernels = 1;
     } else if (!strcmp(o, "--cl-no-wavefront")) {

@@ -40,7 +40,8 @@ typedef struct row {
 
 typedef struct bench_args {
     int json, reps, threads, progress, render, width, height;
-    int accel; /* --accel: rt_accel, or -1 */
+    int device_math, denormals; /* rt_device_math, rt_denormals */
+    int accel;                  /* --accel: rt_accel, or -1 */
 } bench_args;
 
 static int cmp_double(const void *a, const void *b) {
@@ -56,7 +57,8 @@ static void summarize(row *r, double *times, int n) {
 
 static void usage(FILE *f) {
     fprintf(f, "usage: rtcl bench SCENE... [--json] [--reps N] [--threads N] [--no-render]\n"
-               "                 [--width W] [--height H] [--accel A]\n"
+               "                 [--width W] [--height H] [--device-math M] [--denormals P]\n"
+               "                 [--accel A]\n"
                "\n"
                "Build: one BVH over all triangles of each scene with every builder\n"
                "(thesis-scalar, thesis-neon, thesis-mt, fast, and embree when available):\n"
@@ -64,7 +66,8 @@ static void usage(FILE *f) {
                "is not counted), SAH cost and node count. Embree's rtcCommitScene at low\n"
                "and medium quality is shown for reference.\n"
                "Render: the thesis's set-up (one point light, primary plus shadow rays,\n"
-               "Phong) on the backends cpu, packet and opencl, and Embree tracing the same\n"
+               "Phong) on the backends cpu, packet, opencl and opencl-portable (the\n"
+               "portable maths profile: software divide and sqrt), and Embree tracing the same\n"
                "rays (rtcIntersect1, packets of 4, 8 and 16 where native, rtcOccluded for\n"
                "shadow rays) with the same thread count: min and median frame time over N\n"
                "frames after one warm-up frame (frames interleaved round by round over\n"
@@ -78,6 +81,11 @@ static void usage(FILE *f) {
                "  --threads N  threads for the threaded builders, the renderers and Embree\n"
                "               (default: all cores; PoCL uses its own pool of all cores)\n"
                "  --no-render  build only\n"
+               "  --device-math M\n"
+               "               the opencl row's maths profile: auto, native or portable\n"
+               "               [auto]; with portable there is no separate opencl-portable row\n"
+               "  --denormals P\n"
+               "               preserve or flush, for every row [preserve]\n"
                "  --width W, --height H\n"
                "               render resolution [1024x576, the thesis's]\n"
                "  --accel A    bvh, kd or kd-binned: the structure of every static mesh in\n"
@@ -376,13 +384,13 @@ static void print_text_render(const bench_args *a, const render_row *rows, int n
     printf("  render %dx%d, one light, primary + shadow rays, Phong; %d timed frames after 1 "
            "warm-up frame, interleaved over the rows\n",
            a->width, a->height, a->reps);
-    printf("  %-12s %7s %10s %10s %8s %9s %9s %19s", "backend", "threads", "min ms", "median ms",
+    printf("  %-15s %7s %10s %10s %8s %9s %9s %19s", "backend", "threads", "min ms", "median ms",
            "Mrays/s", "box/ray", "tri/ray", "px != cpu (visibly)");
     if (peer) printf(" %12s", "rate/embree");
     putchar('\n');
     for (int i = 0; i < n; i++) {
         const render_row *r = &rows[i];
-        printf("  %-12s %7d ", r->backend, r->threads);
+        printf("  %-15s %7d ", r->backend, r->threads);
         if (r->error[0]) {
             printf("unavailable: %s\n", r->error);
             continue;
@@ -480,8 +488,9 @@ static int bench_scene(const char *path, const bench_args *a, rt_pool *pool) {
     int n_render = 0;
     char why[300] = "";
     if (a->render) {
-        bench_render_setup su = {a->reps,   a->threads, a->width,
-                                 a->height, a->accel,   a->progress ? render_progress : NULL};
+        bench_render_setup su = {
+            a->reps,        a->threads,   a->width, a->height,
+            a->device_math, a->denormals, a->accel, a->progress ? render_progress : NULL};
         n_render = bench_render(path, &su, rrows, why, sizeof why);
     }
     if (a->progress) fprintf(stderr, "\r\033[K");
@@ -510,7 +519,8 @@ static int parse_int(const char *s, int lo, int hi, int *out) {
 }
 
 int cmd_bench(int argc, char **argv) {
-    bench_args a = {0, 5, 0, isatty(2), 1, 1024, 576, -1};
+    bench_args a = {0, 5, 0, isatty(2), 1, 1024, 576, RT_DEVICE_MATH_AUTO, RT_DENORMALS_PRESERVE,
+                    -1};
     const char **scenes = calloc((size_t)argc, sizeof *scenes);
     int n_scenes = 0;
     if (!scenes) return 2;
@@ -533,6 +543,25 @@ int cmd_bench(int argc, char **argv) {
             }
             a.accel = (int)acc;
             i++;
+        } else if (!strcmp(s, "--device-math") || !strcmp(s, "--denormals")) {
+            const char *v = i + 1 < argc ? argv[++i] : "";
+            int math = !strcmp(s, "--device-math");
+            if (math && !strcmp(v, "auto"))
+                a.device_math = RT_DEVICE_MATH_AUTO;
+            else if (math && !strcmp(v, "native"))
+                a.device_math = RT_DEVICE_MATH_NATIVE;
+            else if (math && !strcmp(v, "portable"))
+                a.device_math = RT_DEVICE_MATH_PORTABLE;
+            else if (!math && !strcmp(v, "preserve"))
+                a.denormals = RT_DENORMALS_PRESERVE;
+            else if (!math && !strcmp(v, "flush"))
+                a.denormals = RT_DENORMALS_FLUSH;
+            else {
+                fprintf(stderr, "rtcl bench: %s takes %s, not '%s'\n", s,
+                        math ? "auto, native or portable" : "preserve or flush", v);
+                free(scenes);
+                return 2;
+            }
         } else if (!strcmp(s, "--reps") || !strcmp(s, "--threads") || !strcmp(s, "--width") ||
                    !strcmp(s, "--height")) {
             int *dst = s[2] == 'r'   ? &a.reps

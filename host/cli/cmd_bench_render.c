@@ -55,7 +55,8 @@ static void compare_images(const float *a, const float *b, size_t pixels, render
 /* One row's run: a backend of ours (opt set) or an Embree packet width. */
 typedef struct {
     render_row *row;
-    const char *backend; /* ours: the renderer's backend for this row */
+    const char *backend;   /* ours: the renderer's backend for this row ... */
+    rt_renderer *renderer; /* ... on its own renderer (another maths profile), or NULL */
     rt_render_options opt;
     rt_render_stats st;
     rt_framebuffer fb;
@@ -104,6 +105,7 @@ static void run_frame(rt_renderer *renderer, rt_scene *scene, const embree_peer 
                       int i) {
     if (r->failed) return;
     double ms = 0.0;
+    if (r->renderer) renderer = r->renderer;
     if (r->embree_lanes) {
 #ifdef RT_HAVE_EMBREE
         rt_embree_render(peer->es, r->embree_lanes, peer->layout.pool, r->rgb, &r->row->rays, &ms);
@@ -222,22 +224,36 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
     memset(rows, 0, sizeof(render_row) * BENCH_RENDER_MAX_ROWS);
     rt_renderer_options ro = rt_renderer_options_default();
     ro.threads = su->threads;
-    rt_renderer *renderer = NULL;
+    ro.device_math = (rt_device_math)su->device_math;
+    ro.denormals = (rt_denormals)su->denormals;
+    rt_renderer *renderer = NULL, *portable = NULL;
     rt_error re;
     if (rt_renderer_create(&ro, &renderer, &re) != RT_OK) {
         snprintf(err, err_size, "%s", re.message);
         rt_scene_destroy(scene);
         return 0;
     }
-    static const char *backends[] = {"cpu", "packet", "opencl"};
-    enum { OURS = 3 };
+    static const char *backends[] = {"cpu", "packet", "opencl", "opencl"};
+    /* The portable profile's cost: a row of its own, on a second renderer
+     * (the profile is the renderer's), unless the opencl row runs it. */
+    int ours = su->device_math == RT_DEVICE_MATH_PORTABLE ? 3 : 4;
     bench_run runs[BENCH_RENDER_MAX_ROWS];
     embree_peer peer;
     memset(&peer, 0, sizeof peer);
-    for (int b = 0; b < OURS; b++) backend_init(&runs[b], &rows[b], su, backends[b]);
-    int n = OURS; /* runs */
+    for (int b = 0; b < ours; b++) backend_init(&runs[b], &rows[b], su, backends[b]);
+    if (ours == 4) {
+        snprintf(rows[3].backend, sizeof rows[3].backend, "opencl-portable");
+        ro.backend = "opencl";
+        ro.device_math = RT_DEVICE_MATH_PORTABLE;
+        if (rt_renderer_create(&ro, &portable, &re) != RT_OK) {
+            snprintf(rows[3].error, sizeof rows[3].error, "%.199s", re.message);
+            runs[3].failed = 1;
+        }
+        runs[3].renderer = portable;
+    }
+    int n = ours; /* runs */
 #ifdef RT_HAVE_EMBREE
-    n += embree_init(renderer, scene, su, &peer, &runs[OURS], &rows[OURS]);
+    n += embree_init(renderer, scene, su, &peer, &runs[ours], &rows[ours]);
 #endif
     /* Frames interleaved round by round, every run's frame i before any run's
      * frame i + 1, so that a disturbance of the shared machine falls on every
@@ -260,13 +276,14 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
     size_t px = (size_t)su->width * (size_t)su->height;
     const float *oracle = runs[0].failed ? NULL : runs[0].fb.pixels; /* cpu's */
     for (int k = 0; k < n; k++) run_finish(&runs[k], su, oracle, px);
-    for (int k = 0; k < OURS; k++) rt_framebuffer_free(&runs[k].fb);
+    for (int k = 0; k < ours; k++) rt_framebuffer_free(&runs[k].fb);
 #ifdef RT_HAVE_EMBREE
     /* Then row "embree", or the row with the reason Embree cannot run. */
-    n = n > OURS ? OURS + embree_best(&rows[OURS], n - OURS) : OURS + 1;
+    n = n > ours ? ours + embree_best(&rows[ours], n - ours) : ours + 1;
     rt_embree_scene_destroy(peer.es);
     rt_embree_destroy(peer.em);
 #endif
+    rt_renderer_destroy(portable);
     rt_renderer_destroy(renderer);
     rt_scene_destroy(scene);
     return n;

@@ -15,11 +15,15 @@ static const char usage[] =
     "\n"
     "Lists the OpenCL platforms and devices the ICD loader finds, by index (the\n"
     "number --device takes on render, trace and here), with compute units, global\n"
-    "memory and single-precision capabilities. 'exact' says whether the device\n"
-    "promises the CPU oracle's bits: that needs correctly rounded float divide and\n"
-    "sqrt (the kernels are built with -cl-fp32-correctly-rounded-divide-sqrt) and\n"
-    "cl_khr_fp64 (the watertight triangle test re-checks zero edge functions in\n"
-    "double). FMA support is shown for information: the kernels never contract.\n"
+    "memory and single-precision capabilities. 'maths' is the profile render,\n"
+    "trace and bench pick (--device-math auto): native where float divide and\n"
+    "sqrt are correctly rounded (built with -cl-fp32-correctly-rounded-divide-sqrt),\n"
+    "else portable (divide and sqrt in software from 32-bit integer operations;\n"
+    "docs/PORTABLE_MATH.md). Neither uses fp64 or FMA: fp64 and FMA are shown for\n"
+    "information. 'denormals' says whether the device keeps them and so which\n"
+    "--denormals policy compares it with the oracle. 'exact' says whether the\n"
+    "device promises the CPU oracle's bits with the defaults, and why; 'flush'\n"
+    "the same with --denormals flush.\n"
     "'kernels' says which kernels render there: on a CPU device a packet kernel\n"
     "(a 4x4 block of rays per work-item, as vectors), elsewhere one ray per\n"
     "work-item; both give the oracle's bits.\n"
@@ -75,8 +79,13 @@ int cmd_devices(int argc, char **argv) {
         printf("    float div/sqrt    %s\n",
                d->cr_div_sqrt ? "correctly rounded" : "NOT correctly rounded");
         printf("    float fma         %s\n", d->fma ? "yes" : "no");
-        printf("    fp64              %s\n", d->fp64 ? "yes (cl_khr_fp64)" : "no");
-        printf("    exact             %s: %s\n", d->exact ? "yes" : "no", rt_cl_exactness_note(d));
+        printf("    fp64              %s\n", d->fp64 ? "yes (cl_khr_fp64; not used)" : "no");
+        printf("    denormals         %s\n", rt_cl_denormals_note(d));
+        rt_cl_math_plan keep = rt_cl_plan_math(d, RT_DEVICE_MATH_AUTO, 0);
+        rt_cl_math_plan flush = rt_cl_plan_math(d, RT_DEVICE_MATH_AUTO, 1);
+        printf("    maths             %s\n", keep.portable ? "portable" : "native");
+        printf("    exact             %s: %s\n", keep.exact ? "yes" : "no", keep.note);
+        printf("    exact (flush)     %s: %s\n", flush.exact ? "yes" : "no", flush.note);
         printf("    kernels           %s\n", rt_cl_kernels_note(d));
     }
     free(devs);

@@ -7,7 +7,8 @@
 #include "scene/scene.h"
 
 static const char usage[] =
-    "usage: rtcl info SCENE [--accel A] [--cl-options OPTS] [--help]\n"
+    "usage: rtcl info SCENE [--accel A] [--cl-options OPTS] [--device-math M] [--denormals P]\n"
+    "                 [--help]\n"
     "\n"
     "Prints the triangles, meshes, objects, materials and lights of SCENE (a .json\n"
     "scene, a bare .obj, or builtin:NAME), its camera, and the features it uses:\n"
@@ -21,10 +22,13 @@ static const char usage[] =
     "                     mesh; info then shows that choice\n"
     "  --cl-options OPTS  the extra OpenCL compiler options rtcl render would be\n"
     "                     given (the speed-versus-error study): info then says the\n"
-    "                     kernels are not the exact build\n";
+    "                     kernels are not the exact build\n"
+    "  --device-math M    auto, native or portable: the maths profile render would\n"
+    "                     build the kernels with [auto]\n"
+    "  --denormals P      preserve or flush, as render would be given [preserve]\n";
 
 int cmd_info(int argc, char **argv) {
-    const char *path = NULL, *cl_options = NULL;
+    const char *path = NULL, *cl_options = NULL, *math = "auto", *denormals = "preserve";
     cli_renderer_args ra;
     cli_renderer_args_init(&ra);
     for (int i = 1; i < argc; i++) {
@@ -38,6 +42,19 @@ int cmd_info(int argc, char **argv) {
         }
         if (!strcmp(argv[i], "--cl-options")) {
             if (!(cl_options = cli_value(argc, argv, &i, "info"))) return 2;
+            continue;
+        }
+        if (!strcmp(argv[i], "--device-math") || !strcmp(argv[i], "--denormals")) {
+            int m = !strcmp(argv[i], "--device-math");
+            const char *o = argv[i], *v = cli_value(argc, argv, &i, "info");
+            if (!v) return 2;
+            if (m ? strcmp(v, "auto") && strcmp(v, "native") && strcmp(v, "portable")
+                  : strcmp(v, "preserve") && strcmp(v, "flush")) {
+                cli_error("info", "%s takes %s, not '%s'", o,
+                          m ? "auto, native or portable" : "preserve or flush", v);
+                return 2;
+            }
+            *(m ? &math : &denormals) = v;
             continue;
         }
         if (argv[i][0] == '-' || path) {
@@ -100,6 +117,15 @@ int cmd_info(int argc, char **argv) {
     else
         printf("opencl build exact (no extra options): the CPU oracle's bits where the device "
                "promises them (rtcl devices)\n");
+    if (!strcmp(math, "auto"))
+        printf("device maths auto: native (correctly rounded divide/sqrt) where the device "
+               "promises it, else portable (software divide/sqrt); rtcl devices names each\n");
+    else
+        printf("device maths %s%s\n", math,
+               !strcmp(math, "portable") ? ": software divide/sqrt, exact on any conforming device"
+                                         : ": exact only where divide/sqrt are correctly rounded");
+    printf("denormals    %s%s\n", denormals,
+           !strcmp(denormals, "flush") ? ": compared with a flushing oracle (FTZ/DAZ)" : " (IEEE)");
     rt_scene_destroy(s);
     return 0;
 }

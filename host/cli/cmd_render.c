@@ -100,6 +100,9 @@ static void print_stats(const rt_render_stats *s, int width, int height) {
     double rays = (double)(s->rays ? s->rays : 1);
     printf("backend          %s, %d threads\n", s->backend ? s->backend : "?", s->threads);
     printf("resolution       %dx%d\n", width, height);
+    printf("maths            %s, denormals %s: the CPU oracle's bits %s\n",
+           s->math_profile ? s->math_profile : "?", s->denormals ? s->denormals : "?",
+           s->exact ? "promised" : "NOT promised");
     printf("BVH cost (SAH)   %.3f (Ct = 1, Ci = 2)\n", s->sah_cost);
     printf("rays             %llu (%llu primary)\n", (unsigned long long)s->rays,
            (unsigned long long)s->primary_rays);

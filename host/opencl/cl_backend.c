@@ -76,6 +76,10 @@ typedef struct cl_state {
     char selector[128];       /* the device this state was made for ("": the default) */
     char device_options[256]; /* the renderer's extra build options ("": the exact build) */
     rt_opencl_tuning tune;    /* the renderer's kernel choices (tests, comparisons) */
+    rt_device_math math;      /* the maths profile asked for ... */
+    int flush;                /* ... and the denormal policy (1: flush) */
+    rt_cl_math_plan plan;     /* what they give on the device (after open_device) */
+    int probed_flush;         /* needs_probe: 1 when the probe saw the device flush */
     cl_context ctx;
     cl_command_queue queue;
     cl_program program;
@@ -128,6 +132,8 @@ static rt_status cl_create(const rt_backend_config *config, void **state, rt_err
     snprintf(s->device_options, sizeof s->device_options, "%s",
              config->device_options ? config->device_options : "");
     s->tune = config->opencl;
+    s->math = config->device_math;
+    s->flush = config->flush_denormals;
     s->tile = RT_CL_TILE_FIRST;
     *state = s;
     return RT_OK;
@@ -158,6 +164,55 @@ static rt_status open_device(cl_state *s, rt_error *err) {
     if (!s->queue)
         return rt_fail(err, RT_ERROR_BACKEND, "OpenCL queue on '%s': %s", s->dev.name,
                        rt_cl_error_name(ce));
+    s->plan = rt_cl_plan_math(&s->dev, s->math, s->flush);
+    return RT_OK;
+}
+
+/* The denormal options of every program: the policy's. */
+static const char *denormal_options(const cl_state *s) {
+    return s->plan.flush ? "-cl-denorms-are-zero -DRT_FLUSH_DENORMALS " : "";
+}
+
+/* Whether the device flushes under -cl-denorms-are-zero: a device that keeps
+ * denormals may (the option permits it, it does not demand it). A product
+ * with a subnormal result and a subnormal input times 2^100 must both give
+ * zero; the inputs come from a buffer, so nothing folds at compile time. */
+static const char probe_source[] =
+    "__kernel void rt_k_denorm_probe(__global const float *in, __global float *out) {\n"
+    "    out[0] = in[0] * in[1];\n"
+    "    out[1] = in[2] * in[3];\n"
+    "}\n";
+
+static rt_status probe_flush(cl_state *s, int *flushes, rt_error *err) {
+    const char *src = probe_source;
+    cl_device_id d = s->dev.device_id;
+    cl_int ce;
+    cl_program prog = clCreateProgramWithSource(s->ctx, 1, &src, NULL, &ce);
+    cl_kernel k = NULL;
+    cl_mem in = NULL, out = NULL;
+    /* 2^-70 * 2^-70 = 2^-140 (subnormal); 2^-140 * 2^100 = 2^-40 (normal). */
+    float vin[4] = {0x1p-70f, 0x1p-70f, 0x1p-140f, 0x1p100f}, vout[2] = {1.0f, 1.0f};
+    if (prog) ce = clBuildProgram(prog, 1, &d, denormal_options(s), NULL, NULL);
+    if (prog && ce == CL_SUCCESS) k = clCreateKernel(prog, "rt_k_denorm_probe", &ce);
+    if (k)
+        in = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof vin, vin, &ce);
+    if (in) out = clCreateBuffer(s->ctx, CL_MEM_WRITE_ONLY, sizeof vout, NULL, &ce);
+    if (out) ce = clSetKernelArg(k, 0, sizeof in, &in);
+    if (out && ce == CL_SUCCESS) ce = clSetKernelArg(k, 1, sizeof out, &out);
+    size_t one = 1;
+    if (out && ce == CL_SUCCESS)
+        ce = clEnqueueNDRangeKernel(s->queue, k, 1, NULL, &one, NULL, 0, NULL, NULL);
+    if (out && ce == CL_SUCCESS)
+        ce = clEnqueueReadBuffer(s->queue, out, CL_TRUE, 0, sizeof vout, vout, 0, NULL, NULL);
+    int ok = out && ce == CL_SUCCESS;
+    if (out) clReleaseMemObject(out);
+    if (in) clReleaseMemObject(in);
+    if (k) clReleaseKernel(k);
+    if (prog) clReleaseProgram(prog);
+    if (!ok)
+        return rt_fail(err, RT_ERROR_BACKEND, "denormal probe on '%s': %s", s->dev.name,
+                       rt_cl_error_name(ce));
+    *flushes = vout[0] == 0.0f && vout[1] == 0.0f;
     return RT_OK;
 }
 
@@ -197,10 +252,13 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
     int lanes = packet_lanes(s, f);
     char packet[32] = "";
     if (lanes) snprintf(packet, sizeof packet, " -DRT_PK_LANES=%d", lanes);
-    /* The exact build: no mad or fast-relaxed maths (they change results).
-     * Study variants append their options (device_options) after ours. */
-    snprintf(options, sizeof options, "%s%s%s%s%s",
-             s->dev.cr_div_sqrt ? "-cl-fp32-correctly-rounded-divide-sqrt " : "", defines, packet,
+    /* The exact build: no mad or fast-relaxed maths (they change results);
+     * the maths profile and denormal policy of the plan. Study variants
+     * append their options (device_options) after ours. */
+    const char *math = s->plan.portable     ? "-DRT_PORTABLE_MATH "
+                       : s->dev.cr_div_sqrt ? "-cl-fp32-correctly-rounded-divide-sqrt "
+                                            : "";
+    snprintf(options, sizeof options, "%s%s%s%s%s%s", math, denormal_options(s), defines, packet,
              extra[0] ? " " : "", extra);
     if (s->program && strcmp(options, s->options) == 0) return RT_OK;
     if (s->k_camera) clReleaseKernel(s->k_camera);
@@ -591,7 +649,11 @@ static rt_status named(rt_error *err, rt_status st) {
 static rt_status cl_prepare(void *state, const rt_backend_layout *layout, rt_render_stats *stats,
                             rt_error *err) {
     cl_state *s = state;
-    rt_status st = s->ctx ? RT_OK : open_device(s, err);
+    rt_status st = RT_OK;
+    if (!s->ctx) {
+        st = open_device(s, err);
+        if (st == RT_OK && s->plan.needs_probe) st = probe_flush(s, &s->probed_flush, err);
+    }
     if (st == RT_OK) st = build_program(s, layout->flat, &stats->compile_ms, err);
     if (st == RT_OK) st = upload_scene(s, layout, &stats->upload_bytes, &stats->upload_ms, err);
     if (st != RT_OK) return named(err, st);
@@ -599,7 +661,10 @@ static rt_status cl_prepare(void *state, const rt_backend_layout *layout, rt_ren
     snprintf(stats->specialisation, sizeof stats->specialisation, "%s", s->defines);
     snprintf(stats->device_options, sizeof stats->device_options, "%s", s->device_options);
     /* Extra options (the study's variants) void the device's promise. */
-    stats->exact = s->dev.exact && !s->device_options[0];
+    stats->exact =
+        s->plan.exact && (!s->plan.needs_probe || s->probed_flush) && !s->device_options[0];
+    stats->math_profile = s->plan.portable ? "portable" : "native";
+    stats->denormals = s->plan.flush ? "flush" : "preserve";
     return RT_OK;
 }
 

@@ -82,6 +82,7 @@ static void describe(cl_platform_id p, cl_device_id d, rt_cl_device_info *info) 
     info->max_alloc = alloc;
     info->cr_div_sqrt = (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
     info->fma = (fp & CL_FP_FMA) != 0;
+    info->denorms = (fp & CL_FP_DENORM) != 0;
     /* fp64: the extension string is the promise OpenCL C's cl_khr_fp64 macro
      * follows; a non-zero double config says the same on 1.2+ devices. */
     size_t ext_size = 0;
@@ -94,7 +95,7 @@ static void describe(cl_platform_id p, cl_device_id d, rt_cl_device_info *info) 
         free(ext);
     }
     if (dp == 0) info->fp64 = 0;
-    info->exact = info->cr_div_sqrt && info->fp64;
+    info->exact = rt_cl_plan_math(info, RT_DEVICE_MATH_AUTO, 0).exact;
 }
 
 rt_status rt_cl_devices(rt_cl_device_info **out, int *count, rt_error *err) {
@@ -184,17 +185,41 @@ int rt_cl_select(const rt_cl_device_info *devs, int count, const char *sel, rt_e
     return -1;
 }
 
-const char *rt_cl_exactness_note(const rt_cl_device_info *d) {
-    if (d->exact)
-        return "bit-exact with the CPU oracle (correctly rounded divide/sqrt, fp64 for the "
-               "watertight re-check)";
-    if (!d->cr_div_sqrt && !d->fp64)
-        return "exactness NOT promised: no correctly rounded float divide/sqrt, no fp64 "
-               "(watertight re-check of zero edge functions is skipped)";
-    if (!d->cr_div_sqrt)
-        return "exactness NOT promised: float divide/sqrt are not correctly rounded";
-    return "exactness NOT promised: no cl_khr_fp64, so zero edge functions of the watertight "
-           "test are not re-checked in double (rare sliver-triangle hits may differ)";
+rt_cl_math_plan rt_cl_plan_math(const rt_cl_device_info *d, rt_device_math math, int flush) {
+    rt_cl_math_plan p;
+    memset(&p, 0, sizeof p);
+    p.portable =
+        math == RT_DEVICE_MATH_PORTABLE || (math == RT_DEVICE_MATH_AUTO && !d->cr_div_sqrt);
+    p.flush = flush != 0;
+    if (!p.portable && !d->cr_div_sqrt) {
+        p.note = "native maths on a device whose float divide/sqrt are not "
+                 "correctly rounded (--device-math portable gives the oracle's bits)";
+        return p;
+    }
+    if (!flush && !d->denorms) {
+        p.note = "the device flushes denormals and the oracle keeps them "
+                 "(--denormals flush compares it with a flushing oracle)";
+        return p;
+    }
+    p.exact = 1;
+    p.needs_probe = flush && d->denorms;
+    if (p.needs_probe)
+        p.note = p.portable ? "if the device flushes under -cl-denorms-are-zero "
+                              "(probed at the first frame); software divide/sqrt"
+                            : "if the device flushes under -cl-denorms-are-zero "
+                              "(probed at the first frame); correctly rounded divide/sqrt";
+    else if (p.portable)
+        p.note = "software divide/sqrt from integer operations (portable profile)";
+    else
+        p.note = "the device's correctly rounded divide/sqrt (native profile)";
+    return p;
+}
+
+const char *rt_cl_denormals_note(const rt_cl_device_info *d) {
+    if (d->denorms)
+        return "kept (CL_FP_DENORM): exact with --denormals preserve, the default; with "
+               "flush if its compiler honours -cl-denorms-are-zero";
+    return "flushed (no CL_FP_DENORM): exact only with --denormals flush";
 }
 
 const char *rt_cl_kernels_note(const rt_cl_device_info *d) {

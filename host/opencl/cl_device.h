@@ -23,8 +23,11 @@ typedef struct rt_cl_device_info {
     uint64_t max_alloc;  /* the largest single buffer, bytes */
     int cr_div_sqrt;     /* CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT for float */
     int fma;             /* CL_FP_FMA for float (hardware FMA; kernels do not contract) */
-    int fp64;            /* cl_khr_fp64: the watertight test's exact re-check */
-    int exact;           /* the oracle's bits are promised: cr_div_sqrt && fp64 */
+    int fp64;            /* cl_khr_fp64 (shown only: no kernel uses double) */
+    int denorms;         /* CL_FP_DENORM for float: it keeps denormals */
+    /* The oracle's bits are promised with the defaults (maths profile auto,
+     * denormals preserved): the device keeps denormals. */
+    int exact;
     int cpu;             /* CL_DEVICE_TYPE_CPU: the backend runs the packet kernel there */
     void *platform_id;   /* cl_platform_id */
     void *device_id;     /* cl_device_id */
@@ -40,8 +43,25 @@ rt_status rt_cl_devices(rt_cl_device_info **out, int *count, rt_error *err);
  * with a message. */
 int rt_cl_select(const rt_cl_device_info *devs, int count, const char *selector, rt_error *err);
 
-/* Why a device does or does not promise the oracle's bits, one line. */
-const char *rt_cl_exactness_note(const rt_cl_device_info *d);
+/* How the kernels do their maths on a device, and whether that gives the
+ * oracle's bits. */
+typedef struct rt_cl_math_plan {
+    int portable;     /* 1: -DRT_PORTABLE_MATH (software divide/sqrt) */
+    int flush;        /* 1: -cl-denorms-are-zero -DRT_FLUSH_DENORMALS */
+    int needs_probe;  /* flush on a device that keeps denormals: exact only if
+                         its compiler honours -cl-denorms-are-zero (the backend
+                         checks with a probe kernel) */
+    int exact;        /* promised (before any probe) */
+    const char *note; /* why, one line */
+} rt_cl_math_plan;
+
+/* The plan for a device, a maths profile asked for and a denormal policy
+ * (1: flush). Auto is native where the device's divide/sqrt are correctly
+ * rounded, else portable. */
+rt_cl_math_plan rt_cl_plan_math(const rt_cl_device_info *d, rt_device_math math, int flush);
+
+/* The denormal policy to compare this device with the oracle, one line. */
+const char *rt_cl_denormals_note(const rt_cl_device_info *d);
 
 /* Which kernels the backend runs on the device, one line: the packet kernel
  * (kernels/rt_packet.cl) on CPU devices, one ray per work-item elsewhere. */

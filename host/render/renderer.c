@@ -47,6 +47,8 @@ static rt_status find_slot(rt_renderer *r, const rt_backend_ops *ops, const char
     config.device_options = r->device_options[0] ? r->device_options : NULL;
     config.packet_isa = r->packet_isa[0] ? r->packet_isa : NULL;
     config.opencl = r->opencl;
+    config.device_math = r->device_math;
+    config.flush_denormals = r->denormals == RT_DENORMALS_FLUSH;
     void *state = NULL;
     rt_status st = ops->create(&config, &state, err);
     if (st != RT_OK) return st;
@@ -113,6 +115,12 @@ rt_status rt_renderer_create(const rt_renderer_options *options, rt_renderer **o
     if (o.packet_isa && strlen(o.packet_isa) >= 32)
         return rt_fail(err, RT_ERROR_UNSUPPORTED, "unknown packet instruction set '%.40s'",
                        o.packet_isa);
+    if ((unsigned)o.device_math > RT_DEVICE_MATH_PORTABLE)
+        return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "unknown device maths profile %d",
+                       (int)o.device_math);
+    if ((unsigned)o.denormals > RT_DENORMALS_FLUSH)
+        return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "unknown denormal policy %d",
+                       (int)o.denormals);
     rt_renderer *r = calloc(1, sizeof *r);
     if (!r) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
     r->threads = o.threads;
@@ -120,6 +128,8 @@ rt_status rt_renderer_create(const rt_renderer_options *options, rt_renderer **o
              o.device_options ? o.device_options : "");
     snprintf(r->packet_isa, sizeof r->packet_isa, "%s", o.packet_isa ? o.packet_isa : "");
     r->opencl = o.opencl;
+    r->device_math = o.device_math;
+    r->denormals = o.denormals;
     r->pool = rt_pool_create(o.threads);
     if (!r->pool) {
         free(r);

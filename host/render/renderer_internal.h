@@ -24,6 +24,8 @@ struct rt_renderer {
     char device_options[256];
     char packet_isa[32];
     rt_opencl_tuning opencl;
+    rt_device_math device_math;
+    rt_denormals denormals;
     rt_accel_cache accel;
     rt_backend_slot slots[RT_RENDERER_SLOTS];
     int slot_count;
