@@ -8,9 +8,10 @@ $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends \
     build-essential cmake ninja-build pkg-config git ca-certificates \
     ocl-icd-opencl-dev opencl-c-headers pocl-opencl-icd clinfo \
-    libvulkan-dev mesa-vulkan-drivers glslang-tools \
+    libvulkan-dev mesa-vulkan-drivers glslang-tools spirv-tools \
+    libsdl2-dev xvfb xauth \
     libopenimageio-dev openimageio-tools \
     libsimde-dev libembree-dev libjansson-dev \
     gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user \
-    clang clang-format gnuplot-nox python3 >/dev/null
+    clang libclang-rt-14-dev clang-format gnuplot-nox python3 >/dev/null
 echo "dependencies installed"

@@ -161,7 +161,7 @@ static int trace_frame(bench *b, double *ms, uint64_t *rays, rt_error *msg) {
     rt_bvh_free(&top);
     if (st != RT_OK) return 0;
     flat.hdr.flags &= ~(uint32_t)RT_SCENE_SECONDARY; /* direct_only */
-    rt_cpu_frame frame = {&flat, NULL, NULL, RT_AOV_NONE, b->image, 3, NULL, NULL, 0};
+    rt_cpu_frame frame = {&flat, NULL, NULL, RT_AOV_NONE, b->image, 3, NULL, NULL, 0, NULL, NULL};
     rt_cpu_counts counts;
     double t0 = rt_now_ms();
     if (rt_cpu_render(&frame, b->pool, &counts) != RT_OK) {
@@ -230,7 +230,7 @@ int main(int argc, char **argv) {
     if (!b.pool || !b.image || !b.boxes || !b.bvhs) return 1;
     uint64_t tris = 0;
     for (uint32_t o = 0; o < sc->object_count; o++) {
-        uint32_t m = sc->objects[o].meshes[sc->objects[o].selected];
+        uint32_t m = rt_object_shown_mesh(&sc->objects[o]);
         const rt_mesh_data *md = &sc->meshes[m];
         if (b.boxes[m] || !md->triangle_count) continue;
         b.boxes[m] = malloc(sizeof(rt_aabb) * md->triangle_count);

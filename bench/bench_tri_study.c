@@ -67,7 +67,7 @@ static int gather_world(const rt_scene *s, world_tris *w) {
     uint64_t n = 0;
     for (uint32_t o = 0; o < s->object_count; o++) {
         const rt_object_data *ob = &s->objects[o];
-        n += s->meshes[ob->meshes[ob->selected]].triangle_count;
+        n += s->meshes[rt_object_shown_mesh(ob)].triangle_count;
     }
     w->v = malloc(sizeof(double) * 9 * (n ? n : 1));
     w->first = malloc(sizeof(uint32_t) * (s->object_count + 1));
@@ -77,7 +77,7 @@ static int gather_world(const rt_scene *s, world_tris *w) {
     uint32_t t = 0;
     for (uint32_t o = 0; o < s->object_count; o++) {
         const rt_object_data *ob = &s->objects[o];
-        const rt_mesh_data *m = &s->meshes[ob->meshes[ob->selected]];
+        const rt_mesh_data *m = &s->meshes[rt_object_shown_mesh(ob)];
         const float *M = ob->transform;
         w->first[o] = t;
         for (uint32_t i = 0; i < m->triangle_count; i++, t++) {
@@ -237,7 +237,7 @@ int main(int argc, char **argv) {
 
     rt_renderer *renderer = bench_renderer("cpu", threads);
     if (!renderer) return 1;
-    rt_trace_options opt = {0, RT_TRI_TEST_WATERTIGHT};
+    rt_trace_options opt = {0, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
     static double ms[TESTS][MAX_RUNS];
     for (int r = -1; r < runs; r++) /* r = -1: the warm-up pass, not counted */
         for (int m = 0; m < TESTS; m++) {

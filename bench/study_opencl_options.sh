@@ -23,8 +23,8 @@ else
     scenes=("$root/scenes/cornell.json" "$root/bench/scenes/sponza_interior.json"
             "$shared/stanford_bunny/stanford-bunny.obj")
 fi
-"$build/rtcl" devices >"$data/devices.txt" 2>&1 || true
-if "$build/rtcl" devices >/dev/null 2>&1; then
+"$build/rtcl" devices --api opencl >"$data/devices.txt" 2>&1 || true
+if "$build/rtcl" devices --api opencl >/dev/null 2>&1; then
     i=0
     for s in "${scenes[@]}"; do
         i=$((i + 1))

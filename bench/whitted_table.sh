@@ -11,7 +11,7 @@ shared=${2:?usage: whitted_table.sh RTCL SHARED_SCENES [FRAMES]}
 frames=${3:-5}
 here=$(cd "$(dirname "$0")" && pwd)
 backends="cpu packet"
-"$rtcl" devices >/dev/null 2>&1 && backends="$backends opencl"
+"$rtcl" devices --api opencl >/dev/null 2>&1 && backends="$backends opencl"
 
 scenes=("$here/../scenes/cornell.json" "$here/../scenes/keyframes.json"
         "$here/scenes/sponza_interior.json" "$here/scenes/sibenik_interior.json"

@@ -3,6 +3,7 @@
  * copies of the BVHs, packet_render.c). Both run on the renderer's pool. */
 #include "cpu_backends.h"
 
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -14,30 +15,40 @@
 /* ---- ray queries, shared by both -------------------------------------- */
 
 typedef struct trace_job {
-    const rt_flat *flat;
-    const rt_pk_wide *wide; /* NULL: the scalar oracle */
-    const rt_pk_variant *isa;
+    const rt_cpu_frame *tracers; /* flat, and for packets the wide BVHs and builds */
+    int packets;                 /* 0: the scalar oracle */
     const rt_ray_d *rays;
     rt_hit_d *hits;
     size_t count;
     int any_hit;
+    rt_trace_path path;
+    atomic_size_t next;
+    atomic_ullong packet_rays;
 } trace_job;
 
+/* Chunks of whole packets taken in turn, so that neighbouring rays (which
+ * callers tend to give in order) share packets and a worker that finishes
+ * early takes more. */
+enum { TRACE_CHUNK = 16 * RT_PK_LANES };
+
 static void trace_chunk(void *ctx, int worker, int workers) {
+    (void)worker;
+    (void)workers;
     trace_job *job = ctx;
-    /* Contiguous chunks of whole packets, so that neighbouring rays (which
-     * callers tend to give in order) share packets. */
-    size_t per = (job->count + (size_t)workers - 1) / (size_t)workers;
-    per = (per + RT_PK_LANES - 1) / RT_PK_LANES * RT_PK_LANES;
-    size_t first = per * (size_t)worker;
-    if (first >= job->count) return;
-    size_t n = job->count - first < per ? job->count - first : per;
-    rt_counters c = {0, 0, 0};
-    if (job->wide)
-        rt_packet_trace_rays(job->flat, job->wide, job->isa, job->rays + first, n,
-                             job->hits + first, job->any_hit, &c);
-    else
-        rt_cpu_trace_rays(job->flat, job->rays + first, n, job->hits + first, job->any_hit, &c);
+    uint64_t packet_rays = 0;
+    for (;;) {
+        size_t first = atomic_fetch_add_explicit(&job->next, TRACE_CHUNK, memory_order_relaxed);
+        if (first >= job->count) break;
+        size_t n = job->count - first < TRACE_CHUNK ? job->count - first : TRACE_CHUNK;
+        rt_counters c = {0, 0, 0};
+        if (job->packets)
+            rt_packet_trace_rays(job->tracers, job->rays + first, n, job->hits + first,
+                                 job->any_hit, job->path, &c, &packet_rays);
+        else
+            rt_cpu_trace_rays(job->tracers->flat, job->rays + first, n, job->hits + first,
+                              job->any_hit, &c);
+    }
+    atomic_fetch_add_explicit(&job->packet_rays, packet_rays, memory_order_relaxed);
 }
 
 static void fill_counts(rt_render_stats *stats, const rt_cpu_counts *counts) {
@@ -53,7 +64,8 @@ static void fill_counts(rt_render_stats *stats, const rt_cpu_counts *counts) {
 /* One frame on the pool: the scalar oracle, or packets through wide (with
  * the build isa) when wide is given. */
 static rt_status render_frame(const rt_backend_layout *layout, const rt_backend_frame *frame,
-                              const rt_pk_wide *wide, const rt_pk_variant *isa, int flush,
+                              const rt_pk_wide *wide, const rt_pk_variant *isa,
+                              const rt_sw_bvh *single, const rt_sw_variant *single_isa, int flush,
                               rt_render_stats *stats, rt_error *err) {
     rt_cpu_frame f = {layout->flat,
                       wide,
@@ -63,7 +75,9 @@ static rt_status render_frame(const rt_backend_layout *layout, const rt_backend_
                       frame->channels,
                       frame->progress,
                       frame->progress_user,
-                      flush};
+                      flush,
+                      single,
+                      single_isa};
     rt_cpu_counts counts;
     double t0 = rt_now_ms();
     rt_status st = wide ? rt_packet_render(&f, layout->pool, &counts)
@@ -72,18 +86,28 @@ static rt_status render_frame(const rt_backend_layout *layout, const rt_backend_
     stats->render_ms = rt_now_ms() - t0;
     fill_counts(stats, &counts);
     stats->threads = rt_pool_size(layout->pool);
-    stats->exact = 1; /* the oracle, in the denormal mode asked for */
-    stats->math_profile = "ieee";
-    stats->denormals = flush ? "flush" : "preserve";
     return RT_OK;
 }
 
-/* Ray queries on the pool, as render_frame chooses. */
-static void trace_all(const rt_backend_layout *layout, const rt_pk_wide *wide,
-                      const rt_pk_variant *isa, int flush, const rt_ray_d *rays, size_t count,
-                      rt_hit_d *hits, int any_hit) {
-    trace_job job = {layout->flat, wide, isa, rays, hits, count, any_hit};
+/* Ray queries on the pool: the scalar oracle, or (tracers->wide given)
+ * packets and single rays as rt_packet_trace_rays chooses. Returns the
+ * number of rays that went in packets. */
+static uint64_t trace_all(const rt_backend_layout *layout, const rt_cpu_frame *tracers, int flush,
+                          const rt_ray_d *rays, size_t count, rt_hit_d *hits, int any_hit,
+                          rt_trace_path path) {
+    trace_job job;
+    memset(&job, 0, sizeof job);
+    job.tracers = tracers;
+    job.packets = tracers->wide != NULL;
+    job.rays = rays;
+    job.hits = hits;
+    job.count = count;
+    job.any_hit = any_hit;
+    job.path = path;
+    atomic_init(&job.next, 0);
+    atomic_init(&job.packet_rays, 0);
     rt_pool_run_fp(layout->pool, trace_chunk, &job, flush);
+    return atomic_load(&job.packet_rays);
 }
 
 /* "flush" needs a CPU whose denormal mode the backend can set. */
@@ -125,13 +149,19 @@ static rt_status cpu_prepare(void *state, const rt_backend_layout *layout, rt_re
 
 static rt_status cpu_render(void *state, const rt_backend_layout *layout,
                             const rt_backend_frame *frame, rt_render_stats *stats, rt_error *err) {
-    return render_frame(layout, frame, NULL, NULL, state != NULL, stats, err);
+    return render_frame(layout, frame, NULL, NULL, NULL, NULL, state != NULL, stats, err);
 }
 
 static rt_status cpu_trace(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
-                           size_t count, rt_hit_d *hits, int any_hit, rt_error *err) {
+                           size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
+                           rt_trace_stats *stats, rt_error *err) {
     (void)err;
-    trace_all(layout, NULL, NULL, state != NULL, rays, count, hits, any_hit);
+    (void)path;
+    (void)stats;
+    rt_cpu_frame tracers;
+    memset(&tracers, 0, sizeof tracers);
+    tracers.flat = layout->flat;
+    trace_all(layout, &tracers, state != NULL, rays, count, hits, any_hit, RT_TRACE_PATH_AUTO);
     return RT_OK;
 }
 
@@ -139,8 +169,8 @@ static void cpu_destroy(void *state) {
     (void)state;
 }
 
-const rt_backend_ops rt_backend_cpu = {"cpu",      always_available, cpu_create, cpu_prepare,
-                                       cpu_render, cpu_trace,        cpu_destroy};
+const rt_backend_ops rt_backend_cpu = {"cpu",      always_available, cpu_create,  cpu_prepare,
+                                       cpu_render, cpu_trace,        cpu_destroy, NULL};
 
 /* ---- packet: ray packets through wide BVHs ------------------------------ */
 
@@ -149,6 +179,12 @@ typedef struct packet_state {
     rt_pk_wide wide;          /* the wide BVHs of the layout ... */
     uint32_t wide_generation; /* ... of this generation */
     int have_wide;
+    /* The single-ray tracer's build and BVHs (cpu_ref/single_trace.h), for
+     * incoherent rays; made when first needed. */
+    const rt_sw_variant *single_isa;
+    rt_sw_bvh single;
+    uint32_t single_generation;
+    int have_single;
     int flush; /* denormals */
 } packet_state;
 
@@ -166,12 +202,19 @@ static rt_status packet_create(const rt_backend_config *config, void **state, rt
                        "(here: %s)",
                        config->packet_isa, names);
     }
+    /* The single-ray tracer of the same instruction set (its builds have
+     * the packet tracer's names). */
+    const rt_sw_variant *single_isa = rt_sw_variant_find(config->packet_isa);
+    if (!single_isa)
+        return rt_fail(err, RT_ERROR_UNSUPPORTED, "packet: no single-ray build '%s'",
+                       config->packet_isa ? config->packet_isa : "");
     rt_status st = check_denormals("packet", config, err);
     if (st != RT_OK) return st;
     packet_state *s = calloc(1, sizeof *s);
     if (!s) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "packet: out of memory");
     s->isa = isa;
     s->flush = config->flush_denormals;
+    s->single_isa = single_isa;
     *state = s;
     return RT_OK;
 }
@@ -183,6 +226,15 @@ static rt_status packet_prepare(void *state, const rt_backend_layout *layout,
     packet_state *s = state;
     if (s->have_wide && s->wide_generation == layout->layout_generation) return RT_OK;
     double t0 = rt_now_ms();
+    /* Only refits since the wide BVHs were made: refit them too. */
+    if (s->have_wide && layout->base_generation && s->wide_generation == layout->base_generation &&
+        layout->shapes_kept) {
+        if (rt_pk_wide_refit(layout->flat, &s->wide) == RT_OK) {
+            s->wide_generation = layout->layout_generation;
+            stats->build_ms += rt_now_ms() - t0;
+            return RT_OK;
+        }
+    }
     rt_pk_wide_free(&s->wide);
     s->have_wide = 0;
     if (rt_pk_wide_build(layout->flat, &s->wide) != RT_OK)
@@ -193,11 +245,35 @@ static rt_status packet_prepare(void *state, const rt_backend_layout *layout,
     return RT_OK;
 }
 
+/* The single-ray BVHs, from the layout's nodes: again whenever the layout
+ * was remade; their time counts as build time (stats may be NULL). */
+static rt_status ensure_single(packet_state *s, const rt_backend_layout *layout,
+                               rt_render_stats *stats, rt_error *err) {
+    if (s->have_single && s->single_generation == layout->layout_generation) return RT_OK;
+    double t0 = rt_now_ms();
+    rt_sw_free(&s->single);
+    s->have_single = 0;
+    if (rt_sw_build(layout->flat, rt_sw_variant_width(s->single_isa), &s->single) != RT_OK)
+        return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "packet: out of memory (single-ray BVH)");
+    s->have_single = 1;
+    s->single_generation = layout->layout_generation;
+    if (stats) stats->build_ms += rt_now_ms() - t0;
+    return RT_OK;
+}
+
 static rt_status packet_render(void *state, const rt_backend_layout *layout,
                                const rt_backend_frame *frame, rt_render_stats *stats,
                                rt_error *err) {
     packet_state *s = state;
-    rt_status st = render_frame(layout, frame, &s->wide, s->isa, s->flush, stats, err);
+    /* Reflections and refractions, and their shadow rays, go one by one
+     * through the single-ray tracer. */
+    const int secondary = (layout->flat->hdr.flags & RT_SCENE_SECONDARY) != 0;
+    if (secondary) {
+        rt_status st = ensure_single(s, layout, stats, err);
+        if (st != RT_OK) return st;
+    }
+    rt_status st = render_frame(layout, frame, &s->wide, s->isa, secondary ? &s->single : NULL,
+                                s->single_isa, s->flush, stats, err);
     if (st != RT_OK) return st;
     stats->packet_rays = RT_PK_LANES;
     stats->packet_isa = rt_pk_variant_name(s->isa);
@@ -206,10 +282,23 @@ static rt_status packet_render(void *state, const rt_backend_layout *layout,
 }
 
 static rt_status packet_trace(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
-                              size_t count, rt_hit_d *hits, int any_hit, rt_error *err) {
+                              size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
+                              rt_trace_stats *stats, rt_error *err) {
     packet_state *s = state;
-    (void)err;
-    trace_all(layout, &s->wide, s->isa, s->flush, rays, count, hits, any_hit);
+    const double t0 = rt_now_ms();
+    rt_status st = ensure_single(s, layout, NULL, err);
+    stats->build_ms += rt_now_ms() - t0;
+    if (st != RT_OK) return st;
+    rt_cpu_frame tracers;
+    memset(&tracers, 0, sizeof tracers);
+    tracers.flat = layout->flat;
+    tracers.wide = &s->wide;
+    tracers.isa = s->isa;
+    tracers.single = &s->single;
+    tracers.single_isa = s->single_isa;
+    stats->packet_rays = trace_all(layout, &tracers, s->flush, rays, count, hits, any_hit, path);
+    stats->single_rays = count - stats->packet_rays;
+    stats->isa = rt_pk_variant_name(s->isa);
     return RT_OK;
 }
 
@@ -217,9 +306,10 @@ static void packet_destroy(void *state) {
     packet_state *s = state;
     if (!s) return;
     rt_pk_wide_free(&s->wide);
+    rt_sw_free(&s->single);
     free(s);
 }
 
-const rt_backend_ops rt_backend_packet = {"packet",       always_available, packet_create,
-                                          packet_prepare, packet_render,    packet_trace,
-                                          packet_destroy};
+const rt_backend_ops rt_backend_packet = {
+    "packet",      always_available, packet_create,  packet_prepare,
+    packet_render, packet_trace,     packet_destroy, NULL};

@@ -12,6 +12,7 @@
 #include "packet_wide.h"
 #include "rt.h"
 #include "rt_shade.h"
+#include "single_trace.h"
 
 typedef struct rt_cpu_counts {
     uint64_t rays, primary_rays, box_tests, tri_tests;
@@ -28,6 +29,10 @@ typedef struct rt_cpu_frame {
     void (*progress)(void *user, double done);
     void *progress_user;
     int flush_denormals; /* 1: the workers flush denormals (rt_pool_run_fp) */
+    /* The packet backend's single-ray BVHs of flat, for incoherent rays
+     * (reflections, refractions and their shadow rays), or NULL ... */
+    const rt_sw_bvh *single;
+    const rt_sw_variant *single_isa; /* ... and the build of that tracer */
 } rt_cpu_frame;
 
 /* Renders with the scalar oracle on the pool's workers (interleaved rows).
@@ -44,12 +49,23 @@ rt_status rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_coun
 void rt_cpu_finish_pixel(const rt_cpu_frame *frame, const rt_scene_view *view, int x, int y,
                          const rt_ray_d *ray, const rt_hit_d *hit, rt_counters *c);
 
-/* Traces n rays (closest or any hit) with the scalar code, or in packets
- * (consecutive rays together); misses get prim = RT_NO_HIT. */
+/* Traces n rays (closest or any hit) with the scalar code, or (the packet
+ * backend) each group of RT_PK_LANES consecutive rays that is coherent
+ * (cpu_ref/ray_coherence.h) as a packet and the others one by one through
+ * the single-ray tracer (path RT_TRACE_PATH_PACKETS or _SINGLE forces one;
+ * without tracers->single every group is a packet); misses get prim =
+ * RT_NO_HIT. *packet_rays counts the rays that went in packets. */
 void rt_cpu_trace_rays(const rt_flat *flat, const rt_ray_d *rays, size_t n, rt_hit_d *hits,
                        int any_hit, rt_counters *c);
-void rt_packet_trace_rays(const rt_flat *flat, const rt_pk_wide *wide, const rt_pk_variant *isa,
-                          const rt_ray_d *rays, size_t n, rt_hit_d *hits, int any_hit,
-                          rt_counters *c);
+void rt_packet_trace_rays(const rt_cpu_frame *tracers, const rt_ray_d *rays, size_t n,
+                          rt_hit_d *hits, int any_hit, rt_trace_path path, rt_counters *c,
+                          uint64_t *packet_rays);
+
+/* The rest of a pixel's shading tree, as rt_shade_children (rt_shade.h)
+ * computes it, every ray (and shadow ray) traced by the single-ray tracer
+ * of f: the same bits. */
+void rt_single_shade_children(const rt_cpu_frame *f, const rt_scene_view *v,
+                              const rt_shade_entry *child, int children, rt_counters *c,
+                              float *rgb);
 
 #endif /* RT_CPU_RENDER_H */

@@ -15,6 +15,7 @@
 
 #include "cpu_render.h"
 #include "packet_trace.h"
+#include "ray_coherence.h"
 
 /* A tile is one packet. Its lanes run in Morton order, so that every run
  * of 4, 8 or 16 lanes (one vector of the packet tracer) is a compact block
@@ -90,7 +91,10 @@ static void shade_tile(const rt_cpu_frame *f, const rt_scene_view *v, const rt_p
         if (has_term)
             for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + term[k];
         rt_counters sec = {0, 0, 0}; /* the secondary rays' */
-        rt_shade_children(v, child, children, &sec, rgb);
+        if (f->single)
+            rt_single_shade_children(f, v, child, children, &sec, rgb);
+        else
+            rt_shade_children(v, child, children, &sec, rgb);
         pc->rays += sec.rays;
         pc->box_tests += sec.box_tests;
         pc->tri_tests += sec.tri_tests;
@@ -198,23 +202,80 @@ rt_status rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_coun
     return RT_OK;
 }
 
-void rt_packet_trace_rays(const rt_flat *flat, const rt_pk_wide *wide, const rt_pk_variant *isa,
-                          const rt_ray_d *rays, size_t n, rt_hit_d *hits, int any_hit,
-                          rt_counters *c) {
-    rt_scene_view v = rt_flat_view(flat);
+/* The origin span under which a group of rays counts as coherent: a
+ * fiftieth of the scene's largest extent. */
+static float coherent_org_span(const rt_flat *flat) {
+    if (!flat->hdr.instance_count || !flat->node_count) return 0.0f;
+    const uint32_t root =
+        (flat->hdr.flags & RT_SCENE_SINGLE) ? flat->instances[0].root : flat->hdr.top_root;
+    const rt_node *n = &flat->nodes[root];
+    float e = 0.0f;
+    for (int k = 0; k < 3; k++) {
+        const float d = n->bmax[k] - n->bmin[k];
+        e = d > e ? d : e;
+    }
+    return 0.02f * e;
+}
+
+void rt_packet_trace_rays(const rt_cpu_frame *tr, const rt_ray_d *rays, size_t n, rt_hit_d *hits,
+                          int any_hit, rt_trace_path path, rt_counters *c, uint64_t *packet_rays) {
+    rt_scene_view v = rt_flat_view(tr->flat);
+    const float span = coherent_org_span(tr->flat);
     for (size_t i = 0; i < n; i += RT_PK_LANES) {
+        size_t count = n - i < RT_PK_LANES ? n - i : RT_PK_LANES;
+        const int single =
+            tr->single && path != RT_TRACE_PATH_PACKETS &&
+            (path == RT_TRACE_PATH_SINGLE || !rt_rays_coherent(rays + i, count, span));
+        if (single) {
+            rt_sw_trace(tr->single_isa, &v, tr->single, rays + i, count, any_hit, hits + i, c);
+            continue;
+        }
         rt_pk_rays p;
         rt_pk_hits h;
         rt_pk_counts pc;
         memset(&pc, 0, sizeof pc);
         memset(&p, 0, sizeof p);
-        size_t count = n - i < RT_PK_LANES ? n - i : RT_PK_LANES;
         p.valid = RT_PK_ALL >> (RT_PK_LANES - count);
         for (size_t l = 0; l < count; l++) rt_pk_set_ray(&p, (int)l, &rays[i + l]);
-        rt_pk_trace(isa, &v, wide, &p, any_hit, &h, &pc);
+        rt_pk_trace(tr->isa, &v, tr->wide, &p, any_hit, &h, &pc);
         for (size_t l = 0; l < count; l++) rt_pk_get_hit(&h, (int)l, &hits[i + l]);
         c->rays += (rt_u32)pc.rays;
         c->box_tests += (rt_u32)pc.box_tests;
         c->tri_tests += (rt_u32)pc.tri_tests;
+        *packet_rays += count;
+    }
+}
+
+void rt_single_shade_children(const rt_cpu_frame *f, const rt_scene_view *v,
+                              const rt_shade_entry *child, int children, rt_counters *c,
+                              float *rgb) {
+    rt_shade_entry stack[RT_SHADE_STACK];
+    int sp = 0;
+    for (int i = 0; i < children; i++) stack[sp++] = child[i];
+    while (sp > 0) {
+        const rt_shade_entry e = stack[--sp];
+        rt_hit_d h;
+        rt_sw_trace(f->single_isa, v, f->single, &e.ray, 1, 0, &h, c);
+        /* rt_shade_step, its shadow rays through the single-ray tracer. */
+        rt_shade_node nd;
+        if (rt_shade_begin(v, &e, &h, &nd)) {
+            for (rt_u32 li = 0; li < v->hdr->light_count; li++) {
+                rt_ray_d sr;
+                rt_hit_d sh;
+                float Ln[3], ndl;
+                if (!rt_phong_light(v, &nd.sf, li, &sr, Ln, &ndl)) continue;
+                rt_sw_trace(f->single_isa, v, f->single, &sr, 1, 1, &sh, c);
+                if (sh.prim != RT_NO_HIT) continue;
+                rt_phong_add(v, &nd.sf, li, Ln, ndl, nd.dn, nd.lit);
+            }
+        }
+        float term[3];
+        rt_shade_entry next[2];
+        int has_term, n;
+        rt_shade_end(v, &e, &h, &nd, term, &has_term, next, &n);
+        if (has_term)
+            for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + term[k];
+        for (int i = 0; i < n; i++)
+            if (sp < RT_SHADE_STACK) stack[sp++] = next[i];
     }
 }

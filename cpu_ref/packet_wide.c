@@ -13,6 +13,7 @@
 
 typedef struct builder {
     rt_pk_node *nodes;
+    uint32_t *src; /* per node: RT_PK_WIDTH binary node indices */
     uint32_t count, cap;
     const rt_node *bin;  /* the layout's binary nodes */
     uint32_t *sub_first; /* per binary node: the first entry below it ... */
@@ -30,12 +31,19 @@ static uint32_t new_node(builder *b) {
         /* Aligned to cache lines: a node is then exactly two of them. */
         uint32_t cap = b->cap ? 2 * b->cap : 64;
         rt_pk_node *n = aligned_alloc(64, sizeof(rt_pk_node) * cap);
-        if (!n) return UINT32_MAX;
+        uint32_t *src = realloc(b->src, sizeof(uint32_t) * RT_PK_WIDTH * cap);
+        if (!n || !src) {
+            free(n);
+            if (src) b->src = src;
+            return UINT32_MAX;
+        }
+        b->src = src;
         if (b->count) memcpy(n, b->nodes, sizeof(rt_pk_node) * b->count);
         free(b->nodes);
         b->nodes = n;
         b->cap = cap;
     }
+    for (int c = 0; c < RT_PK_WIDTH; c++) b->src[RT_PK_WIDTH * b->count + c] = RT_PK_NO_CHILD;
     rt_pk_node *n = &b->nodes[b->count];
     for (int c = 0; c < RT_PK_WIDTH; c++) {
         for (int k = 0; k < 3; k++) {
@@ -80,6 +88,7 @@ static int set_child(builder *b, uint32_t w, int c, uint32_t x, work *stack, uin
     }
     n->ref[c] = ref;
     n->count[c] = count;
+    b->src[RT_PK_WIDTH * w + c] = x;
     return 1;
 }
 
@@ -156,7 +165,7 @@ rt_status rt_pk_wide_build(const rt_flat *flat, rt_pk_wide *out) {
     int ok = 0;
     uint32_t insts = flat->hdr.instance_count;
     builder b = {
-        NULL, 0, 0, flat->nodes, malloc(sizeof(uint32_t) * n), malloc(sizeof(uint32_t) * n)};
+        NULL, NULL, 0, 0, flat->nodes, malloc(sizeof(uint32_t) * n), malloc(sizeof(uint32_t) * n)};
     /* Each wide node absorbs at least one binary inner node, so the work
      * stack never holds more entries than the layout has nodes. */
     work *stack = malloc(sizeof(work) * n);
@@ -170,6 +179,7 @@ rt_status rt_pk_wide_build(const rt_flat *flat, rt_pk_wide *out) {
         int top = i == insts; /* the object BVH last */
         if (top && (!insts || (flat->hdr.flags & RT_SCENE_SINGLE))) break;
         uint32_t root = top ? flat->hdr.top_root : flat->instances[i].root;
+        if (top) out->top_first = b.count;
         if (entry_of[root] == RT_PK_NO_CHILD) {
             subtree_ranges(&b, root, list, order);
             entry_of[root] = build_tree(&b, root, stack);
@@ -180,10 +190,13 @@ rt_status rt_pk_wide_build(const rt_flat *flat, rt_pk_wide *out) {
         else
             out->inst_root[i] = entry_of[root];
     }
+    if (out->top == RT_PK_NO_CHILD) out->top_first = b.count;
     out->inst_count = insts;
     out->nodes = b.nodes;
+    out->src = b.src;
     out->node_count = b.count;
     b.nodes = NULL;
+    b.src = NULL;
     ok = 1;
 oom:
     free(b.sub_first);
@@ -194,14 +207,58 @@ oom:
     free(order);
     if (ok) return RT_OK;
     free(b.nodes);
+    free(b.src);
     free(out->inst_root);
     memset(out, 0, sizeof *out);
     return RT_ERROR_OUT_OF_MEMORY;
 }
 
+rt_status rt_pk_wide_refit(const rt_flat *flat, rt_pk_wide *w) {
+    /* The mesh trees: every child slot's box from its binary node. */
+    for (uint32_t i = 0; i < w->top_first; i++)
+        for (int c = 0; c < RT_PK_WIDTH; c++) {
+            uint32_t x = w->src[RT_PK_WIDTH * i + c];
+            if (x == RT_PK_NO_CHILD) continue;
+            for (int k = 0; k < 3; k++) {
+                w->nodes[i].bmin[k][c] = flat->nodes[x].bmin[k];
+                w->nodes[i].bmax[k][c] = flat->nodes[x].bmax[k];
+            }
+        }
+    if (w->top == RT_PK_NO_CHILD) return RT_OK;
+    /* The object BVH, built anew after the mesh trees. */
+    const size_t n = flat->node_count ? flat->node_count : 1;
+    builder b = {w->nodes,
+                 w->src,
+                 w->top_first,
+                 w->node_count,
+                 flat->nodes,
+                 malloc(sizeof(uint32_t) * n),
+                 malloc(sizeof(uint32_t) * n)};
+    work *stack = malloc(sizeof(work) * n);
+    uint32_t *list = malloc(sizeof(uint32_t) * n), *order = malloc(sizeof(uint32_t) * n);
+    uint32_t top = UINT32_MAX;
+    if (b.sub_first && b.sub_count && stack && list && order) {
+        subtree_ranges(&b, flat->hdr.top_root, list, order);
+        top = build_tree(&b, flat->hdr.top_root, stack);
+    }
+    /* build_tree may have grown the arrays. */
+    w->nodes = b.nodes;
+    w->src = b.src;
+    w->node_count = b.count;
+    free(b.sub_first);
+    free(b.sub_count);
+    free(stack);
+    free(list);
+    free(order);
+    if (top == UINT32_MAX) return RT_ERROR_OUT_OF_MEMORY;
+    w->top = top;
+    return RT_OK;
+}
+
 void rt_pk_wide_free(rt_pk_wide *wide) {
     if (!wide) return;
     free(wide->nodes);
+    free(wide->src);
     free(wide->inst_root);
     memset(wide, 0, sizeof *wide);
 }

@@ -51,11 +51,21 @@ typedef struct rt_pk_wide {
     uint32_t top;        /* the object BVH's entry node (RT_PK_NO_CHILD without one) */
     uint32_t *inst_root; /* per instance: its mesh BVH's entry node */
     uint32_t inst_count;
+    uint32_t *src;      /* per node and child slot: the binary node it copies (refits) */
+    uint32_t top_first; /* the object BVH's nodes start here (after every mesh's) */
 } rt_pk_wide;
 
 /* Builds the wide BVHs of every tree in flat (the object BVH, and each
  * instance's mesh BVH once however many instances share it). */
 rt_status rt_pk_wide_build(const rt_flat *flat, rt_pk_wide *out);
 void rt_pk_wide_free(rt_pk_wide *wide);
+
+/* Brings wide (built from an earlier layout) up to date with flat when the
+ * mesh trees kept their shapes (only refitted): the mesh nodes' boxes are
+ * copied again from the binary nodes they came from, and the object BVH's
+ * wide tree is built anew. The result is what rt_pk_wide_build would give
+ * but for the collapse choices of the mesh trees, which only decide how many
+ * boxes a packet tests, never its hits. */
+rt_status rt_pk_wide_refit(const rt_flat *flat, rt_pk_wide *wide);
 
 #endif /* RT_PACKET_WIDE_H */

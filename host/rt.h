@@ -291,6 +291,14 @@ rt_status rt_renderer_set_backend(rt_renderer *renderer, const char *backend);
 /* The backend that renders now ("cpu", "packet", "opencl"). */
 const char *rt_renderer_backend(const rt_renderer *renderer);
 
+/* The device compiler's messages from the current backend's last kernel
+ * build: the build log, then anything the driver printed on stderr during
+ * the build (the library captures that rather than let it reach the
+ * terminal). "" when there was none or the backend compiles nothing. Valid
+ * until the next call on the renderer. For callers that show it on request
+ * (rtcl --verbose); a failed build's error message includes it already. */
+const char *rt_renderer_build_log(const rt_renderer *renderer);
+
 /* Ray/triangle tests (rt_render_options.tri_test). Watertight is the default;
  * the others exist for the speed-versus-error study (docs/ROBUSTNESS.md). */
 typedef enum rt_triangle_test {
@@ -350,9 +358,35 @@ typedef struct rt_hit {
     int hit;
 } rt_hit;
 
+/* What one rt_trace_rays call did (rt_trace_options.stats). */
+typedef struct rt_trace_stats {
+    double trace_ms;      /* the backend's tracing alone: not the copies of rays and hits
+                             into and out of the library, not BVH builds */
+    double build_ms;      /* host builds this call needed (the backends' wide BVHs) */
+    uint64_t rays;        /* rays traced */
+    uint64_t packet_rays; /* of them, traced in packets (packet backend: coherent groups) */
+    uint64_t single_rays; /* of them, one at a time through wide BVHs (packet backend:
+                             incoherent groups, cpu_ref/single_trace.h) */
+    const char *backend;  /* the backend that traced */
+    const char *isa;      /* the packet backend's instruction set, else "" */
+} rt_trace_stats;
+
+/* How the packet backend traces a query's rays. AUTO: each group of 64
+ * consecutive rays that is coherent (one direction sign per axis, close
+ * directions and origins: cpu_ref/ray_coherence.h) as a packet, the others
+ * one at a time through wide BVHs. PACKETS and SINGLE force one path (for
+ * tests and measurements). Every path gives the same hits. */
+typedef enum rt_trace_path {
+    RT_TRACE_PATH_AUTO = 0,
+    RT_TRACE_PATH_PACKETS,
+    RT_TRACE_PATH_SINGLE
+} rt_trace_path;
+
 typedef struct rt_trace_options {
     int any_hit;               /* 1: any hit in range (occlusion), 0: the closest */
     rt_triangle_test tri_test; /* RT_TRI_TEST_WATERTIGHT (0) unless set */
+    rt_trace_stats *stats;     /* filled when not NULL */
+    rt_trace_path packet_path; /* the packet backend's path [auto] */
 } rt_trace_options;
 
 /* Traces count rays through scene (after applying its queued transforms) on
@@ -368,7 +402,8 @@ rt_status rt_trace_rays(rt_renderer *renderer, rt_scene *scene, const rt_ray *ra
  * kd-tree built exactly (Wald and Havran 2006) or by binning. Every choice
  * gives identical hits and images; it changes build time, memory and
  * tracing speed. Meant for static meshes: a kd-tree is rebuilt whole when its
- * mesh changes. */
+ * mesh changes, and a deforming mesh (rt_mesh_set_positions, an update
+ * policy other than RT_UPDATE_REBUILD) has a BVH whatever was set. */
 typedef enum rt_accel {
     RT_ACCEL_BVH = 0,
     RT_ACCEL_KD = 1,       /* exact SAH kd-tree */
@@ -379,16 +414,131 @@ typedef enum rt_accel {
 rt_status rt_mesh_set_accel(rt_scene *scene, uint32_t mesh_id, rt_accel accel);
 
 /* Sets the structure of every static mesh: every mesh that is no keyframe
- * of an object with several (deforming meshes keep theirs, a BVH unless
- * set). */
+ * of an object with several, no blend mesh of one, and whose update policy
+ * is RT_UPDATE_REBUILD (deforming meshes keep theirs, a BVH unless set). */
 rt_status rt_scene_set_static_accel(rt_scene *scene, rt_accel accel);
 
-/* mesh_id's structure, RT_ACCEL_BVH for a mesh that does not exist. */
+/* mesh_id's structure, RT_ACCEL_BVH for a mesh that does not exist or
+ * whose update policy is not RT_UPDATE_REBUILD. */
 rt_accel rt_mesh_accel(const rt_scene *scene, uint32_t mesh_id);
 
 /* "bvh", "kd", "kd-binned"; rt_accel_parse gives 0 for an unknown name. */
 const char *rt_accel_name(rt_accel accel);
 int rt_accel_parse(const char *name, rt_accel *accel);
+/* ---- dynamic scenes: deforming meshes, update policies, time ------------ */
+
+/* How a renderer brings a mesh's BVH up to date after its vertices moved
+ * (rt_mesh_set_positions). Every policy gives the same hits (closest hits
+ * have a total order); they differ in update time and tree quality. */
+typedef enum rt_update_policy {
+    RT_UPDATE_REBUILD = 0, /* a fresh binned SAH build (the default) */
+    RT_UPDATE_REFIT,       /* keep the tree, recompute its boxes bottom-up */
+    RT_UPDATE_FAST,        /* a Morton-code LBVH build: fastest build, lower quality */
+    RT_UPDATE_AUTO         /* refit while the refitted tree's SAH cost stays within
+                              RT_UPDATE_AUTO_BOUND of the last rebuild's, else rebuild */
+} rt_update_policy;
+
+/* The SAH cost ratio (refitted / last rebuild) above which "auto" rebuilds.
+ * Measured (docs/BENCHMARKS.md, "Dynamic scenes"): refitting stops paying
+ * where the refitted tree's extra traversal costs what a rebuild saves; on
+ * the brainstem animation (61,666 triangles, packet backend, 1024x576, 2
+ * threads) that is at an SAH ratio of 1.53. Small meshes break even sooner
+ * (robot walk, 3,237 triangles: 1.02) but there a rebuild saves under 1 ms,
+ * so the bound follows the large meshes, whose rebuilds matter. */
+#define RT_UPDATE_AUTO_BOUND 1.5
+
+/* "rebuild", "refit", "fast", "auto"; and back (returns 0 for an unknown name). */
+const char *rt_update_policy_name(rt_update_policy policy);
+int rt_update_policy_parse(const char *name, rt_update_policy *out);
+
+/* Replaces the positions (3 floats each) of all vertex_count vertices of a
+ * mesh, and its normals when normals is not NULL (only for a mesh that has
+ * normals). vertex_count must equal the mesh's; the triangles stay. The
+ * mesh's version is bumped, so renderers update its BVH by its policy; a
+ * kd-tree mesh becomes a BVH mesh (RT_ACCEL_BVH: it deforms). */
+rt_status rt_mesh_set_positions(rt_scene *scene, uint32_t mesh_id, const float *positions,
+                                const float *normals, uint32_t vertex_count);
+
+/* The mesh's update policy (RT_UPDATE_REBUILD until set). Any other policy
+ * gives the mesh a BVH, whatever its rt_accel says. */
+rt_status rt_mesh_set_update(rt_scene *scene, uint32_t mesh_id, rt_update_policy policy);
+
+/* Keyframe animation of an object: keyframe i is shown at time i / rate
+ * seconds, looping (rate > 0). With interpolate, positions (and normals) are
+ * blended linearly between consecutive keyframes of the same topology (the
+ * last blends into the first); the blend lives in a mesh the scene adds for
+ * the object (it takes the update policy of the object's first keyframe).
+ * Keyframes of different topologies switch. Takes effect at rt_scene_set_time. */
+rt_status rt_object_set_animation(rt_scene *scene, uint32_t object_id, float keyframe_rate,
+                                  int interpolate);
+
+/* A key of an object's animated transform: M = translate * rotate * scale. */
+typedef struct rt_transform_key {
+    double time; /* seconds; keys strictly increasing in time */
+    float translate[3];
+    float axis[3]; /* rotation axis (not zero; any length) */
+    float degrees;
+    float scale; /* uniform scale, > 0 */
+} rt_transform_key;
+
+/* The object's transform follows the keys (copied): translation and scale
+ * blended linearly, rotations along the shortest arc (quaternion slerp);
+ * before the first key the first holds, after the last the last. The keyed
+ * transform replaces the object's transform at rt_scene_set_time. count 0
+ * removes the keys. */
+rt_status rt_object_set_transform_keys(rt_scene *scene, uint32_t object_id,
+                                       const rt_transform_key *keys, uint32_t count);
+
+/* A key of the camera's path. */
+typedef struct rt_camera_key {
+    double time; /* seconds; keys strictly increasing in time */
+    float position[3];
+    float look_at[3];
+} rt_camera_key;
+
+/* The camera's eye and look-at point follow the keys (copied), blended
+ * linearly, held before the first and after the last; up, fov and size stay
+ * the camera's. count 0 removes the path. */
+rt_status rt_camera_set_path(rt_scene *scene, const rt_camera_key *keys, uint32_t count);
+
+/* Sets the scene's time in seconds (finite): selects or blends keyframes,
+ * places keyed objects and the camera. What did not change is not touched,
+ * so a renderer redoes only what moved. A scene without animation stays as
+ * it is. Loading a scene file sets time 0. */
+rt_status rt_scene_set_time(rt_scene *scene, double seconds);
+
+/* 1 when some object or the camera is animated (rt_scene_set_time changes
+ * something), else 0. */
+int rt_scene_is_animated(const rt_scene *scene);
+
+/* What the last rt_render or rt_trace_rays did to bring the scene's
+ * acceleration structures up to date, per mesh that it touched. */
+typedef enum rt_update_action {
+    RT_ACTION_NONE = 0,
+    RT_ACTION_BUILD,  /* SAH build */
+    RT_ACTION_REFIT,  /* boxes recomputed */
+    RT_ACTION_FAST,   /* LBVH build */
+    RT_ACTION_REBUILD /* "auto": refitted, found worse than the bound, rebuilt */
+} rt_update_action;
+
+typedef struct rt_mesh_update {
+    uint32_t mesh;
+    rt_update_action action;
+    double ms;  /* time of the update */
+    double sah; /* the tree's SAH cost after it */
+} rt_mesh_update;
+
+typedef struct rt_update_stats {
+    const rt_mesh_update *meshes; /* valid until the renderer's next frame */
+    uint32_t mesh_count;
+    double object_bvh_ms;  /* the object BVH */
+    double layout_ms;      /* the flattened layout (whole or in place) */
+    int layout_in_place;   /* 1: only changed ranges were rewritten */
+    uint64_t layout_bytes; /* bytes of the layout rewritten */
+} rt_update_stats;
+
+/* The renderer's last update (after rt_render or rt_trace_rays). */
+rt_status rt_renderer_update_stats(const rt_renderer *renderer, rt_update_stats *out);
 
 #ifdef __cplusplus
 }

@@ -262,13 +262,24 @@ RT_FN void rt_camera_ray(RT_GLOBAL const rt_scene_header *h, rt_i32 px, rt_i32 p
 
 /* Waechter and Binder 2019 (Ray Tracing Gems, ch. 6): moves p off the surface
  * along n by a fixed number of ulps (256 |n|), which scales with p's magnitude;
- * near the origin, where ulps are tiny, by a fixed 2^-16 |n| instead. */
+ * near the origin, where ulps are tiny, by a fixed 2^-16 |n| instead.
+ * n is a unit normal (the shading's are). For any other n (a ray file's
+ * normal can be anything) a component beyond +-1 moves at most 256 ulps, a
+ * NaN in n or p gives NaN, and the bit arithmetic is unsigned, so nothing is
+ * undefined for any input (the float-to-int conversion was, for |n| >= 2^23
+ * and infinities, and the add for -0 and large NaN payloads: found by
+ * tests/fuzz/fuzz_rays). For unit normals and finite p the bits are those of
+ * the plain signed formula. rt_packet.cl's pk_offset_point sees unit normals
+ * and finite points only. */
 RT_FN void rt_offset_point(const float *p, const float *n, float sign, float *out) {
     for (int i = 0; i < 3; i++) {
         float ni = sign * n[i];
-        rt_i32 of = (rt_i32)(256.0f * ni);
-        float pi = RT_AS_FLOAT(RT_AS_INT(p[i]) + (p[i] < 0.0f ? -of : of));
-        out[i] = RT_FABS(p[i]) < 0.03125f ? p[i] + 0.0000152587890625f * ni : pi;
+        float s = 256.0f * ni;
+        rt_i32 of = s >= 256.0f ? 256 : (s <= -256.0f ? -256 : (s == s ? (rt_i32)s : 0));
+        float pi =
+            RT_AS_FLOAT((rt_i32)((rt_u32)RT_AS_INT(p[i]) + (rt_u32)(p[i] < 0.0f ? -of : of)));
+        out[i] = RT_FABS(p[i]) < 0.03125f ? p[i] + 0.0000152587890625f * ni
+                                          : (s == s && p[i] == p[i] ? pi : p[i] + s);
     }
 }
 

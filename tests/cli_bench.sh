@@ -50,12 +50,13 @@ print("builders:", ", ".join(names))
 
 assert (obj["render_width"], obj["render_height"]) == (96, 54), obj
 rows = {r["backend"]: r for r in obj["render"]}
-for want in ["cpu", "packet", "opencl"]:
+for want in ["cpu", "packet", "opencl", "vulkan"]:
     assert want in rows, "renderer %s missing from %s" % (want, list(rows))
 for name in ["cpu", "packet"]:
     assert "error" not in rows[name], rows[name]
-if "error" in rows["opencl"]:
-    print("opencl row: unavailable here:", rows["opencl"]["error"])
+for name in ["opencl", "vulkan"]:
+    if "error" in rows[name]:
+        print(name, "row: unavailable here:", rows[name]["error"])
 oracle = rows["cpu"]
 assert oracle["rays"] >= 96 * 54, oracle  # primary rays at least
 assert oracle["box_tests"] > 0 and oracle["tri_tests"] > 0, oracle
@@ -63,7 +64,7 @@ for name, r in rows.items():
     if "error" in r:
         continue
     assert 0 < r["ms_min"] <= r["ms_median"] and r["mrays"] > 0, r
-    if name in ("packet", "opencl"):
+    if name in ("packet", "opencl", "vulkan"):
         assert r["rays"] == oracle["rays"], (name, r["rays"], oracle["rays"])
         assert r["pixels_differ_from_cpu"] == 0, (name, r)
 has_embree = any(b["builder"] == "embree" and "error" not in b for b in obj["build"])

@@ -1,7 +1,10 @@
 # cli_kd.sh - SAH kd-trees (issue 18) against the BVH, bit for bit, through
 # rtcl on every backend: the images of every shipped scene (scenes/*.json)
 # and built-in scene, the robustness suite's hit files (tests/robust) and
-# random rays; then the --accel and "accel" errors and rtcl info's report.
+# random rays, on the packet backend through each of its paths (packets, and
+# the single-ray path over wide BVHs, which hands kd instances to the
+# oracle's traversal); then the --accel and "accel" errors, rtcl info's
+# report, deforming meshes keeping BVHs, and the Vulkan backend's refusal.
 # The kd images and closest hits must be the BVH oracle's (cpu, --accel bvh)
 # exactly: the closest hit has a total order, so the structure cannot change
 # it. Any-hit queries may report another hit in range and are held to the
@@ -15,6 +18,8 @@ if ! "$RTCL" devices > "$tmp/devices.txt" 2>&1; then
     echo "skipped backend opencl: $(head -1 "$tmp/devices.txt")"
     BACKENDS=${BACKENDS//opencl/}
 fi
+# The Vulkan backend has no kd traversal: it refuses kd layouts (checked below).
+BACKENDS=${BACKENDS//vulkan/}
 
 # ---- images: every shipped and built-in scene ---------------------------
 # A smaller frame than the scenes' own keeps the test short; every pixel
@@ -123,6 +128,55 @@ EOF
                   fails=$((fails + 1)); }
         done
     done
+    # The packet backend's two paths forced: packets, and one ray at a time
+    # through the wide BVHs (kd instances there go through the oracle's
+    # traversal), for closest and any hits; the robustness suite through the
+    # single-ray path too.
+    if [[ " $BACKENDS " == *" packet "* ]]; then
+        for any in "" --any-hit; do
+            # shellcheck disable=SC2086
+            expect 0 '' -- "$RTCL" trace builtin:cornell --rays "$tmp/random.rays" \
+                --out "$tmp/random-bvh-cpu$any.hits" --backend cpu $any
+            for accel in $ACCELS; do
+                for path in packets single; do
+                    # shellcheck disable=SC2086
+                    expect 0 '' -- "$RTCL" trace builtin:cornell --rays "$tmp/random.rays" \
+                        --out "$tmp/random-$accel-$path$any.hits" --accel "$accel" \
+                        --backend packet --packet-path $path $any
+                    # Closest hits exactly; any hit: whether the ray hits (which
+                    # hit in range it reports may differ).
+                    checks=$((checks + 1))
+                    if [ -z "$any" ]; then
+                        cmp -s "$tmp/random-bvh-cpu.hits" "$tmp/random-$accel-$path.hits"
+                    else
+                        [ "$(cut -d' ' -f1 "$tmp/random-bvh-cpu$any.hits")" = \
+                            "$(cut -d' ' -f1 "$tmp/random-$accel-$path$any.hits")" ]
+                    fi || { echo "FAIL: random rays$any, $accel on packet --packet-path $path:" \
+                        "hits differ from the BVH oracle's"; fails=$((fails + 1)); }
+                done
+            done
+        done
+        for accel in $ACCELS; do
+            out=$tmp/robust-$accel-single
+            mkdir -p "$out"
+            while read -r name flags; do
+                # shellcheck disable=SC2086
+                expect 0 '' -- "$RTCL" trace "$cases/$name.obj" --rays "$cases/$name.rays" \
+                    --out "$out/$name.hits" --backend packet --packet-path single \
+                    --accel "$accel" $flags
+                case " $flags " in *" --any-hit "*) continue ;; esac
+                checks=$((checks + 1))
+                cmp -s "$tmp/robust-bvh-cpu-watertight/$name.hits" "$out/$name.hits" ||
+                    { echo "FAIL: $accel/packet single path $name: hits differ from the BVH's"
+                      fails=$((fails + 1)); }
+            done <<< "$names"
+            checks=$((checks + 1))
+            python3 "$RT_SOURCE_DIR/tests/robust/check_hits.py" "$cases" "$out" \
+                "$accel/packet-single" --strict > "$tmp/check.txt" ||
+                { cat "$tmp/check.txt"; echo "FAIL: robustness suite, $accel on packet single path"
+                  fails=$((fails + 1)); }
+        done
+    fi
 else
     echo "skipped the robustness suite and random rays: python3 not found"
 fi
@@ -140,10 +194,31 @@ expect 0 'cornell_room.obj +6 triangles, 12 vertices, kd' -- "$RTCL" info \
     "$RT_SOURCE_DIR/scenes/.cli_kd_good.json"
 expect 0 'cornell_left_wall.obj +2 triangles, 4 vertices, bvh' -- "$RTCL" info \
     "$RT_SOURCE_DIR/scenes/.cli_kd_good.json"
-rm -f "$RT_SOURCE_DIR/scenes/.cli_kd_bad.json" "$RT_SOURCE_DIR/scenes/.cli_kd_good.json"
+# A deforming mesh keeps a BVH: an update policy other than rebuild wins
+# over "accel" (kd-trees are for static meshes; never refitted).
+sed 's|"room": {"file": "cornell_room.obj"}|"room": {"file": "cornell_room.obj", "accel": "kd", "update": "refit"}|' \
+    "$RT_SOURCE_DIR/scenes/cornell.json" > "$RT_SOURCE_DIR/scenes/.cli_kd_refit.json"
+expect 0 'cornell_room.obj +6 triangles, 12 vertices, update refit, bvh' -- "$RTCL" info \
+    "$RT_SOURCE_DIR/scenes/.cli_kd_refit.json"
+rm -f "$RT_SOURCE_DIR/scenes/.cli_kd_bad.json" "$RT_SOURCE_DIR/scenes/.cli_kd_good.json" \
+    "$RT_SOURCE_DIR/scenes/.cli_kd_refit.json"
 # --accel changes the static meshes only: the columns are keyframes.
 expect 0 'column_0 +100 triangles, 52 vertices, bvh' -- "$RTCL" info builtin:cornell \
     --accel kd
 expect 0 'mirror_sphere +2208 triangles, 1225 vertices, normals, kd' -- "$RTCL" info \
     builtin:cornell --accel kd
+
+# ---- the Vulkan backend refuses kd meshes ---------------------------------
+if "$RTCL" devices --api vulkan > "$tmp/vk_devices.txt" 2>&1; then
+    echo "0.1 1 3 0 0 -1 0 inf" > "$tmp/vk.rays"
+    expect 2 'vulkan: kd-tree meshes are not supported yet; use --accel bvh' -- "$RTCL" render \
+        builtin:cornell -o "$tmp/vk.png" --width 32 --height 18 --backend vulkan --accel kd
+    expect 2 'vulkan: kd-tree meshes are not supported yet; use --accel bvh' -- "$RTCL" trace \
+        builtin:cornell --rays "$tmp/vk.rays" --out "$tmp/vk.hits" --backend vulkan \
+        --accel kd-binned
+    expect 0 '' -- "$RTCL" render builtin:cornell -o "$tmp/vk.png" --width 32 --height 18 \
+        --backend vulkan --accel bvh
+else
+    echo "skipped the Vulkan refusal of kd meshes: $(head -1 "$tmp/vk_devices.txt")"
+fi
 finish

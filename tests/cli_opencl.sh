@@ -4,7 +4,7 @@
 # a reason, auto falls back to the CPU with a notice.
 source "$RT_SOURCE_DIR/tests/shell_check.sh"
 
-if ! "$RTCL" devices >"$tmp/devices.txt" 2>&1; then
+if ! "$RTCL" devices --api opencl >"$tmp/devices.txt" 2>&1; then
     if grep -q "no OpenCL backend" "$tmp/devices.txt"; then
         echo "skipped: this build has no OpenCL backend"; exit 77
     fi
@@ -12,13 +12,13 @@ if ! "$RTCL" devices >"$tmp/devices.txt" 2>&1; then
         echo "skipped: no OpenCL device: $(cat "$tmp/devices.txt")"; exit 77
     fi
 fi
-expect 0 'device 0: .*' -- "$RTCL" devices
-expect 0 'exact +(yes|no): ' -- "$RTCL" devices --device 0
-expect 0 'kernels +(packet|one ray per work-item)' -- "$RTCL" devices --device 0
+expect 0 'device 0: .*' -- "$RTCL" devices --api opencl
+expect 0 'exact +(yes|no): ' -- "$RTCL" devices --api opencl --device 0
+expect 0 'kernels +(packet|one ray per work-item)' -- "$RTCL" devices --api opencl --device 0
 # The packet kernel runs on CPU devices (the 'kernel path' line of --stats).
-if "$RTCL" devices --device 0 | grep -q 'kernels  *packet'; then path=packet; else path='one ray'; fi
-expect 2 'no OpenCL device 99' -- "$RTCL" devices --device 99
-expect 2 "no OpenCL device named like 'no-such-gpu'" -- "$RTCL" devices --device no-such-gpu
+if "$RTCL" devices --api opencl --device 0 | grep -q 'kernels  *packet'; then path=packet; else path='one ray'; fi
+expect 2 'no OpenCL device 99' -- "$RTCL" devices --api opencl --device 99
+expect 2 "no OpenCL device named like 'no-such-gpu'" -- "$RTCL" devices --api opencl --device no-such-gpu
 
 # Images: the PNG files are byte-identical.
 for scene in builtin:cornell builtin:keyframes; do
@@ -65,7 +65,7 @@ expect 0 'bit-exact with the CPU oracle promised' -- "$RTCL" render builtin:corn
 expect 2 'kernel build failed.*-cl-no-such-option' -- "$RTCL" render builtin:cornell --width 32 \
     --height 18 --backend opencl --cl-options -cl-no-such-option -o "$tmp/x.png"
 expect 2 'no OpenCL device 99' -- "$RTCL" render builtin:cornell --backend opencl --device 99 -o "$tmp/x.png"
-expect 2 '--device applies to --backend opencl or auto' -- "$RTCL" render builtin:cornell --device 0 -o "$tmp/x.png"
+expect 2 '--device applies to --backend opencl, vulkan or auto' -- "$RTCL" render builtin:cornell --device 0 -o "$tmp/x.png"
 
 # Ray queries: the same hit lines, closest and any hit.
 awk 'BEGIN { srand(5); for (i = 0; i < 3000; i++) printf "%f %f %f %f %f %f 0 inf\n",
@@ -77,12 +77,13 @@ for any in "" --any-hit; do
     cmp -s "$tmp/h_cpu.txt" "$tmp/h_cl.txt" || { echo "FAIL: trace $any: opencl hits differ"; fails=$((fails + 1)); }
 done
 
-# No platform at all (the ICD loader reads no vendor file).
+# No platform at all (the ICD loader reads no vendor file), and no Vulkan
+# driver either (else auto would take Vulkan).
 mkdir "$tmp/no_vendors"
-export OCL_ICD_VENDORS="$tmp/no_vendors"
-expect 2 'no OpenCL platform' -- "$RTCL" devices
+export OCL_ICD_VENDORS="$tmp/no_vendors" VK_ICD_FILENAMES="$tmp/none.json" VK_DRIVER_FILES="$tmp/none.json"
+expect 2 'no OpenCL platform' -- "$RTCL" devices --api opencl
 expect 2 'opencl: no OpenCL platform' -- "$RTCL" render builtin:cornell --width 32 --height 18 --backend opencl -o "$tmp/x.png"
 expect 2 'opencl: no OpenCL platform' -- "$RTCL" trace builtin:cornell --rays "$tmp/rays.txt" --out "$tmp/x.txt" --backend opencl
 expect 0 'notice: opencl not available \(no OpenCL platform' -- "$RTCL" render builtin:cornell --width 32 --height 18 --backend auto -o "$tmp/x.png"
-unset OCL_ICD_VENDORS
+unset OCL_ICD_VENDORS VK_ICD_FILENAMES VK_DRIVER_FILES
 finish

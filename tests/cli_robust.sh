@@ -9,8 +9,10 @@ source "$RT_SOURCE_DIR/tests/shell_check.sh"
 # The backends that run the suite: a new backend is one more word here. A
 # word BACKEND+portable runs the portable maths profile (--device-math
 # portable), +flush the flushing denormal policy (--denormals flush); each
-# is held to the oracle in its own denormal policy (cpu or cpu+flush).
-BACKENDS=${RT_ROBUST_BACKENDS:-"cpu packet opencl opencl+portable cpu+flush packet+flush opencl+portable+flush"}
+# is held to the oracle in its own denormal policy (cpu or cpu+flush);
+# +packets and +single run the packet backend with --packet-path: every ray
+# in packets, or every ray one at a time through the wide BVHs.
+BACKENDS=${RT_ROBUST_BACKENDS:-"cpu packet+packets packet+single opencl opencl+portable cpu+flush packet+flush opencl+portable+flush vulkan vulkan+flush"}
 
 # The rtcl options of a word, and the oracle it is compared with.
 word_args() {
@@ -21,10 +23,16 @@ word_args() {
         case $w in
             portable | native) echo -n " --device-math $w" ;;
             flush) echo -n " --denormals flush" ;;
+            packets | single) echo -n " --packet-path $w" ;;
         esac
     done
 }
 word_oracle() { case $1 in *+flush*) echo cpu+flush ;; *) echo cpu ;; esac; }
+# The triangle tests a word runs: all four on cpu, packet (both paths) and opencl (the
+# speed-versus-error study's tests must hold the suite's expectations too),
+# the default watertight test on the other words (profiles, policies, paths,
+# vulkan), which is what they change; this keeps CI's time in bounds.
+word_tris() { case $1 in cpu | packet | packet+packets | packet+single | opencl) echo "$TRI_TESTS" ;; *) echo watertight ;; esac; }
 TRI_TESTS=${RT_ROBUST_TRI_TESTS:-"watertight mt pluecker badouel"}
 
 if ! command -v python3 > /dev/null; then
@@ -36,12 +44,15 @@ names=$(python3 -c 'import json, sys
 for c in json.load(open(sys.argv[1]))["cases"]: print(c["name"], " ".join(c["flags"]))' "$cases/manifest.json")
 
 for backend in $BACKENDS; do
-    if [ "${backend%%+*}" = opencl ] && ! "$RTCL" devices > "$tmp/devices.txt" 2>&1; then
-        # Only a build or machine without any OpenCL device gets here; CI has PoCL.
-        echo "skipped backend opencl: $(head -1 "$tmp/devices.txt")"
+    api=${backend%%+*}
+    if { [ "$api" = opencl ] || [ "$api" = vulkan ]; } &&
+        ! "$RTCL" devices --api "$api" > "$tmp/devices.txt" 2>&1; then
+        # Only a build or machine without any such device gets here; CI has
+        # PoCL and lavapipe.
+        echo "skipped backend $backend: $(head -1 "$tmp/devices.txt")"
         continue
     fi
-    for tri in $TRI_TESTS; do
+    for tri in $(word_tris "$backend"); do
         out=$tmp/$backend-$tri
         mkdir -p "$out"
         while read -r name flags; do
@@ -64,7 +75,7 @@ done
 for backend in $BACKENDS; do
     oracle=$(word_oracle "$backend")
     [ "$backend" = "$oracle" ] || [ ! -d "$tmp/$backend-watertight" ] || [ ! -d "$tmp/$oracle-watertight" ] && continue
-    for tri in $TRI_TESTS; do
+    for tri in $(word_tris "$backend"); do
         while read -r name flags; do
             case " $flags " in *" --any-hit "*) continue ;; esac
             checks=$((checks + 1))

@@ -1,5 +1,6 @@
 # cli_trace.sh - 'rtcl trace': hit lines, misses, tmin/tmax, backends agree,
-# any-hit, bad ray lines reported with file:line.
+# any-hit, bad ray lines reported with file:line; --packet-path, --stats,
+# --json and --reps (issue 20).
 source "$RT_SOURCE_DIR/tests/shell_check.sh"
 
 rays=$tmp/rays.txt
@@ -93,6 +94,23 @@ fi
 # Two rays' numbers on one long line are an error, not two rays.
 { printf '0 1.5 3 0 0 -1 0 inf'; printf '%5000s' ''; printf '0 1.5 3 0 0 -1 0 inf\n'; } > "$tmp/two.txt"
 expect 2 'two.txt:1: expected 8 numbers .*found: ' -- "$RTCL" trace builtin:cornell --rays "$tmp/two.txt" --out "$tmp/x.txt"
+# Timing and paths (issue 20): --packet-path forces packets or single rays,
+# the same hits either way; --stats and --json report the trace time alone
+# and the path; bad values are refused.
+for path in packets single; do
+    expect 0 '' -- "$RTCL" trace builtin:cornell --rays "$tmp/random.txt" --out "$tmp/path_$path.txt" \
+        --backend packet --packet-path "$path"
+    checks=$((checks + 1))
+    cmp -s "$tmp/cpu.txt" "$tmp/path_$path.txt" || { echo "FAIL: packet path $path differs from cpu"; fails=$((fails + 1)); }
+done
+expect 0 'path: packet .*: 0 rays in packets .*, 2000 one at a time' -- "$RTCL" trace builtin:cornell \
+    --rays "$tmp/random.txt" --backend packet --packet-path single --stats --reps 2
+expect 0 'trace: 2000 rays \(any hit\), 3 runs after a warm-up: min [0-9.]+ ms, median [0-9.]+ ms' -- \
+    "$RTCL" trace builtin:cornell --rays "$tmp/random.txt" --any-hit --stats --reps 3
+expect 0 '^\{"rays": 2000, "reps": 2, .*"ms_min": [0-9.]+, "ms_median": [0-9.]+, "mrays": [0-9.]+, .*"backend": "packet"' -- \
+    "$RTCL" trace builtin:cornell --rays "$tmp/random.txt" --backend packet --json --reps 2
+expect 2 "unknown packet path 'both'" -- "$RTCL" trace builtin:cornell --rays "$rays" --out "$tmp/x.txt" --packet-path both
+expect 2 'reps' -- "$RTCL" trace builtin:cornell --rays "$rays" --stats --reps 0
 expect 2 "unknown backend 'warp'" -- "$RTCL" trace builtin:cornell --rays "$rays" --out "$tmp/x.txt" --backend warp
 expect 2 'need SCENE' -- "$RTCL" trace builtin:cornell --rays "$rays"
 expect 0 'usage: rtcl trace' -- "$RTCL" trace --help

@@ -62,8 +62,8 @@ static void check_tlas(const rt_scene *scene, const rt_bvh *bvhs, const char *wh
     for (uint32_t o = 0; o < scene->object_count; o++) {
         const rt_object_data *obj = &scene->objects[o];
         rt_aabb local;
-        memcpy(local.bmin, bvhs[obj->meshes[obj->selected]].nodes[0].bmin, sizeof local.bmin);
-        memcpy(local.bmax, bvhs[obj->meshes[obj->selected]].nodes[0].bmax, sizeof local.bmax);
+        memcpy(local.bmin, bvhs[rt_object_shown_mesh(obj)].nodes[0].bmin, sizeof local.bmin);
+        memcpy(local.bmax, bvhs[rt_object_shown_mesh(obj)].nodes[0].bmax, sizeof local.bmax);
         world[o] = rt_aabb_transform(&local, obj->transform);
     }
     CHECK_MSG(bvh_validate(&tlas, world, scene->object_count, 1, 0, msg, sizeof msg), "%s: %s",
@@ -73,7 +73,7 @@ static void check_tlas(const rt_scene *scene, const rt_bvh *bvhs, const char *wh
         if (!(n->b & RT_NODE_LEAF_FLAG)) continue;
         for (uint32_t e = n->a; e < n->a + (n->b & RT_NODE_COUNT_MASK); e++) {
             const rt_object_data *obj = &scene->objects[tlas.prim_indices[e]];
-            const rt_mesh_data *mesh = &scene->meshes[obj->meshes[obj->selected]];
+            const rt_mesh_data *mesh = &scene->meshes[rt_object_shown_mesh(obj)];
             const float *m = obj->transform;
             for (uint32_t v = 0; v < mesh->vertex_count; v++) {
                 const float *p = &mesh->positions[3 * v];

@@ -3,6 +3,7 @@
  * inclusive [tmin, tmax], both faces, and watertightness on a shared edge. */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "check.h"
 #include "rt_shared.h"
@@ -172,10 +173,41 @@ static void offset_cases(void) {
     CHECK(o[2] > neg[2]);
 }
 
+/* Any normal, as a ray file of rtcl trace --offset-origins may give: huge
+ * and infinite components move the point at most 256 ulps, to the normal's
+ * side; NaN gives NaN. Before, (int)(256 n) was undefined for them (x86-64
+ * gave INT_MIN, which flipped the point's sign). */
+static void offset_any_normal(void) {
+    const float p[3] = {1e5f, -1e5f, 3.0f};
+    const float n[3] = {INFINITY, -INFINITY, 1e30f};
+    float o[3];
+    rt_offset_point(p, n, 1.0f, o);
+    for (int k = 0; k < 3; k++) {
+        const float moved = fabsf(o[k] - p[k]),
+                    ulp = nextafterf(fabsf(p[k]), INFINITY) - fabsf(p[k]);
+        CHECK_MSG(moved > 0.0f && moved <= 256.0f * ulp, "axis %d: %g moved to %g", k, (double)p[k],
+                  (double)o[k]);
+        CHECK_MSG((o[k] > p[k]) == (n[k] > 0.0f), "axis %d: moved against the normal", k);
+    }
+    /* -0 (its bits are INT_MIN) and a NaN with the largest payload: the
+     * bit arithmetic overflowed int (undefined; UBSan stops here). -0 is
+     * near the origin: moved by 2^-16 n. */
+    float edge[3] = {-0.0f, 0.0f, 0.0f};
+    const uint32_t nan_bits = 0x7fffffffu;
+    memcpy(&edge[1], &nan_bits, sizeof nan_bits);
+    const float down[3] = {-1.0f, 1.0f, 0.0f};
+    rt_offset_point(edge, down, 1.0f, o);
+    CHECK(o[0] == -0x1p-16f && isnan(o[1]) && o[2] == 0.0f);
+    const float nan_n[3] = {NAN, 0.0f, 0.0f};
+    rt_offset_point(p, nan_n, 1.0f, o);
+    CHECK(isnan(o[0]) && o[1] == p[1] && o[2] == p[2]);
+}
+
 int main(void) {
     for (int m = 0; m < 4; m++) triangle_cases(m);
     watertight_shared_edge();
     box_cases();
     offset_cases();
+    offset_any_normal();
     return TEST_END();
 }

@@ -63,17 +63,36 @@ static void check_scene(const char *name, rt_scene *scene) {
         const char *isa = rt_pk_isa_name(k);
         const rt_pk_variant *variant = rt_pk_variant_find(isa);
         if (!variant) continue;
-        rt_packet_trace_rays(flat, &wide, variant, r, (size_t)rays, packet, 0, &c);
-        rt_packet_trace_rays(flat, &wide, variant, r, (size_t)rays, any, 1, &c);
-        int bad_packet = 0, bad_any = 0;
-        for (int i = 0; i < rays; i++) {
-            bad_packet += !oracle_same_hit(&packet[i], &b[i]);
-            bad_any += (any[i].prim != RT_NO_HIT) != (b[i].prim != RT_NO_HIT);
+        /* Every group in packets, then each as the coherence measure
+         * decides (packets or the single-ray tracer of the same build). */
+        const rt_sw_variant *single_isa = rt_sw_variant_find(isa);
+        rt_sw_bvh single;
+        CHECK(single_isa && rt_sw_build(flat, rt_sw_variant_width(single_isa), &single) == RT_OK);
+        for (int mixed = 0; mixed < 2; mixed++) {
+            rt_cpu_frame tracers;
+            memset(&tracers, 0, sizeof tracers);
+            tracers.flat = flat;
+            tracers.wide = &wide;
+            tracers.isa = variant;
+            tracers.single = mixed ? &single : NULL;
+            tracers.single_isa = single_isa;
+            uint64_t in_packets = 0;
+            rt_packet_trace_rays(&tracers, r, (size_t)rays, packet, 0, RT_TRACE_PATH_AUTO, &c,
+                                 &in_packets);
+            rt_packet_trace_rays(&tracers, r, (size_t)rays, any, 1, RT_TRACE_PATH_AUTO, &c,
+                                 &in_packets);
+            CHECK(mixed || in_packets == 2 * (uint64_t)rays);
+            int bad_packet = 0, bad_any = 0;
+            for (int i = 0; i < rays; i++) {
+                bad_packet += !oracle_same_hit(&packet[i], &b[i]);
+                bad_any += (any[i].prim != RT_NO_HIT) != (b[i].prim != RT_NO_HIT);
+            }
+            CHECK_MSG(bad_packet == 0, "%s: %d of %d packet (%s%s) hits differ", name, bad_packet,
+                      rays, isa, mixed ? ", mixed" : "");
+            CHECK_MSG(bad_any == 0, "%s: %d of %d any-hit (%s%s) results differ", name, bad_any,
+                      rays, isa, mixed ? ", mixed" : "");
         }
-        CHECK_MSG(bad_packet == 0, "%s: %d of %d packet (%s) hits differ", name, bad_packet, rays,
-                  isa);
-        CHECK_MSG(bad_any == 0, "%s: %d of %d any-hit (%s) results differ", name, bad_any, rays,
-                  isa);
+        rt_sw_free(&single);
     }
     rt_pk_wide_free(&wide);
     free(b);

@@ -49,7 +49,7 @@ static const error_case cases[] = {
      "lights, meshes, objects)"},
     {"unknown_camera_key", "{\n  'camera': {'position': [0, 0, 5], 'zoom': 2}\n}", 2, 37,
      "unknown key 'zoom' in camera (valid keys: position, look_at, direction, up, fov, width, "
-     "height)"},
+     "height, path)"},
     {"unknown_material_key",
      "{\n  'materials': {'red': {'color': [1, 0, 0],\n                        'colour': [1, 0, "
      "0]}},\n" MESH_T OBJ_T "}",
@@ -59,7 +59,8 @@ static const error_case cases[] = {
     {"unknown_light_key", "{\n  'lights': [{'position': [0, 0, 5], 'power': 2}]\n}", 2, 38,
      "unknown key 'power' in lights[0] (valid keys: position, color)"},
     {"unknown_mesh_key", "{\n  'meshes': {'t': {'path': 'a.obj'}}\n}", 2, 20,
-     "unknown key 'path' in meshes.t (valid keys: file, positions, triangles, normals, accel)"},
+     "unknown key 'path' in meshes.t (valid keys: file, positions, triangles, normals, update, "
+     "accel)"},
     {"unknown_object_key", "{\n" MESH_T "  'objects': [{'mesh': 't', 'visible': true}]\n}", 3, 29,
      "unknown key 'visible' in objects[0] (valid keys: mesh, keyframes, frame, material"},
     {"unknown_transform_key",
@@ -158,6 +159,63 @@ static const error_case cases[] = {
      "{\n  'camera': {'position': [0, 0, 5], 'look_at': [0, 0, 0], 'up': [0, 0, 1]},\n" MESH_T OBJ_T
      "}",
      2, 13, "camera: up is zero or (nearly) parallel to the view direction"},
+
+    /* time: animation, transform_keys, camera path (docs/SCENE_FORMAT.md, "Time") */
+    {"animation_rate_zero",
+     "{\n" MESH_T "  'objects': [{'mesh': 't', 'animation': {'keyframe_rate': 0}}]\n}", 3, 60,
+     "objects[0].animation.keyframe_rate: must be > 0, found 0"},
+    {"animation_missing_rate",
+     "{\n" MESH_T "  'objects': [{'mesh': 't', 'animation': {'interpolate': true}}]\n}", 3, 42,
+     "objects[0].animation: missing key 'keyframe_rate'"},
+    {"animation_interpolate_not_bool",
+     "{\n" MESH_T
+     "  'objects': [{'mesh': 't', 'animation': {'keyframe_rate': 2, 'interpolate': 1}}]\n}",
+     3, 78, "objects[0].animation.interpolate: expected true or false, found an integer"},
+    {"animation_unknown_key",
+     "{\n" MESH_T "  'objects': [{'mesh': 't', 'animation': {'keyframe_rate': 2, 'fps': 3}}]\n}", 3,
+     63, "unknown key 'fps' in objects[0].animation (valid keys: keyframe_rate, interpolate)"},
+    {"animation_and_frame",
+     "{\n" MESH_T "  'objects': [{'mesh': 't', 'frame': 0, 'animation': {'keyframe_rate': 2}}]\n}",
+     3, 41, "'frame' and 'animation' exclude each other"},
+    {"transform_keys_not_increasing",
+     "{\n" MESH_T "  'objects': [{'mesh': 't', 'transform_keys': [{'time': 1}, {'time': 1}]}]\n}",
+     3, 70, "objects[0].transform_keys[1].time: key times must increase: 1 follows 1"},
+    {"transform_keys_missing_time",
+     "{\n" MESH_T "  'objects': [{'mesh': 't', 'transform_keys': [{'scale': 2}]}]\n}", 3, 48,
+     "objects[0].transform_keys[0]: missing key 'time'"},
+    {"transform_keys_bad_scale",
+     "{\n" MESH_T "  'objects': [{'mesh': 't', 'transform_keys': [{'time': 0, 'scale': -1}]}]\n}",
+     3, 69, "objects[0].transform_keys[0].scale: must be > 0, found -1"},
+    {"transform_keys_zero_axis",
+     "{\n" MESH_T
+     "  'objects': [{'mesh': 't', 'transform_keys': [{'time': 0, 'rotate': {'axis': [0, 0, 0], "
+     "'degrees': 9}}]}]\n}",
+     3, 79, "objects[0].transform_keys[0].rotate.axis: the rotation axis must not be zero"},
+    {"transform_keys_empty", "{\n" MESH_T "  'objects': [{'mesh': 't', 'transform_keys': []}]\n}",
+     3, 47, "objects[0].transform_keys: expected at least one key, found an empty array"},
+    {"transform_and_keys",
+     "{\n" MESH_T
+     "  'objects': [{'mesh': 't', 'transform': {}, 'transform_keys': [{'time': 0}]}]\n}",
+     3, 46, "'transform' and 'transform_keys' exclude each other"},
+    {"camera_path_and_position",
+     "{\n  'camera': {'position': [0, 0, 5], 'path': [{'time': 0, 'position': [0, 0, 5], "
+     "'look_at': [0, 0, 0]}]},\n" MESH_T OBJ_T "}",
+     2, 14, "'path' and 'position' exclude each other"},
+    {"camera_path_missing_look_at",
+     "{\n  'camera': {'path': [{'time': 0, 'position': [0, 0, 5]}]},\n" MESH_T OBJ_T "}", 2, 23,
+     "camera.path[0]: missing key 'look_at'"},
+    {"camera_path_look_at_position",
+     "{\n  'camera': {'path': [{'time': 0, 'position': [1, 2, 3], 'look_at': [1, 2, 3]}]},\n" MESH_T
+         OBJ_T "}",
+     2, 69, "camera.path[0].look_at: the look-at point equals the position"},
+    {"camera_path_time_string",
+     "{\n  'camera': {'path': [{'time': 'x', 'position': [0, 0, 5], 'look_at': [0, 0, "
+     "0]}]},\n" MESH_T OBJ_T "}",
+     2, 32, "camera.path[0].time: expected a number, found a string"},
+    {"mesh_bad_update",
+     "{\n  'meshes': {'t': {'positions': [0,0,0, 1,0,0, 0,1,0], 'triangles': [0,1,2], "
+     "'update': 'lazy'}},\n" OBJ_T "}",
+     2, 88, "meshes.t.update: unknown update policy 'lazy' (valid: rebuild, refit, fast, auto)"},
 
     /* references */
     {"missing_mesh", "{\n" MESH_T "  'objects': [{'mesh': 'cube'}]\n}", 3, 24,

@@ -67,7 +67,35 @@ void rt_embree_scene_destroy(rt_embree_scene *es);
 rt_status rt_embree_render(const rt_embree_scene *es, int lanes, rt_pool *pool, float *rgb,
                            uint64_t *rays, double *ms);
 
+/* The rays rays[0 .. n-1] as ray queries: closest hits through
+ * rtcIntersect1 (lanes 1) or rtcIntersect4/8/16 on consecutive rays (lanes
+ * 4, 8, 16: Embree's packets as streams of incoherent rays), or for any_hit
+ * rtcOccluded1/4/8/16 (then only whether hits[i].prim != RT_NO_HIT is
+ * set), with Embree's incoherent-ray hint, chunks of rays shared among the
+ * pool's workers. *ms is the wall time of the whole. */
+rt_status rt_embree_trace_rays(const rt_embree_scene *es, const rt_ray_d *rays, size_t n,
+                               int any_hit, int lanes, rt_pool *pool, rt_hit_d *hits, double *ms);
+
 /* Does the device trace packets of this width natively (1 always)? */
 int rt_embree_native_lanes(rt_embree *em, int lanes);
+
+/* ---- deforming geometry: the peer of the update policies (embree_dynamic.c) -- */
+
+typedef struct rt_embree_dynamic rt_embree_dynamic;
+
+enum { RT_EMBREE_REFIT = 0, RT_EMBREE_LOW = 1, RT_EMBREE_MEDIUM = 2 };
+
+/* A dynamic scene (RTC_SCENE_FLAG_DYNAMIC) of one triangle geometry whose
+ * build quality is REFIT, LOW (Morton) or MEDIUM (binned SAH), the scene's
+ * LOW for the first two and MEDIUM for the last; *ms is the first commit. */
+rt_status rt_embree_dynamic_create(rt_embree *em, const float *positions, uint32_t vertex_count,
+                                   const uint32_t *indices, uint32_t triangle_count, int quality,
+                                   rt_embree_dynamic **out, double *ms, rt_error *err);
+
+/* New positions (same count): *ms times rtcUpdateGeometryBuffer,
+ * rtcCommitGeometry and rtcCommitScene (not the copy into Embree's buffer). */
+rt_status rt_embree_dynamic_update(rt_embree_dynamic *d, const float *positions, double *ms,
+                                   rt_error *err);
+void rt_embree_dynamic_destroy(rt_embree_dynamic *d);
 
 #endif /* RT_EMBREE_PEER_H */

@@ -369,3 +369,84 @@ int rt_embree_native_lanes(rt_embree *em, int lanes) {
         return 0;
     }
 }
+
+/* ---- ray queries: the caller's rays, one at a time or 16 at once ----------- */
+
+typedef struct rays_job {
+    const rt_embree_scene *es;
+    const rt_ray_d *rays;
+    rt_hit_d *hits;
+    size_t n;
+    int lanes, any_hit;
+    atomic_size_t next;
+} rays_job;
+
+/* Chunks of rays taken in turn (a thread that finishes early takes more). */
+enum { RAYS_CHUNK = 1024 };
+
+static void rays_worker(void *ctx, int worker, int workers) {
+    (void)worker;
+    (void)workers;
+    rays_job *job = ctx;
+    RTCIntersectContext ic;
+    rtcInitIntersectContext(&ic);
+    ic.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    block b;
+    for (;;) {
+        size_t first = atomic_fetch_add_explicit(&job->next, RAYS_CHUNK, memory_order_relaxed);
+        if (first >= job->n) break;
+        size_t end = job->n - first < RAYS_CHUNK ? job->n : first + RAYS_CHUNK;
+        for (size_t i = first; i < end; i++) {
+            if (job->lanes != 1) break;
+            rt_hit_d *h = &job->hits[i];
+            if (job->any_hit) {
+                RTCRay r;
+                to_rtc_ray(&job->rays[i], &r);
+                rtcOccluded1(job->es->scene, &ic, &r);
+                h->prim = r.tfar < 0.0f ? 0 : RT_NO_HIT;
+            } else {
+                RTCRayHit rh;
+                to_rtc_ray(&job->rays[i], &rh.ray);
+                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+                rtcIntersect1(job->es->scene, &ic, &rh);
+                from_rtc_hit(job->es, rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.geomID, rh.hit.primID,
+                             h);
+            }
+        }
+        for (size_t i = first; job->lanes != 1 && i < end; i += (size_t)job->lanes) {
+            b.lanes = job->lanes;
+            b.count = end - i < (size_t)job->lanes ? (int)(end - i) : job->lanes;
+            for (int l = 0; l < b.lanes; l++) {
+                b.valid[l] = l < b.count ? -1 : 0;
+                b.ray[l] = job->rays[i + (size_t)(l < b.count ? l : 0)];
+            }
+            if (job->any_hit) {
+                occluded(job->es, &ic, &b);
+                for (int l = 0; l < b.count; l++)
+                    job->hits[i + l].prim = b.occluded[l] ? 0 : RT_NO_HIT;
+            } else {
+                intersect(job->es, &ic, &b);
+                for (int l = 0; l < b.count; l++) job->hits[i + l] = b.hit[l];
+            }
+        }
+    }
+}
+
+rt_status rt_embree_trace_rays(const rt_embree_scene *es, const rt_ray_d *rays, size_t n,
+                               int any_hit, int lanes, rt_pool *pool, rt_hit_d *hits, double *ms) {
+    if (lanes != 1 && lanes != 4 && lanes != 8 && lanes != 16) return RT_ERROR_INVALID_ARGUMENT;
+    rays_job job;
+    memset(&job, 0, sizeof job);
+    job.es = es;
+    job.rays = rays;
+    job.hits = hits;
+    job.n = n;
+    job.lanes = lanes;
+    job.any_hit = any_hit;
+    atomic_init(&job.next, 0);
+    double t0 = rt_now_ms();
+    rt_pool_run(pool, rays_worker, &job);
+    *ms = rt_now_ms() - t0;
+    return RT_OK;
+}

@@ -29,6 +29,8 @@ const char *rt_builder_name(rt_builder builder) {
         return "thesis-mt";
     case RT_BUILDER_FAST:
         return "fast";
+    case RT_BUILDER_LBVH:
+        return "lbvh";
     }
     return "unknown";
 }
@@ -43,5 +45,6 @@ rt_status rt_bvh_build(const rt_aabb *boxes, uint32_t count, const rt_build_opti
         return RT_ERROR_INVALID_ARGUMENT;
     }
     if (o.builder == RT_BUILDER_FAST) return rt_bvh_build_fast(boxes, count, &o, pool, 1, out, err);
+    if (o.builder == RT_BUILDER_LBVH) return rt_bvh_build_lbvh(boxes, count, &o, pool, out, err);
     return rt_bvh_build_thesis(boxes, count, &o, pool, out, err);
 }

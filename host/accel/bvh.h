@@ -30,7 +30,8 @@ typedef enum rt_builder {
     RT_BUILDER_THESIS_SCALAR = 0, /* thesis setup 1: one thread, scalar */
     RT_BUILDER_THESIS_NEON = 1,   /* thesis setup 2: one thread, NEON binning */
     RT_BUILDER_THESIS_MT = 2,     /* thesis setup 3: two-phase threaded */
-    RT_BUILDER_FAST = 3           /* the default: pooled, parallel binning, SAH leaves */
+    RT_BUILDER_FAST = 3,          /* the default: pooled, parallel binning, SAH leaves */
+    RT_BUILDER_LBVH = 4           /* Morton-code LBVH (bvh_lbvh.c): the "fast" update policy */
 } rt_builder;
 
 typedef struct rt_build_options {
@@ -73,7 +74,7 @@ typedef struct rt_bvh_quality {
 
 rt_bvh_quality rt_bvh_measure(const rt_bvh *bvh, float cost_box, float cost_tri);
 
-/* Names as rtcl bench prints them: thesis-scalar, thesis-neon, thesis-mt, fast. */
+/* Names as rtcl bench prints them: thesis-scalar, thesis-neon, thesis-mt, fast, lbvh. */
 const char *rt_builder_name(rt_builder builder);
 
 #ifdef __cplusplus

@@ -13,6 +13,11 @@ rt_status rt_bvh_build_thesis(const rt_aabb *boxes, uint32_t count, const rt_bui
 rt_status rt_bvh_build_fast(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
                             rt_pool *pool, int use_neon, rt_bvh *out, rt_error *err);
 
+/* The Morton-code LBVH (bvh_lbvh.c): leaves of at most 4 primitives; the
+ * same tree for any thread count. options' bins and leaf size are unused. */
+rt_status rt_bvh_build_lbvh(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
+                            rt_pool *pool, rt_bvh *out, rt_error *err);
+
 /* The fast builder keeps its scratch memory (up to 64 MiB) between builds;
  * this frees it now (it is otherwise reused or held until exit). */
 void rt_bvh_fast_release_scratch(void);

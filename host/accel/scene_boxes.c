@@ -22,7 +22,7 @@ void rt_mesh_tri_boxes(const rt_mesh_data *m, rt_aabb *boxes) {
 
 void rt_object_world_box(const rt_scene *scene, uint32_t object, rt_aabb *box) {
     const rt_object_data *ob = &scene->objects[object];
-    const rt_mesh_data *m = &scene->meshes[ob->meshes[ob->selected]];
+    const rt_mesh_data *m = &scene->meshes[rt_object_shown_mesh(ob)];
     const float *M = ob->transform;
     for (int k = 0; k < 3; k++) {
         box->bmin[k] = INFINITY;

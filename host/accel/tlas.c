@@ -52,7 +52,7 @@ rt_status rt_tlas_build(const rt_scene *scene, const rt_bvh *mesh_bvhs,
     for (uint32_t i = 0; i < n; i++) {
         const rt_object_data *obj = &scene->objects[i];
         if (obj->mesh_count == 0) continue;
-        const rt_bvh *mesh = &mesh_bvhs[obj->meshes[obj->selected]];
+        const rt_bvh *mesh = &mesh_bvhs[rt_object_shown_mesh(obj)];
         if (mesh->node_count == 0) continue;
         rt_aabb local;
         memcpy(local.bmin, mesh->nodes[0].bmin, sizeof local.bmin);

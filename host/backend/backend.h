@@ -47,6 +47,21 @@ typedef struct rt_backend_layout {
      * mesh BVH was rebuilt (then the mesh part of the layout moved too). */
     uint32_t layout_generation;
     uint32_t mesh_generation;
+    /* When the layout was rewritten in place from generation base_generation
+     * (0: made anew), what changed since: node ranges (the updated meshes'
+     * and the object BVH's) and triangle ranges (the updated meshes'; their
+     * tris and normals entries, and their tri_ids and materials unless the
+     * range says only the vertices moved). Instances, materials,
+     * lights and the header are rewritten every time. A backend holding
+     * generation base_generation may copy only these. */
+    uint32_t base_generation;
+    const rt_flat_range *dirty_nodes;
+    uint32_t dirty_node_ranges;
+    const rt_flat_range *dirty_tris;
+    uint32_t dirty_tri_ranges;
+    /* 1 when, besides, every mesh tree kept its shape (it was refitted, not
+     * rebuilt): structures derived from the mesh trees can be refitted too. */
+    int shapes_kept;
 } rt_backend_layout;
 
 /* One frame's request. pixels is width x height x channels floats of the
@@ -76,10 +91,19 @@ typedef struct rt_backend_ops {
     rt_status (*render)(void *state, const rt_backend_layout *layout, const rt_backend_frame *frame,
                         rt_render_stats *stats, rt_error *err);
     /* Traces count rays (closest hit, or any hit) after prepare; a miss has
-     * prim = RT_NO_HIT. Invalid rays were made empty ranges by the caller. */
+     * prim = RT_NO_HIT. Invalid rays were made empty ranges by the caller.
+     * path is the caller's rt_trace_options.packet_path (the packet
+     * backend's; others ignore it). Adds to stats (zeroed by the caller)
+     * build_ms for host builds it did, and the packet backend packet_rays,
+     * single_rays and isa. */
     rt_status (*trace)(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
-                       size_t count, rt_hit_d *hits, int any_hit, rt_error *err);
+                       size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
+                       rt_trace_stats *stats, rt_error *err);
     void (*destroy)(void *state);
+    /* The device compiler's messages of the last program build: its log, then
+     * what the driver printed on stderr meanwhile (the library keeps that off
+     * the terminal); "" when none. NULL for backends that compile nothing. */
+    const char *(*build_log)(void *state);
 } rt_backend_ops;
 
 #endif /* RT_BACKEND_H */

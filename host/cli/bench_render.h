@@ -27,6 +27,7 @@ typedef struct bench_render_setup {
     int denormals;   /* rt_denormals of every row */
     int accel;       /* rt_accel for every static mesh, or -1: the scene's own */
     void (*progress)(const char *scene, const char *what);
+    int verbose; /* print the OpenCL build log on stderr after the warm-up frame */
 } bench_render_setup;
 
 /* Renders the scene at setup->width x height with direct_only (primary plus

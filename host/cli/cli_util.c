@@ -82,10 +82,12 @@ void cli_progress_done(void) {
 }
 
 const char cli_renderer_usage[] =
-    "  --backend B    cpu (the scalar oracle), packet (SIMD ray packets), opencl (fails\n"
-    "                 when no device exists), or auto (opencl when a device exists,\n"
+    "  --backend B    cpu (the scalar oracle), packet (SIMD ray packets), opencl or\n"
+    "                 vulkan (fail when no device exists; opencl:D, vulkan:D pick a\n"
+    "                 device), or auto (opencl, else vulkan, when a device exists,\n"
     "                 else cpu with a notice) [cpu]\n"
-    "  --device D     the OpenCL device: an index or part of a name (rtcl devices)\n"
+    "  --device D     the OpenCL or Vulkan device: an index or part of a name (rtcl\n"
+    "                 devices)\n"
     "  --threads N    worker threads, 0 = one per core [0]\n"
     "  --accel A      the structure of every static mesh (one that is no keyframe of\n"
     "                 an animated object): bvh, kd (exact SAH kd-tree) or kd-binned;\n"
@@ -98,6 +100,9 @@ const char cli_renderer_usage[] =
     "                 oracle, and --stats says so (the speed-versus-error study)\n"
     "  --packet-isa I the packet backend's instruction set: generic, avx2, avx512\n"
     "                 (x86-64) [the widest the CPU runs]; all give the same bits\n"
+    "  --verbose      print the OpenCL compiler's messages (build log, and what the\n"
+    "                 driver printed while building) on stderr; without it they are\n"
+    "                 shown only when the kernels fail to build\n"
     "  --device-math M\n"
     "                 device backends' divide and sqrt: native (the device's, correctly\n"
     "                 rounded where it promises it), portable (software, from integer\n"
@@ -145,6 +150,8 @@ int cli_renderer_arg(int argc, char **argv, int *i, const char *command, cli_ren
         if (!(a->opt.device_options = cli_value(argc, argv, i, command))) return -1;
     } else if (!strcmp(o, "--packet-isa")) {
         if (!(a->opt.packet_isa = cli_value(argc, argv, i, command))) return -1;
+    } else if (!strcmp(o, "--verbose")) {
+        a->verbose = 1;
     } else if (!strcmp(o, "--device-math")) {
         if (!(v = cli_value(argc, argv, i, command))) return -1;
         if (!strcmp(v, "auto"))
@@ -191,8 +198,9 @@ int cli_renderer_arg(int argc, char **argv, int *i, const char *command, cli_ren
 
 rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a) {
     if (a->device) {
-        if (strcmp(a->backend, "opencl") != 0 && strcmp(a->backend, "auto") != 0) {
-            cli_error(command, "--device applies to --backend opencl or auto, not '%s'",
+        if (strcmp(a->backend, "opencl") != 0 && strcmp(a->backend, "vulkan") != 0 &&
+            strcmp(a->backend, "auto") != 0) {
+            cli_error(command, "--device applies to --backend opencl, vulkan or auto, not '%s'",
                       a->backend);
             return NULL;
         }
@@ -218,4 +226,11 @@ int cli_apply_accel(const char *command, const cli_renderer_args *a, rt_scene *s
         return 0;
     }
     return 1;
+}
+
+void cli_print_build_log(const char *command, const rt_renderer *renderer) {
+    const char *log = rt_renderer_build_log(renderer);
+    if (log[0])
+        fprintf(stderr, "rtcl %s: %s build log:\n%s\n", command, rt_renderer_backend(renderer),
+                log);
 }

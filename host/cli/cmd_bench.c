@@ -42,6 +42,7 @@ typedef struct bench_args {
     int json, reps, threads, progress, render, width, height;
     int device_math, denormals; /* rt_device_math, rt_denormals */
     int accel;                  /* --accel: rt_accel, or -1 */
+    int verbose;                /* --verbose: the OpenCL build log on stderr */
 } bench_args;
 
 static int cmp_double(const void *a, const void *b) {
@@ -59,6 +60,7 @@ static void usage(FILE *f) {
     fprintf(f, "usage: rtcl bench SCENE... [--json] [--reps N] [--threads N] [--no-render]\n"
                "                 [--width W] [--height H] [--device-math M] [--denormals P]\n"
                "                 [--accel A]\n"
+               "                 [--verbose]\n"
                "\n"
                "Build: one BVH over all triangles of each scene with every builder\n"
                "(thesis-scalar, thesis-neon, thesis-mt, fast, and embree when available):\n"
@@ -66,8 +68,9 @@ static void usage(FILE *f) {
                "is not counted), SAH cost and node count. Embree's rtcCommitScene at low\n"
                "and medium quality is shown for reference.\n"
                "Render: the thesis's set-up (one point light, primary plus shadow rays,\n"
-               "Phong) on the backends cpu, packet, opencl and opencl-portable (the\n"
-               "portable maths profile: software divide and sqrt), and Embree tracing the same\n"
+               "Phong) on the backends cpu, packet, opencl, opencl-portable (the\n"
+               "portable maths profile: software divide and sqrt) and vulkan (always the\n"
+               "portable profile), and Embree tracing the same\n"
                "rays (rtcIntersect1, packets of 4, 8 and 16 where native, rtcOccluded for\n"
                "shadow rays) with the same thread count: min and median frame time over N\n"
                "frames after one warm-up frame (frames interleaved round by round over\n"
@@ -91,7 +94,8 @@ static void usage(FILE *f) {
                "  --accel A    bvh, kd or kd-binned: the structure of every static mesh in\n"
                "               the render part; kd and kd-binned also add the build rows\n"
                "               kd-exact and kd-binned (one SAH kd-tree over all triangles,\n"
-               "               SAH with Ct = 1, Ci = 2 as for the BVH rows, and bytes)\n");
+               "               SAH with Ct = 1, Ci = 2 as for the BVH rows, and bytes)\n"
+               "  --verbose    print the OpenCL compiler's messages (build log) on stderr\n");
 }
 
 /* The triangles of every mesh: boxes, and positions/indices for Embree. */
@@ -490,7 +494,8 @@ static int bench_scene(const char *path, const bench_args *a, rt_pool *pool) {
     if (a->render) {
         bench_render_setup su = {
             a->reps,        a->threads,   a->width, a->height,
-            a->device_math, a->denormals, a->accel, a->progress ? render_progress : NULL};
+            a->device_math, a->denormals, a->accel, a->progress ? render_progress : NULL,
+            a->verbose};
         n_render = bench_render(path, &su, rrows, why, sizeof why);
     }
     if (a->progress) fprintf(stderr, "\r\033[K");
@@ -519,8 +524,8 @@ static int parse_int(const char *s, int lo, int hi, int *out) {
 }
 
 int cmd_bench(int argc, char **argv) {
-    bench_args a = {0, 5, 0, isatty(2), 1, 1024, 576, RT_DEVICE_MATH_AUTO, RT_DENORMALS_PRESERVE,
-                    -1};
+    bench_args a = {0,  5, 0, isatty(2), 1, 1024, 576, RT_DEVICE_MATH_AUTO, RT_DENORMALS_PRESERVE,
+                    -1, 0};
     const char **scenes = calloc((size_t)argc, sizeof *scenes);
     int n_scenes = 0;
     if (!scenes) return 2;
@@ -543,6 +548,8 @@ int cmd_bench(int argc, char **argv) {
             }
             a.accel = (int)acc;
             i++;
+        } else if (!strcmp(s, "--verbose")) {
+            a.verbose = 1;
         } else if (!strcmp(s, "--device-math") || !strcmp(s, "--denormals")) {
             const char *v = i + 1 < argc ? argv[++i] : "";
             int math = !strcmp(s, "--device-math");

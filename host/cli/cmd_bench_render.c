@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "bench_render.h"
+#include "cli_util.h"
 #include "render/renderer_internal.h"
 #include "rt.h"
 #ifdef RT_HAVE_EMBREE
@@ -251,6 +252,9 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
         }
         runs[3].renderer = portable;
     }
+    /* The Vulkan row (always the portable maths profile). */
+    backend_init(&runs[ours], &rows[ours], su, "vulkan");
+    ours++;
     int n = ours; /* runs */
 #ifdef RT_HAVE_EMBREE
     n += embree_init(renderer, scene, su, &peer, &runs[ours], &rows[ours]);
@@ -271,6 +275,8 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
         for (int k = 0; k < n; k++) {
             if (i >= 0) run_frame(renderer, scene, &peer, &runs[k], -1);
             run_frame(renderer, scene, &peer, &runs[k], i);
+            if (i < 0 && su->verbose && !runs[k].embree_lanes && !runs[k].failed)
+                cli_print_build_log("bench", renderer);
         }
     }
     size_t px = (size_t)su->width * (size_t)su->height;

@@ -14,9 +14,10 @@ static const char usage[] =
     "scene, a bare .obj, or builtin:NAME), its camera, and the features it uses:\n"
     "backends specialise to these (no secondary rays without reflective or\n"
     "refractive materials, no instance transforms for one identity object, no\n"
-    "normal interpolation without normals), and whether the OpenCL kernels are\n"
-    "the exact build. Each mesh's line ends with the structure a renderer builds\n"
-    "for it (bvh, kd or kd-binned).\n"
+    "normal interpolation without normals; OpenCL as -D switches, Vulkan as\n"
+    "specialization constants), whether the OpenCL kernels are the exact build,\n"
+    "and the Vulkan shaders' maths profile. Each mesh's line ends with the\n"
+    "structure a renderer builds for it (bvh, kd or kd-binned).\n"
     "\n"
     "  --accel A          as for rtcl render: bvh, kd or kd-binned for every static\n"
     "                     mesh; info then shows that choice\n"
@@ -84,10 +85,30 @@ int cmd_info(int argc, char **argv) {
            (unsigned long long)rt_scene_triangle_count(s), (unsigned long long)all_tris);
     printf("meshes       %u\n", s->mesh_count);
     for (uint32_t i = 0; i < s->mesh_count; i++)
-        printf("  %-24s %u triangles, %u vertices%s, %s\n", s->meshes[i].name,
+        printf("  %-24s %u triangles, %u vertices%s%s%s, %s\n", s->meshes[i].name,
                s->meshes[i].triangle_count, s->meshes[i].vertex_count,
-               s->meshes[i].normals ? ", normals" : "", rt_accel_name(rt_mesh_accel(s, i)));
+               s->meshes[i].normals ? ", normals" : "",
+               s->meshes[i].update_policy ? ", update " : "",
+               s->meshes[i].update_policy
+                   ? rt_update_policy_name((rt_update_policy)s->meshes[i].update_policy)
+                   : "",
+               rt_accel_name(rt_mesh_accel(s, i)));
     printf("objects      %u\n", s->object_count);
+    uint32_t keyed = 0, blended = 0, switched = 0;
+    for (uint32_t i = 0; i < s->object_count; i++) {
+        const rt_object_data *o = &s->objects[i];
+        keyed += o->transform_key_count > 0;
+        if (o->keyframe_rate > 0.0f && o->mesh_count > 1) {
+            blended += o->interpolate != 0;
+            switched += o->interpolate == 0;
+        }
+    }
+    if (rt_scene_is_animated(s))
+        printf("animation    keyframes switched on %u objects, blended on %u; transform keys on %u "
+               "objects; camera path of %u keys\n",
+               switched, blended, keyed, s->camera_path_count);
+    else
+        printf("animation    none (the scene stays still)\n");
     printf("materials    %u\n", s->material_count);
     printf("lights       %u\n", s->light_count);
     const rt_camera *c = &s->camera;
@@ -126,6 +147,16 @@ int cmd_info(int argc, char **argv) {
                                          : ": exact only where divide/sqrt are correctly rounded");
     printf("denormals    %s%s\n", denormals,
            !strcmp(denormals, "flush") ? ": compared with a flushing oracle (FTZ/DAZ)" : " (IEEE)");
+#ifdef RT_HAVE_VULKAN
+    /* The Vulkan shaders take the same switches as specialization constants
+     * (rtcl render --stats prints their values). */
+    printf("vulkan       specialization constants: secondary rays %s, instance transforms %s, "
+           "normal interpolation %s, per-triangle materials %s; portable maths (software "
+           "division and sqrt, no fp64, no contraction): the CPU oracle's bits where the device "
+           "promises them (rtcl devices)\n",
+           (f.reflection || f.refraction) ? "on" : "off", f.instancing ? "on" : "off",
+           f.normals ? "on" : "off", f.tri_materials ? "on" : "off");
+#endif
     rt_scene_destroy(s);
     return 0;
 }

@@ -1,19 +1,18 @@
 /* cmd_render.c - 'rtcl render': a scene to an image or an AOV. */
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
+#include "cli_anim.h"
 #include "cli_util.h"
 #include "commands.h"
-#include "formats/image.h"
+#include "frame_image.h"
 
 static const char usage_head[] =
     "usage: rtcl render SCENE [-o FILE] [--backend B] [--device D] [--width W] [--height H]\n"
-    "                   [--aov AOV] [--threads N] [--frames N] [--direct]\n"
-    "                   [--accel A] [--cl-options OPTS] [--packet-isa I] [--stats]\n"
-    "                   [--help]\n"
+    "                   [--aov AOV] [--threads N] [--frames N] [--direct] [--time T]\n"
+    "                   [--update P] [--accel A]\n"
+    "                   [--cl-options OPTS] [--packet-isa I] [--stats] [--verbose] [--help]\n"
     "\n"
     "Renders SCENE (a .json scene, a bare .obj, or builtin:NAME) with Whitted-style\n"
     "shading (Phong, shadow rays, reflection, refraction). Options may come before or\n"
@@ -31,69 +30,19 @@ static const char usage_head[] =
     "                 time and the min and median of the others (a benchmark) [1]\n"
     "  --direct       primary and shadow rays only, no reflection or refraction\n"
     "                 (the thesis's benchmark set-up)\n"
+    "  --time T       the scene at time T seconds (animation, transform_keys and the\n"
+    "                 camera path, docs/SCENE_FORMAT.md) [0]\n"
+    "  --update P     every mesh's BVH update policy: rebuild, refit, fast, auto\n"
+    "                 (a single frame builds afresh whatever the policy) [the scene's]\n"
     "  --stats        print BVH cost, box and triangle tests per ray and render time;\n"
-    "                 for opencl also the device, kernel specialisation, compile,\n"
-    "                 upload (bytes), per-kernel and download times\n";
+    "                 for opencl and vulkan also the device, kernel specialisation\n"
+    "                 (-D switches, specialization constants), compile, upload\n"
+    "                 (bytes), per-kernel (vulkan: timestamp queries) and download\n"
+    "                 times\n";
 
 static void print_usage(FILE *f) {
     fputs(usage_head, f);
     fputs(cli_renderer_usage, f);
-}
-
-static int parse_aov(const char *name, rt_aov *out) {
-    static const struct {
-        const char *name;
-        rt_aov aov;
-    } aovs[] = {{"depth", RT_AOV_DEPTH},        {"primid", RT_AOV_PRIMID},
-                {"instid", RT_AOV_INSTID},      {"normal", RT_AOV_NORMAL},
-                {"boxtests", RT_AOV_BOX_TESTS}, {"tritests", RT_AOV_TRI_TESTS}};
-    for (size_t i = 0; i < sizeof aovs / sizeof aovs[0]; i++)
-        if (strcmp(name, aovs[i].name) == 0) {
-            *out = aovs[i].aov;
-            return 1;
-        }
-    return 0;
-}
-
-static int is_float_format(const char *path) {
-    size_t n = strlen(path);
-    return n >= 4 && strcasecmp(path + n - 4, ".exr") == 0;
-}
-
-/* An id as a colour that tells neighbours apart; black for -1 (a miss). */
-static void false_colour(float id, float rgb[3]) {
-    if (id < 0.0f) {
-        rgb[0] = rgb[1] = rgb[2] = 0.0f;
-        return;
-    }
-    uint32_t h = (uint32_t)id * 2654435761u;
-    rgb[0] = 0.25f + 0.75f * (float)((h >> 8) & 255) / 255.0f;
-    rgb[1] = 0.25f + 0.75f * (float)((h >> 16) & 255) / 255.0f;
-    rgb[2] = 0.25f + 0.75f * (float)((h >> 24) & 255) / 255.0f;
-}
-
-/* Makes an AOV displayable in an 8-bit file; returns a new 3-channel image. */
-static float *aov_to_display(const rt_framebuffer *fb, rt_aov aov) {
-    size_t n = (size_t)fb->width * fb->height;
-    float *rgb = malloc(3 * n * sizeof(float));
-    if (!rgb) return NULL;
-    float max = 0.0f;
-    if (aov == RT_AOV_DEPTH || aov == RT_AOV_BOX_TESTS || aov == RT_AOV_TRI_TESTS)
-        for (size_t i = 0; i < n; i++)
-            if (isfinite(fb->pixels[i]) && fb->pixels[i] > max) max = fb->pixels[i];
-    for (size_t i = 0; i < n; i++) {
-        float *o = rgb + 3 * i;
-        if (aov == RT_AOV_NORMAL) {
-            for (int c = 0; c < 3; c++) o[c] = 0.5f + 0.5f * fb->pixels[3 * i + c];
-        } else if (aov == RT_AOV_PRIMID || aov == RT_AOV_INSTID) {
-            false_colour(fb->pixels[i], o);
-        } else {
-            float v = fb->pixels[i];
-            float g = isfinite(v) && max > 0.0f ? v / max : (aov == RT_AOV_DEPTH ? 1.0f : 0.0f);
-            o[0] = o[1] = o[2] = g;
-        }
-    }
-    return rgb;
 }
 
 static void print_stats(const rt_render_stats *s, int width, int height) {
@@ -130,7 +79,11 @@ static void print_stats(const rt_render_stats *s, int width, int height) {
         printf("upload           %.2f ms, %llu bytes\n", s->upload_ms,
                (unsigned long long)s->upload_bytes);
         if (s->kernels[0]) printf("kernel path      %s\n", s->kernels);
-        if (!strncmp(s->kernels, "packet", 6))
+        if (!strncmp(s->kernels, "vulkan", 6))
+            printf("kernels          %.2f ms by timestamp queries (%u dispatches, tiles up to %u "
+                   "pixels)\n",
+                   s->kernel_ms[1], s->launches, s->tile_pixels);
+        else if (!strncmp(s->kernels, "packet", 6))
             printf("kernels          packet %.2f ms (%u launches, tiles up to %u pixels)\n",
                    s->kernel_ms[1], s->launches, s->tile_pixels);
         else
@@ -152,7 +105,9 @@ int cmd_render(int argc, char **argv) {
     rt_render_options opt = rt_render_options_default();
     cli_renderer_args ra;
     cli_renderer_args_init(&ra);
-    int width = 0, height = 0, stats = 0, frames = 1;
+    int width = 0, height = 0, stats = 0, frames = 1, has_time = 0, has_update = 0;
+    double time = 0.0;
+    rt_update_policy update = RT_UPDATE_REBUILD;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v;
         int taken = cli_renderer_arg(argc, argv, &i, "render", &ra);
@@ -173,7 +128,7 @@ int cmd_render(int argc, char **argv) {
                 return 2;
         } else if (!strcmp(a, "--aov")) {
             if (!(v = cli_value(argc, argv, &i, "render"))) return 2;
-            if (!parse_aov(v, &opt.aov)) {
+            if (!cli_parse_aov(v, &opt.aov)) {
                 cli_error("render",
                           "unknown AOV '%s' (depth, primid, instid, normal, boxtests, "
                           "tritests)",
@@ -186,6 +141,15 @@ int cmd_render(int argc, char **argv) {
                 return 2;
         } else if (!strcmp(a, "--stats")) {
             stats = 1;
+        } else if (!strcmp(a, "--time")) {
+            if (!(v = cli_value(argc, argv, &i, "render")) || !cli_float("render", a, v, &time))
+                return 2;
+            has_time = 1;
+        } else if (!strcmp(a, "--update")) {
+            if (!(v = cli_value(argc, argv, &i, "render")) ||
+                !cli_update_policy("render", v, &update))
+                return 2;
+            has_update = 1;
         } else if (!strcmp(a, "--direct")) {
             opt.direct_only = 1;
         } else if (a[0] == '-' && a[1]) {
@@ -223,12 +187,14 @@ int cmd_render(int argc, char **argv) {
     rt_camera_get(scene, &cam);
     if (width) cam.width = width;
     if (height) cam.height = height;
-    if (rt_camera_set(scene, &cam) != RT_OK) {
+    if (rt_camera_set(scene, &cam) != RT_OK ||
+        (has_time && rt_scene_set_time(scene, time) != RT_OK)) {
         cli_error("render", "%s", rt_scene_error(scene));
         rt_scene_destroy(scene);
         rt_renderer_destroy(renderer);
         return 2;
     }
+    if (has_update) cli_apply_update(scene, update);
     rt_render_stats st;
     memset(&st, 0, sizeof st);
     opt.stats = &st;
@@ -238,6 +204,7 @@ int cmd_render(int argc, char **argv) {
     memset(&fb, 0, sizeof fb);
     rt_status status = rt_render(renderer, scene, &opt, &fb);
     cli_progress_done();
+    if (ra.verbose && status == RT_OK) cli_print_build_log("render", renderer);
     if (status != RT_OK) {
         cli_error("render", "%s", rt_renderer_error(renderer));
         rt_scene_destroy(scene);
@@ -277,22 +244,7 @@ int cmd_render(int argc, char **argv) {
         free(ms);
     }
     if (st.notice) fprintf(stderr, "rtcl render: notice: %s\n", st.notice);
-    rt_image img = {fb.width, fb.height, fb.channels, fb.pixels};
-    float *display = NULL;
-    if (opt.aov != RT_AOV_NONE && !is_float_format(out_path)) {
-        display = aov_to_display(&fb, opt.aov);
-        if (!display) {
-            cli_error("render", "out of memory");
-            rt_framebuffer_free(&fb);
-            rt_scene_destroy(scene);
-            rt_renderer_destroy(renderer);
-            return 2;
-        }
-        img.channels = 3;
-        img.pixels = display;
-    }
-    status = rt_image_write(out_path, &img, &err);
-    free(display);
+    status = cli_frame_write(out_path, &fb, opt.aov, &err);
     rt_framebuffer_free(&fb);
     if (status != RT_OK) {
         cli_error("render", "%s", err.message);

@@ -1,21 +1,20 @@
 /* cmd_trace.c - 'rtcl trace': rays from a text file through a scene, one hit
  * line per ray (rt_trace_rays). */
 #include <errno.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/file_read.h"
 #include "cli_util.h"
 #include "commands.h"
-#include "rt_shared.h"
+#include "formats/ray_file.h"
 #include "scene/scene.h"
 
 static const char usage_head[] =
     "usage: rtcl trace SCENE --rays RAYS.txt --out HITS.txt [--backend B] [--device D]\n"
     "                  [--tri-test T] [--any-hit] [--offset-origins] [--threads N]\n"
-    "                  [--accel A] [--cl-options OPTS] [--packet-isa I] [--help]\n"
+    "                  [--accel A] [--reps N] [--stats] [--json] [--packet-path P]\n"
+    "                  [--cl-options OPTS] [--packet-isa I] [--verbose] [--help]\n"
     "\n"
     "Traces the rays of RAYS.txt through SCENE (a .json scene, a bare .obj, or\n"
     "builtin:NAME) and writes one line per ray to HITS.txt.\n"
@@ -36,7 +35,21 @@ static const char usage_head[] =
     "  --offset-origins  each ray line has 3 more numbers, nx ny nz: the origin\n"
     "               is a point on a surface with that normal, and is moved off it\n"
     "               with the engine's offset (as for shadow and secondary rays),\n"
-    "               to the side the direction points to\n";
+    "               to the side the direction points to\n"
+    "  --reps N     trace the rays N times after one untimed warm-up (the hits\n"
+    "               written are the last run's, the same every time) [1, no warm-up]\n"
+    "  --stats      print the trace time alone (not reading rays, not writing\n"
+    "               hits, not BVH builds): min and median ms over the runs, Mrays/s\n"
+    "               at the min, and the path the rays took (the packet backend:\n"
+    "               coherent groups of 64 rays as packets, the others one at a time\n"
+    "               through wide BVHs); --out may then be left out\n"
+    "  --packet-path P  the packet backend's path: auto (each group of 64\n"
+    "               consecutive rays that is coherent as a packet, the others one\n"
+    "               at a time through wide BVHs), packets, or single; the same hits\n"
+    "               on every path [auto]\n"
+    "  --json       the same as one JSON object on stdout (ms_min, ms_median,\n"
+    "               mrays, rays, reps, threads, backend, isa, packet_rays,\n"
+    "               single_rays, build_ms, any_hit)\n";
 
 static void print_usage(FILE *f) {
     fputs(usage_head, f);
@@ -45,88 +58,46 @@ static void print_usage(FILE *f) {
 
 static const char *const tri_test_names[] = {"watertight", "mt", "pluecker", "badouel"};
 
-/* Reads the rays; on a bad line prints file:line and returns 0. */
-static int read_rays(const char *path, int offset, rt_ray **out, size_t *count) {
-    const int want = offset ? 11 : 8;
-    /* The whole file, a regular one of at most RT_MAX_RAY_FILE_BYTES. */
-    char *text;
-    size_t text_len;
-    rt_error rerr;
-    if (rt_read_file(path, "ray file", RT_MAX_RAY_FILE_BYTES, &text, &text_len, &rerr) != RT_OK) {
-        cli_error("trace", "%s", rerr.message);
-        return 0;
+static int cmp_double(const void *a, const void *b) {
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The timing of the runs (ms[0 .. reps-1], trace time alone) and the path
+ * of the last one, as text or one JSON object. */
+static void print_stats(const rt_trace_stats *ts, double *ms, int reps, double build_ms,
+                        int threads, int any_hit, int json) {
+    qsort(ms, (size_t)reps, sizeof *ms, cmp_double);
+    const double min = ms[0];
+    const double median = reps % 2 ? ms[reps / 2] : 0.5 * (ms[reps / 2 - 1] + ms[reps / 2]);
+    const double mrays = min > 0.0 ? (double)ts->rays / (min * 1000.0) : 0.0;
+    if (json) {
+        printf("{\"rays\": %llu, \"reps\": %d, \"threads\": %d, \"any_hit\": %s, \"ms_min\": %.3f, "
+               "\"ms_median\": %.3f, \"mrays\": %.3f, \"build_ms\": %.3f, \"backend\": \"%s\", "
+               "\"isa\": \"%s\", \"packet_rays\": %llu, \"single_rays\": %llu}\n",
+               (unsigned long long)ts->rays, reps, threads, any_hit ? "true" : "false", min, median,
+               mrays, build_ms, ts->backend, ts->isa, (unsigned long long)ts->packet_rays,
+               (unsigned long long)ts->single_rays);
+        return;
     }
-    size_t n = 0, cap = 1024;
-    rt_ray *rays = malloc(cap * sizeof *rays);
-    int lineno = 0, ok = rays != NULL;
-    /* Line by line through the text, of any length; a line ends at '\n' or
-     * at the end of the file. The text is NUL-terminated, so strtof stops
-     * at the line's end once no NUL byte is inside the line. */
-    for (size_t at = 0; ok && at < text_len;) {
-        char *p = text + at, *eol = memchr(p, '\n', text_len - at);
-        const size_t line_len = eol ? (size_t)(eol - p) : text_len - at;
-        at += line_len + 1;
-        lineno++;
-        if (memchr(p, '\0', line_len)) {
-            cli_error("trace", "%s:%d: a NUL byte in the line (a binary file?)", path, lineno);
-            ok = 0;
-            break;
-        }
-        char *const end_of_line = p + line_len;
-        while (*p == ' ' || *p == '\t') p++;
-        if (p == end_of_line || *p == '#' || *p == '\r') continue;
-        float v[11];
-        int got = 0;
-        while (got < want + 1) {
-            char *end;
-            errno = 0;
-            float x = strtof(p, &end);
-            if (end == p || end > end_of_line) break;
-            if (got < want) v[got] = x;
-            got++;
-            p = end;
-        }
-        while (p < end_of_line && (*p == ' ' || *p == '\t' || *p == '\r')) p++;
-        if (got != want || p < end_of_line) {
-            const int rest = p < end_of_line ? (int)(end_of_line - p) : 0;
-            cli_error("trace", "%s:%d: expected %d numbers 'ox oy oz dx dy dz tmin tmax%s'%s%.*s%s",
-                      path, lineno, want, offset ? " nx ny nz" : "", rest ? ", found: " : "",
-                      rest > 40 ? 40 : rest, p, rest > 40 ? "..." : "");
-            ok = 0;
-            break;
-        }
-        if (n == cap) {
-            rt_ray *r = realloc(rays, 2 * cap * sizeof *rays);
-            if (!r) {
-                ok = 0;
-                break;
-            }
-            rays = r;
-            cap *= 2;
-        }
-        rt_ray *r = &rays[n++];
-        memcpy(r->org, v, sizeof r->org);
-        memcpy(r->dir, v + 3, sizeof r->dir);
-        r->tmin = v[6];
-        r->tmax = v[7];
-        if (offset) { /* off the surface, on the side the ray leaves to */
-            float d = rt_dot3(v + 8, r->dir);
-            rt_offset_point(v, v + 8, d >= 0.0f ? 1.0f : -1.0f, r->org);
-        }
-    }
-    free(text);
-    if (!ok) {
-        free(rays);
-        return 0;
-    }
-    *out = rays;
-    *count = n;
-    return 1;
+    printf("trace: %llu rays (%s), %d run%s%s: min %.3f ms, median %.3f ms, %.2f Mrays/s at the "
+           "min\n",
+           (unsigned long long)ts->rays, any_hit ? "any hit" : "closest hit", reps,
+           reps == 1 ? "" : "s", reps > 1 ? " after a warm-up" : "", min, median, mrays);
+    if (!strcmp(ts->backend, "packet"))
+        printf("path: packet (%s): %llu rays in packets of 64 (coherent groups), %llu one at a "
+               "time through wide BVHs\n",
+               ts->isa, (unsigned long long)ts->packet_rays, (unsigned long long)ts->single_rays);
+    else
+        printf("path: %s\n", !strcmp(ts->backend, "cpu") ? "cpu (the scalar oracle, one ray at a "
+                                                           "time through the binary BVHs)"
+                                                         : ts->backend);
+    printf("builds: %.3f ms (BVHs and the backend's copies, not in the trace time)\n", build_ms);
 }
 
 int cmd_trace(int argc, char **argv) {
     const char *scene_path = NULL, *rays_path = NULL, *out_path = NULL;
-    int offset = 0;
+    int offset = 0, reps = 1, warm_up = 0, stats = 0, json = 0;
     rt_trace_options opt;
     memset(&opt, 0, sizeof opt);
     cli_renderer_args ra;
@@ -159,6 +130,27 @@ int cmd_trace(int argc, char **argv) {
             offset = 1;
         } else if (!strcmp(a, "--any-hit")) {
             opt.any_hit = 1;
+        } else if (!strcmp(a, "--reps")) {
+            const char *v = cli_value(argc, argv, &i, "trace");
+            if (!v || !cli_int("trace", "--reps", v, 1, 100000, &reps)) return 2;
+            warm_up = 1;
+        } else if (!strcmp(a, "--packet-path")) {
+            const char *v = cli_value(argc, argv, &i, "trace");
+            if (!v) return 2;
+            if (!strcmp(v, "auto")) {
+                opt.packet_path = RT_TRACE_PATH_AUTO;
+            } else if (!strcmp(v, "packets")) {
+                opt.packet_path = RT_TRACE_PATH_PACKETS;
+            } else if (!strcmp(v, "single")) {
+                opt.packet_path = RT_TRACE_PATH_SINGLE;
+            } else {
+                cli_error("trace", "unknown packet path '%s' (auto, packets, single)", v);
+                return 2;
+            }
+        } else if (!strcmp(a, "--stats")) {
+            stats = 1;
+        } else if (!strcmp(a, "--json")) {
+            json = 1;
         } else if (a[0] == '-' && a[1]) {
             cli_error("trace", "unknown option '%s'", a);
             print_usage(stderr);
@@ -170,8 +162,8 @@ int cmd_trace(int argc, char **argv) {
             scene_path = a;
         }
     }
-    if (!scene_path || !rays_path || !out_path) {
-        cli_error("trace", "need SCENE, --rays and --out");
+    if (!scene_path || !rays_path || (!out_path && !stats && !json)) {
+        cli_error("trace", "need SCENE, --rays and --out (or --stats or --json)");
         print_usage(stderr);
         return 2;
     }
@@ -179,7 +171,9 @@ int cmd_trace(int argc, char **argv) {
     if (!renderer) return 2;
     rt_ray *rays = NULL;
     size_t n = 0;
-    if (!read_rays(rays_path, offset, &rays, &n)) {
+    rt_error rerr;
+    if (rt_rays_load(rays_path, offset, &rays, &n, &rerr) != RT_OK) {
+        cli_error("trace", "%s", rerr.message);
         rt_renderer_destroy(renderer);
         return 2;
     }
@@ -198,18 +192,37 @@ int cmd_trace(int argc, char **argv) {
         return 2;
     }
     rt_hit *hits = malloc((n ? n : 1) * sizeof *hits);
-    rt_status st =
-        hits ? rt_trace_rays(renderer, scene, rays, n, hits, &opt) : RT_ERROR_OUT_OF_MEMORY;
+    double *ms = malloc(sizeof(double) * (size_t)reps);
+    rt_trace_stats ts;
+    memset(&ts, 0, sizeof ts);
+    opt.stats = &ts;
+    rt_status st = hits && ms ? RT_OK : RT_ERROR_OUT_OF_MEMORY;
+    double build_ms = 0.0;
+    for (int run = warm_up ? -1 : 0; st == RT_OK && run < reps; run++) {
+        st = rt_trace_rays(renderer, scene, rays, n, hits, &opt);
+        build_ms += ts.build_ms;
+        if (run >= 0) ms[run] = ts.trace_ms;
+    }
+    if (ra.verbose && st == RT_OK) cli_print_build_log("trace", renderer);
     if (st != RT_OK) {
-        cli_error("trace", "%s", hits ? rt_renderer_error(renderer) : "out of memory");
+        cli_error("trace", "%s", hits && ms ? rt_renderer_error(renderer) : "out of memory");
         free(rays);
         free(hits);
+        free(ms);
         rt_scene_destroy(scene);
         rt_renderer_destroy(renderer);
         return 2;
     }
+    if (stats || json) print_stats(&ts, ms, reps, build_ms, ra.opt.threads, opt.any_hit, json);
+    free(ms);
     rt_renderer_destroy(renderer);
     int with_inst = scene->object_count > 1;
+    if (!out_path) {
+        free(rays);
+        free(hits);
+        rt_scene_destroy(scene);
+        return 0;
+    }
     FILE *f = fopen(out_path, "w");
     if (!f) {
         cli_error("trace", "%s: cannot write: %s", out_path, strerror(errno));

@@ -12,5 +12,7 @@ int cmd_bench(int argc, char **argv);
 int cmd_trace(int argc, char **argv);
 int cmd_generate(int argc, char **argv);
 int cmd_devices(int argc, char **argv);
+int cmd_animate(int argc, char **argv);
+int cmd_view(int argc, char **argv);
 
 #endif /* RTCL_COMMANDS_H */

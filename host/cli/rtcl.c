@@ -16,6 +16,8 @@ static const struct {
     {"devices", cmd_devices, "list OpenCL platforms and devices, and which are bit-exact"},
     {"bench", cmd_bench, "measure BVH builds (and renders) on scenes, beside Embree"},
     {"generate", cmd_generate, "write the built-in scenes as JSON + OBJ files"},
+    {"animate", cmd_animate, "render the frames of an animated scene to images"},
+    {"view", cmd_view, "fly through a scene in a window, switch backends live (SDL2)"},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 

@@ -1,5 +1,9 @@
-/* image.h - images through OpenImageIO: write PNG, EXR, PPM by extension,
- * read any format OpenImageIO reads, compare two images. */
+/* image.h - images: write PNG, EXR, PPM/PGM and PFM by extension, read any
+ * format OpenImageIO reads, compare two images. PPM/PGM and PFM are plain C
+ * (image_pnm.c); PNG, EXR and the other formats go through the image module
+ * librtcl_image.so (OpenImageIO), loaded on first use (image_module.h): where
+ * the build or the install lacks it, those calls fail with
+ * RT_ERROR_UNSUPPORTED saying so. */
 #ifndef RT_IMAGE_H
 #define RT_IMAGE_H
 
@@ -18,16 +22,19 @@ typedef struct rt_image {
     float *pixels; /* row-major, top row first, channels interleaved */
 } rt_image;
 
-/* Writes pixels by the file's extension: .png and .ppm store 8 bits per
- * channel (values clamped to [0,1], rounded to nearest), .exr stores 32-bit
- * floats. err names the file on failure. The extension is case-insensitive;
- * any other is RT_ERROR_UNSUPPORTED, as is a .ppm with other than 1 (written
- * as a grey P5 file) or 3 channels. NaN is stored as 0 in 8-bit files. An
- * alpha channel is stored as given, never premultiplied. A file that cannot
- * be created is RT_ERROR_IO with OpenImageIO's reason. */
+/* Writes pixels by the file's extension: .png and .ppm (or .pgm) store 8
+ * bits per channel (values clamped to [0,1], rounded to nearest), .exr and
+ * .pfm store 32-bit floats. err names the file on failure. The extension is
+ * case-insensitive; any other is RT_ERROR_UNSUPPORTED, as is a .ppm or .pfm
+ * with other than 1 (written as grey, P5 or Pf) or 3 channels. NaN is stored
+ * as 0 in 8-bit files. An alpha channel is stored as given, never
+ * premultiplied. A file that cannot be created or written in full is
+ * RT_ERROR_IO with the system's reason. */
 rt_status rt_image_write(const char *path, const rt_image *image, rt_error *err);
 
-/* Reads an image as floats in [0,1] for 8-bit files; the caller frees with
+/* Reads an image as floats in [0,1] for 8-bit files; the format is told by
+ * the file's first bytes (PPM/PGM and PFM here, anything else through the
+ * image module). The caller frees with
  * rt_image_free. 8- and 16-bit levels k read as exactly k / 255.0f and
  * k / 65535.0f, so an 8-bit file written from such values reads back
  * bit-identical. Subimage 0 only, all its channels. A file that cannot be

@@ -343,21 +343,81 @@ static rt_status exclusive(loader *L, json_t *obj, const char *a, const char *b)
 
 /* ---- camera, colours, materials, lights ---------------------------------- */
 
+/* A strictly increasing "time" of a key, at index i of an array of keys. */
+static rt_status read_key_time(loader *L, json_t *key, double prev, size_t i, double *t) {
+    enter_key(L, "time");
+    rt_status st = read_number(L, json_object_get(key, "time"), t);
+    if (st == RT_OK && i > 0 && !(*t > prev))
+        st = fail(L, "key times must increase: %g follows %g", *t, prev);
+    leave(L);
+    return st;
+}
+
+/* The camera's path: [{time, position, look_at}, ...]. */
+static rt_status load_camera_path(loader *L, json_t *v, rt_camera *cam) {
+    static const char *const keys[] = {"time", "position", "look_at", NULL};
+    rt_status st = expect_array(L, v);
+    if (st == RT_OK && json_array_size(v) == 0)
+        st = fail(L, "expected at least one key, found an empty array");
+    if (st == RT_OK && json_array_size(v) > UINT32_MAX) st = fail(L, "too many keys");
+    if (st != RT_OK) return st;
+    size_t n = json_array_size(v);
+    rt_camera_key *k = calloc(n, sizeof *k);
+    if (!k) return rt_error_set(L->err, RT_ERROR_OUT_OF_MEMORY, L->path, 0, 0, "out of memory");
+    for (size_t i = 0; st == RT_OK && i < n; i++) {
+        json_t *e = json_array_get(v, i);
+        enter_index(L, i);
+        st = expect_object(L, e);
+        if (st == RT_OK) st = check_keys(L, e, keys);
+        if (st == RT_OK) st = require(L, e, "time");
+        if (st == RT_OK) st = require(L, e, "position");
+        if (st == RT_OK) st = require(L, e, "look_at");
+        if (st == RT_OK) st = read_key_time(L, e, i ? k[i - 1].time : 0.0, i, &k[i].time);
+        if (st == RT_OK) st = opt_vec3(L, e, "position", k[i].position);
+        if (st == RT_OK) st = opt_vec3(L, e, "look_at", k[i].look_at);
+        if (st == RT_OK && memcmp(k[i].position, k[i].look_at, sizeof k[i].position) == 0) {
+            enter_key(L, "look_at");
+            st = fail(L, "the look-at point equals the position");
+            leave(L);
+        }
+        leave(L);
+    }
+    if (st == RT_OK) {
+        memcpy(cam->position, k[0].position, sizeof cam->position);
+        memcpy(cam->look_at, k[0].look_at, sizeof cam->look_at);
+        if (rt_camera_set_path(L->scene, k, (uint32_t)n) != RT_OK) st = fail_scene(L);
+    }
+    free(k);
+    return st;
+}
+
 static rt_status load_camera(loader *L, json_t *v) {
-    static const char *const keys[] = {"position", "look_at", "direction", "up",
-                                       "fov",      "width",   "height",    NULL};
+    static const char *const keys[] = {"position", "look_at", "direction", "up", "fov",
+                                       "width",    "height",  "path",      NULL};
     rt_status st = expect_object(L, v);
     if (st == RT_OK) st = check_keys(L, v, keys);
-    if (st == RT_OK) st = require(L, v, "position");
-    if (st == RT_OK) st = exclusive(L, v, "look_at", "direction");
-    if (st == RT_OK && !json_object_get(v, "look_at") && !json_object_get(v, "direction"))
-        st = fail(L, "missing key 'look_at' or 'direction'");
+    json_t *path = json_object_get(v, "path");
+    if (path) {
+        /* The path places the eye and the look-at point at every time. */
+        static const char *const placed[] = {"position", "look_at", "direction"};
+        for (size_t i = 0; st == RT_OK && i < 3; i++) st = exclusive(L, v, "path", placed[i]);
+    } else {
+        if (st == RT_OK) st = require(L, v, "position");
+        if (st == RT_OK) st = exclusive(L, v, "look_at", "direction");
+        if (st == RT_OK && !json_object_get(v, "look_at") && !json_object_get(v, "direction"))
+            st = fail(L, "missing key 'look_at' or 'direction'");
+    }
     if (st != RT_OK) return st;
 
     rt_camera cam = {{0, 0, 0}, {0, 0, 0}, {0, 1, 0}, 60.0f, 1024, 576};
     float dir[3] = {0, 0, 0};
     long long width = cam.width, height = cam.height;
-    st = opt_vec3(L, v, "position", cam.position);
+    if (path) {
+        enter_key(L, "path");
+        st = load_camera_path(L, path, &cam);
+        leave(L);
+    }
+    if (st == RT_OK) st = opt_vec3(L, v, "position", cam.position);
     if (st == RT_OK) st = opt_vec3(L, v, "look_at", cam.look_at);
     if (st == RT_OK) st = opt_vec3(L, v, "direction", dir);
     if (st == RT_OK) st = opt_vec3(L, v, "up", cam.up);
@@ -618,8 +678,27 @@ static rt_status load_mesh_accel(loader *L, json_t *m, uint32_t id) {
     return st;
 }
 
+/* A mesh's "update": its BVH update policy. */
+static rt_status load_update(loader *L, json_t *m, uint32_t id) {
+    json_t *u = json_object_get(m, "update");
+    if (!u) return RT_OK;
+    rt_update_policy policy;
+    rt_status st = RT_OK;
+    enter_key(L, "update");
+    if (!json_is_string(u))
+        st = fail(L, "expected an update policy (a string), found %s", type_name(u));
+    else if (!rt_update_policy_parse(json_string_value(u), &policy))
+        st = fail(L, "unknown update policy '%s' (valid: rebuild, refit, fast, auto)",
+                  json_string_value(u));
+    else if (rt_mesh_set_update(L->scene, id, policy) != RT_OK)
+        st = fail_scene(L);
+    leave(L);
+    return st;
+}
+
 static rt_status load_meshes(loader *L, json_t *v) {
-    static const char *const keys[] = {"file", "positions", "triangles", "normals", "accel", NULL};
+    static const char *const keys[] = {"file",   "positions", "triangles", "normals",
+                                       "update", "accel",     NULL};
     static const char *const inline_keys[] = {"positions", "triangles", "normals"};
     rt_status st = expect_object(L, v);
     const char *name;
@@ -634,6 +713,7 @@ static rt_status load_meshes(loader *L, json_t *v) {
         if (st == RT_OK)
             st = json_object_get(m, "file") ? load_mesh_file(L, m, &id)
                                             : load_inline_mesh(L, m, name, &id);
+        if (st == RT_OK) st = load_update(L, m, id);
         if (st == RT_OK) st = load_mesh_accel(L, m, id);
         leave(L);
         if (st != RT_OK) return st;
@@ -735,11 +815,70 @@ static rt_status add_keyframe(loader *L, const json_t *name, uint32_t object) {
     return st;
 }
 
+/* An object's "animation": {"keyframe_rate": R, "interpolate": bool}. */
+static rt_status load_animation(loader *L, json_t *v, uint32_t object) {
+    static const char *const keys[] = {"keyframe_rate", "interpolate", NULL};
+    rt_status st = expect_object(L, v);
+    if (st == RT_OK) st = check_keys(L, v, keys);
+    if (st == RT_OK) st = require(L, v, "keyframe_rate");
+    float rate = 0.0f;
+    if (st == RT_OK) st = opt_float(L, v, "keyframe_rate", &rate, POSITIVE);
+    json_t *interp = json_object_get(v, "interpolate");
+    if (st == RT_OK && interp && !json_is_boolean(interp)) {
+        enter_key(L, "interpolate");
+        st = fail(L, "expected true or false, found %s", type_name(interp));
+        leave(L);
+    }
+    if (st == RT_OK &&
+        rt_object_set_animation(L->scene, object, rate, interp && json_is_true(interp)) != RT_OK)
+        st = fail_scene(L);
+    return st;
+}
+
+/* An object's "transform_keys": [{time, translate, rotate, scale}, ...]. */
+static rt_status load_transform_keys(loader *L, json_t *v, uint32_t object) {
+    static const char *const keys[] = {"time", "translate", "rotate", "scale", NULL};
+    rt_status st = expect_array(L, v);
+    if (st == RT_OK && json_array_size(v) == 0)
+        st = fail(L, "expected at least one key, found an empty array");
+    if (st == RT_OK && json_array_size(v) > UINT32_MAX) st = fail(L, "too many keys");
+    if (st != RT_OK) return st;
+    size_t n = json_array_size(v);
+    rt_transform_key *k = calloc(n, sizeof *k);
+    if (!k) return rt_error_set(L->err, RT_ERROR_OUT_OF_MEMORY, L->path, 0, 0, "out of memory");
+    for (size_t i = 0; st == RT_OK && i < n; i++) {
+        json_t *e = json_array_get(v, i);
+        k[i].axis[1] = 1.0f;
+        k[i].scale = 1.0f;
+        enter_index(L, i);
+        st = expect_object(L, e);
+        if (st == RT_OK) st = check_keys(L, e, keys);
+        if (st == RT_OK) st = require(L, e, "time");
+        if (st == RT_OK) st = read_key_time(L, e, i ? k[i - 1].time : 0.0, i, &k[i].time);
+        if (st == RT_OK) st = opt_vec3(L, e, "translate", k[i].translate);
+        json_t *rotate = json_object_get(e, "rotate");
+        if (st == RT_OK && rotate) {
+            enter_key(L, "rotate");
+            st = load_rotation(L, rotate, k[i].axis, &k[i].degrees);
+            leave(L);
+        }
+        if (st == RT_OK) st = opt_float(L, e, "scale", &k[i].scale, POSITIVE);
+        leave(L);
+    }
+    if (st == RT_OK && rt_object_set_transform_keys(L->scene, object, k, (uint32_t)n) != RT_OK)
+        st = fail_scene(L);
+    free(k);
+    return st;
+}
+
 static rt_status load_object(loader *L, json_t *v) {
-    static const char *const keys[] = {"mesh", "keyframes", "frame", "material", "transform", NULL};
+    static const char *const keys[] = {"mesh",      "keyframes", "frame",          "material",
+                                       "transform", "animation", "transform_keys", NULL};
     rt_status st = expect_object(L, v);
     if (st == RT_OK) st = check_keys(L, v, keys);
     if (st == RT_OK) st = exclusive(L, v, "mesh", "keyframes");
+    if (st == RT_OK) st = exclusive(L, v, "frame", "animation");
+    if (st == RT_OK) st = exclusive(L, v, "transform", "transform_keys");
     if (st == RT_OK && !json_object_get(v, "mesh") && !json_object_get(v, "keyframes"))
         st = fail(L, "missing key 'mesh' or 'keyframes'");
     if (st != RT_OK) return st;
@@ -792,6 +931,18 @@ static rt_status load_object(loader *L, json_t *v) {
     if (st == RT_OK && transform) {
         enter_key(L, "transform");
         st = load_transform(L, transform, object);
+        leave(L);
+    }
+    json_t *animation = json_object_get(v, "animation");
+    if (st == RT_OK && animation) {
+        enter_key(L, "animation");
+        st = load_animation(L, animation, object);
+        leave(L);
+    }
+    json_t *tkeys = json_object_get(v, "transform_keys");
+    if (st == RT_OK && tkeys) {
+        enter_key(L, "transform_keys");
+        st = load_transform_keys(L, tkeys, object);
         leave(L);
     }
     return st;
@@ -853,6 +1004,9 @@ static rt_status load_document(loader *L, json_t *root) {
     if (st == RT_OK) st = section(L, root, "objects", load_objects);
     if (st != RT_OK) return st;
     rt_scene_commit(L->scene);
+    /* An animated scene starts at time 0 (a still one is left as it is). */
+    if (rt_scene_is_animated(L->scene) && rt_scene_set_time(L->scene, 0.0) != RT_OK)
+        return fail_scene(L);
 
     enter_key(L, "objects");
     if (rt_scene_triangle_count(L->scene) == 0)

@@ -39,7 +39,14 @@ rt_status rt_scene_load(const char *path, rt_scene **out, rt_error *err) {
         return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0, "out of memory");
     rt_status st;
     if (has_extension(path, ".json"))
+#ifdef RT_HAVE_JANSSON
         st = rt_scene_load_json(scene, path, err);
+#else
+        st = rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
+                          "this build has no JSON scene loader: jansson was not found when it "
+                          "was configured (install libjansson-dev and configure again); .obj "
+                          "scenes load without it");
+#endif
     else if (has_extension(path, ".obj"))
         st = load_bare_obj(scene, path, err);
     else

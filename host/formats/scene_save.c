@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "base/error.h"
@@ -12,10 +13,11 @@ static void write_vec3(FILE *f, const float v[3]) {
     fprintf(f, "[%.9g, %.9g, %.9g]", (double)v[0], (double)v[1], (double)v[2]);
 }
 
-static rt_status write_obj(const rt_mesh_data *m, const char *path, rt_error *err) {
+static rt_status write_obj(const rt_mesh_data *m, const char *mesh_name, const char *path,
+                           rt_error *err) {
     FILE *f = fopen(path, "wb");
     if (!f) return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot write: %s", strerror(errno));
-    fprintf(f, "# %s: %u vertices, %u triangles, written by rtcl\n", m->name, m->vertex_count,
+    fprintf(f, "# %s: %u vertices, %u triangles, written by rtcl\n", mesh_name, m->vertex_count,
             m->triangle_count);
     for (uint32_t v = 0; v < m->vertex_count; v++) {
         const float *p = m->positions + 3 * (size_t)v;
@@ -40,14 +42,58 @@ static rt_status write_obj(const rt_mesh_data *m, const char *path, rt_error *er
     return RT_OK;
 }
 
+/* A mesh name that can be a JSON key and part of a file name as it is. */
+static int plain_name(const char *n) {
+    if (!n[0] || n[0] == '.') return 0;
+    for (const char *c = n; *c; c++)
+        if (!((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') ||
+              *c == '_' || *c == '-' || *c == '.'))
+            return 0;
+    return 1;
+}
+
+static int by_name(const void *a, const void *b) {
+    return strcmp(*(const char *const *)a, *(const char *const *)b);
+}
+
+/* Whether the meshes' own names can name them in the files: all plain and no
+ * two alike. Otherwise (a JSON key with a quote or a slash, two meshes from
+ * files of the same name) every mesh is saved as mesh_INDEX: a name written
+ * as it was broke the JSON, collided, or pointed outside dir (found by
+ * tests/fuzz/fuzz_json). */
+static rt_status names_usable(const rt_scene *s, int *usable) {
+    *usable = 1;
+    for (uint32_t i = 0; i < s->mesh_count && *usable; i++) *usable = plain_name(s->meshes[i].name);
+    if (!*usable || s->mesh_count < 2) return RT_OK;
+    const char **names = malloc(s->mesh_count * sizeof *names);
+    if (!names) return RT_ERROR_OUT_OF_MEMORY;
+    for (uint32_t i = 0; i < s->mesh_count; i++) names[i] = s->meshes[i].name;
+    qsort(names, s->mesh_count, sizeof *names, by_name);
+    for (uint32_t i = 1; i < s->mesh_count && *usable; i++)
+        *usable = strcmp(names[i - 1], names[i]) != 0;
+    free(names);
+    return RT_OK;
+}
+
+/* Mesh i's name in the saved files. */
+static const char *saved_name(const rt_scene *s, int usable, uint32_t i, char buf[32]) {
+    if (usable) return s->meshes[i].name;
+    snprintf(buf, 32, "mesh_%u", i);
+    return buf;
+}
+
 rt_status rt_scene_save_json(const rt_scene *s, const char *dir, const char *name, rt_error *err) {
-    char path[1024];
+    char path[1024], mesh_name[32], other_name[32];
+    int usable;
+    if (names_usable(s, &usable) != RT_OK)
+        return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, NULL, 0, 0, "out of memory");
     for (uint32_t i = 0; i < s->mesh_count; i++) {
         if (s->meshes[i].tri_materials)
             return rt_error_set(err, RT_ERROR_UNSUPPORTED, NULL, 0, 0,
                                 "mesh %u has per-triangle materials, which JSON cannot express", i);
-        snprintf(path, sizeof path, "%s/%s_%s.obj", dir, name, s->meshes[i].name);
-        rt_status st = write_obj(&s->meshes[i], path, err);
+        const char *mesh = saved_name(s, usable, i, mesh_name);
+        snprintf(path, sizeof path, "%s/%s_%s.obj", dir, name, mesh);
+        rt_status st = write_obj(&s->meshes[i], mesh, path, err);
         if (st != RT_OK) return st;
     }
     snprintf(path, sizeof path, "%s/%s.json", dir, name);
@@ -87,20 +133,23 @@ rt_status rt_scene_save_json(const rt_scene *s, const char *dir, const char *nam
         fprintf(f, "}%s\n", i + 1 < s->light_count ? "," : "");
     }
     fprintf(f, "  ],\n  \"meshes\": {\n");
-    for (uint32_t i = 0; i < s->mesh_count; i++)
-        fprintf(f, "    \"%s\": {\"file\": \"%s_%s.obj\"%s%s%s}%s\n", s->meshes[i].name, name,
-                s->meshes[i].name, s->meshes[i].accel ? ", \"accel\": \"" : "",
-                s->meshes[i].accel ? rt_accel_name((rt_accel)s->meshes[i].accel) : "",
-                s->meshes[i].accel ? "\"" : "", i + 1 < s->mesh_count ? "," : "");
+    for (uint32_t i = 0; i < s->mesh_count; i++) {
+        const char *mesh = saved_name(s, usable, i, mesh_name);
+        uint32_t accel = s->meshes[i].accel;
+        fprintf(f, "    \"%s\": {\"file\": \"%s_%s.obj\"%s%s%s}%s\n", mesh, name, mesh,
+                accel ? ", \"accel\": \"" : "", accel ? rt_accel_name((rt_accel)accel) : "",
+                accel ? "\"" : "", i + 1 < s->mesh_count ? "," : "");
+    }
     fprintf(f, "  },\n  \"objects\": [\n");
     for (uint32_t i = 0; i < s->object_count; i++) {
         const rt_object_data *o = &s->objects[i];
         if (o->mesh_count == 1) {
-            fprintf(f, "    {\"mesh\": \"%s\"", s->meshes[o->meshes[0]].name);
+            fprintf(f, "    {\"mesh\": \"%s\"", saved_name(s, usable, o->meshes[0], mesh_name));
         } else {
             fprintf(f, "    {\"keyframes\": [");
             for (uint32_t k = 0; k < o->mesh_count; k++)
-                fprintf(f, "%s\"%s\"", k ? ", " : "", s->meshes[o->meshes[k]].name);
+                fprintf(f, "%s\"%s\"", k ? ", " : "",
+                        saved_name(s, usable, o->meshes[k], other_name));
             fprintf(f, "], \"frame\": %u", o->selected);
         }
         fprintf(f, ", \"material\": \"m%u\"", o->material);

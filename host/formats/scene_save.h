@@ -4,8 +4,11 @@
 
 #include "rt.h"
 
-/* Writes dir/name.json and dir/name_MESH.obj for each mesh. Floats are
- * written with %.9g so that loading the files gives the same bits. */
+/* Writes dir/name.json and dir/name_MESH.obj for each mesh. MESH is the
+ * mesh's name when every mesh has a plain name (letters, digits, '_', '-',
+ * '.', not starting with '.') and no two are alike, else mesh_INDEX for
+ * every mesh. Floats are written with %.9g so that loading the files gives
+ * the same bits. Meshes with per-triangle materials are RT_ERROR_UNSUPPORTED. */
 rt_status rt_scene_save_json(const rt_scene *scene, const char *dir, const char *name,
                              rt_error *err);
 

@@ -28,6 +28,13 @@ typedef struct rt_flat {
     uint32_t kd_node_count;
 } rt_flat;
 
+/* A range of nodes or triangles of a layout (rewritten in place). */
+typedef struct rt_flat_range {
+    uint32_t first, count;
+    uint32_t moved; /* triangles: 1 when only their vertices moved (a refit): the
+                       triangle ids and materials stayed */
+} rt_flat_range;
+
 void rt_flat_free(rt_flat *flat);
 
 /* The view the shared traversal reads. */

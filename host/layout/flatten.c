@@ -180,6 +180,13 @@ static void store_tri(const rt_mesh_data *m, uint32_t t, rt_tri *out) {
     }
 }
 
+static void write_mesh(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b, uint32_t node_base,
+                       uint32_t tri_base);
+static rt_status write_frame(const rt_scene *scene, const rt_bvh *top, const rt_kd *mesh_kds,
+                             int single, uint32_t top_root, const uint32_t *node_base,
+                             const uint32_t *tri_base, const uint32_t *tri_span,
+                             const rt_flat_options *opt, rt_flat *out, rt_error *err);
+
 rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bvh *top,
                      const rt_flat_options *options, rt_flat *out, rt_error *err) {
     return rt_flatten_accel(scene, mesh_bvhs, NULL, top, options, out, err);
@@ -200,7 +207,6 @@ rt_status rt_flatten_accel(const rt_scene *scene, const rt_bvh *mesh_bvhs, const
                 opt.tri_method, opt.max_depth);
         return RT_ERROR_INVALID_ARGUMENT;
     }
-    rt_scene_features feat = rt_scene_features_of(scene);
     uint32_t nmesh = scene->mesh_count, nobj = scene->object_count;
 
     /* Which meshes are shown, and where each goes. */
@@ -212,7 +218,7 @@ rt_status rt_flatten_accel(const rt_scene *scene, const rt_bvh *mesh_bvhs, const
     if (!node_base || !tri_base || !tri_span || !kd_base || !used) goto oom;
     for (uint32_t o = 0; o < nobj; o++) {
         const rt_object_data *ob = &scene->objects[o];
-        used[ob->meshes[ob->selected]] = 1;
+        used[rt_object_shown_mesh(ob)] = 1;
     }
     uint64_t nodes = 0, tris = 0, kd_nodes = 0;
     int any_normals = 0, any_mats = 0;
@@ -292,31 +298,26 @@ rt_status rt_flatten_accel(const rt_scene *scene, const rt_bvh *mesh_bvhs, const
         if (!used[m]) continue;
         const rt_mesh_data *md = &scene->meshes[m];
         const rt_kd *kd = kd_of(mesh_kds, m);
-        const rt_bvh *b = kd ? NULL : &mesh_bvhs[m];
-        if (kd) {
-            /* The root box, then the tree with absolute indices. */
-            rt_node *root = &out->nodes[node_base[m]];
-            memcpy(root->bmin, kd->bounds.bmin, sizeof root->bmin);
-            memcpy(root->bmax, kd->bounds.bmax, sizeof root->bmax);
-            root->a = kd_base[m];
-            root->b = RT_NODE_LEAF_FLAG;
-            for (uint32_t i = 0; i < kd->node_count; i++) {
-                rt_kd_node n = kd->nodes[i];
-                if ((n.b & 3u) == RT_KD_LEAF)
-                    n.a += tri_base[m];
-                else
-                    n.b = (((n.b >> 2) + kd_base[m]) << 2) | (n.b & 3u);
-                out->kd_nodes[kd_base[m] + i] = n;
-            }
-        } else if (!md->triangle_count) {
-            empty_node(&out->nodes[node_base[m]], tri_base[m]);
+        if (!kd) {
+            write_mesh(out, md, &mesh_bvhs[m], node_base[m], tri_base[m]);
             continue;
-        } else {
-            copy_nodes(b, out->nodes + node_base[m], node_base[m], tri_base[m]);
         }
-        const uint32_t *prims = kd ? kd->prims : b->prim_indices;
+        /* The root box, then the tree with absolute indices. */
+        rt_node *root = &out->nodes[node_base[m]];
+        memcpy(root->bmin, kd->bounds.bmin, sizeof root->bmin);
+        memcpy(root->bmax, kd->bounds.bmax, sizeof root->bmax);
+        root->a = kd_base[m];
+        root->b = RT_NODE_LEAF_FLAG;
+        for (uint32_t i = 0; i < kd->node_count; i++) {
+            rt_kd_node n = kd->nodes[i];
+            if ((n.b & 3u) == RT_KD_LEAF)
+                n.a += tri_base[m];
+            else
+                n.b = (((n.b >> 2) + kd_base[m]) << 2) | (n.b & 3u);
+            out->kd_nodes[kd_base[m] + i] = n;
+        }
         for (uint32_t j = 0; j < tri_span[m]; j++) {
-            uint32_t t = prims[j], e = tri_base[m] + j;
+            uint32_t t = kd->prims[j], e = tri_base[m] + j;
             store_tri(md, t, &out->tris[e]);
             out->tri_ids[e] = t;
             if (md->normals) {
@@ -328,6 +329,74 @@ rt_status rt_flatten_accel(const rt_scene *scene, const rt_bvh *mesh_bvhs, const
                 out->tri_mats[e] = md->tri_materials ? md->tri_materials[t] : RT_NO_MATERIAL;
         }
     }
+    if (write_frame(scene, top, mesh_kds, single, top_root, node_base, tri_base, tri_span, &opt,
+                    out, err) != RT_OK)
+        goto fail;
+
+    free(node_base);
+    free(tri_base);
+    free(tri_span);
+    free(kd_base);
+    free(used);
+    return RT_OK;
+oom:
+    rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory flattening the scene");
+    free(node_base);
+    free(tri_base);
+    free(tri_span);
+    free(kd_base);
+    free(used);
+    rt_flat_free(out);
+    return RT_ERROR_OUT_OF_MEMORY;
+fail:
+    free(node_base);
+    free(tri_base);
+    free(tri_span);
+    free(kd_base);
+    free(used);
+    rt_flat_free(out);
+    return RT_ERROR_INVALID_ARGUMENT;
+}
+
+/* Writes a mesh's BVH nodes and triangles at its place in the layout;
+ * moved_only: only the nodes and the vertices (and normals), the tree's
+ * shape and the triangle order being the same as written before (a refit). */
+static void write_mesh_as(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b, uint32_t node_base,
+                          uint32_t tri_base, int moved_only) {
+    if (!md->triangle_count) {
+        empty_node(&out->nodes[node_base], tri_base);
+        return;
+    }
+    copy_nodes(b, out->nodes + node_base, node_base, tri_base);
+    for (uint32_t j = 0; j < b->prim_count; j++) {
+        uint32_t t = b->prim_indices[j], e = tri_base + j;
+        store_tri(md, t, &out->tris[e]);
+        if (!moved_only) out->tri_ids[e] = t;
+        if (md->normals) {
+            for (int v = 0; v < 3; v++)
+                memcpy(out->tri_normals + 9 * (size_t)e + 3 * v,
+                       md->normals + 3 * (size_t)md->indices[3 * t + v], 3 * sizeof(float));
+        }
+        if (out->tri_mats && !moved_only)
+            out->tri_mats[e] = md->tri_materials ? md->tri_materials[t] : RT_NO_MATERIAL;
+    }
+}
+
+static void write_mesh(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b, uint32_t node_base,
+                       uint32_t tri_base) {
+    write_mesh_as(out, md, b, node_base, tri_base, 0);
+}
+
+/* Writes what changes with every frame: the object BVH, the instances,
+ * materials, lights and the header with the camera. */
+static rt_status write_frame(const rt_scene *scene, const rt_bvh *top, const rt_kd *mesh_kds,
+                             int single, uint32_t top_root, const uint32_t *node_base,
+                             const uint32_t *tri_base, const uint32_t *tri_span,
+                             const rt_flat_options *opt_in, rt_flat *out, rt_error *err) {
+    rt_flat_options opt = *opt_in;
+    rt_scene_features feat = rt_scene_features_of(scene);
+    uint32_t nobj = scene->object_count;
+    int any_normals = out->tri_normals != NULL, any_mats = out->tri_mats != NULL;
     if (!single && nobj && !top->node_count) empty_node(&out->nodes[top_root], 0);
     if (!single && nobj && top->node_count) {
         copy_nodes(top, out->nodes + top_root, top_root, 0);
@@ -349,12 +418,11 @@ rt_status rt_flatten_accel(const rt_scene *scene, const rt_bvh *mesh_bvhs, const
     for (uint32_t o = 0; o < nobj; o++) {
         const rt_object_data *ob = &scene->objects[o];
         rt_instance *in = &out->instances[o];
-        uint32_t m = ob->meshes[ob->selected];
+        uint32_t m = rt_object_shown_mesh(ob);
         float inv[16];
-        if (!rt_mat4_affine_inverse(ob->transform, inv)) {
-            rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "object %u: its transform is singular", o);
-            goto fail;
-        }
+        if (!rt_mat4_affine_inverse(ob->transform, inv))
+            return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "object %u: its transform is singular",
+                           o);
         memcpy(in->world_to_object, inv, 12 * sizeof(float));
         memcpy(in->object_to_world, ob->transform, 12 * sizeof(float));
         in->root = node_base[m];
@@ -399,28 +467,137 @@ rt_status rt_flatten_accel(const rt_scene *scene, const rt_bvh *mesh_bvhs, const
     rt_camera cam;
     rt_camera_get(scene, &cam);
     camera_of(&cam, h);
-
-    free(node_base);
-    free(tri_base);
-    free(tri_span);
-    free(kd_base);
-    free(used);
     return RT_OK;
-oom:
-    rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory flattening the scene");
-    free(node_base);
-    free(tri_base);
-    free(tri_span);
-    free(kd_base);
+}
+
+/* ---- rewriting a layout in place ------------------------------------------------ */
+
+void rt_flat_shape_free(rt_flat_shape *shape) {
+    free(shape->shown);
+    free(shape->node_base);
+    free(shape->tri_base);
+    free(shape->node_count);
+    free(shape->tri_count);
+    memset(shape, 0, sizeof *shape);
+}
+
+rt_status rt_flat_shape_of(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bvh *top,
+                           rt_flat_shape *shape) {
+    memset(shape, 0, sizeof *shape);
+    uint32_t nmesh = scene->mesh_count, nobj = scene->object_count;
+    shape->shown = malloc(sizeof(uint32_t) * (nobj ? nobj : 1));
+    shape->node_base = malloc(sizeof(uint32_t) * (nmesh ? nmesh : 1));
+    shape->tri_base = malloc(sizeof(uint32_t) * (nmesh ? nmesh : 1));
+    shape->node_count = malloc(sizeof(uint32_t) * (nmesh ? nmesh : 1));
+    shape->tri_count = malloc(sizeof(uint32_t) * (nmesh ? nmesh : 1));
+    if (!shape->shown || !shape->node_base || !shape->tri_base || !shape->node_count ||
+        !shape->tri_count) {
+        rt_flat_shape_free(shape);
+        return RT_ERROR_OUT_OF_MEMORY;
+    }
+    shape->object_count = nobj;
+    shape->mesh_count = nmesh;
+    for (uint32_t m = 0; m < nmesh; m++) shape->node_base[m] = UINT32_MAX;
+    /* The same walk as rt_flatten: meshes in id order, the object BVH last. */
+    uint8_t *used = calloc(nmesh ? nmesh : 1, 1);
+    if (!used) {
+        rt_flat_shape_free(shape);
+        return RT_ERROR_OUT_OF_MEMORY;
+    }
+    for (uint32_t o = 0; o < nobj; o++)
+        used[shape->shown[o] = rt_object_shown_mesh(&scene->objects[o])] = 1;
+    uint32_t nodes = 0, tris = 0;
+    for (uint32_t m = 0; m < nmesh; m++) {
+        const rt_mesh_data *md = &scene->meshes[m];
+        shape->node_count[m] = md->triangle_count ? mesh_bvhs[m].node_count : 1;
+        shape->tri_count[m] = md->triangle_count;
+        if (!used[m]) continue;
+        shape->node_base[m] = nodes;
+        shape->tri_base[m] = tris;
+        nodes += shape->node_count[m];
+        tris += md->triangle_count;
+    }
     free(used);
-    rt_flat_free(out);
-    return RT_ERROR_OUT_OF_MEMORY;
-fail:
-    free(node_base);
-    free(tri_base);
-    free(tri_span);
-    free(kd_base);
-    free(used);
-    rt_flat_free(out);
-    return RT_ERROR_INVALID_ARGUMENT;
+    shape->single = nobj == 1 && rt_transform_is_identity(scene->objects[0].transform);
+    shape->top_root = nodes;
+    shape->top_nodes = top ? top->node_count : 0;
+    shape->top_prims = top ? top->prim_count : 0;
+    shape->material_count = scene->material_count;
+    shape->light_count = scene->light_count;
+    return RT_OK;
+}
+
+static uint64_t mesh_bytes(const rt_flat *f, uint32_t nodes, uint32_t tris) {
+    uint64_t per_tri = sizeof(rt_tri) + sizeof(uint32_t) +
+                       (f->tri_normals ? 9 * sizeof(float) : 0) +
+                       (f->tri_mats ? sizeof(uint32_t) : 0);
+    return (uint64_t)nodes * sizeof(rt_node) + (uint64_t)tris * per_tri;
+}
+
+uint64_t rt_flat_bytes(const rt_flat *f) {
+    return mesh_bytes(f, f->node_count, f->tri_count) + sizeof f->hdr +
+           (uint64_t)f->hdr.instance_count * sizeof(rt_instance) +
+           (uint64_t)f->inst_id_count * sizeof(uint32_t) +
+           (uint64_t)f->hdr.material_count * sizeof(rt_material_d) +
+           (uint64_t)f->hdr.light_count * sizeof(rt_light_d) +
+           (uint64_t)f->kd_node_count * sizeof(rt_kd_node);
+}
+
+rt_status rt_flatten_update(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bvh *top,
+                            const uint8_t *dirty, rt_flat_shape *shape, rt_flat *flat,
+                            uint64_t *bytes) {
+    uint32_t nmesh = scene->mesh_count, nobj = scene->object_count;
+    *bytes = 0;
+    /* kd-tree meshes are static and their nodes live apart: such a layout
+     * is always made anew. */
+    if (flat->kd_node_count) return RT_ERROR_UNSUPPORTED;
+    if (nmesh != shape->mesh_count || nobj != shape->object_count ||
+        scene->material_count != shape->material_count || scene->light_count != shape->light_count)
+        return RT_ERROR_UNSUPPORTED;
+    for (uint32_t o = 0; o < nobj; o++)
+        if (rt_object_shown_mesh(&scene->objects[o]) != shape->shown[o])
+            return RT_ERROR_UNSUPPORTED;
+    int single = nobj == 1 && rt_transform_is_identity(scene->objects[0].transform);
+    if (single != shape->single || (top ? top->node_count : 0) != shape->top_nodes ||
+        (top ? top->prim_count : 0) != shape->top_prims)
+        return RT_ERROR_UNSUPPORTED;
+    rt_scene_features feat = rt_scene_features_of(scene);
+    if ((feat.normals != 0) != (flat->tri_normals != NULL) ||
+        (feat.tri_materials != 0) != (flat->tri_mats != NULL))
+        return RT_ERROR_UNSUPPORTED;
+    for (uint32_t m = 0; m < nmesh; m++) {
+        if (shape->node_base[m] == UINT32_MAX || !dirty[m]) continue;
+        const rt_mesh_data *md = &scene->meshes[m];
+        uint32_t nodes = md->triangle_count ? mesh_bvhs[m].node_count : 1;
+        if (nodes != shape->node_count[m] || md->triangle_count != shape->tri_count[m])
+            return RT_ERROR_UNSUPPORTED;
+        /* A refitted tree keeps the shape validated when it was written. */
+        if (md->triangle_count && dirty[m] != RT_DIRTY_MOVED &&
+            (mesh_bvhs[m].prim_count != md->triangle_count ||
+             !bvh_valid(&mesh_bvhs[m], md->triangle_count, NULL, md->name)))
+            return RT_ERROR_UNSUPPORTED;
+    }
+    if (!single && nobj && top && !bvh_valid(top, nobj, NULL, "object"))
+        return RT_ERROR_UNSUPPORTED;
+    /* The shape holds: rewrite the changed meshes and the frame's part. */
+    for (uint32_t m = 0; m < nmesh; m++) {
+        if (shape->node_base[m] == UINT32_MAX || !dirty[m]) continue;
+        int moved = dirty[m] == RT_DIRTY_MOVED;
+        write_mesh_as(flat, &scene->meshes[m], &mesh_bvhs[m], shape->node_base[m],
+                      shape->tri_base[m], moved);
+        *bytes += moved ? (uint64_t)shape->node_count[m] * sizeof(rt_node) +
+                              (uint64_t)shape->tri_count[m] *
+                                  (sizeof(rt_tri) + (flat->tri_normals ? 9 * sizeof(float) : 0))
+                        : mesh_bytes(flat, shape->node_count[m], shape->tri_count[m]);
+    }
+    rt_flat_options opt = rt_flat_options_default();
+    opt.tri_method = flat->hdr.tri_method;
+    opt.max_depth = flat->hdr.max_depth;
+    opt.min_weight = flat->hdr.min_weight;
+    rt_error why;
+    if (write_frame(scene, top, NULL, single, shape->top_root, shape->node_base, shape->tri_base,
+                    shape->tri_count, &opt, flat, &why) != RT_OK)
+        return RT_ERROR_UNSUPPORTED;
+    *bytes += rt_flat_bytes(flat) - mesh_bytes(flat, shape->top_root, flat->tri_count);
+    return RT_OK;
 }

@@ -33,5 +33,44 @@ rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bv
 rt_status rt_flatten_accel(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_kd *mesh_kds,
                            const rt_bvh *top, const rt_flat_options *options, rt_flat *out,
                            rt_error *err);
+/* What a layout was made of: which mesh each object shows, where each
+ * shown mesh's nodes and triangles start and how many there are, and the
+ * object BVH's size. While these stay, a new frame's layout is the old one
+ * with some ranges rewritten (rt_flatten_update). */
+typedef struct rt_flat_shape {
+    uint32_t object_count, mesh_count;
+    uint32_t *shown;                /* per object */
+    uint32_t *node_base, *tri_base; /* per mesh; node_base UINT32_MAX: not in the layout */
+    uint32_t *node_count, *tri_count;
+    int single;
+    uint32_t top_root, top_nodes, top_prims;
+    uint32_t material_count, light_count;
+} rt_flat_shape;
+
+/* The shape of the layout rt_flatten makes of the same arguments. */
+rt_status rt_flat_shape_of(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bvh *top,
+                           rt_flat_shape *shape);
+void rt_flat_shape_free(rt_flat_shape *shape);
+
+/* What changed of a mesh since its layout was written. */
+enum {
+    RT_DIRTY_NONE = 0,
+    RT_DIRTY_MOVED = 1, /* refitted: vertices and boxes moved, the tree's shape stayed */
+    RT_DIRTY_ALL = 2    /* a new tree */
+};
+
+/* Rewrites flat (made by rt_flatten, of the given shape) in place for the
+ * scene's new state: the nodes and triangles of the meshes marked dirty
+ * (RT_DIRTY_*, indexed by mesh id), then the object BVH, instances,
+ * materials, lights and header. RT_ERROR_UNSUPPORTED, with flat untouched, when the shape
+ * changed (another mesh shown, a tree of another size, ...) or the layout
+ * holds kd-tree meshes (static: always flattened anew): then flatten anew. *bytes gets the bytes
+ * rewritten. */
+rt_status rt_flatten_update(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bvh *top,
+                            const uint8_t *dirty, rt_flat_shape *shape, rt_flat *flat,
+                            uint64_t *bytes);
+
+/* The layout's size in bytes, all arrays. */
+uint64_t rt_flat_bytes(const rt_flat *flat);
 
 #endif /* RT_FLATTEN_H */

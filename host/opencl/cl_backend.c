@@ -18,6 +18,7 @@
 #include "base/error.h"
 #include "opencl/cl_backend.h"
 #include "opencl/cl_device.h"
+#include "opencl/cl_stderr.h"
 #include "rt_kernel_arg_index.h"
 #include "rt_shade.h" /* rt_wave_entry, rt_wave_record: the wavefront's buffers */
 
@@ -98,6 +99,9 @@ typedef struct cl_state {
     uint32_t uploaded_generation; /* the layout generation the device holds */
     rt_scene_header uploaded_hdr; /* render options (direct_only) change it alone */
     uint32_t tile;
+    /* The last program build's messages: the compiler's log, then what the
+     * driver printed on stderr meanwhile (cl_stderr.h). NULL: none yet. */
+    char *build_log;
 } cl_state;
 
 static void release_wave_kernels(cl_state *s) {
@@ -122,6 +126,7 @@ static void cl_destroy(void *p) {
     if (s->queue) clReleaseCommandQueue(s->queue);
     if (s->ctx) clReleaseContext(s->ctx);
     free(s->mesh_sig);
+    free(s->build_log);
     free(s);
 }
 
@@ -192,7 +197,12 @@ static rt_status probe_flush(cl_state *s, int *flushes, rt_error *err) {
     cl_mem in = NULL, out = NULL;
     /* 2^-70 * 2^-70 = 2^-140 (subnormal); 2^-140 * 2^100 = 2^-40 (normal). */
     float vin[4] = {0x1p-70f, 0x1p-70f, 0x1p-140f, 0x1p100f}, vout[2] = {1.0f, 1.0f};
-    if (prog) ce = clBuildProgram(prog, 1, &d, denormal_options(s), NULL, NULL);
+    if (prog) { /* quiet, as every build (cl_stderr.h); a probe's messages are not kept */
+        rt_cl_stderr capture;
+        rt_cl_stderr_begin(&capture);
+        ce = clBuildProgram(prog, 1, &d, denormal_options(s), NULL, NULL);
+        free(rt_cl_stderr_end(&capture));
+    }
     if (prog && ce == CL_SUCCESS) k = clCreateKernel(prog, "rt_k_denorm_probe", &ce);
     if (k)
         in = clCreateBuffer(s->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof vin, vin, &ce);
@@ -233,6 +243,10 @@ static void scene_defines(const rt_flat *f, char *out, size_t size) {
 }
 
 static rt_status warm_up(cl_state *s, int wave, rt_error *err);
+static rt_status compile(cl_state *s, const rt_flat *f, const char *options, const char *defines,
+                         int lanes, char **log, rt_error *err);
+static void keep_build_log(cl_state *s, const char *log, const char *printed);
+static void append_log(rt_error *err, const char *log);
 
 /* The packet kernel's lanes for this device: 16 (4x4 blocks) on CPU devices,
  * 0 (one ray per work-item) elsewhere and for layouts with kd-tree meshes
@@ -269,6 +283,64 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
     s->k_camera = s->k_trace = s->k_shade = NULL;
     s->program = NULL;
     double t0 = rt_now_ms();
+    rt_cl_stderr capture;
+    rt_cl_stderr_begin(&capture);
+    char *log = NULL;
+    rt_status st = compile(s, f, options, defines, lanes, &log, err);
+    char *printed = rt_cl_stderr_end(&capture);
+    keep_build_log(s, log, printed);
+    if (st != RT_OK && s->build_log && s->build_log[0]) append_log(err, s->build_log);
+    free(log);
+    free(printed);
+    *compile_ms += rt_now_ms() - t0;
+    return st;
+}
+
+/* The program's build log, as a new string (NULL: none or no memory). */
+static char *program_log(cl_program program, cl_device_id d) {
+    size_t n = 0;
+    if (clGetProgramBuildInfo(program, d, CL_PROGRAM_BUILD_LOG, 0, NULL, &n) != CL_SUCCESS)
+        return NULL;
+    char *log = malloc(n + 1);
+    if (!log) return NULL;
+    if (clGetProgramBuildInfo(program, d, CL_PROGRAM_BUILD_LOG, n, log, NULL) != CL_SUCCESS) n = 0;
+    log[n] = '\0';
+    return log;
+}
+
+/* s->build_log = the compiler's log, then the driver's stderr output, each
+ * without surrounding blank lines; "" when both are empty. */
+static void keep_build_log(cl_state *s, const char *log, const char *printed) {
+    const char *parts[2] = {log ? log : "", printed ? printed : ""};
+    size_t len[2];
+    for (int i = 0; i < 2; i++) {
+        while (*parts[i] == '\n' || *parts[i] == ' ') parts[i]++;
+        len[i] = strlen(parts[i]);
+        while (len[i] && (parts[i][len[i] - 1] == '\n' || parts[i][len[i] - 1] == ' ')) len[i]--;
+    }
+    free(s->build_log);
+    s->build_log = malloc(len[0] + len[1] + 2);
+    if (!s->build_log) return;
+    memcpy(s->build_log, parts[0], len[0]);
+    size_t n = len[0];
+    if (len[0] && len[1]) s->build_log[n++] = '\n';
+    memcpy(s->build_log + n, parts[1], len[1]);
+    s->build_log[n + len[1]] = '\0';
+}
+
+/* Adds as much of the build log as fits to err's message. */
+static void append_log(rt_error *err, const char *log) {
+    if (!err) return;
+    size_t used = strlen(err->message);
+    if (used + 16 < sizeof err->message)
+        snprintf(err->message + used, sizeof err->message - used, "; build log:\n%s", log);
+}
+
+/* Builds the program with options, makes its kernels and warms them up
+ * (PoCL compiles each kernel's code at its first launch). *log receives the
+ * compiler's log (to free), on success and on failure. */
+static rt_status compile(cl_state *s, const rt_flat *f, const char *options, const char *defines,
+                         int lanes, char **log, rt_error *err) {
     /* CPU devices get the packet kernel in the same program. */
     const char *src[2] = {rt_cl_source_rt_render, rt_cl_source_rt_packet};
     cl_int ce;
@@ -277,18 +349,13 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
         return rt_fail(err, RT_ERROR_BACKEND, "OpenCL program: %s", rt_cl_error_name(ce));
     cl_device_id d = s->dev.device_id;
     ce = clBuildProgram(s->program, 1, &d, options, NULL, NULL);
+    *log = program_log(s->program, d);
     if (ce != CL_SUCCESS) {
-        char log[900] = "";
-        size_t n = 0;
-        clGetProgramBuildInfo(s->program, d, CL_PROGRAM_BUILD_LOG, sizeof log - 1, log, &n);
-        if (n == 0) clGetProgramBuildInfo(s->program, d, CL_PROGRAM_BUILD_LOG, 0, NULL, &n);
-        log[sizeof log - 1] = 0;
         clReleaseProgram(s->program);
         s->program = NULL;
         return rt_fail(err, RT_ERROR_BACKEND,
-                       "OpenCL kernel build failed on '%s' (%s; options: %s); build log%s:\n%s",
-                       s->dev.name, rt_cl_error_name(ce), options,
-                       n > sizeof log - 1 ? " (truncated)" : "", log);
+                       "OpenCL kernel build failed on '%s' (%s; options: %s)", s->dev.name,
+                       rt_cl_error_name(ce), options);
     }
     s->k_camera = clCreateKernel(s->program, "rt_k_camera", &ce);
     if (s->k_camera) s->k_trace = clCreateKernel(s->program, "rt_k_trace", &ce);
@@ -304,9 +371,7 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
     s->lanes = lanes;
     snprintf(s->options, sizeof s->options, "%s", options);
     snprintf(s->defines, sizeof s->defines, "%s", defines);
-    rt_status st = warm_up(s, (f->hdr.flags & RT_SCENE_SECONDARY) != 0, err);
-    *compile_ms += rt_now_ms() - t0;
-    return st;
+    return warm_up(s, (f->hdr.flags & RT_SCENE_SECONDARY) != 0, err);
 }
 
 /* ---- buffers and uploads ------------------------------------------------ */
@@ -417,7 +482,37 @@ static rt_status upload_scene(cl_state *s, const rt_backend_layout *layout, uint
         {B_KD_NODES, f->kd_nodes, sizeof(rt_kd_node) * f->kd_node_count, 1},
     };
     rt_status st = RT_OK;
+    /* The layout was rewritten in place from the generation the device holds:
+     * copy only the changed node and triangle ranges, and the per-frame
+     * arrays. Any buffer that must grow makes it a whole upload. */
+    int partial =
+        s->uploaded && layout->base_generation && s->uploaded_generation == layout->base_generation;
+    for (size_t i = 0; partial && i < sizeof arrays / sizeof arrays[0]; i++)
+        partial = arrays[i].bytes <= s->cap[arrays[i].b] || arrays[i].bytes < 16;
+    if (partial) {
+        for (uint32_t r = 0; r < layout->dirty_node_ranges && st == RT_OK; r++) {
+            const rt_flat_range *g = &layout->dirty_nodes[r];
+            st = write_buf(s, B_NODES, sizeof(rt_node) * g->first, f->nodes + g->first,
+                           sizeof(rt_node) * g->count, bytes, err);
+        }
+        for (uint32_t r = 0; r < layout->dirty_tri_ranges && st == RT_OK; r++) {
+            const rt_flat_range *g = &layout->dirty_tris[r];
+            st = write_buf(s, B_TRIS, sizeof(rt_tri) * g->first, f->tris + g->first,
+                           sizeof(rt_tri) * g->count, bytes, err);
+            if (st == RT_OK && !g->moved)
+                st = write_buf(s, B_TRI_IDS, sizeof(uint32_t) * g->first, f->tri_ids + g->first,
+                               sizeof(uint32_t) * g->count, bytes, err);
+            if (st == RT_OK && f->tri_normals)
+                st = write_buf(s, B_NORMALS, 9 * sizeof(float) * g->first,
+                               f->tri_normals + 9 * (size_t)g->first, 9 * sizeof(float) * g->count,
+                               bytes, err);
+            if (st == RT_OK && f->tri_mats && !g->moved)
+                st = write_buf(s, B_TRI_MATS, sizeof(uint32_t) * g->first, f->tri_mats + g->first,
+                               sizeof(uint32_t) * g->count, bytes, err);
+        }
+    }
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0] && st == RT_OK; i++) {
+        if (partial && (arrays[i].mesh || arrays[i].b == B_NODES)) continue;
         int remade;
         st = ensure(s, arrays[i].b, arrays[i].bytes, &remade, err);
         if (st != RT_OK) break;
@@ -960,8 +1055,11 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
 }
 
 static rt_status cl_trace(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
-                          size_t count, rt_hit_d *hits, int any_hit, rt_error *err) {
+                          size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
+                          rt_trace_stats *stats, rt_error *err) {
     cl_state *s = state;
+    (void)path;
+    (void)stats;
     (void)layout; /* cl_prepare uploaded it */
     rt_status st = ensure_ray_buffers(s, RT_CL_TILE_MAX, err);
     /* Closest hits on a CPU device: packets of consecutive rays
@@ -1004,6 +1102,11 @@ static rt_status cl_trace(void *state, const rt_backend_layout *layout, const rt
     return RT_OK;
 }
 
+static const char *cl_build_log(void *state) {
+    const cl_state *s = state;
+    return s->build_log ? s->build_log : "";
+}
+
 static int cl_available(rt_error *why) {
     rt_cl_device_info *devs;
     int count;
@@ -1012,5 +1115,5 @@ static int cl_available(rt_error *why) {
     return 1;
 }
 
-const rt_backend_ops rt_backend_opencl = {"opencl",  cl_available, cl_create, cl_prepare,
-                                          cl_render, cl_trace,     cl_destroy};
+const rt_backend_ops rt_backend_opencl = {"opencl",  cl_available, cl_create,  cl_prepare,
+                                          cl_render, cl_trace,     cl_destroy, cl_build_log};

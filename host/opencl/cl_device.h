@@ -28,9 +28,9 @@ typedef struct rt_cl_device_info {
     /* The oracle's bits are promised with the defaults (maths profile auto,
      * denormals preserved): the device keeps denormals. */
     int exact;
-    int cpu;             /* CL_DEVICE_TYPE_CPU: the backend runs the packet kernel there */
-    void *platform_id;   /* cl_platform_id */
-    void *device_id;     /* cl_device_id */
+    int cpu;           /* CL_DEVICE_TYPE_CPU: the backend runs the packet kernel there */
+    void *platform_id; /* cl_platform_id */
+    void *device_id;   /* cl_device_id */
 } rt_cl_device_info;
 
 /* Every device of every platform. RT_ERROR_UNSUPPORTED with a message when

@@ -9,20 +9,29 @@
 #include "accel/tlas.h"
 #include "base/clock.h"
 #include "base/error.h"
-#include "layout/flatten.h"
 
 void rt_accel_cache_clear(rt_accel_cache *c) {
     for (uint32_t i = 0; i < c->mesh_count; i++) {
         rt_bvh_free(&c->bvhs[i]);
         rt_kd_free(&c->kds[i]);
+        rt_bvh_refit_info_free(&c->refit[i]);
     }
     free(c->bvhs);
     free(c->kds);
     free(c->built_version);
+    free(c->built_topology);
     free(c->built);
+    free(c->dirty);
     free(c->sah);
+    free(c->sah_rebuilt);
+    free(c->refit);
+    free(c->updates);
+    free(c->boxes);
+    free(c->dirty_nodes);
+    free(c->dirty_tris);
     rt_bvh_free(&c->top);
     rt_flat_free(&c->flat);
+    rt_flat_shape_free(&c->shape);
     /* The generations keep counting, so that a backend never mistakes a new
      * layout for the one it holds. */
     uint32_t layout_generation = c->layout_generation, mesh_generation = c->mesh_generation;
@@ -31,90 +40,190 @@ void rt_accel_cache_clear(rt_accel_cache *c) {
     c->mesh_generation = mesh_generation;
 }
 
+#define GROW(field, n)                                                                             \
+    do {                                                                                           \
+        void *p_ = realloc(c->field, sizeof *c->field * (n));                                      \
+        if (!p_) return 0;                                                                         \
+        c->field = p_;                                                                             \
+    } while (0)
+
 /* Grows the per-mesh arrays to the scene's mesh count. */
 static int grow(rt_accel_cache *c, uint32_t meshes) {
     if (meshes <= c->mesh_count) return 1;
-    rt_bvh *b = realloc(c->bvhs, sizeof(rt_bvh) * meshes);
-    if (!b) return 0;
-    c->bvhs = b;
-    rt_kd *k = realloc(c->kds, sizeof(rt_kd) * meshes);
-    if (!k) return 0;
-    c->kds = k;
-    uint32_t *v = realloc(c->built_version, sizeof(uint32_t) * meshes);
-    if (!v) return 0;
-    c->built_version = v;
-    uint8_t *f = realloc(c->built, meshes);
-    if (!f) return 0;
-    c->built = f;
-    double *h = realloc(c->sah, sizeof(double) * meshes);
-    if (!h) return 0;
-    c->sah = h;
+    GROW(bvhs, meshes);
+    GROW(kds, meshes);
+    GROW(built_version, meshes);
+    GROW(built_topology, meshes);
+    GROW(built, meshes);
+    GROW(dirty, meshes);
+    GROW(sah, meshes);
+    GROW(sah_rebuilt, meshes);
+    GROW(refit, meshes);
+    GROW(updates, meshes);
+    GROW(dirty_nodes, meshes + 1);
+    GROW(dirty_tris, meshes);
     for (uint32_t i = c->mesh_count; i < meshes; i++) {
         memset(&c->bvhs[i], 0, sizeof(rt_bvh));
         memset(&c->kds[i], 0, sizeof(rt_kd));
+        memset(&c->refit[i], 0, sizeof(rt_bvh_refit_info));
         c->built[i] = 0;
-        c->sah[i] = 0.0;
+        c->dirty[i] = RT_DIRTY_ALL;
+        c->sah[i] = c->sah_rebuilt[i] = 0.0;
     }
     c->mesh_count = meshes;
     return 1;
 }
 
-static rt_status build_mesh(rt_accel_cache *c, const rt_scene *scene, uint32_t m, rt_pool *pool,
-                            rt_error *err) {
+static rt_status tri_boxes(rt_accel_cache *c, const rt_mesh_data *md, rt_error *err) {
+    if (md->triangle_count > c->boxes_cap) {
+        rt_aabb *b = realloc(c->boxes, sizeof(rt_aabb) * md->triangle_count);
+        if (!b) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+        c->boxes = b;
+        c->boxes_cap = md->triangle_count;
+    }
+    rt_mesh_tri_boxes(md, c->boxes);
+    return RT_OK;
+}
+
+/* A fresh build of mesh m's BVH with builder. */
+static rt_status build(rt_accel_cache *c, const rt_mesh_data *md, uint32_t m, rt_builder builder,
+                       rt_pool *pool, rt_error *err) {
+    rt_bvh_free(&c->bvhs[m]);
+    rt_bvh_refit_info_free(&c->refit[m]);
+    rt_build_options bo = rt_build_options_default();
+    bo.builder = builder;
+    rt_error why;
+    rt_error_clear(&why);
+    rt_status st = rt_bvh_build(c->boxes, md->triangle_count, &bo, pool, &c->bvhs[m], &why);
+    if (st != RT_OK) return rt_fail(err, st, "BVH of mesh '%s': %s", md->name, why.message);
+    return RT_OK;
+}
+
+static rt_status refit(rt_accel_cache *c, const rt_mesh_data *md, uint32_t m, rt_pool *pool,
+                       rt_error *err) {
+    if (!c->refit[m].parents && rt_bvh_refit_prepare(&c->bvhs[m], &c->refit[m]) != RT_OK)
+        return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    rt_bvh_refit_tris(&c->bvhs[m], &c->refit[m], md->positions, md->indices, pool);
+    return RT_OK;
+}
+
+/* Whether mesh m gets a kd-tree: its accel says so and it is static (a
+ * mesh with an update policy other than rebuild keeps a BVH, which can be
+ * refitted). rt_mesh_set_positions and rt_mesh_set_update already turn such
+ * a mesh's accel back to BVH; this is the cache's own guard. */
+static int mesh_is_kd(const rt_mesh_data *md) {
+    return (md->accel == RT_ACCEL_KD || md->accel == RT_ACCEL_KD_BINNED) &&
+           md->update_policy == RT_UPDATE_REBUILD;
+}
+
+/* Builds mesh m's kd-tree whole, and a BVH of its one root box for the
+ * object BVH. */
+static rt_status build_kd(rt_accel_cache *c, const rt_mesh_data *md, uint32_t m, rt_pool *pool,
+                          rt_error *err) {
+    rt_bvh_free(&c->bvhs[m]);
+    rt_bvh_refit_info_free(&c->refit[m]);
+    rt_kd_options ko = rt_kd_options_default();
+    ko.builder = md->accel == RT_ACCEL_KD ? RT_KD_EXACT : RT_KD_BINNED;
+    rt_error why;
+    rt_error_clear(&why);
+    rt_status st = rt_kd_build(md->positions, md->vertex_count, md->indices, md->triangle_count,
+                               &ko, pool, &c->kds[m], &why);
+    if (st != RT_OK) return rt_fail(err, st, "kd-tree of mesh '%s': %s", md->name, why.message);
+    /* The object BVH takes each mesh's box from its BVH's root: a kd mesh
+     * gets a BVH of that one node (no entries, never traversed: the layout
+     * holds the kd-tree). A tree with no triangle of any area has no box,
+     * and the object BVH then leaves the object out, as nothing can hit it. */
+    const rt_aabb *bb = &c->kds[m].bounds;
+    if (bb->bmin[0] <= bb->bmax[0]) {
+        rt_bvh *b = &c->bvhs[m];
+        b->nodes = calloc(1, sizeof(rt_node));
+        if (!b->nodes) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+        memcpy(b->nodes[0].bmin, bb->bmin, sizeof bb->bmin);
+        memcpy(b->nodes[0].bmax, bb->bmax, sizeof bb->bmax);
+        b->nodes[0].b = RT_NODE_LEAF_FLAG;
+        b->node_count = 1;
+    }
+    return RT_OK;
+}
+
+/* Brings mesh m's BVH up to date by its policy; records what it did. */
+static rt_status update_mesh(rt_accel_cache *c, const rt_scene *scene, uint32_t m, rt_pool *pool,
+                             rt_error *err) {
     const rt_mesh_data *md = &scene->meshes[m];
     if (c->built[m] && c->built_version[m] == md->version) return RT_OK;
-    rt_bvh_free(&c->bvhs[m]);
-    rt_kd_free(&c->kds[m]);
+    double t0 = rt_now_ms();
+    int had = c->built[m];
     c->built[m] = 0;
-    if (md->accel == RT_ACCEL_KD || md->accel == RT_ACCEL_KD_BINNED) {
-        rt_kd_options ko = rt_kd_options_default();
-        ko.builder = md->accel == RT_ACCEL_KD ? RT_KD_EXACT : RT_KD_BINNED;
-        rt_error why;
-        rt_error_clear(&why);
-        rt_status st = rt_kd_build(md->positions, md->vertex_count, md->indices, md->triangle_count,
-                                   &ko, pool, &c->kds[m], &why);
-        if (st != RT_OK) return rt_fail(err, st, "kd-tree of mesh '%s': %s", md->name, why.message);
-        /* The object BVH takes each mesh's box from its BVH's root: a kd
-         * mesh gets a BVH of that one node (no entries, never traversed:
-         * the layout holds the kd-tree). A tree with no triangle of any
-         * area has no box, and the object BVH then leaves the object out,
-         * as nothing can hit it. */
-        const rt_aabb *bb = &c->kds[m].bounds;
-        if (bb->bmin[0] <= bb->bmax[0]) {
-            rt_bvh *b = &c->bvhs[m];
-            b->nodes = calloc(1, sizeof(rt_node));
-            if (!b->nodes) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
-            memcpy(b->nodes[0].bmin, bb->bmin, sizeof bb->bmin);
-            memcpy(b->nodes[0].bmax, bb->bmax, sizeof bb->bmax);
-            b->nodes[0].b = RT_NODE_LEAF_FLAG;
-            b->node_count = 1;
-        }
+    rt_update_action action = RT_ACTION_BUILD;
+    double sah = 0.0;
+    /* A kd mesh is static (rebuilt whole); what was one loses its tree. */
+    int had_kd = c->kds[m].node_count != 0;
+    rt_kd_free(&c->kds[m]);
+    if (mesh_is_kd(md)) {
+        rt_status st = build_kd(c, md, m, pool, err);
+        if (st != RT_OK) return st;
     } else if (md->triangle_count) {
-        rt_aabb *boxes = malloc(sizeof(rt_aabb) * md->triangle_count);
-        if (!boxes) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
-        rt_mesh_tri_boxes(md, boxes);
-        rt_build_options bo = rt_build_options_default();
-        rt_error why;
-        rt_error_clear(&why);
-        rt_status st = rt_bvh_build(boxes, md->triangle_count, &bo, pool, &c->bvhs[m], &why);
-        free(boxes);
-        if (st != RT_OK) return rt_fail(err, st, "BVH of mesh '%s': %s", md->name, why.message);
+        rt_status st = RT_OK;
+        rt_update_policy policy = (rt_update_policy)md->update_policy;
+        int can_refit = had && !had_kd && c->built_topology[m] == md->topology_version &&
+                        c->bvhs[m].prim_count == md->triangle_count && c->bvhs[m].node_count;
+        if ((policy == RT_UPDATE_REFIT || policy == RT_UPDATE_AUTO) && can_refit) {
+            st = refit(c, md, m, pool, err);
+            action = RT_ACTION_REFIT;
+            if (st == RT_OK && policy == RT_UPDATE_AUTO) {
+                /* Refit while the tree stays within the bound of its last
+                 * rebuild's cost; past it, rebuild. */
+                sah = rt_bvh_sah(&c->bvhs[m], 1.0f, 2.0f);
+                if (sah > RT_UPDATE_AUTO_BOUND * c->sah_rebuilt[m]) {
+                    st = tri_boxes(c, md, err);
+                    if (st == RT_OK) st = build(c, md, m, RT_BUILDER_FAST, pool, err);
+                    action = RT_ACTION_REBUILD;
+                }
+            }
+        } else {
+            st = tri_boxes(c, md, err);
+            if (st == RT_OK && policy == RT_UPDATE_FAST) {
+                st = build(c, md, m, RT_BUILDER_LBVH, pool, err);
+                action = RT_ACTION_FAST;
+            } else if (st == RT_OK) {
+                st = build(c, md, m, RT_BUILDER_FAST, pool, err);
+            }
+        }
+        if (st != RT_OK) return st;
+    } else {
+        rt_bvh_free(&c->bvhs[m]);
+        rt_bvh_refit_info_free(&c->refit[m]);
     }
+    double ms = rt_now_ms() - t0;
+    /* Measured outside the update's time (but for "auto", which needs it):
+     * one pass over the nodes. */
+    if (c->kds[m].node_count)
+        sah = rt_kd_measure(&c->kds[m], 1.0f, 2.0f).sah;
+    else if (action != RT_ACTION_REFIT || !sah)
+        sah = rt_bvh_sah(&c->bvhs[m], 1.0f, 2.0f);
+    if (action == RT_ACTION_BUILD || action == RT_ACTION_REBUILD || action == RT_ACTION_FAST)
+        c->sah_rebuilt[m] = sah;
+    c->sah[m] = sah;
     c->built[m] = 1;
     c->built_version[m] = md->version;
-    /* Measured once per build, not per frame: it walks the whole tree. */
-    c->sah[m] = c->kds[m].node_count ? rt_kd_measure(&c->kds[m], 1.0f, 2.0f).sah
-                : md->triangle_count ? rt_bvh_measure(&c->bvhs[m], 1.0f, 2.0f).sah
-                                     : 0.0;
+    c->built_topology[m] = md->topology_version;
+    if (action != RT_ACTION_REFIT)
+        c->dirty[m] = RT_DIRTY_ALL;
+    else if (c->dirty[m] != RT_DIRTY_ALL)
+        c->dirty[m] = RT_DIRTY_MOVED;
     c->mesh_generation++;
+    rt_mesh_update *u = &c->updates[c->update_count++];
+    u->mesh = m;
+    u->action = action;
+    u->ms = ms;
+    u->sah = sah;
     return RT_OK;
 }
 
 static double mean_sah(const rt_accel_cache *c, const rt_scene *scene) {
     double sah = 0.0, weight = 0.0;
     for (uint32_t o = 0; o < scene->object_count; o++) {
-        const rt_object_data *ob = &scene->objects[o];
-        uint32_t m = ob->meshes[ob->selected];
+        uint32_t m = rt_object_shown_mesh(&scene->objects[o]);
         double n = (double)scene->meshes[m].triangle_count;
         if (n == 0) continue;
         sah += n * c->sah[m];
@@ -132,13 +241,19 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
         c->scene_uid = scene->uid;
     }
     if (!grow(c, scene->mesh_count)) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    c->update_count = 0;
+    c->object_bvh_ms = c->layout_ms = 0.0;
+    c->layout_bytes = 0;
+    c->layout_in_place = 0;
     if (!c->flat_valid || c->flat_scene_version != scene->version) {
+        /* Each mesh once, though several objects show it. */
         for (uint32_t o = 0; o < scene->object_count; o++) {
-            const rt_object_data *ob = &scene->objects[o];
-            rt_status st = build_mesh(c, scene, ob->meshes[ob->selected], pool, err);
+            rt_status st =
+                update_mesh(c, scene, rt_object_shown_mesh(&scene->objects[o]), pool, err);
             if (st != RT_OK) return st;
         }
         /* The object BVH, every frame the scene changed: objects move. */
+        double t1 = rt_now_ms();
         rt_bvh_free(&c->top);
         rt_error why;
         rt_error_clear(&why);
@@ -146,10 +261,48 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
             rt_status st = rt_tlas_build(scene, c->bvhs, NULL, pool, &c->top, &why);
             if (st != RT_OK) return rt_fail(err, st, "object BVH: %s", why.message);
         }
-        rt_flat_free(&c->flat);
-        c->flat_valid = 0;
-        rt_status st = rt_flatten_accel(scene, c->bvhs, c->kds, &c->top, NULL, &c->flat, &why);
-        if (st != RT_OK) return rt_fail(err, st, "%s", why.message);
+        double t2 = rt_now_ms();
+        c->object_bvh_ms = t2 - t1;
+        rt_status st = RT_OK;
+        /* A layout with kd meshes is made anew (rt_flatten_update refuses one
+         * too): kd nodes live apart and kd meshes are never refitted. */
+        int has_kd = 0;
+        for (uint32_t m = 0; m < scene->mesh_count; m++) has_kd |= c->kds[m].node_count != 0;
+        if (c->flat_valid && !has_kd &&
+            rt_flatten_update(scene, c->bvhs, &c->top, c->dirty, &c->shape, &c->flat,
+                              &c->layout_bytes) == RT_OK) {
+            c->layout_in_place = 1;
+            /* What changed, for backends holding the previous generation. */
+            c->base_generation = c->layout_generation;
+            c->dirty_node_ranges = c->dirty_tri_ranges = 0;
+            c->shapes_kept = 1;
+            for (uint32_t m = 0; m < scene->mesh_count; m++) {
+                if (!c->dirty[m] || c->shape.node_base[m] == UINT32_MAX) continue;
+                if (c->dirty[m] == RT_DIRTY_ALL) c->shapes_kept = 0;
+                rt_flat_range n = {c->shape.node_base[m], c->shape.node_count[m], 0};
+                rt_flat_range t = {c->shape.tri_base[m], c->shape.tri_count[m],
+                                   c->dirty[m] == RT_DIRTY_MOVED};
+                c->dirty_nodes[c->dirty_node_ranges++] = n;
+                if (t.count) c->dirty_tris[c->dirty_tri_ranges++] = t;
+            }
+            rt_flat_range top = {c->shape.top_root, c->flat.node_count - c->shape.top_root, 0};
+            if (top.count) c->dirty_nodes[c->dirty_node_ranges++] = top;
+        } else {
+            c->base_generation = 0;
+            c->shapes_kept = 0;
+            c->dirty_node_ranges = c->dirty_tri_ranges = 0;
+            rt_flat_free(&c->flat);
+            rt_flat_shape_free(&c->shape);
+            c->flat_valid = 0;
+            st = rt_flatten_accel(scene, c->bvhs, has_kd ? c->kds : NULL, &c->top, NULL, &c->flat,
+                                  &why);
+            if (st != RT_OK) return rt_fail(err, st, "%s", why.message);
+            if (!has_kd) st = rt_flat_shape_of(scene, c->bvhs, &c->top, &c->shape);
+            if (st != RT_OK) return rt_fail(err, st, "out of memory");
+            c->layout_bytes = rt_flat_bytes(&c->flat);
+        }
+        memset(c->dirty, 0, c->mesh_count);
+        c->layout_ms = rt_now_ms() - t2;
         c->flat_valid = 1;
         c->flat_scene_version = scene->version;
         c->layout_generation++;

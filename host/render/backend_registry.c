@@ -5,12 +5,16 @@
 #include "render/backend_registry.h"
 
 #include <stddef.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "base/error.h"
 #include "cpu_backends.h"
 #ifdef RT_HAVE_OPENCL
 #include "opencl/cl_backend.h"
+#endif
+#ifdef RT_HAVE_VULKAN
+#include "vulkan/vk_backend.h"
 #endif
 
 typedef struct registry_entry {
@@ -27,6 +31,14 @@ static const registry_entry registry[] = {
     {"opencl", NULL,
      "this build has no OpenCL backend (configure with -DRT_OPENCL=ON and the OpenCL ICD loader "
      "installed: ocl-icd-opencl-dev, opencl-c-headers)",
+     1},
+#endif
+#ifdef RT_HAVE_VULKAN
+    {"vulkan", &rt_backend_vulkan, NULL, 1},
+#else
+    {"vulkan", NULL,
+     "this build has no Vulkan backend (configure with -DRT_VULKAN=ON and the Vulkan loader and "
+     "glslang installed: libvulkan-dev, glslang-tools)",
      1},
 #endif
     {"cpu", &rt_backend_cpu, NULL, 0},
@@ -48,21 +60,28 @@ const rt_backend_ops *rt_backend_find(const char *name, rt_error *err) {
 }
 
 const rt_backend_ops *rt_backend_auto(rt_error *why) {
+    /* Every device backend's reason, in order: the notice names them all. */
+    char reasons[sizeof why->message] = "";
     int devices = 0;
     for (int k = 0; k < ENTRIES; k++) {
         if (!registry[k].device) continue;
         devices++;
+        size_t used = strlen(reasons);
+        const char *sep = used ? "; " : "";
         if (!registry[k].ops) {
-            rt_fail(why, RT_ERROR_UNSUPPORTED, "%s", registry[k].missing);
+            snprintf(reasons + used, sizeof reasons - used, "%s%s", sep, registry[k].missing);
             continue;
         }
         rt_error reason;
         rt_error_clear(&reason);
         if (registry[k].ops->available(&reason)) return registry[k].ops;
-        rt_fail(why, RT_ERROR_UNSUPPORTED, "%s not available (%s)", registry[k].name,
-                reason.message);
+        snprintf(reasons + used, sizeof reasons - used, "%s%s not available (%.400s)", sep,
+                 registry[k].name, reason.message);
     }
-    if (!devices) rt_fail(why, RT_ERROR_UNSUPPORTED, "this build has no device backend");
+    if (!devices)
+        rt_fail(why, RT_ERROR_UNSUPPORTED, "this build has no device backend");
+    else
+        rt_fail(why, RT_ERROR_UNSUPPORTED, "%s", reasons);
     return NULL;
 }
 

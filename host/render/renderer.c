@@ -28,6 +28,12 @@ const char *rt_renderer_backend(const rt_renderer *r) {
     return r ? r->slots[r->current].ops->name : "";
 }
 
+const char *rt_renderer_build_log(const rt_renderer *r) {
+    if (!r || r->slot_count == 0) return "";
+    const rt_backend_slot *slot = &r->slots[r->current];
+    return slot->ops->build_log ? slot->ops->build_log(slot->state) : "";
+}
+
 /* The slot for a backend spec: the one made before for it, or a new one.
  * On failure the renderer is unchanged. */
 static rt_status find_slot(rt_renderer *r, const rt_backend_ops *ops, const char *spec,
@@ -83,7 +89,7 @@ static rt_status set_backend(rt_renderer *r, const char *spec, rt_error *err) {
         rt_error_clear(&why);
         ops = rt_backend_auto(&why);
         if (!ops) {
-            snprintf(notice, sizeof notice, "%.280s: using the CPU", why.message);
+            snprintf(notice, sizeof notice, "%.480s: using the CPU", why.message);
             ops = rt_backend_find("cpu", err);
             device = NULL;
         }
@@ -169,5 +175,23 @@ rt_status rt_renderer_layout(rt_renderer *r, rt_scene *scene, rt_backend_layout 
     out->pool = r->pool;
     out->layout_generation = r->accel.layout_generation;
     out->mesh_generation = r->accel.mesh_generation;
+    out->base_generation = r->accel.base_generation;
+    out->dirty_nodes = r->accel.dirty_nodes;
+    out->dirty_node_ranges = r->accel.dirty_node_ranges;
+    out->dirty_tris = r->accel.dirty_tris;
+    out->dirty_tri_ranges = r->accel.dirty_tri_ranges;
+    out->shapes_kept = r->accel.shapes_kept;
+    return RT_OK;
+}
+
+rt_status rt_renderer_update_stats(const rt_renderer *r, rt_update_stats *out) {
+    if (!r || !out) return RT_ERROR_INVALID_ARGUMENT;
+    memset(out, 0, sizeof *out);
+    out->meshes = r->accel.updates;
+    out->mesh_count = r->accel.update_count;
+    out->object_bvh_ms = r->accel.object_bvh_ms;
+    out->layout_ms = r->accel.layout_ms;
+    out->layout_in_place = r->accel.layout_in_place;
+    out->layout_bytes = r->accel.layout_bytes;
     return RT_OK;
 }

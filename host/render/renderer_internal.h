@@ -30,7 +30,7 @@ struct rt_renderer {
     rt_backend_slot slots[RT_RENDERER_SLOTS];
     int slot_count;
     int current;      /* the slot that renders */
-    char notice[320]; /* why "auto" fell back to the CPU, or "" */
+    char notice[512]; /* why "auto" fell back to the CPU (every device backend's reason), or "" */
     rt_error error;   /* the last error */
 };
 

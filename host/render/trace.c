@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/clock.h"
 #include "base/error.h"
 #include "render/render_frame.h"
 
@@ -24,6 +25,10 @@ rt_status rt_trace_rays(rt_renderer *r, rt_scene *scene, const rt_ray *rays, siz
     rt_trace_options opt;
     memset(&opt, 0, sizeof opt);
     if (options) opt = *options;
+    if (opt.packet_path != RT_TRACE_PATH_AUTO && opt.packet_path != RT_TRACE_PATH_PACKETS &&
+        opt.packet_path != RT_TRACE_PATH_SINGLE)
+        return rt_fail(&r->error, RT_ERROR_INVALID_ARGUMENT,
+                       "rt_trace_rays: unknown packet path %d", (int)opt.packet_path);
     rt_frame_state fs;
     rt_status st = rt_frame_layout(r, scene, opt.tri_test, 0, &fs);
     if (st != RT_OK) return st;
@@ -47,11 +52,22 @@ rt_status rt_trace_rays(rt_renderer *r, rt_scene *scene, const rt_ray *rays, siz
             for (int k = 0; k < 3; k++) in[i].org[k] = 0.0f;
         }
     }
-    rt_render_stats ignored;
-    memset(&ignored, 0, sizeof ignored);
-    st = fs.ops->prepare(fs.state, &fs.layout, &ignored, &r->error);
+    rt_render_stats prep;
+    memset(&prep, 0, sizeof prep);
+    rt_trace_stats ts;
+    memset(&ts, 0, sizeof ts);
+    ts.backend = fs.ops->name;
+    ts.isa = "";
+    st = fs.ops->prepare(fs.state, &fs.layout, &prep, &r->error);
+    const double t1 = rt_now_ms();
     if (st == RT_OK)
-        st = fs.ops->trace(fs.state, &fs.layout, in, count, out, opt.any_hit != 0, &r->error);
+        st = fs.ops->trace(fs.state, &fs.layout, in, count, out, opt.any_hit != 0, opt.packet_path,
+                           &ts, &r->error);
+    /* The trace alone: the backend's builds inside it are build time. */
+    ts.trace_ms = rt_now_ms() - t1 - ts.build_ms;
+    ts.build_ms += fs.build_ms + prep.build_ms;
+    ts.rays = count;
+    if (opt.stats) *opt.stats = ts;
     if (st == RT_OK)
         for (size_t i = 0; i < count; i++) {
             rt_hit *h = &hits[i];

@@ -110,7 +110,11 @@ void rt_scene_destroy(rt_scene *scene) {
         free(scene->meshes[i].indices);
         free(scene->meshes[i].tri_materials);
     }
-    for (uint32_t i = 0; i < scene->object_count; i++) free(scene->objects[i].meshes);
+    for (uint32_t i = 0; i < scene->object_count; i++) {
+        free(scene->objects[i].meshes);
+        free(scene->objects[i].transform_keys);
+    }
+    free(scene->camera_path);
     free(scene->meshes);
     free(scene->materials);
     free(scene->lights);
@@ -223,6 +227,7 @@ rt_status rt_mesh_add_triangles(rt_scene *scene, uint32_t mesh_id, const float *
     m->vertex_count += vertex_count;
     m->triangle_count += triangle_count;
     m->version++;
+    m->topology_version++;
     scene->version++;
     return RT_OK;
 oom:
@@ -315,6 +320,7 @@ rt_status rt_object_create(rt_scene *scene, uint32_t material_id, uint32_t *obje
     rt_object_data *o = &scene->objects[scene->object_count];
     memset(o, 0, sizeof *o);
     o->material = material_id;
+    o->morph_mesh = UINT32_MAX;
     rt_mat4_identity(o->transform);
     rt_mat4_identity(o->pending);
     *object_id = scene->object_count++;
@@ -523,10 +529,12 @@ uint64_t rt_scene_triangle_count(const rt_scene *scene) {
     uint64_t n = 0;
     for (uint32_t i = 0; i < scene->object_count; i++) {
         const rt_object_data *o = &scene->objects[i];
-        if (o->mesh_count) n += scene->meshes[o->meshes[o->selected]].triangle_count;
+        if (o->mesh_count) n += scene->meshes[rt_object_shown_mesh(o)].triangle_count;
     }
     return n;
 }
+
+static int is_identity(const float m[16]);
 
 static void transform_point(const float m[16], const float p[3], float out[3]) {
     for (int r = 0; r < 3; r++)
@@ -539,12 +547,20 @@ int rt_scene_bounds(const rt_scene *scene, float bmin[3], float bmax[3]) {
     for (uint32_t i = 0; i < scene->object_count; i++) {
         const rt_object_data *o = &scene->objects[i];
         if (!o->mesh_count) continue;
-        const rt_mesh_data *m = &scene->meshes[o->meshes[o->selected]];
+        const rt_mesh_data *m = &scene->meshes[rt_object_shown_mesh(o)];
         /* Only vertices that triangles use count: unused ones would move the
-         * default camera away from the model. */
+         * default camera away from the model. With the identity (most objects,
+         * every bare OBJ) transform_point's sums are x + (+-0) ... + 0: x itself,
+         * and +0 for either zero; x + 0.0f is that same float (positions are
+         * finite), without the twelve products per vertex. */
+        const int identity = is_identity(o->transform);
         for (uint64_t t = 0; t < 3 * (uint64_t)m->triangle_count; t++) {
             float p[3];
-            transform_point(o->transform, m->positions + 3 * (size_t)m->indices[t], p);
+            const float *v = m->positions + 3 * (size_t)m->indices[t];
+            if (identity)
+                for (int k = 0; k < 3; k++) p[k] = v[k] + 0.0f;
+            else
+                transform_point(o->transform, v, p);
             for (int k = 0; k < 3; k++) {
                 if (p[k] < bmin[k]) bmin[k] = p[k];
                 if (p[k] > bmax[k]) bmax[k] = p[k];

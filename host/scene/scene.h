@@ -27,6 +27,10 @@ typedef struct rt_mesh_data {
      * knows when its BVH is stale. */
     uint32_t version;
     uint32_t accel; /* rt_accel: the structure a renderer builds for it */
+    /* Bumped when triangles are added (not when vertices move): a BVH of the
+     * same topology version may be refitted. */
+    uint32_t topology_version;
+    uint32_t update_policy; /* rt_update_policy */
 } rt_mesh_data;
 
 typedef struct rt_object_data {
@@ -38,7 +42,20 @@ typedef struct rt_object_data {
     float transform[16]; /* object to world, row-major, p' = M p */
     float pending[16];   /* queued transforms, composed; identity when none */
     int has_pending;
+    /* Animation (rt_object_set_animation): keyframe_rate 0 when none. */
+    float keyframe_rate;
+    int interpolate;
+    uint32_t morph_mesh; /* the scene mesh holding the blend, UINT32_MAX: none yet */
+    int morphing;        /* 1: morph_mesh is shown instead of meshes[selected] */
+    rt_transform_key *transform_keys;
+    uint32_t transform_key_count;
 } rt_object_data;
+
+/* The mesh an object shows: its selected keyframe, or its blend while it
+ * morphs between keyframes. Every reader of a scene goes through this. */
+static inline uint32_t rt_object_shown_mesh(const rt_object_data *o) {
+    return o->morphing ? o->morph_mesh : o->meshes[o->selected];
+}
 
 typedef struct rt_light_data {
     float position[3];
@@ -58,6 +75,9 @@ struct rt_scene {
     float background[3];
     rt_camera camera;
     int has_camera;
+    rt_camera_key *camera_path; /* rt_camera_set_path, or NULL */
+    uint32_t camera_path_count;
+    double time;      /* the last rt_scene_set_time */
     uint32_t version; /* bumped by every change, so renderers know what to redo */
     /* Unique among the scenes of the process (never reused), so that a
      * renderer given another scene knows its caches are not this one's. */

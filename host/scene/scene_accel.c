@@ -27,6 +27,10 @@ rt_status rt_scene_set_static_accel(rt_scene *scene, rt_accel accel) {
             if (ob->mesh_count < 2) continue;
             for (uint32_t k = 0; k < ob->mesh_count; k++) deforming |= ob->meshes[k] == m;
         }
+        /* A morph target's blend and a mesh with a refitting policy deform too. */
+        for (uint32_t o = 0; o < scene->object_count && !deforming; o++)
+            deforming |= scene->objects[o].morph_mesh == m;
+        deforming |= scene->meshes[m].update_policy != RT_UPDATE_REBUILD;
         if (deforming) continue;
         rt_status st = rt_mesh_set_accel(scene, m, accel);
         if (st != RT_OK) return st;
@@ -36,7 +40,11 @@ rt_status rt_scene_set_static_accel(rt_scene *scene, rt_accel accel) {
 
 rt_accel rt_mesh_accel(const rt_scene *scene, uint32_t mesh_id) {
     if (!scene || mesh_id >= scene->mesh_count) return RT_ACCEL_BVH;
-    return (rt_accel)scene->meshes[mesh_id].accel;
+    const rt_mesh_data *m = &scene->meshes[mesh_id];
+    /* A mesh with an update policy other than rebuild deforms: it keeps a
+     * BVH whatever was asked (render/accel_cache.c). */
+    if (m->update_policy != RT_UPDATE_REBUILD) return RT_ACCEL_BVH;
+    return (rt_accel)m->accel;
 }
 
 const char *rt_accel_name(rt_accel accel) {

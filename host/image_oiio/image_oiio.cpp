@@ -1,10 +1,14 @@
-// image.cpp - the C API of image.h over OpenImageIO 2.4.
+// image_oiio.cpp - the image module (librtcl_image.so, formats/image_module.h):
+// PNG and EXR writing, and reading any format, over OpenImageIO 2.4.
 //
 // This is the project's only C++: it turns OIIO's C++ interface into plain C
-// calls. Every entry point catches every exception, because one escaping into
-// C code would terminate the program. OIIO errors are always fetched (and so
-// cleared) and put into the rt_error; nothing is printed.
-#include "formats/image.h"
+// calls. It is a module of its own, loaded by the library on the first PNG or
+// EXR (formats/image_load.c), so that programs that read and write no such
+// image never map OpenImageIO. Every entry point catches every exception,
+// because one escaping into C code would terminate the program. OIIO errors
+// are always fetched (and so cleared) and put into the rt_error; nothing is
+// printed. It calls nothing in the library: base/error.c is built into it.
+#include "formats/image_module.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -29,10 +33,10 @@ extern "C" {
 
 namespace {
 
-const char *const supported_extensions = ".png, .ppm, .exr";
+const char *const supported_extensions = ".png, .exr";
 
 // How a file extension is stored.
-enum class file_kind { unknown, png, ppm, exr };
+enum class file_kind { unknown, png, exr };
 
 file_kind kind_of(const char *path) {
     const char *slash = std::strrchr(path, '/');
@@ -43,7 +47,6 @@ file_kind kind_of(const char *path) {
     for (const char *c = dot + 1; *c; c++)
         ext += static_cast<char>(*c >= 'A' && *c <= 'Z' ? *c - 'A' + 'a' : *c);
     if (ext == "png") return file_kind::png;
-    if (ext == "ppm") return file_kind::ppm;
     if (ext == "exr") return file_kind::exr;
     return file_kind::unknown;
 }
@@ -135,18 +138,12 @@ rt_status write_image(const char *path, const rt_image *image, rt_error *err) {
     if (kind == file_kind::unknown)
         return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
                             "unknown image file extension (supported: %s)", supported_extensions);
-    if (kind == file_kind::ppm && image->channels != 1 && image->channels != 3)
-        return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
-                            "PPM holds 1 or 3 channels, not %d (use .png or .exr)",
-                            image->channels);
-
     const bool eight_bit = kind != file_kind::exr;
     OIIO::ImageSpec spec(image->width, image->height, image->channels,
                          eight_bit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
     // The colour channels are stored as given: an alpha channel is not
-    // premultiplied into them, and PPM is written as binary (P5/P6).
+    // premultiplied into them.
     spec.attribute("oiio:UnassociatedAlpha", 1);
-    if (kind == file_kind::ppm) spec.attribute("pnm:binary", 1);
 
     std::unique_ptr<unsigned char[]> bytes;
     if (eight_bit) {
@@ -370,79 +367,6 @@ rt_status read_image(const char *path, rt_image *out, rt_error *err) {
     return RT_OK;
 }
 
-// The difference of two channel values. Equal values (infinities included)
-// differ by 0, two NaNs count as equal, and a NaN against a number differs by
-// infinity, so that a NaN in one image never passes as a match.
-double channel_difference(float a, float b) {
-    if (a == b) return 0.0;
-    bool a_nan = std::isnan(a), b_nan = std::isnan(b);
-    if (a_nan && b_nan) return 0.0;
-    if (a_nan || b_nan) return INFINITY;
-    return std::fabs(static_cast<double>(a) - static_cast<double>(b));
-}
-
-rt_status compare_images(const rt_image *a, const rt_image *b, rt_image_diff *result,
-                         rt_image *diff_out, rt_error *err) {
-    if (!result)
-        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, nullptr, 0, 0, "result is NULL");
-    size_t count = 0, count_b = 0;
-    rt_status status = check_image(a, "first", nullptr, &count, err);
-    if (status != RT_OK) return status;
-    status = check_image(b, "second", nullptr, &count_b, err);
-    if (status != RT_OK) return status;
-    if (a->width != b->width || a->height != b->height || a->channels != b->channels)
-        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, nullptr, 0, 0,
-                            "images differ in size: %dx%d with %d channels against %dx%d with %d "
-                            "channels",
-                            a->width, a->height, a->channels, b->width, b->height, b->channels);
-
-    float *diff = nullptr;
-    if (diff_out) {
-        diff = static_cast<float *>(std::malloc(count * sizeof(float)));
-        if (!diff)
-            return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, nullptr, 0, 0,
-                                "no memory for the difference image");
-    }
-
-    const size_t channels = static_cast<size_t>(a->channels);
-    const size_t pixels = count / channels;
-    double max_abs = 0.0, sum_squares = 0.0;
-    uint64_t differing = 0;
-    size_t first = SIZE_MAX;
-    for (size_t p = 0; p < pixels; p++) {
-        bool pixel_differs = false;
-        for (size_t c = 0; c < channels; c++) {
-            size_t i = p * channels + c;
-            double d = channel_difference(a->pixels[i], b->pixels[i]);
-            if (d > 0.0) pixel_differs = true;
-            if (d > max_abs) max_abs = d;
-            sum_squares += d * d;
-            if (diff) diff[i] = static_cast<float>(d);
-        }
-        if (pixel_differs) {
-            if (first == SIZE_MAX) first = p;
-            differing++;
-        }
-    }
-
-    double mse = sum_squares / static_cast<double>(count);
-    result->max_abs = max_abs;
-    result->rmse = std::sqrt(mse);
-    result->psnr = mse > 0.0 ? -10.0 * std::log10(mse) : INFINITY;
-    result->differing = differing;
-    result->pixels = pixels;
-    const size_t width = static_cast<size_t>(a->width);
-    result->first_x = first == SIZE_MAX ? -1 : static_cast<int>(first % width);
-    result->first_y = first == SIZE_MAX ? -1 : static_cast<int>(first / width);
-    if (diff_out) {
-        diff_out->width = a->width;
-        diff_out->height = a->height;
-        diff_out->channels = a->channels;
-        diff_out->pixels = diff;
-    }
-    return RT_OK;
-}
-
 // A C++ exception that reached the C boundary (OIIO throws little, but the
 // standard library may).
 rt_status exception_error(rt_error *err, const char *path, const char *what) {
@@ -451,7 +375,9 @@ rt_status exception_error(rt_error *err, const char *path, const char *what) {
 
 } // namespace
 
-rt_status rt_image_write(const char *path, const rt_image *image, rt_error *err) {
+namespace {
+
+rt_status module_write(const char *path, const rt_image *image, rt_error *err) {
     if (!path || !path[0])
         return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, nullptr, 0, 0, "no output file name");
     try {
@@ -465,7 +391,7 @@ rt_status rt_image_write(const char *path, const rt_image *image, rt_error *err)
     }
 }
 
-rt_status rt_image_read(const char *path, rt_image *out, rt_error *err) {
+rt_status module_read(const char *path, rt_image *out, rt_error *err) {
     if (!out)
         return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0, "output image is NULL");
     std::memset(out, 0, sizeof *out);
@@ -482,20 +408,13 @@ rt_status rt_image_read(const char *path, rt_image *out, rt_error *err) {
     }
 }
 
-void rt_image_free(rt_image *image) {
-    if (!image) return;
-    std::free(image->pixels);
-    image->pixels = nullptr;
-}
+const rt_image_module the_module = {RT_IMAGE_MODULE_ABI, sizeof(rt_image),
+                                    sizeof(rt_error),    "OpenImageIO " OIIO_VERSION_STRING,
+                                    module_write,        module_read};
 
-rt_status rt_image_compare(const rt_image *a, const rt_image *b, rt_image_diff *result,
-                           rt_image *diff_out, rt_error *err) {
-    if (diff_out) std::memset(diff_out, 0, sizeof *diff_out);
-    try {
-        return compare_images(a, b, result, diff_out, err);
-    } catch (const std::exception &e) {
-        return exception_error(err, nullptr, e.what());
-    } catch (...) {
-        return exception_error(err, nullptr, "unknown exception");
-    }
+} // namespace
+
+// The module's one exported symbol (the build hides every other).
+extern "C" __attribute__((visibility("default"))) const rt_image_module *rtcl_image_module(void) {
+    return &the_module;
 }

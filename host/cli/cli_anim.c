@@ -1,0 +1,66 @@
+/* cli_anim.c - the --update and --stats parts of the dynamic-scene commands. */
+#include "cli_anim.h"
+
+#include <stdio.h>
+
+#include "cli_util.h"
+#include "scene/scene.h"
+
+int cli_update_policy(const char *command, const char *text, rt_update_policy *out) {
+    if (rt_update_policy_parse(text, out)) return 1;
+    cli_error(command, "--update: unknown policy '%s' (rebuild, refit, fast, auto)", text);
+    return 0;
+}
+
+void cli_apply_update(rt_scene *scene, rt_update_policy policy) {
+    for (uint32_t m = 0; m < scene->mesh_count; m++) rt_mesh_set_update(scene, m, policy);
+}
+
+static const char *action_name(rt_update_action a) {
+    switch (a) {
+    case RT_ACTION_NONE:
+        return "none";
+    case RT_ACTION_BUILD:
+        return "build";
+    case RT_ACTION_REFIT:
+        return "refit";
+    case RT_ACTION_FAST:
+        return "fast";
+    case RT_ACTION_REBUILD:
+        return "rebuild";
+    }
+    return "?";
+}
+
+/* A mesh name as a JSON string: quotes, backslashes and control characters
+ * escaped. */
+static void json_string(const char *s) {
+    putchar('"');
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            printf("\\%c", c);
+        else if (c < 0x20)
+            printf("\\u%04x", c);
+        else
+            putchar(c);
+    }
+    putchar('"');
+}
+
+void cli_print_update_json(const rt_renderer *renderer, const rt_scene *scene) {
+    rt_update_stats u;
+    rt_renderer_update_stats(renderer, &u);
+    printf("\"update\": [");
+    for (uint32_t i = 0; i < u.mesh_count; i++) {
+        const rt_mesh_update *m = &u.meshes[i];
+        printf("%s{\"mesh\": %u, \"name\": ", i ? ", " : "", m->mesh);
+        json_string(m->mesh < scene->mesh_count ? scene->meshes[m->mesh].name : "");
+        printf(", \"action\": \"%s\", \"ms\": %.3f, \"sah\": %.4f}", action_name(m->action), m->ms,
+               m->sah);
+    }
+    printf("], \"object_bvh_ms\": %.3f, \"layout_ms\": %.3f, \"layout_in_place\": %s, "
+           "\"layout_bytes\": %llu",
+           u.object_bvh_ms, u.layout_ms, u.layout_in_place ? "true" : "false",
+           (unsigned long long)u.layout_bytes);
+}

@@ -1,0 +1,93 @@
+/* frame_image.c - frames and AOVs as image files and display colours. */
+#include "frame_image.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "formats/image.h"
+
+static const struct {
+    const char *name;
+    rt_aov aov;
+} aov_names[] = {{"depth", RT_AOV_DEPTH},        {"primid", RT_AOV_PRIMID},
+                 {"instid", RT_AOV_INSTID},      {"normal", RT_AOV_NORMAL},
+                 {"boxtests", RT_AOV_BOX_TESTS}, {"tritests", RT_AOV_TRI_TESTS}};
+#define AOV_NAME_COUNT (sizeof aov_names / sizeof aov_names[0])
+
+int cli_parse_aov(const char *name, rt_aov *out) {
+    for (size_t i = 0; i < AOV_NAME_COUNT; i++)
+        if (strcmp(name, aov_names[i].name) == 0) {
+            *out = aov_names[i].aov;
+            return 1;
+        }
+    return 0;
+}
+
+const char *cli_aov_name(rt_aov aov) {
+    for (size_t i = 0; i < AOV_NAME_COUNT; i++)
+        if (aov_names[i].aov == aov) return aov_names[i].name;
+    return "shaded";
+}
+
+int cli_is_float_format(const char *path) {
+    size_t n = strlen(path);
+    return n >= 4 &&
+           (strcasecmp(path + n - 4, ".exr") == 0 || strcasecmp(path + n - 4, ".pfm") == 0);
+}
+
+/* An id as a colour that tells neighbours apart; black for -1 (a miss). */
+static void false_colour(float id, float rgb[3]) {
+    if (id < 0.0f) {
+        rgb[0] = rgb[1] = rgb[2] = 0.0f;
+        return;
+    }
+    uint32_t h = (uint32_t)id * 2654435761u;
+    rgb[0] = 0.25f + 0.75f * (float)((h >> 8) & 255) / 255.0f;
+    rgb[1] = 0.25f + 0.75f * (float)((h >> 16) & 255) / 255.0f;
+    rgb[2] = 0.25f + 0.75f * (float)((h >> 24) & 255) / 255.0f;
+}
+
+float *cli_aov_to_display(const rt_framebuffer *fb, rt_aov aov) {
+    size_t n = (size_t)fb->width * fb->height;
+    float *rgb = malloc(3 * n * sizeof(float));
+    if (!rgb) return NULL;
+    float max = 0.0f;
+    if (aov == RT_AOV_DEPTH || aov == RT_AOV_BOX_TESTS || aov == RT_AOV_TRI_TESTS)
+        for (size_t i = 0; i < n; i++)
+            if (isfinite(fb->pixels[i]) && fb->pixels[i] > max) max = fb->pixels[i];
+    for (size_t i = 0; i < n; i++) {
+        float *o = rgb + 3 * i;
+        if (aov == RT_AOV_NORMAL) {
+            for (int c = 0; c < 3; c++) o[c] = 0.5f + 0.5f * fb->pixels[3 * i + c];
+        } else if (aov == RT_AOV_PRIMID || aov == RT_AOV_INSTID) {
+            false_colour(fb->pixels[i], o);
+        } else {
+            float v = fb->pixels[i];
+            float g = isfinite(v) && max > 0.0f ? v / max : (aov == RT_AOV_DEPTH ? 1.0f : 0.0f);
+            o[0] = o[1] = o[2] = g;
+        }
+    }
+    return rgb;
+}
+
+rt_status cli_frame_write(const char *path, const rt_framebuffer *fb, rt_aov aov, rt_error *err) {
+    rt_image img = {fb->width, fb->height, fb->channels, fb->pixels};
+    float *display = NULL;
+    if (aov != RT_AOV_NONE && !cli_is_float_format(path)) {
+        display = cli_aov_to_display(fb, aov);
+        if (!display) {
+            memset(err, 0, sizeof *err);
+            err->status = RT_ERROR_OUT_OF_MEMORY;
+            snprintf(err->message, sizeof err->message, "%s: out of memory", path);
+            return err->status;
+        }
+        img.channels = 3;
+        img.pixels = display;
+    }
+    rt_status status = rt_image_write(path, &img, err);
+    free(display);
+    return status;
+}

@@ -1,0 +1,28 @@
+/* frame_image.h - a rendered frame (or AOV) as an image file or as display
+ * colours, the same way for 'rtcl render' and 'rtcl view', so that a viewer
+ * screenshot and a render of the same camera are the same file. */
+#ifndef RTCL_FRAME_IMAGE_H
+#define RTCL_FRAME_IMAGE_H
+
+#include "rt.h"
+
+/* Parses an AOV name (depth, primid, instid, normal, boxtests, tritests);
+ * returns 1 and sets *out when known, 0 otherwise. */
+int cli_parse_aov(const char *name, rt_aov *out);
+
+/* The name of an AOV ("shaded" for RT_AOV_NONE). */
+const char *cli_aov_name(rt_aov aov);
+
+/* 1 when path names a float image format (.exr), which stores AOVs raw. */
+int cli_is_float_format(const char *path);
+
+/* Makes an AOV displayable: a new 3-channel image (caller frees with free()),
+ * depth and counters scaled to [0,1] by their maximum, ids in false colour,
+ * normals as 0.5 + 0.5 n. NULL when out of memory. */
+float *cli_aov_to_display(const rt_framebuffer *fb, rt_aov aov);
+
+/* Writes fb to path by its extension: the shaded image as it is; an AOV raw
+ * in .exr, else through cli_aov_to_display. err names the file on failure. */
+rt_status cli_frame_write(const char *path, const rt_framebuffer *fb, rt_aov aov, rt_error *err);
+
+#endif /* RTCL_FRAME_IMAGE_H */

@@ -1,0 +1,58 @@
+/* view_timeline.c - the viewer's clock applied to the scene. */
+#include "view_timeline.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene/scene.h"
+
+rt_status view_timeline_init(view_timeline *tl, const rt_scene *scene, double rate) {
+    memset(tl, 0, sizeof *tl);
+    tl->rate = rate;
+    if (!scene->object_count) return RT_OK;
+    tl->base = malloc(sizeof(uint32_t) * scene->object_count);
+    if (!tl->base) return RT_ERROR_OUT_OF_MEMORY;
+    tl->objects = scene->object_count;
+    for (uint32_t o = 0; o < scene->object_count; o++) {
+        tl->base[o] = scene->objects[o].selected;
+        if (scene->objects[o].mesh_count > 1) tl->animated = 1;
+    }
+    if (rt_scene_is_animated(scene)) tl->animated = 1;
+    return RT_OK;
+}
+
+rt_status view_timeline_apply(view_timeline *tl, rt_scene *scene, double t) {
+    /* A scene with time (keyframe rates, morphing, transform keys:
+     * docs/SCENE_FORMAT.md) is put at time t by the library, exactly as
+     * 'rtcl render --time t' does. The camera stays the viewer's: the user
+     * flies, so a camera path is not followed here. */
+    if (rt_scene_is_animated(scene)) {
+        rt_camera cam;
+        rt_camera_get(scene, &cam);
+        rt_status st = rt_scene_set_time(scene, t);
+        rt_camera now;
+        rt_camera_get(scene, &now);
+        if (st == RT_OK && memcmp(&cam, &now, sizeof cam) != 0) st = rt_camera_set(scene, &cam);
+        return st;
+    }
+    /* Otherwise keyframe objects step at the viewer's rate (--keyframe-rate). */
+    double step = floor(t * tl->rate);
+    for (uint32_t o = 0; o < tl->objects && o < scene->object_count; o++) {
+        uint32_t count = scene->objects[o].mesh_count;
+        if (count < 2) continue;
+        double k = fmod((double)tl->base[o] + step, (double)count);
+        if (k < 0) k += count;
+        uint32_t keyframe = (uint32_t)k;
+        if (keyframe >= count) keyframe = 0; /* fmod's rounding at the edge */
+        if (keyframe == scene->objects[o].selected) continue;
+        rt_status st = rt_object_select_mesh(scene, o, keyframe);
+        if (st != RT_OK) return st;
+    }
+    return RT_OK;
+}
+
+void view_timeline_free(view_timeline *tl) {
+    free(tl->base);
+    memset(tl, 0, sizeof *tl);
+}

@@ -1,0 +1,229 @@
+/* image.c - image.h's calls: PPM/PGM and PFM here in C (image_pnm.c), PNG
+ * and EXR (and reading whatever OpenImageIO reads) through the image module,
+ * loaded on first use (image_load.c). Comparing and freeing need no module. */
+#include "formats/image.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <unistd.h>
+
+#include "base/error.h"
+#include "base/file_read.h"
+#include "formats/image_module.h"
+#include "formats/image_pnm.h"
+
+/* The largest PPM or PFM file read: a 32768 x 32768 RGB float image. */
+#define RT_MAX_PNM_FILE_BYTES ((uint64_t)12 << 30)
+
+typedef enum file_kind { KIND_UNKNOWN, KIND_PNG, KIND_PPM, KIND_PFM, KIND_EXR } file_kind;
+
+/* By the extension of the file name (not of a folder), case-insensitive. */
+static file_kind kind_of(const char *path) {
+    const char *slash = strrchr(path, '/');
+    const char *dot = strrchr(slash ? slash + 1 : path, '.');
+    if (!dot) return KIND_UNKNOWN;
+    if (strcasecmp(dot, ".png") == 0) return KIND_PNG;
+    if (strcasecmp(dot, ".ppm") == 0 || strcasecmp(dot, ".pgm") == 0) return KIND_PPM;
+    if (strcasecmp(dot, ".pfm") == 0) return KIND_PFM;
+    if (strcasecmp(dot, ".exr") == 0) return KIND_EXR;
+    return KIND_UNKNOWN;
+}
+
+static rt_status check_image(const rt_image *image, const char *what, const char *path,
+                             size_t *count, rt_error *err) {
+    if (!image)
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0, "%s image is NULL", what);
+    if (image->width <= 0 || image->height <= 0 || image->channels <= 0)
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0,
+                            "%s image has size %dx%d with %d channels (all must be > 0)", what,
+                            image->width, image->height, image->channels);
+    size_t n = (size_t)image->width;
+    if (n > SIZE_MAX / sizeof(float) / (size_t)image->height ||
+        n * (size_t)image->height > SIZE_MAX / sizeof(float) / (size_t)image->channels)
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0,
+                            "%s image size %dx%dx%d overflows", what, image->width, image->height,
+                            image->channels);
+    *count = n * (size_t)image->height * (size_t)image->channels;
+    if (!image->pixels)
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0, "%s image has no pixels",
+                            what);
+    return RT_OK;
+}
+
+/* " (folder F: reason)" when the file's folder is not writable, else "". */
+static void folder_problem(const char *path, char *out, size_t size) {
+    char folder[1024];
+    snprintf(folder, sizeof folder, "%s", path);
+    char *slash = strrchr(folder, '/');
+    if (!slash)
+        snprintf(folder, sizeof folder, ".");
+    else
+        slash[slash == folder ? 1 : 0] = '\0';
+    out[0] = '\0';
+    if (access(folder, W_OK) != 0) snprintf(out, size, " (folder %s: %s)", folder, strerror(errno));
+}
+
+/* Writes the encoded file: open, write, flush and close each checked, so a
+ * full disk (ENOSPC) or an i/o error is reported, never a truncated file. */
+static rt_status write_bytes(const char *path, const unsigned char *data, size_t size,
+                             rt_error *err) {
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        int e = errno;
+        char folder[1200];
+        folder_problem(path, folder, sizeof folder);
+        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot open for writing: %s%s",
+                            strerror(e), folder);
+    }
+    size_t put = size ? fwrite(data, 1, size, f) : 0;
+    int e = put == size ? 0 : errno;
+    if (fflush(f) != 0 && !e) e = errno;
+    if (ferror(f) && !e) e = EIO;
+    if (fclose(f) != 0 && !e) e = errno;
+    if (e)
+        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot write the file: %s", strerror(e));
+    return RT_OK;
+}
+
+rt_status rt_image_write(const char *path, const rt_image *image, rt_error *err) {
+    if (!path || !path[0])
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, NULL, 0, 0, "no output file name");
+    size_t count = 0;
+    rt_status st = check_image(image, "the", path, &count, err);
+    if (st != RT_OK) return st;
+    file_kind kind = kind_of(path);
+    if (kind == KIND_UNKNOWN)
+        return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
+                            "unknown image file extension (supported: .png, .ppm, .pfm, .exr)");
+    if (kind == KIND_PNG || kind == KIND_EXR) {
+        rt_error why;
+        const rt_image_module *module = rt_image_module_get(&why);
+        if (!module)
+            return rt_error_set(err, why.status, path, 0, 0, "cannot write %s: %s",
+                                kind == KIND_PNG ? "PNG" : "EXR", why.message);
+        return module->write(path, image, err);
+    }
+    if (image->channels != 1 && image->channels != 3)
+        return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
+                            "%s holds 1 or 3 channels, not %d (use .png or .exr)",
+                            kind == KIND_PPM ? "PPM" : "PFM", image->channels);
+    unsigned char *bytes = NULL;
+    size_t size = 0;
+    st = kind == KIND_PPM ? rt_pnm_encode(path, image, &bytes, &size, err)
+                          : rt_pfm_encode(path, image, &bytes, &size, err);
+    if (st == RT_OK) st = write_bytes(path, bytes, size, err);
+    free(bytes);
+    return st;
+}
+
+rt_status rt_image_read(const char *path, rt_image *out, rt_error *err) {
+    if (!out)
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0, "output image is NULL");
+    memset(out, 0, sizeof *out);
+    if (!path || !path[0])
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, NULL, 0, 0, "no input file name");
+    /* The format is told by the first bytes, not the name. */
+    FILE *probe = fopen(path, "rb");
+    if (!probe)
+        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot open: %s", strerror(errno));
+    unsigned char head[2] = {0, 0};
+    size_t got = fread(head, 1, 2, probe);
+    int read_errno = ferror(probe) ? errno : 0;
+    fclose(probe);
+    if (read_errno)
+        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot read: %s", strerror(read_errno));
+    if (rt_pnm_recognised(head, got)) {
+        char *bytes = NULL;
+        size_t size = 0;
+        rt_status st = rt_read_file(path, "image file", RT_MAX_PNM_FILE_BYTES, &bytes, &size, err);
+        if (st == RT_OK) st = rt_pnm_decode(path, (const unsigned char *)bytes, size, out, err);
+        free(bytes);
+        return st;
+    }
+    rt_error why;
+    const rt_image_module *module = rt_image_module_get(&why);
+    if (!module)
+        return rt_error_set(err, why.status, path, 0, 0,
+                            "not a PPM or PFM file, and other formats need the image module: %s",
+                            why.message);
+    return module->read(path, out, err);
+}
+
+void rt_image_free(rt_image *image) {
+    if (!image) return;
+    free(image->pixels);
+    image->pixels = NULL;
+}
+
+/* The difference of two channel values. Equal values (infinities included)
+ * differ by 0, two NaNs count as equal, and a NaN against a number differs by
+ * infinity, so that a NaN in one image never passes as a match. */
+static double channel_difference(float a, float b) {
+    if (a == b) return 0.0;
+    int a_nan = isnan(a), b_nan = isnan(b);
+    if (a_nan && b_nan) return 0.0;
+    if (a_nan || b_nan) return INFINITY;
+    return fabs((double)a - (double)b);
+}
+
+rt_status rt_image_compare(const rt_image *a, const rt_image *b, rt_image_diff *result,
+                           rt_image *diff_out, rt_error *err) {
+    if (diff_out) memset(diff_out, 0, sizeof *diff_out);
+    if (!result) return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "result is NULL");
+    size_t count = 0, count_b = 0;
+    rt_status st = check_image(a, "first", NULL, &count, err);
+    if (st != RT_OK) return st;
+    st = check_image(b, "second", NULL, &count_b, err);
+    if (st != RT_OK) return st;
+    if (a->width != b->width || a->height != b->height || a->channels != b->channels)
+        return rt_fail(err, RT_ERROR_INVALID_ARGUMENT,
+                       "images differ in size: %dx%d with %d channels against %dx%d with %d "
+                       "channels",
+                       a->width, a->height, a->channels, b->width, b->height, b->channels);
+    float *diff = NULL;
+    if (diff_out) {
+        diff = malloc(count * sizeof(float));
+        if (!diff)
+            return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "no memory for the difference image");
+    }
+    const size_t channels = (size_t)a->channels;
+    const size_t pixels = count / channels;
+    double max_abs = 0.0, sum_squares = 0.0;
+    uint64_t differing = 0;
+    size_t first = SIZE_MAX;
+    for (size_t p = 0; p < pixels; p++) {
+        int pixel_differs = 0;
+        for (size_t c = 0; c < channels; c++) {
+            size_t i = p * channels + c;
+            double d = channel_difference(a->pixels[i], b->pixels[i]);
+            if (d > 0.0) pixel_differs = 1;
+            if (d > max_abs) max_abs = d;
+            sum_squares += d * d;
+            if (diff) diff[i] = (float)d;
+        }
+        if (pixel_differs) {
+            if (first == SIZE_MAX) first = p;
+            differing++;
+        }
+    }
+    double mse = sum_squares / (double)count;
+    result->max_abs = max_abs;
+    result->rmse = sqrt(mse);
+    result->psnr = mse > 0.0 ? -10.0 * log10(mse) : INFINITY;
+    result->differing = differing;
+    result->pixels = pixels;
+    const size_t width = (size_t)a->width;
+    result->first_x = first == SIZE_MAX ? -1 : (int)(first % width);
+    result->first_y = first == SIZE_MAX ? -1 : (int)(first / width);
+    if (diff_out) {
+        diff_out->width = a->width;
+        diff_out->height = a->height;
+        diff_out->channels = a->channels;
+        diff_out->pixels = diff;
+    }
+    return RT_OK;
+}

@@ -1,0 +1,877 @@
+/* vk_backend.c - the Vulkan compute backend (host/backend/backend.h): a
+ * device and queue opened at the first frame, the flattened layout in
+ * storage buffers (uploaded once, then only what changed), compute pipelines
+ * specialised to the scene through specialization constants, and frames in
+ * bounded dispatches over tiles of pixels (kernels/vulkan/).
+ *
+ * The shaders are the GLSL mirror of the shared maths in the portable
+ * profile (kernels/vulkan/rt_vk_shared.glsl): every float operation
+ * NoContraction, division and sqrt in software from integer operations, no
+ * fp64. The backend adds the float-control execution modes the device
+ * supports (round to nearest even, signed zeros/infs/NaNs kept, denormals
+ * kept) before handing a module to the driver; with all three the oracle's
+ * bits are promised (rt_vk_device_info.exact).
+ *
+ * Buffers live in host-visible, coherent memory (device-local too where the
+ * device has such memory: integrated GPUs, lavapipe, resizable BAR), mapped
+ * once: an upload is a copy into the mapping. */
+#include "vulkan/vk_backend.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/clock.h"
+#include "base/error.h"
+#include "rt_shade.h"
+#include "vulkan/vk_internal.h"
+
+/* Generated from kernels/vulkan/ at build time (cmake/embed_spirv.cmake). */
+extern const uint32_t rt_vk_spirv_rt_vk_main[], rt_vk_spirv_rt_vk_soft_test[];
+extern const size_t rt_vk_spirv_rt_vk_main_size, rt_vk_spirv_rt_vk_soft_test_size;
+
+/* Tiles (pixels or rays per dispatch), adapted per frame so that one
+ * dispatch stays near RT_VK_TARGET_MS: OpenCL's budget (a GPU watchdog fires
+ * after a few seconds; we keep far from it). */
+#define RT_VK_TILE_MIN   1024u
+#define RT_VK_TILE_MAX   (1u << 18)
+#define RT_VK_TILE_FIRST 16384u
+#define RT_VK_TARGET_MS  50.0
+#define RT_VK_LOCAL      64u /* local_size_x of the shaders */
+/* A dispatch that has not finished after this long is reported, not waited
+ * for forever. */
+#define RT_VK_FENCE_NS (120ull * 1000000000ull)
+
+enum {
+    B_HDR,
+    B_NODES,
+    B_TRIS,
+    B_TRI_IDS,
+    B_NORMALS,
+    B_TRI_MATS,
+    B_INST,
+    B_INST_IDS,
+    B_MATS,
+    B_LIGHTS,
+    B_RAYS,     /* binding 10: ray queries' rays (the soft-maths test: operands) */
+    B_HITS,     /* 11: their hits (results) */
+    B_COUNTERS, /* 12: per pixel or ray of a tile */
+    B_FB,       /* 13: the tile's pixels */
+    B_COUNT
+};
+static const char *const buffer_names[B_COUNT] = {
+    "header",   "nodes",     "tris",   "tri_ids", "tri_normals", "tri_mats", "instances",
+    "inst_ids", "materials", "lights", "rays",    "hits",        "counters", "framebuffer"};
+
+/* The push constants of every shader (Push in kernels/vulkan/rt_vk_io.glsl). */
+typedef struct vk_push {
+    uint32_t first, count;
+    int32_t aov, channels, any_hit, query;
+} vk_push;
+
+/* The specialization constants (constant_id 0..4 in rt_vk_shared.glsl). */
+enum { SPEC_FLAGS, SPEC_INST_SET, SPEC_INST_MASK, SPEC_TRI_METHOD, SPEC_FLUSH, SPEC_COUNT };
+
+enum { P_MAIN, P_SOFT, P_COUNT };
+static const char *const pipeline_names[P_COUNT] = {"rt_vk_main", "rt_vk_soft_test"};
+
+typedef struct vk_buf {
+    VkBuffer buf;
+    VkDeviceMemory mem;
+    void *map;
+    size_t cap;
+} vk_buf;
+
+typedef struct vk_state {
+    char selector[128];
+    int flush; /* the denormal policy: 1 flush (rt_backend_config.flush_denormals) */
+    rt_vk_device_info dev;
+    VkInstance inst;
+    VkPhysicalDevice phys;
+    VkDevice device;
+    VkQueue queue;
+    VkCommandPool cpool;
+    VkCommandBuffer cmd;
+    VkFence fence;
+    VkQueryPool qpool; /* two timestamps around each dispatch */
+    VkDescriptorSetLayout dsl;
+    VkPipelineLayout layout;
+    VkDescriptorPool dpool;
+    VkDescriptorSet set;
+    int set_dirty; /* a buffer was remade: the descriptor set must be rewritten */
+    VkShaderModule module[P_COUNT];
+    VkPipeline pipe[P_COUNT];
+    uint32_t spec[P_COUNT][SPEC_COUNT]; /* what each pipeline was specialised to */
+    char spec_text[192];
+    vk_buf buf[B_COUNT];
+    /* What the device holds (as the OpenCL backend). */
+    uint32_t *mesh_sig;
+    size_t mesh_sig_len;
+    int uploaded;
+    uint32_t uploaded_generation;
+    rt_scene_header uploaded_hdr;
+    uint32_t tile;
+    int lost; /* the device was lost: every later call fails with the reason */
+} vk_state;
+
+const uint32_t *rt_vk_module(const char *name, size_t *bytes) {
+    if (!strcmp(name, "rt_vk_main")) {
+        *bytes = rt_vk_spirv_rt_vk_main_size;
+        return rt_vk_spirv_rt_vk_main;
+    }
+    if (!strcmp(name, "rt_vk_soft_test")) {
+        *bytes = rt_vk_spirv_rt_vk_soft_test_size;
+        return rt_vk_spirv_rt_vk_soft_test;
+    }
+    *bytes = 0;
+    return NULL;
+}
+
+/* ---- float controls ------------------------------------------------------ */
+
+enum {
+    SPV_OP_EXTENSION = 10,
+    SPV_OP_ENTRY_POINT = 15,
+    SPV_OP_EXECUTION_MODE = 16,
+    SPV_OP_CAPABILITY = 17,
+    /* execution modes and the capabilities that allow them */
+    SPV_DENORM_PRESERVE = 4459,
+    SPV_DENORM_FLUSH = 4460,
+    SPV_SIGNED_ZERO_INF_NAN = 4461,
+    SPV_RTE = 4462,
+    SPV_CAP_DENORM_PRESERVE = 4464,
+    SPV_CAP_DENORM_FLUSH = 4465,
+    SPV_CAP_SIGNED_ZERO_INF_NAN = 4466,
+    SPV_CAP_RTE = 4467
+};
+
+uint32_t *rt_vk_with_float_controls(const uint32_t *w, size_t bytes, int rte,
+                                    int signed_zero_inf_nan, int denorm_preserve, int denorm_flush,
+                                    size_t *out_bytes) {
+    size_t n = bytes / 4;
+    if (n < 5 || w[0] != 0x07230203u) return NULL;
+    uint32_t modes[4], caps[4];
+    int k = 0;
+    if (rte) modes[k] = SPV_RTE, caps[k++] = SPV_CAP_RTE;
+    if (signed_zero_inf_nan)
+        modes[k] = SPV_SIGNED_ZERO_INF_NAN, caps[k++] = SPV_CAP_SIGNED_ZERO_INF_NAN;
+    if (denorm_preserve) modes[k] = SPV_DENORM_PRESERVE, caps[k++] = SPV_CAP_DENORM_PRESERVE;
+    if (denorm_flush) modes[k] = SPV_DENORM_FLUSH, caps[k++] = SPV_CAP_DENORM_FLUSH;
+    /* Where to insert: after the last capability, the last extension (else
+     * the capabilities) and the last execution mode (else the entry point). */
+    size_t end_cap = 0, end_ext = 0, end_mode = 0, end_entry = 0;
+    uint32_t entry = 0;
+    for (size_t i = 5; i < n;) {
+        uint32_t op = w[i] & 0xffffu, len = w[i] >> 16;
+        if (len == 0 || i + len > n) return NULL;
+        if (op == SPV_OP_CAPABILITY) end_cap = i + len;
+        if (op == SPV_OP_EXTENSION) end_ext = i + len;
+        if (op == SPV_OP_EXECUTION_MODE) end_mode = i + len;
+        if (op == SPV_OP_ENTRY_POINT) {
+            end_entry = i + len;
+            entry = w[i + 2];
+        }
+        i += len;
+    }
+    if (!end_cap || !end_entry) return NULL;
+    if (!end_ext) end_ext = end_cap;
+    if (!end_mode) end_mode = end_entry;
+    static const char ext[] = "SPV_KHR_float_controls"; /* 22 chars + NUL: 6 words */
+    const uint32_t ext_words = 1 + (uint32_t)(sizeof ext + 3) / 4;
+    size_t extra = k ? (size_t)k * 2 + ext_words + (size_t)k * 4 : 0;
+    uint32_t *out = malloc((n + extra) * 4);
+    if (!out) return NULL;
+    size_t o = 0;
+    for (size_t i = 0; i < n;) {
+        uint32_t len = i < 5 ? 5 : w[i] >> 16;
+        memcpy(out + o, w + i, len * 4);
+        o += len;
+        i += len;
+        if (!k) continue;
+        if (i == end_cap)
+            for (int j = 0; j < k; j++) {
+                out[o++] = (2u << 16) | SPV_OP_CAPABILITY;
+                out[o++] = caps[j];
+            }
+        if (i == end_ext) {
+            out[o++] = (ext_words << 16) | SPV_OP_EXTENSION;
+            memset(out + o, 0, (ext_words - 1) * 4);
+            memcpy(out + o, ext, sizeof ext);
+            o += ext_words - 1;
+        }
+        if (i == end_mode)
+            for (int j = 0; j < k; j++) {
+                out[o++] = (4u << 16) | SPV_OP_EXECUTION_MODE;
+                out[o++] = entry;
+                out[o++] = modes[j];
+                out[o++] = 32; /* the float width */
+            }
+    }
+    *out_bytes = o * 4;
+    return out;
+}
+
+/* ---- errors ---------------------------------------------------------------- */
+
+static int out_of_memory(VkResult r) {
+    return r == VK_ERROR_OUT_OF_DEVICE_MEMORY || r == VK_ERROR_OUT_OF_HOST_MEMORY;
+}
+
+/* Any failure of this backend reads "vulkan: ..." for the caller. */
+static rt_status named(rt_error *err, rt_status st) {
+    if (st != RT_OK && err && strncmp(err->message, "vulkan: ", 8) != 0) {
+        char reason[sizeof err->message];
+        memcpy(reason, err->message, sizeof reason);
+        snprintf(err->message, sizeof err->message, "vulkan: %.1000s", reason);
+    }
+    return st;
+}
+
+static rt_status vk_fail(vk_state *s, VkResult r, const char *what, rt_error *err) {
+    if (r == VK_ERROR_DEVICE_LOST) {
+        s->lost = 1;
+        return rt_fail(err, RT_ERROR_BACKEND, "device lost on '%s' (%s); the backend cannot go on",
+                       s->dev.name, what);
+    }
+    return rt_fail(err, out_of_memory(r) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                   "%s on '%s': %s", what, s->dev.name, rt_vk_result_name(r));
+}
+
+/* ---- the device ------------------------------------------------------------ */
+
+static void destroy_buffer(vk_state *s, vk_buf *b) {
+    if (b->map) vkUnmapMemory(s->device, b->mem);
+    if (b->buf) vkDestroyBuffer(s->device, b->buf, NULL);
+    if (b->mem) vkFreeMemory(s->device, b->mem, NULL);
+    memset(b, 0, sizeof *b);
+}
+
+static void vk_destroy(void *p) {
+    vk_state *s = p;
+    if (!s) return;
+    if (s->device) {
+        vkDeviceWaitIdle(s->device);
+        for (int i = 0; i < B_COUNT; i++) destroy_buffer(s, &s->buf[i]);
+        for (int i = 0; i < P_COUNT; i++) {
+            if (s->pipe[i]) vkDestroyPipeline(s->device, s->pipe[i], NULL);
+            if (s->module[i]) vkDestroyShaderModule(s->device, s->module[i], NULL);
+        }
+        if (s->dpool) vkDestroyDescriptorPool(s->device, s->dpool, NULL);
+        if (s->layout) vkDestroyPipelineLayout(s->device, s->layout, NULL);
+        if (s->dsl) vkDestroyDescriptorSetLayout(s->device, s->dsl, NULL);
+        if (s->qpool) vkDestroyQueryPool(s->device, s->qpool, NULL);
+        if (s->fence) vkDestroyFence(s->device, s->fence, NULL);
+        if (s->cpool) vkDestroyCommandPool(s->device, s->cpool, NULL);
+        vkDestroyDevice(s->device, NULL);
+    }
+    if (s->inst) vkDestroyInstance(s->inst, NULL);
+    free(s->mesh_sig);
+    free(s);
+}
+
+static rt_status vk_create(const rt_backend_config *config, void **state, rt_error *err) {
+    vk_state *s = calloc(1, sizeof *s);
+    if (!s) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "vulkan: out of memory");
+    if (config->device_math == RT_DEVICE_MATH_NATIVE) {
+        free(s);
+        return rt_fail(err, RT_ERROR_UNSUPPORTED,
+                       "vulkan: no native maths profile: Vulkan does not promise correctly rounded "
+                       "division and sqrt (2.5 ulp allowed), so the shaders always compute them "
+                       "in software (--device-math portable or auto)");
+    }
+    snprintf(s->selector, sizeof s->selector, "%s", config->device ? config->device : "");
+    s->flush = config->flush_denormals;
+    s->tile = RT_VK_TILE_FIRST;
+    *state = s;
+    return RT_OK;
+}
+
+/* The instance, the selected device, its queue, command buffer, fence,
+ * timestamp queries and the one descriptor set layout (14 storage buffers)
+ * every pipeline shares. */
+static rt_status open_device(vk_state *s, rt_error *err) {
+    rt_status st = rt_vk_instance(&s->inst, err);
+    if (st != RT_OK) return st;
+    rt_vk_device_info *devs;
+    VkPhysicalDevice *handles;
+    int count;
+    st = rt_vk_enumerate(s->inst, &devs, &handles, &count, err);
+    if (st != RT_OK) return st;
+    int pick = rt_vk_select(devs, count, s->selector, err);
+    if (pick >= 0) {
+        s->dev = devs[pick];
+        s->phys = handles[pick];
+    }
+    free(devs);
+    free(handles);
+    if (pick < 0) return RT_ERROR_INVALID_ARGUMENT;
+
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo qi = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    qi.queueFamilyIndex = s->dev.queue_family;
+    qi.queueCount = 1;
+    qi.pQueuePriorities = &priority;
+    VkDeviceCreateInfo di = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    di.queueCreateInfoCount = 1;
+    di.pQueueCreateInfos = &qi;
+    VkResult r = vkCreateDevice(s->phys, &di, NULL, &s->device);
+    if (r != VK_SUCCESS) return vk_fail(s, r, "creating the device", err);
+    vkGetDeviceQueue(s->device, s->dev.queue_family, 0, &s->queue);
+
+    VkCommandPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pi.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pi.queueFamilyIndex = s->dev.queue_family;
+    r = vkCreateCommandPool(s->device, &pi, NULL, &s->cpool);
+    if (r != VK_SUCCESS) return vk_fail(s, r, "creating a command pool", err);
+    VkCommandBufferAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = s->cpool;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    r = vkAllocateCommandBuffers(s->device, &ai, &s->cmd);
+    if (r != VK_SUCCESS) return vk_fail(s, r, "allocating a command buffer", err);
+    VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    r = vkCreateFence(s->device, &fi, NULL, &s->fence);
+    if (r != VK_SUCCESS) return vk_fail(s, r, "creating a fence", err);
+    if (s->dev.timestamps) {
+        VkQueryPoolCreateInfo q = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        q.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        q.queryCount = 2;
+        r = vkCreateQueryPool(s->device, &q, NULL, &s->qpool);
+        if (r != VK_SUCCESS) return vk_fail(s, r, "creating a timestamp query pool", err);
+    }
+
+    VkDescriptorSetLayoutBinding b[B_COUNT];
+    for (int i = 0; i < B_COUNT; i++) {
+        memset(&b[i], 0, sizeof b[i]);
+        b[i].binding = (uint32_t)i;
+        b[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        b[i].descriptorCount = 1;
+        b[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    }
+    VkDescriptorSetLayoutCreateInfo li = {.sType =
+                                              VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    li.bindingCount = B_COUNT;
+    li.pBindings = b;
+    r = vkCreateDescriptorSetLayout(s->device, &li, NULL, &s->dsl);
+    if (r != VK_SUCCESS) return vk_fail(s, r, "creating the descriptor set layout", err);
+    VkPushConstantRange pr = {VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(vk_push)};
+    VkPipelineLayoutCreateInfo pli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    pli.setLayoutCount = 1;
+    pli.pSetLayouts = &s->dsl;
+    pli.pushConstantRangeCount = 1;
+    pli.pPushConstantRanges = &pr;
+    r = vkCreatePipelineLayout(s->device, &pli, NULL, &s->layout);
+    if (r != VK_SUCCESS) return vk_fail(s, r, "creating the pipeline layout", err);
+    VkDescriptorPoolSize ps = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, B_COUNT};
+    VkDescriptorPoolCreateInfo dpi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    dpi.maxSets = 1;
+    dpi.poolSizeCount = 1;
+    dpi.pPoolSizes = &ps;
+    r = vkCreateDescriptorPool(s->device, &dpi, NULL, &s->dpool);
+    if (r != VK_SUCCESS) return vk_fail(s, r, "creating the descriptor pool", err);
+    VkDescriptorSetAllocateInfo dai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    dai.descriptorPool = s->dpool;
+    dai.descriptorSetCount = 1;
+    dai.pSetLayouts = &s->dsl;
+    r = vkAllocateDescriptorSets(s->device, &dai, &s->set);
+    if (r != VK_SUCCESS) return vk_fail(s, r, "allocating the descriptor set", err);
+    s->set_dirty = 1;
+    return RT_OK;
+}
+
+/* Opens the device at the first use; fails at once once it was lost. */
+static rt_status ready(vk_state *s, rt_error *err) {
+    if (s->lost)
+        return rt_fail(err, RT_ERROR_BACKEND, "device '%s' was lost earlier; make a new renderer",
+                       s->dev.name);
+    if (s->device) return RT_OK;
+    rt_status st = open_device(s, err);
+    if (st != RT_OK) { /* start afresh next time */
+        vk_state keep = *s;
+        s->device = VK_NULL_HANDLE;
+        s->inst = VK_NULL_HANDLE;
+        if (keep.device) {
+            s->device = keep.device;
+            if (s->fence) vkDestroyFence(s->device, s->fence, NULL);
+            if (s->qpool) vkDestroyQueryPool(s->device, s->qpool, NULL);
+            if (s->cpool) vkDestroyCommandPool(s->device, s->cpool, NULL);
+            if (s->dpool) vkDestroyDescriptorPool(s->device, s->dpool, NULL);
+            if (s->layout) vkDestroyPipelineLayout(s->device, s->layout, NULL);
+            if (s->dsl) vkDestroyDescriptorSetLayout(s->device, s->dsl, NULL);
+            vkDestroyDevice(s->device, NULL);
+        }
+        if (keep.inst) vkDestroyInstance(keep.inst, NULL);
+        s->device = VK_NULL_HANDLE;
+        s->fence = VK_NULL_HANDLE;
+        s->qpool = VK_NULL_HANDLE;
+        s->cpool = VK_NULL_HANDLE;
+        s->cmd = VK_NULL_HANDLE;
+        s->dpool = VK_NULL_HANDLE;
+        s->set = VK_NULL_HANDLE;
+        s->layout = VK_NULL_HANDLE;
+        s->dsl = VK_NULL_HANDLE;
+    }
+    return st;
+}
+
+/* ---- pipelines ----------------------------------------------------------------- */
+
+static rt_status bind_all(vk_state *s, rt_error *err);
+static rt_status dispatch(vk_state *s, int p, const vk_push *push, double *ms, rt_error *err);
+
+/* Pipeline p specialised to spec (made again only when spec changed). The
+ * module gets the device's float controls first. */
+static rt_status pipeline(vk_state *s, int p, const uint32_t spec[SPEC_COUNT], double *ms,
+                          rt_error *err) {
+    if (s->pipe[p] && memcmp(s->spec[p], spec, sizeof s->spec[p]) == 0) return RT_OK;
+    double t0 = rt_now_ms();
+    VkResult r;
+    if (!s->module[p]) {
+        size_t bytes, patched_bytes = 0;
+        const uint32_t *words = rt_vk_module(pipeline_names[p], &bytes);
+        uint32_t *patched = NULL;
+        if (s->dev.float_controls) {
+            patched =
+                rt_vk_with_float_controls(words, bytes, s->dev.rte, s->dev.signed_zero_inf_nan,
+                                          !s->flush && s->dev.denorm_preserve,
+                                          s->flush && s->dev.denorm_flush, &patched_bytes);
+            if (!patched) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+        }
+        VkShaderModuleCreateInfo mi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+        mi.codeSize = patched ? patched_bytes : bytes;
+        mi.pCode = patched ? patched : words;
+        r = vkCreateShaderModule(s->device, &mi, NULL, &s->module[p]);
+        free(patched);
+        if (r != VK_SUCCESS) return vk_fail(s, r, "creating a shader module", err);
+    }
+    if (s->pipe[p]) vkDestroyPipeline(s->device, s->pipe[p], NULL);
+    s->pipe[p] = VK_NULL_HANDLE;
+    VkSpecializationMapEntry map[SPEC_COUNT];
+    for (uint32_t i = 0; i < SPEC_COUNT; i++) {
+        map[i].constantID = i;
+        map[i].offset = i * 4;
+        map[i].size = 4;
+    }
+    VkSpecializationInfo si = {SPEC_COUNT, map, SPEC_COUNT * 4, spec};
+    VkComputePipelineCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    ci.stage.module = s->module[p];
+    ci.stage.pName = "main";
+    ci.stage.pSpecializationInfo = &si;
+    ci.layout = s->layout;
+    r = vkCreateComputePipelines(s->device, VK_NULL_HANDLE, 1, &ci, NULL, &s->pipe[p]);
+    if (r != VK_SUCCESS) {
+        s->pipe[p] = VK_NULL_HANDLE;
+        return vk_fail(s, r, "creating the compute pipeline", err);
+    }
+    memcpy(s->spec[p], spec, sizeof s->spec[p]);
+    /* One empty dispatch (count 0: every invocation returns at once): some
+     * drivers (lavapipe) compile the shader at its first dispatch, which
+     * would otherwise land in the first frame's time. */
+    vk_push none;
+    memset(&none, 0, sizeof none);
+    double ignored;
+    rt_status st = bind_all(s, err);
+    if (st == RT_OK) st = dispatch(s, p, &none, &ignored, err);
+    *ms += rt_now_ms() - t0;
+    return st;
+}
+
+/* The specialization constants for the scene: its header flags and triangle
+ * test, as OpenCL's -D switches (scene_defines in cl_backend.c). */
+static void scene_spec(const rt_flat *f, int flush, uint32_t spec[SPEC_COUNT]) {
+    uint32_t flags = f->hdr.flags;
+    spec[SPEC_FLAGS] = flags;
+    spec[SPEC_INST_SET] = (flags & RT_SCENE_SINGLE) ? RT_INST_IDENTITY : 0u;
+    spec[SPEC_INST_MASK] = RT_INST_IDENTITY | ((flags & RT_SCENE_NORMALS) ? RT_INST_NORMALS : 0u);
+    spec[SPEC_TRI_METHOD] = f->hdr.tri_method;
+    spec[SPEC_FLUSH] = flush ? 1u : 0u; /* the soft maths' denormal mode, the policy's */
+}
+
+/* ---- buffers ----------------------------------------------------------------- */
+
+/* A memory type host-visible and coherent (device-local too when there is
+ * one) among the allowed bits; -1 when none. */
+static int memory_type(vk_state *s, uint32_t allowed) {
+    VkPhysicalDeviceMemoryProperties mp;
+    vkGetPhysicalDeviceMemoryProperties(s->phys, &mp);
+    const VkMemoryPropertyFlags need =
+        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    int best = -1;
+    for (uint32_t i = 0; i < mp.memoryTypeCount; i++) {
+        if (!(allowed & (1u << i)) || (mp.memoryTypes[i].propertyFlags & need) != need) continue;
+        if (best < 0) best = (int)i;
+        if (mp.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) return (int)i;
+    }
+    return best;
+}
+
+/* Makes buffer b hold at least bytes (never 0: empty arrays get a stub). Its
+ * contents are gone when it was remade (*remade = 1). */
+static rt_status ensure(vk_state *s, int b, size_t bytes, int *remade, rt_error *err) {
+    if (bytes < 16) bytes = 16;
+    bytes = (bytes + 15) & ~(size_t)15;
+    *remade = 0;
+    vk_buf *vb = &s->buf[b];
+    if (vb->buf && vb->cap >= bytes) return RT_OK;
+    destroy_buffer(s, vb);
+    s->set_dirty = 1;
+    *remade = 1;
+    if ((uint64_t)bytes > s->dev.max_buffer)
+        return rt_fail(err, RT_ERROR_OUT_OF_MEMORY,
+                       "out of device memory: buffer '%s' needs %zu bytes, more than the largest "
+                       "storage buffer of '%s' (%llu bytes)",
+                       buffer_names[b], bytes, s->dev.name, (unsigned long long)s->dev.max_buffer);
+    VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    bi.size = bytes;
+    bi.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    bi.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    VkResult r = vkCreateBuffer(s->device, &bi, NULL, &vb->buf);
+    VkMemoryRequirements req;
+    int type = -1;
+    if (r == VK_SUCCESS) {
+        vkGetBufferMemoryRequirements(s->device, vb->buf, &req);
+        type = memory_type(s, req.memoryTypeBits);
+        if (type < 0) r = VK_ERROR_FEATURE_NOT_PRESENT;
+    }
+    if (r == VK_SUCCESS) {
+        VkMemoryAllocateInfo mi = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+        mi.allocationSize = req.size;
+        mi.memoryTypeIndex = (uint32_t)type;
+        r = vkAllocateMemory(s->device, &mi, NULL, &vb->mem);
+    }
+    if (r == VK_SUCCESS) r = vkBindBufferMemory(s->device, vb->buf, vb->mem, 0);
+    if (r == VK_SUCCESS) r = vkMapMemory(s->device, vb->mem, 0, VK_WHOLE_SIZE, 0, &vb->map);
+    if (r != VK_SUCCESS) {
+        destroy_buffer(s, vb);
+        if (r == VK_ERROR_DEVICE_LOST) return vk_fail(s, r, "allocating a buffer", err);
+        return rt_fail(err, out_of_memory(r) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                       "%s: buffer '%s' of %zu bytes on '%s' (%s)",
+                       out_of_memory(r) ? "out of device memory" : "cannot allocate",
+                       buffer_names[b], bytes, s->dev.name,
+                       type < 0 ? "no host-visible coherent memory" : rt_vk_result_name(r));
+    }
+    vb->cap = bytes;
+    return RT_OK;
+}
+
+/* Every binding has a buffer (stubs for the unused ones), and the set names
+ * the current ones. */
+static rt_status bind_all(vk_state *s, rt_error *err) {
+    for (int b = 0; b < B_COUNT; b++) {
+        int remade;
+        rt_status st = ensure(s, b, 16, &remade, err);
+        if (st != RT_OK) return st;
+    }
+    if (!s->set_dirty) return RT_OK;
+    VkDescriptorBufferInfo info[B_COUNT];
+    VkWriteDescriptorSet w[B_COUNT];
+    for (int b = 0; b < B_COUNT; b++) {
+        info[b].buffer = s->buf[b].buf;
+        info[b].offset = 0;
+        info[b].range = VK_WHOLE_SIZE;
+        memset(&w[b], 0, sizeof w[b]);
+        w[b].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+        w[b].dstSet = s->set;
+        w[b].dstBinding = (uint32_t)b;
+        w[b].descriptorCount = 1;
+        w[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        w[b].pBufferInfo = &info[b];
+    }
+    vkUpdateDescriptorSets(s->device, B_COUNT, w, 0, NULL);
+    s->set_dirty = 0;
+    return RT_OK;
+}
+
+/* What identifies the mesh part of the layout (cl_backend.c's
+ * mesh_signature): unchanged while no mesh was rebuilt and every instance
+ * still points at the same place. */
+static uint32_t *mesh_signature(const rt_backend_layout *layout, size_t *len) {
+    const rt_flat *f = layout->flat;
+    size_t n = 5 + 3 * (size_t)f->hdr.instance_count;
+    uint32_t *sig = malloc(n * sizeof *sig);
+    if (!sig) return NULL;
+    sig[0] = layout->mesh_generation;
+    sig[1] = (f->hdr.flags & RT_SCENE_SINGLE) ? f->node_count : f->hdr.top_root;
+    sig[2] = f->tri_count;
+    sig[3] = f->hdr.flags & (RT_SCENE_NORMALS | RT_SCENE_TRI_MATS);
+    sig[4] = f->hdr.instance_count;
+    for (uint32_t i = 0; i < f->hdr.instance_count; i++) {
+        sig[5 + 3 * i] = f->instances[i].mesh;
+        sig[6 + 3 * i] = f->instances[i].root;
+        sig[7 + 3 * i] = f->instances[i].tri_first;
+    }
+    *len = n;
+    return sig;
+}
+
+/* Copies the mesh part when it changed, and the per-frame part (object BVH,
+ * instances, header, materials, lights) when the scene changed since the
+ * last upload; *bytes counts what was copied. */
+static rt_status upload_scene(vk_state *s, const rt_backend_layout *layout, uint64_t *bytes,
+                              double *ms, rt_error *err) {
+    const rt_flat *f = layout->flat;
+    double t0 = rt_now_ms();
+    size_t sig_len;
+    uint32_t *sig = mesh_signature(layout, &sig_len);
+    if (!sig) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    int mesh_same = s->uploaded && s->mesh_sig && s->mesh_sig_len == sig_len &&
+                    memcmp(s->mesh_sig, sig, sig_len * sizeof *sig) == 0;
+    if (mesh_same && s->uploaded_generation == layout->layout_generation &&
+        memcmp(&s->uploaded_hdr, &f->hdr, sizeof f->hdr) == 0) {
+        free(sig);
+        return RT_OK;
+    }
+    size_t tri_n = f->tri_count, mesh_nodes = sig[1];
+    struct {
+        int b;
+        const void *data;
+        size_t bytes;
+        int mesh;
+    } arrays[] = {
+        {B_HDR, &f->hdr, sizeof f->hdr, 0},
+        {B_NODES, f->nodes, sizeof(rt_node) * f->node_count, 0},
+        {B_TRIS, f->tris, sizeof(rt_tri) * tri_n, 1},
+        {B_TRI_IDS, f->tri_ids, sizeof(uint32_t) * tri_n, 1},
+        {B_NORMALS, f->tri_normals, f->tri_normals ? 9 * sizeof(float) * tri_n : 0, 1},
+        {B_TRI_MATS, f->tri_mats, f->tri_mats ? sizeof(uint32_t) * tri_n : 0, 1},
+        {B_INST, f->instances, sizeof(rt_instance) * f->hdr.instance_count, 0},
+        {B_INST_IDS, f->inst_ids, sizeof(uint32_t) * f->inst_id_count, 0},
+        {B_MATS, f->materials, sizeof(rt_material_d) * f->hdr.material_count, 0},
+        {B_LIGHTS, f->lights, sizeof(rt_light_d) * f->hdr.light_count, 0},
+    };
+    rt_status st = RT_OK;
+    for (size_t i = 0; i < sizeof arrays / sizeof arrays[0] && st == RT_OK; i++) {
+        int remade, b = arrays[i].b;
+        st = ensure(s, b, arrays[i].bytes, &remade, err);
+        if (st != RT_OK || !arrays[i].bytes) continue;
+        int all = remade || !mesh_same;
+        size_t from = 0;
+        if (b == B_NODES && !all) from = sizeof(rt_node) * mesh_nodes; /* the object BVH only */
+        if (b == B_NODES || !arrays[i].mesh || all) {
+            memcpy((char *)s->buf[b].map + from, (const char *)arrays[i].data + from,
+                   arrays[i].bytes - from);
+            *bytes += arrays[i].bytes - from;
+        }
+    }
+    if (st != RT_OK) {
+        free(sig);
+        s->uploaded = 0;
+        return st;
+    }
+    free(s->mesh_sig);
+    s->mesh_sig = sig;
+    s->mesh_sig_len = sig_len;
+    s->uploaded = 1;
+    s->uploaded_generation = layout->layout_generation;
+    s->uploaded_hdr = f->hdr;
+    *ms += rt_now_ms() - t0;
+    return RT_OK;
+}
+
+/* ---- dispatches ---------------------------------------------------------------- */
+
+/* Runs pipeline p over items invocations (rounded up to whole work groups;
+ * the shaders skip those past push->count) and waits. *ms gets the device's
+ * time between two timestamps around the dispatch (the host's wall time
+ * where the queue has no timestamps). */
+static rt_status dispatch(vk_state *s, int p, const vk_push *push, double *ms, rt_error *err) {
+    double t0 = rt_now_ms();
+    VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VkResult r = vkResetCommandBuffer(s->cmd, 0);
+    if (r == VK_SUCCESS) r = vkBeginCommandBuffer(s->cmd, &bi);
+    if (r != VK_SUCCESS) return vk_fail(s, r, "recording a dispatch", err);
+    if (s->qpool) vkCmdResetQueryPool(s->cmd, s->qpool, 0, 2);
+    vkCmdBindPipeline(s->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s->pipe[p]);
+    vkCmdBindDescriptorSets(s->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s->layout, 0, 1, &s->set, 0,
+                            NULL);
+    vkCmdPushConstants(s->cmd, s->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
+    if (s->qpool) vkCmdWriteTimestamp(s->cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s->qpool, 0);
+    uint32_t groups = (push->count + RT_VK_LOCAL - 1) / RT_VK_LOCAL;
+    vkCmdDispatch(s->cmd, groups ? groups : 1, 1, 1);
+    if (s->qpool) vkCmdWriteTimestamp(s->cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, s->qpool, 1);
+    /* The shader's writes are made visible to the host's reads. */
+    VkMemoryBarrier mb = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    mb.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    mb.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(s->cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                         0, 1, &mb, 0, NULL, 0, NULL);
+    r = vkEndCommandBuffer(s->cmd);
+    if (r != VK_SUCCESS) return vk_fail(s, r, "recording a dispatch", err);
+    VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    si.commandBufferCount = 1;
+    si.pCommandBuffers = &s->cmd;
+    r = vkQueueSubmit(s->queue, 1, &si, s->fence);
+    if (r == VK_SUCCESS) r = vkWaitForFences(s->device, 1, &s->fence, VK_TRUE, RT_VK_FENCE_NS);
+    if (r == VK_TIMEOUT) {
+        s->lost = 1; /* the fence may still signal: nothing can be reused */
+        return rt_fail(err, RT_ERROR_BACKEND, "%s on '%s' did not finish within %llu s",
+                       pipeline_names[p], s->dev.name, RT_VK_FENCE_NS / 1000000000ull);
+    }
+    if (r != VK_SUCCESS) return vk_fail(s, r, pipeline_names[p], err);
+    vkResetFences(s->device, 1, &s->fence);
+    uint64_t ts[2];
+    if (s->qpool &&
+        vkGetQueryPoolResults(s->device, s->qpool, 0, 2, sizeof ts, ts, sizeof ts[0],
+                              VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS &&
+        ts[1] >= ts[0])
+        *ms = (double)(ts[1] - ts[0]) * (double)s->dev.timestamp_period * 1e-6;
+    else
+        *ms = rt_now_ms() - t0;
+    return RT_OK;
+}
+
+/* The next tile from the last full tile's time: halve above the target,
+ * double below a quarter of it (kept in the state for the next frame). */
+static uint32_t next_tile(uint32_t tile, double ms) {
+    if (ms > RT_VK_TARGET_MS && tile / 2 >= RT_VK_TILE_MIN) return tile / 2;
+    if (ms < RT_VK_TARGET_MS / 4 && tile < RT_VK_TILE_MAX) return tile * 2;
+    return tile;
+}
+
+/* ---- the backend --------------------------------------------------------------- */
+
+static rt_status vk_prepare(void *state, const rt_backend_layout *layout, rt_render_stats *stats,
+                            rt_error *err) {
+    vk_state *s = state;
+    /* The shaders mirror the BVH traversal only (kernels/vulkan/): no
+     * kd-tree traversal yet, so such a layout is refused before any work. */
+    if (layout->flat->kd_node_count)
+        return rt_fail(err, RT_ERROR_UNSUPPORTED,
+                       "vulkan: kd-tree meshes are not supported yet; use --accel bvh");
+    rt_status st = ready(s, err);
+    uint32_t spec[SPEC_COUNT];
+    scene_spec(layout->flat, s->flush, spec);
+    if (st == RT_OK) st = pipeline(s, P_MAIN, spec, &stats->compile_ms, err);
+    if (st == RT_OK) st = upload_scene(s, layout, &stats->upload_bytes, &stats->upload_ms, err);
+    if (st != RT_OK) return named(err, st);
+    snprintf(s->spec_text, sizeof s->spec_text,
+             "specialization constants: flags=%u inst_set=%u inst_mask=%u tri_method=%u "
+             "denormal_flush=%u",
+             spec[SPEC_FLAGS], spec[SPEC_INST_SET], spec[SPEC_INST_MASK], spec[SPEC_TRI_METHOD],
+             spec[SPEC_FLUSH]);
+    snprintf(stats->device, sizeof stats->device, "%.127s", s->dev.name);
+    snprintf(stats->specialisation, sizeof stats->specialisation, "%s", s->spec_text);
+    stats->device_options[0] = 0;
+    stats->exact = s->flush ? s->dev.exact_flush : s->dev.exact;
+    stats->math_profile = "portable";
+    stats->denormals = s->flush ? "flush" : "preserve";
+    return RT_OK;
+}
+
+static rt_status vk_render(void *state, const rt_backend_layout *layout,
+                           const rt_backend_frame *frame, rt_render_stats *stats, rt_error *err) {
+    vk_state *s = state;
+    const rt_scene_header *h = &layout->flat->hdr;
+    uint32_t pixels = (uint32_t)h->width * (uint32_t)h->height;
+    /* The framebuffer buffer holds one tile (the shader writes tile-relative
+     * pixels), copied into the frame after each dispatch: no frame is too
+     * large for the device's largest storage buffer. */
+    size_t px_bytes = sizeof(float) * (size_t)frame->channels;
+    int remade;
+    rt_status st = ensure(s, B_FB, px_bytes * RT_VK_TILE_MAX, &remade, err);
+    if (st == RT_OK) st = ensure(s, B_COUNTERS, sizeof(rt_counters) * RT_VK_TILE_MAX, &remade, err);
+    if (st == RT_OK) st = bind_all(s, err);
+    if (st != RT_OK) return named(err, st);
+    snprintf(stats->kernels, sizeof stats->kernels, "vulkan rt_vk_main, portable maths");
+    double t_render = rt_now_ms();
+    const rt_counters *counts = s->buf[B_COUNTERS].map;
+    for (uint32_t first = 0; first < pixels && st == RT_OK;) {
+        uint32_t per = s->tile;
+        uint32_t n = pixels - first < per ? pixels - first : per;
+        vk_push push = {first, n, (int32_t)frame->aov, frame->channels, 0, 0};
+        double ms = 0.0;
+        st = dispatch(s, P_MAIN, &push, &ms, err);
+        if (st != RT_OK) break;
+        stats->kernel_ms[1] += ms;
+        stats->launches++;
+        if (n > stats->tile_pixels) stats->tile_pixels = n;
+        double t0 = rt_now_ms();
+        memcpy(frame->pixels + (size_t)first * (size_t)frame->channels, s->buf[B_FB].map,
+               px_bytes * n);
+        stats->download_ms += rt_now_ms() - t0;
+        if (frame->want_counts)
+            for (uint32_t i = 0; i < n; i++) {
+                stats->rays += counts[i].rays;
+                stats->box_tests += counts[i].box_tests;
+                stats->tri_tests += counts[i].tri_tests;
+            }
+        first += n;
+        if (n == per) s->tile = next_tile(s->tile, ms);
+        if (frame->progress) frame->progress(frame->progress_user, (double)first / pixels);
+    }
+    if (st != RT_OK) return named(err, st);
+    stats->render_ms = rt_now_ms() - t_render;
+    stats->primary_rays = pixels;
+    stats->threads = 0;
+    return RT_OK;
+}
+
+static rt_status vk_trace(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
+                          size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
+                          rt_trace_stats *stats, rt_error *err) {
+    vk_state *s = state;
+    (void)path;   /* the packet backend's choice; one path here */
+    (void)stats;  /* the renderer times the call */
+    (void)layout; /* vk_prepare uploaded it */
+    int remade;
+    rt_status st = ensure(s, B_RAYS, sizeof(rt_ray_d) * RT_VK_TILE_MAX, &remade, err);
+    if (st == RT_OK) st = ensure(s, B_HITS, sizeof(rt_hit_d) * RT_VK_TILE_MAX, &remade, err);
+    if (st == RT_OK) st = ensure(s, B_COUNTERS, sizeof(rt_counters) * RT_VK_TILE_MAX, &remade, err);
+    if (st == RT_OK) st = bind_all(s, err);
+    for (size_t first = 0; first < count && st == RT_OK;) {
+        uint32_t n = (uint32_t)(count - first < s->tile ? count - first : s->tile);
+        memcpy(s->buf[B_RAYS].map, rays + first, sizeof(rt_ray_d) * n);
+        vk_push push = {0, n, 0, 0, any_hit ? 1 : 0, 1};
+        double ms = 0.0;
+        st = dispatch(s, P_MAIN, &push, &ms, err);
+        if (st != RT_OK) break;
+        memcpy(hits + first, s->buf[B_HITS].map, sizeof(rt_hit_d) * n);
+        first += n;
+        if (n == s->tile) s->tile = next_tile(s->tile, ms);
+    }
+    return named(err, st);
+}
+
+static int vk_available(rt_error *why) {
+    rt_vk_device_info *devs;
+    int count;
+    if (rt_vk_devices(&devs, &count, why) != RT_OK) return 0;
+    free(devs);
+    return 1;
+}
+
+rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size_t count, int ftz,
+                              uint32_t *results, rt_error *err) {
+    rt_backend_config config;
+    memset(&config, 0, sizeof config);
+    config.device = device;
+    void *state = NULL;
+    rt_status st = vk_create(&config, &state, err);
+    if (st != RT_OK) return st;
+    vk_state *s = state;
+    uint32_t spec[SPEC_COUNT] = {0, 0, 3, 0, ftz ? 1u : 0u};
+    double ms = 0.0;
+    int remade;
+    st = ready(s, err);
+    if (st == RT_OK) st = pipeline(s, P_SOFT, spec, &ms, err);
+    const size_t tile = 1u << 16;
+    if (st == RT_OK) st = ensure(s, B_RAYS, 16 * tile, &remade, err);
+    if (st == RT_OK) st = ensure(s, B_HITS, 12 * tile, &remade, err);
+    if (st == RT_OK) st = bind_all(s, err);
+    for (size_t first = 0; first < count && st == RT_OK;) {
+        uint32_t n = (uint32_t)(count - first < tile ? count - first : tile);
+        memcpy(s->buf[B_RAYS].map, operands + 4 * first, 16 * (size_t)n);
+        vk_push push = {0, n, 0, 0, 0, 0};
+        st = dispatch(s, P_SOFT, &push, &ms, err);
+        if (st == RT_OK) memcpy(results + 3 * first, s->buf[B_HITS].map, 12 * (size_t)n);
+        first += n;
+    }
+    vk_destroy(s);
+    return named(err, st);
+}
+
+const rt_backend_ops rt_backend_vulkan = {"vulkan",  vk_available, vk_create,  vk_prepare,
+                                          vk_render, vk_trace,     vk_destroy, NULL};

@@ -1,0 +1,36 @@
+/* vk_backend.h - the Vulkan compute backend (host/backend/backend.h), built
+ * where the build found the Vulkan loader and glslangValidator
+ * (RT_HAVE_VULKAN); and two hooks for the tests. */
+#ifndef RT_VK_BACKEND_H
+#define RT_VK_BACKEND_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "backend/backend.h"
+
+extern const rt_backend_ops rt_backend_vulkan;
+
+/* The shipped SPIR-V modules by name ("rt_vk_main", "rt_vk_soft_test"): words and size in bytes;
+ * NULL for an unknown name. */
+const uint32_t *rt_vk_module(const char *name, size_t *bytes);
+
+/* The module words with float-control execution modes for 32-bit floats
+ * added (what the backend hands the driver, with the modes the device
+ * supports): round to nearest even when rte, signed zeros, infs and NaNs
+ * kept when signed_zero_inf_nan, denormals kept when denorm_preserve or
+ * flushed when denorm_flush. Returns a malloc'ed copy (free()), its size in
+ * *out_bytes, or NULL when out of memory or not SPIR-V. */
+uint32_t *rt_vk_with_float_controls(const uint32_t *words, size_t bytes, int rte,
+                                    int signed_zero_inf_nan, int denorm_preserve, int denorm_flush,
+                                    size_t *out_bytes);
+
+/* Runs rt_vk_soft_test.comp on device (NULL: the default): for count cases
+ * of four operand bit patterns (operands[4i .. 4i+3] = a, b, c, d) writes
+ * a / b, sqrt(a) and a*b - c*d (the _ftz variants when ftz) to
+ * results[3i .. 3i+2]. For the tests that hold the GLSL mirror of the soft
+ * maths to rt_soft_math.h. */
+rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size_t count, int ftz,
+                              uint32_t *results, rt_error *err);
+
+#endif /* RT_VK_BACKEND_H */

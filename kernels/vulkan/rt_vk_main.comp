@@ -1,0 +1,135 @@
+/* rt_vk_main.comp - the Vulkan backend's one shader: a frame's tile (one
+ * pixel per invocation) or ray queries (one ray per invocation).
+ *
+ * Frames: the primary ray (rt_camera_ray), its closest hit, then an AOV, or
+ * the colour of rt_shade_hit: each node of the shading tree (its ray's
+ * closest hit, rt_shade_begin, one shadow ray per light with rt_phong_light
+ * and rt_phong_add, rt_shade_end) with reflection and refraction rays on an
+ * explicit stack, depth-first, terms added in rt_shade_hit's order. Written
+ * as one loop around a single rt_trace call (primary, shadow and secondary
+ * rays alike), so that the driver compiles one copy of the traversal
+ * instead of one per kind of ray, and the invocations of a SIMD group trace
+ * together whatever kind of ray each is at. The operations and their order
+ * are the C functions' (kernels/rt_shade.h), so the bits are the oracle's.
+ *
+ * Ray queries: rays[i] -> hits[i] (closest or any hit), counters[i].
+ * Frames: pixels pc.first .. pc.first + pc.count - 1 (row-major), pixel
+ * first + i at fb[i * channels], counters[i] its ray and test counts. */
+#version 450
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 64) in;
+
+#include "rt_vk_io.glsl"
+
+/* What the next rt_trace is for. */
+#define STEP_QUERY  0 /* a ray query: write its hit, done */
+#define STEP_NODE   1 /* the closest hit of a shading node's ray */
+#define STEP_SHADOW 2 /* light li's shadow ray of the current node */
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= pc.count) return;
+    rt_counters c;
+    c.box_tests = 0u;
+    c.tri_tests = 0u;
+    c.rays = 0u;
+    uint pixel = pc.first + i;
+    uint o = i * uint(pc.channels); /* fb holds the tile (vk_render copies it out) */
+    int step = pc.query != 0 ? STEP_QUERY : STEP_NODE;
+    bool primary = true;
+    /* The node being shaded (rt_shade_step's state), and the stack of
+     * rt_shade_children. */
+    rt_shade_entry e;
+    rt_hit_d h;
+    rt_shade_node nd;
+    bool begun = false;
+    uint li = 0u;
+    rt_ray_d sr;
+    float Ln[3], ndl;
+    float rgb[3] = float[3](0.0, 0.0, 0.0);
+    rt_shade_entry stack[RT_SHADE_STACK];
+    int sp = 0;
+    if (step == STEP_QUERY) {
+        e.ray = rays[i];
+    } else {
+        rt_camera_ray(int(pixel % uint(hdr.width)), int(pixel / uint(hdr.width)), e.ray);
+        e.w[0] = 1.0;
+        e.w[1] = 1.0;
+        e.w[2] = 1.0;
+        e.depth = 0u;
+    }
+    for (;;) {
+        bool any = step == STEP_SHADOW || (step == STEP_QUERY && pc.any_hit != 0);
+        rt_hit_d th;
+        bool occluded = rt_trace(step == STEP_SHADOW ? sr : e.ray, any, th, c);
+        if (step == STEP_QUERY) {
+            hits[i] = th;
+            break;
+        }
+        if (step == STEP_NODE) {
+            h = th;
+            if (primary && pc.aov != AOV_NONE && pc.aov != AOV_BOX_TESTS &&
+                pc.aov != AOV_TRI_TESTS) {
+                /* rt_cpu_finish_pixel's AOVs of the primary hit. */
+                bool hit_any = h.prim != RT_NO_HIT;
+                if (pc.aov == AOV_DEPTH) {
+                    fb[o] = hit_any ? h.t : RT_INF;
+                } else if (pc.aov == AOV_PRIMID) {
+                    fb[o] = hit_any ? float(h.prim) : -1.0;
+                } else if (pc.aov == AOV_INSTID) {
+                    fb[o] = hit_any ? float(h.inst) : -1.0;
+                } else {
+                    fb[o] = 0.0;
+                    fb[o + 1u] = 0.0;
+                    fb[o + 2u] = 0.0;
+                    if (hit_any) {
+                        rt_surface sf;
+                        rt_surface_at(e.ray, h, sf);
+                        for (int k = 0; k < 3; k++) fb[o + uint(k)] = sf.ns[k];
+                    }
+                }
+                break;
+            }
+            begun = rt_shade_begin(e, h, nd);
+            li = 0u;
+        } else {
+            /* rt_shade_step: a light whose shadow ray finds no occluder. */
+            if (!occluded) rt_phong_add(nd.sf, li, Ln, ndl, nd.dn, nd.lit);
+            li++;
+        }
+        /* The next light with a shadow ray (rt_phong_light), if any. */
+        step = STEP_NODE;
+        if (begun) {
+            while (li < hdr.light_count) {
+                if (rt_phong_light(nd.sf, li, sr, Ln, ndl)) {
+                    step = STEP_SHADOW;
+                    break;
+                }
+                li++;
+            }
+        }
+        if (step == STEP_SHADOW) continue;
+        /* The node is done: its term, then its children on the stack. */
+        float term[3];
+        bool has_term;
+        rt_shade_entry child[2];
+        int children;
+        rt_shade_end(e, h, nd, term, has_term, child, children);
+        if (has_term)
+            for (int k = 0; k < 3; k++) rgb[k] = rgb[k] + term[k];
+        for (int j = 0; j < children; j++)
+            if (sp < RT_SHADE_STACK) stack[sp++] = child[j];
+        primary = false;
+        begun = false;
+        if (sp == 0) break;
+        e = stack[--sp];
+    }
+    if (pc.query == 0) {
+        if (pc.aov == AOV_NONE)
+            for (int k = 0; k < 3; k++) fb[o + uint(k)] = rgb[k];
+        else if (pc.aov == AOV_BOX_TESTS || pc.aov == AOV_TRI_TESTS)
+            fb[o] = float(pc.aov == AOV_BOX_TESTS ? c.box_tests : c.tri_tests);
+    }
+    counters[i] = c;
+}

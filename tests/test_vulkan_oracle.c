@@ -1,0 +1,496 @@
+/* test_vulkan_oracle.c - the Vulkan backend against the CPU oracle, on a
+ * Vulkan device (lavapipe in CI):
+ * - the GLSL mirror of the soft maths (kernels/vulkan/rt_vk_soft_math.glsl)
+ *   against kernels/rt_soft_math.h, bit for bit (NaN payloads included), on
+ *   every pair of special values and 10^5 random operand sets, with and
+ *   without flush to zero;
+ * - on every shipped scene (the JSON scenes in scenes/): the float framebuffer of the
+ *   image and of every AOV, and the 8-bit PNG, in Whitted and direct mode,
+ *   identical to the oracle's, with the same ray and test counts; the
+ *   other triangle tests on cornell (image and depth); an object turned
+ *   about an oblique axis and a second, coloured light;
+ * - 20,000 random ray queries per scene (closest and any hit): t, u, v bits,
+ *   prim and inst identical;
+ * - later frames upload nothing, a moved object only the per-frame part;
+ * - --denormals flush: cornell's image and hits are the flushing oracle's;
+ *   on a scene 1e-13 across (denormal t numerators) the device is held to
+ *   the oracle of each policy it promises (float controls), and what it
+ *   gives elsewhere is printed;
+ * - a device that does not exist is an error with a reason.
+ * Skips only when the build has no Vulkan backend or no Vulkan device
+ * exists. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "rt.h"
+#ifdef RT_HAVE_VULKAN
+#include "formats/image.h"
+#include "layout/flat.h"
+#include "oracle_util.h"
+#include "scene/scene.h"
+#include "soft_math_cases.h"
+#include "vulkan/vk_backend.h"
+#include "vulkan/vk_device.h"
+
+static const char *const aov_names[] = {"image",  "depth",    "primid",  "instid",
+                                        "normal", "boxtests", "tritests"};
+static const char *const tri_names[] = {"watertight", "moller", "pluecker", "badouel"};
+
+static rt_renderer *cpu_r, *vk_r;
+
+static rt_status render_with(rt_renderer *r, rt_scene *s, rt_aov aov, int direct,
+                             rt_triangle_test tri, rt_framebuffer *fb, rt_render_stats *stats) {
+    rt_render_options o = rt_render_options_default();
+    o.aov = aov;
+    o.stats = stats;
+    o.direct_only = direct;
+    o.tri_test = tri;
+    return rt_render(r, s, &o, fb);
+}
+
+static int same_pixels(const char *scene, const char *what, const rt_framebuffer *a,
+                       const rt_framebuffer *b) {
+    CHECK_MSG(a->width == b->width && a->height == b->height && a->channels == b->channels,
+              "%s %s: sizes differ", scene, what);
+    size_t n = (size_t)a->width * a->height * a->channels;
+    for (size_t i = 0; i < n; i++) {
+        if (memcmp(&a->pixels[i], &b->pixels[i], sizeof(float)) != 0) {
+            size_t px = i / (size_t)a->channels;
+            CHECK_MSG(
+                0, "%s %s: first difference at pixel (%zu, %zu) channel %zu: cpu %.9g vulkan %.9g",
+                scene, what, px % (size_t)a->width, px / (size_t)a->width, i % (size_t)a->channels,
+                (double)a->pixels[i], (double)b->pixels[i]);
+            return 0;
+        }
+    }
+    test_checks++;
+    return 1;
+}
+
+static int same_file(const char *a, const char *b) {
+    FILE *fa = fopen(a, "rb"), *fb = fopen(b, "rb");
+    int same = fa && fb;
+    while (same) {
+        int ca = fgetc(fa), cb = fgetc(fb);
+        if (ca != cb) same = 0;
+        if (ca == EOF || cb == EOF) break;
+    }
+    if (fa) fclose(fa);
+    if (fb) fclose(fb);
+    return same;
+}
+
+/* The AOVs from first to last (the image is RT_AOV_NONE) in one mode. */
+static void check_images(const char *name, rt_scene *s, int direct, rt_triangle_test tri, int first,
+                         int last) {
+    for (int aov = first; aov <= last; aov++) {
+        rt_framebuffer cpu, vk;
+        rt_render_stats cs, st;
+        CHECK(render_with(cpu_r, s, (rt_aov)aov, direct, tri, &cpu, &cs) == RT_OK);
+        rt_status status = render_with(vk_r, s, (rt_aov)aov, direct, tri, &vk, &st);
+        CHECK_MSG(status == RT_OK, "%s: %s", name, rt_renderer_error(vk_r));
+        if (status != RT_OK) {
+            rt_framebuffer_free(&cpu);
+            continue;
+        }
+        char label[160];
+        snprintf(label, sizeof label, "%s (%s, %dx%d, %s)", aov_names[aov],
+                 direct ? "direct" : "Whitted", cpu.width, cpu.height, tri_names[tri]);
+        CHECK(strcmp(st.backend, "vulkan") == 0 && st.device[0]);
+        CHECK_CONTAINS(st.specialisation, "specialization constants");
+        CHECK(st.primary_rays == (uint64_t)cpu.width * (uint64_t)cpu.height);
+        CHECK_EQ_INT((long long)st.rays, (long long)cs.rays);
+        CHECK_EQ_INT((long long)st.box_tests, (long long)cs.box_tests);
+        CHECK_EQ_INT((long long)st.tri_tests, (long long)cs.tri_tests);
+        same_pixels(name, label, &cpu, &vk);
+        if (aov == RT_AOV_NONE) { /* the 8-bit image too */
+            char pa[64], pb[64], a[512], b[512];
+            snprintf(pa, sizeof pa, "%s_cpu.png", name);
+            snprintf(pb, sizeof pb, "%s_vk.png", name);
+            snprintf(a, sizeof a, "%s", test_write_temp(pa, ""));
+            snprintf(b, sizeof b, "%s", test_write_temp(pb, ""));
+            rt_image ia = {cpu.width, cpu.height, 3, cpu.pixels};
+            rt_image ib = {vk.width, vk.height, 3, vk.pixels};
+            rt_error err;
+            CHECK(rt_image_write(a, &ia, &err) == RT_OK);
+            CHECK(rt_image_write(b, &ib, &err) == RT_OK);
+            CHECK_MSG(same_file(a, b), "%s %s: the 8-bit PNGs differ", name, label);
+        }
+        rt_framebuffer_free(&cpu);
+        rt_framebuffer_free(&vk);
+    }
+}
+
+typedef void (*ray_maker)(const rt_scene_header *h, const float lo[3], const float hi[3], int i,
+                          rt_ray_d *r);
+
+/* Rays from random points of the bounds in random directions of length
+ * about 1 (for the denormal scene, whose camera rays would be huge). */
+static void unit_ray(const rt_scene_header *h, const float lo[3], const float hi[3], int i,
+                     rt_ray_d *r) {
+    (void)h;
+    (void)i;
+    for (int k = 0; k < 3; k++) {
+        r->org[k] = lo[k] + (hi[k] - lo[k]) * oracle_rnd();
+        r->dir[k] = oracle_rnd() - 0.5f;
+    }
+    r->tmin = 0.0f;
+    r->tmax = INFINITY;
+}
+
+/* n rays of a maker over the scene's bounds. */
+static rt_ray *make_rays(rt_scene *s, ray_maker make, int n) {
+    const rt_flat *flat = test_layout(s, 0);
+    rt_ray *rays = flat ? malloc(sizeof *rays * (size_t)n) : NULL;
+    if (!rays) return NULL;
+    float lo[3], hi[3];
+    CHECK(rt_scene_bounds(s, lo, hi));
+    for (int i = 0; i < n; i++) {
+        rt_ray_d r;
+        make(&flat->hdr, lo, hi, i, &r);
+        memcpy(rays[i].org, r.org, sizeof r.org);
+        memcpy(rays[i].dir, r.dir, sizeof r.dir);
+        rays[i].tmin = r.tmin;
+        rays[i].tmax = r.tmax;
+    }
+    return rays;
+}
+
+static int same_hit(const rt_hit *a, const rt_hit *b) {
+    return a->hit == b->hit && !memcmp(&a->t, &b->t, 4) && !memcmp(&a->u, &b->u, 4) &&
+           !memcmp(&a->v, &b->v, 4) && a->prim == b->prim && a->inst == b->inst;
+}
+
+/* Closest or any hits of n rays on two renderers; returns how many differ
+ * (-1 when a trace failed), and *hits the hits of the first. */
+static int differing_hits(rt_renderer *ra, rt_renderer *rb, rt_scene *s, const rt_ray *rays, int n,
+                          int any, int *hits, char *first, size_t first_size) {
+    rt_hit *a = malloc(sizeof *a * (size_t)n), *b = malloc(sizeof *b * (size_t)n);
+    rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
+    int differ = -1;
+    *hits = 0;
+    if (a && b && rt_trace_rays(ra, s, rays, (size_t)n, a, &q) == RT_OK) {
+        rt_status st = rt_trace_rays(rb, s, rays, (size_t)n, b, &q);
+        CHECK_MSG(st == RT_OK, "%s", rt_renderer_error(rb));
+        if (st == RT_OK) differ = 0;
+        for (int i = 0; i < n && st == RT_OK; i++) {
+            *hits += a[i].hit;
+            if (same_hit(&a[i], &b[i])) continue;
+            if (!differ++)
+                snprintf(first, first_size,
+                         "ray %d: cpu hit %d t %.9g u %.9g v %.9g prim %u inst %u; vulkan hit %d t "
+                         "%.9g u %.9g v %.9g prim %u inst %u",
+                         i, a[i].hit, (double)a[i].t, (double)a[i].u, (double)a[i].v, a[i].prim,
+                         a[i].inst, b[i].hit, (double)b[i].t, (double)b[i].u, (double)b[i].v,
+                         b[i].prim, b[i].inst);
+        }
+    }
+    free(a);
+    free(b);
+    return differ;
+}
+
+/* 20,000 random rays, closest and any hit, identical on the two renderers. */
+static void check_hits_on(const char *name, rt_renderer *ra, rt_renderer *rb, rt_scene *s) {
+    enum { N = 20000 };
+    rt_ray *rays = make_rays(s, oracle_ray, N);
+    CHECK(rays != NULL);
+    for (int any = 0; any <= 1 && rays; any++) {
+        char first[400] = "";
+        int hits;
+        int differ = differing_hits(ra, rb, s, rays, N, any, &hits, first, sizeof first);
+        CHECK_MSG(differ == 0, "%s %s: %d of %d hits differ; first: %s", name,
+                  any ? "any-hit" : "closest", differ, N, first);
+        CHECK_MSG(hits > N / 10, "%s: only %d of %d rays hit: a weak test", name, hits, N);
+    }
+    free(rays);
+}
+
+static void check_hits(const char *name, rt_scene *s) {
+    check_hits_on(name, cpu_r, vk_r, s);
+}
+
+/* Turns object obj by 0.5 rad about the oblique axis (1, 2, 3) through c
+ * (an instance transform with no zero entry), as test_opencl_oracle does. */
+static void oblique_turn(rt_scene *s, uint32_t obj, const float c[3]) {
+    double a[3] = {1.0, 2.0, 3.0}, len = sqrt(14.0), t = 0.5, co = cos(t), si = sin(t), r[3][3];
+    for (int i = 0; i < 3; i++) a[i] /= len;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double cross = 0.0;
+            if (i != j) {
+                int k = 3 - i - j;
+                double sign = ((i + 1) % 3 == j) ? -1.0 : 1.0;
+                cross = sign * a[k] * si;
+            }
+            r[i][j] = (i == j ? co : 0.0) + (1.0 - co) * a[i] * a[j] + cross;
+        }
+    float m[16] = {0};
+    for (int i = 0; i < 3; i++) {
+        double tr = c[i];
+        for (int j = 0; j < 3; j++) {
+            m[4 * i + j] = (float)r[i][j];
+            tr -= r[i][j] * c[j];
+        }
+        m[4 * i + 3] = (float)tr;
+    }
+    m[15] = 1.0f;
+    CHECK(rt_object_transform(s, obj, m) == RT_OK);
+}
+
+static void check_scene(const char *name) {
+    char rel[256];
+    snprintf(rel, sizeof rel, "scenes/%s.json", name);
+    rt_scene *s;
+    rt_error err;
+    rt_status st = rt_scene_load(test_source_path(rel), &s, &err);
+    CHECK_MSG(st == RT_OK, "%s: %s", rel, err.message);
+    if (st != RT_OK) return;
+    rt_camera cam;
+    rt_camera_get(s, &cam);
+    cam.width = 96; /* small: lavapipe on a shared CPU */
+    cam.height = 54;
+    CHECK(rt_camera_set(s, &cam) == RT_OK);
+    check_images(name, s, 0, RT_TRI_TEST_WATERTIGHT, RT_AOV_NONE, RT_AOV_TRI_TESTS);
+    check_images(name, s, 1, RT_TRI_TEST_WATERTIGHT, RT_AOV_NONE, RT_AOV_NORMAL);
+    check_hits(name, s);
+    /* An object turned about an oblique axis, a second, coloured light, an
+     * odd size (a partial work group). */
+    int cornell = strcmp(name, "cornell") == 0;
+    const float centre_cornell[3] = {-0.8f, 0.4f, -0.2f}, centre_keyframes[3] = {0.5f, 1.0f, 0.0f};
+    oblique_turn(s, cornell ? 4 : 1, cornell ? centre_cornell : centre_keyframes);
+    float lo[3], hi[3], pos[3];
+    CHECK(rt_scene_bounds(s, lo, hi));
+    for (int k = 0; k < 3; k++) pos[k] = lo[k] + (hi[k] - lo[k]) * (k == 1 ? 0.85f : 0.3f);
+    const float color[3] = {0.7f, 0.45f, 0.9f};
+    uint32_t light;
+    CHECK(rt_light_add(s, pos, color, &light) == RT_OK);
+    cam.width = 97;
+    cam.height = 61;
+    CHECK(rt_camera_set(s, &cam) == RT_OK);
+    check_images(name, s, 0, RT_TRI_TEST_WATERTIGHT, RT_AOV_NONE, RT_AOV_TRI_TESTS);
+    if (cornell)
+        for (int t = RT_TRI_TEST_MOLLER; t <= RT_TRI_TEST_BADOUEL; t++)
+            check_images(name, s, 0, (rt_triangle_test)t, RT_AOV_NONE, RT_AOV_DEPTH);
+    check_hits(name, s);
+    rt_scene_destroy(s);
+}
+
+/* Frame 2 uploads nothing; after moving an object only the per-frame part,
+ * and the image is still the oracle's. */
+static void check_uploads(void) {
+    rt_scene *s = test_builtin_scene("keyframes", 64, 36);
+    if (!s) return;
+    rt_framebuffer fb, cpu;
+    rt_render_stats first, again, moved;
+    CHECK(render_with(vk_r, s, RT_AOV_NONE, 0, RT_TRI_TEST_WATERTIGHT, &fb, &first) == RT_OK);
+    rt_framebuffer_free(&fb);
+    CHECK(render_with(vk_r, s, RT_AOV_NONE, 0, RT_TRI_TEST_WATERTIGHT, &fb, &again) == RT_OK);
+    rt_framebuffer_free(&fb);
+    CHECK_EQ_INT(again.upload_bytes, 0);
+    float m[16] = {1, 0, 0, 0.05f, 0, 1, 0, 0, 0, 0, 1, -0.1f, 0, 0, 0, 1};
+    CHECK(rt_object_transform(s, 0, m) == RT_OK);
+    CHECK(render_with(vk_r, s, RT_AOV_NONE, 0, RT_TRI_TEST_WATERTIGHT, &fb, &moved) == RT_OK);
+    CHECK_MSG(moved.upload_bytes > 0 && moved.upload_bytes < first.upload_bytes,
+              "upload after a move: %llu bytes (first frame %llu)",
+              (unsigned long long)moved.upload_bytes, (unsigned long long)first.upload_bytes);
+    CHECK(render_with(cpu_r, s, RT_AOV_NONE, 0, RT_TRI_TEST_WATERTIGHT, &cpu, NULL) == RT_OK);
+    same_pixels("keyframes (moved)", "image", &cpu, &fb);
+    rt_framebuffer_free(&fb);
+    rt_framebuffer_free(&cpu);
+    rt_scene_destroy(s);
+}
+
+/* Random triangles in a box a few 1e-13 across (test_opencl_oracle's
+ * denormal scene): edge functions near 1e-26 and t's numerator near 1e-39,
+ * below the smallest normal float, so the denormal policy decides many bits
+ * of t. */
+static rt_scene *denormal_scene(void) {
+    rt_scene *s = NULL;
+    uint32_t mesh, mat, obj;
+    rt_material m = rt_material_default();
+    CHECK(rt_scene_create(&s) == RT_OK);
+    if (!s) return NULL;
+    CHECK(rt_mesh_create(s, &mesh) == RT_OK);
+    enum { TRIS = 200 };
+    float pos[9 * TRIS];
+    uint32_t idx[3 * TRIS];
+    for (uint32_t i = 0; i < 3 * TRIS; i++) idx[i] = i;
+    uint32_t seed = 12345u;
+    for (int i = 0; i < 9 * TRIS; i++) {
+        seed = seed * 1664525u + 1013904223u;
+        pos[i] = (float)(seed >> 8) * (1e-13f / 16777216.0f);
+    }
+    CHECK(rt_mesh_add_triangles(s, mesh, pos, NULL, 3 * TRIS, idx, TRIS) == RT_OK);
+    CHECK(rt_material_add(s, &m, &mat) == RT_OK);
+    CHECK(rt_object_create(s, mat, &obj) == RT_OK);
+    CHECK(rt_object_add_mesh(s, obj, mesh) == RT_OK);
+    CHECK(rt_scene_commit(s) == RT_OK);
+    return s;
+}
+
+static rt_renderer *flushing(const char *backend) {
+    rt_renderer_options o = rt_renderer_options_default();
+    o.backend = backend;
+    o.denormals = RT_DENORMALS_FLUSH;
+    rt_error err;
+    rt_renderer *r = test_renderer_with(&o, &err);
+    CHECK_MSG(r != NULL, "%s with --denormals flush: %s", backend, r ? "" : err.message);
+    return r;
+}
+
+/* The flush policy: the shipped cornell (no denormal occurs there) gives
+ * the flushing oracle's image and hits. On the denormal scene the device is
+ * held to the oracle of a policy only where it promises that policy
+ * (float controls); elsewhere the count of differing hits is printed. */
+static void check_denormals(const rt_vk_device_info *dev) {
+    rt_renderer *cpu_f = flushing("cpu"), *vk_f = flushing("vulkan");
+    if (!cpu_f || !vk_f) return;
+    rt_scene *s = NULL;
+    rt_error err;
+    CHECK_MSG(rt_scene_load(test_source_path("scenes/cornell.json"), &s, &err) == RT_OK, "%s",
+              err.message);
+    if (s) {
+        rt_camera cam;
+        rt_camera_get(s, &cam);
+        cam.width = 64;
+        cam.height = 36;
+        CHECK(rt_camera_set(s, &cam) == RT_OK);
+        rt_framebuffer a, b;
+        rt_render_stats st;
+        CHECK(render_with(cpu_f, s, RT_AOV_NONE, 0, RT_TRI_TEST_WATERTIGHT, &a, NULL) == RT_OK);
+        rt_status status = render_with(vk_f, s, RT_AOV_NONE, 0, RT_TRI_TEST_WATERTIGHT, &b, &st);
+        CHECK_MSG(status == RT_OK, "%s", rt_renderer_error(vk_f));
+        if (status == RT_OK) {
+            CHECK(st.denormals && strcmp(st.denormals, "flush") == 0);
+            CHECK(st.math_profile && strcmp(st.math_profile, "portable") == 0);
+            CHECK_CONTAINS(st.specialisation, "denormal_flush=1");
+            CHECK_EQ_INT(st.exact, dev->exact_flush);
+            same_pixels("cornell (flush)", "image", &a, &b);
+            rt_framebuffer_free(&b);
+        }
+        rt_framebuffer_free(&a);
+        check_hits_on("cornell (flush)", cpu_f, vk_f, s);
+        rt_scene_destroy(s);
+    }
+    s = denormal_scene();
+    if (!s) return;
+    enum { N = 4000 };
+    rt_ray *rays = make_rays(s, unit_ray, N);
+    int hits, policies, keep, flush;
+    char first[400] = "", ignored[400];
+    policies = rays ? differing_hits(cpu_r, cpu_f, s, rays, N, 0, &hits, ignored, 400) : -1;
+    CHECK_MSG(policies > 0, "the denormal scene gives the same hits in both policies");
+    keep = rays ? differing_hits(cpu_r, vk_r, s, rays, N, 0, &hits, first, sizeof first) : -1;
+    if (dev->exact)
+        CHECK_MSG(keep == 0, "denormal scene: %d hits differ from the oracle; first: %s", keep,
+                  first);
+    flush = rays ? differing_hits(cpu_f, vk_f, s, rays, N, 0, &hits, first, sizeof first) : -1;
+    if (dev->exact_flush)
+        CHECK_MSG(flush == 0,
+                  "denormal scene (flush): %d hits differ from the flushing oracle; "
+                  "first: %s",
+                  flush, first);
+    printf("denormal scene, %d rays: the oracle's two policies differ on %d; vulkan differs from "
+           "the preserving oracle on %d (%s), from the flushing oracle on %d (%s)\n",
+           N, policies, keep, dev->exact ? "promised, checked" : "not promised", flush,
+           dev->exact_flush ? "promised, checked" : "not promised");
+    free(rays);
+    rt_scene_destroy(s);
+}
+
+/* The GLSL soft maths against the C header, bit for bit. */
+static void check_soft_math(void) {
+    uint32_t sp[512];
+    int ns = sm_specials(sp);
+    size_t n = (size_t)ns * (size_t)ns + 100000;
+    uint32_t *in = malloc(n * 4 * sizeof *in), *out = malloc(n * 3 * sizeof *out);
+    CHECK(in && out);
+    if (!in || !out) {
+        free(in);
+        free(out);
+        return;
+    }
+    size_t k = 0;
+    for (int i = 0; i < ns; i++)
+        for (int j = 0; j < ns; j++, k++) {
+            uint32_t *q = in + 4 * k;
+            q[0] = sp[i], q[1] = sp[j], q[2] = sp[(i * 7 + j) % ns], q[3] = sp[(j * 13 + i) % ns];
+        }
+    uint64_t seed = 0x243f6a8885a308d3ull;
+    for (; k < n; k++) {
+        uint32_t *q = in + 4 * k;
+        if (k % 3 == 0) {
+            sm_dop_quad(&seed, q);
+        } else if (k % 3 == 1) {
+            sm_div_pair(&seed, &q[0], &q[1]);
+            q[2] = sm_operand(&seed), q[3] = sm_operand(&seed);
+        } else {
+            for (int j = 0; j < 4; j++) q[j] = sm_rand(&seed);
+        }
+    }
+    for (int ftz = 0; ftz <= 1; ftz++) {
+        rt_error err;
+        memset(&err, 0, sizeof err);
+        rt_status st = rt_vk_soft_math_run(NULL, in, n, ftz, out, &err);
+        CHECK_MSG(st == RT_OK, "soft maths on the device: %s", err.message);
+        if (st != RT_OK) continue;
+        long bad = 0;
+        for (size_t i = 0; i < n; i++) {
+            const uint32_t *q = in + 4 * i;
+            uint32_t want[3] = {rt_sm_div_bits_(q[0], q[1], ftz), rt_sm_sqrt_bits_(q[0], ftz),
+                                rt_sm_dop_bits_(q[0], q[1], q[2], q[3], ftz)};
+            static const char *const fn[3] = {"div", "sqrt", "diff_of_products"};
+            for (int j = 0; j < 3; j++)
+                if (out[3 * i + j] != want[j] && bad++ < 5)
+                    CHECK_MSG(0, "%s%s(%08x, %08x, %08x, %08x): glsl %08x, C %08x", fn[j],
+                              ftz ? "_ftz" : "", q[0], q[1], q[2], q[3], out[3 * i + j], want[j]);
+        }
+        CHECK_MSG(bad == 0, "soft maths%s: %ld results differ from rt_soft_math.h",
+                  ftz ? " (ftz)" : "", bad);
+        printf("soft maths%s: %zu operand sets x 3 functions, %ld differ\n", ftz ? " (ftz)" : "", n,
+               bad);
+    }
+    free(in);
+    free(out);
+}
+#endif
+
+int main(void) {
+#ifndef RT_HAVE_VULKAN
+    test_skip("this build has no Vulkan backend (RT_VULKAN=OFF, or no loader or glslangValidator)");
+#else
+    rt_vk_device_info *devs;
+    int count;
+    rt_error err;
+    memset(&err, 0, sizeof err);
+    if (rt_vk_devices(&devs, &count, &err) != RT_OK) test_skip(err.message);
+    int pick = rt_vk_select(devs, count, NULL, &err);
+    rt_vk_device_info dev = devs[pick];
+    free(devs);
+    printf("device: %s (%s, %s)\n", dev.name, dev.driver, rt_vk_exactness_note(&dev, 0));
+    check_soft_math();
+    cpu_r = test_renderer("cpu", 0);
+    vk_r = test_renderer("vulkan", 0);
+    if (!cpu_r || !vk_r) return TEST_END();
+    static const char *const shipped[] = {"cornell", "keyframes"};
+    for (int i = 0; i < 2; i++) check_scene(shipped[i]);
+    check_uploads();
+    check_denormals(&dev);
+    /* A device that does not exist is an error with a reason. */
+    rt_scene *s = test_builtin_scene("cornell", 32, 18);
+    rt_renderer *bad = test_renderer("vulkan:99", 0);
+    if (s && bad) {
+        rt_framebuffer fb;
+        CHECK(render_with(bad, s, RT_AOV_NONE, 0, RT_TRI_TEST_WATERTIGHT, &fb, NULL) ==
+              RT_ERROR_INVALID_ARGUMENT);
+        CHECK_CONTAINS(rt_renderer_error(bad), "no Vulkan device 99");
+    }
+    if (s) rt_scene_destroy(s);
+    return TEST_END();
+#endif
+}
