@@ -2,7 +2,7 @@
 # gpu_check.sh - one run, on a machine with a GPU, of everything that needs
 # one: build, list the devices, render the shared scenes and run the
 # robustness suite on every OpenCL device in both maths profiles (native,
-# portable) and both denormal policies, compare each result with the CPU
+# portable) and on every Vulkan device (portable), in both denormal policies, compare each result with the CPU
 # oracle of the same policy (identical, or the first differing pixel with
 # both values), time the frames, and write one report file.
 #
@@ -48,10 +48,14 @@ ext=pfm
 
 # ---- devices ----------------------------------------------------------------
 say ""; say "## Devices"; say ""; say '```'
-"$rtcl" devices 2>&1 | tee -a "$report" > "$tmp/devices.txt"
+"$rtcl" devices --api opencl 2>&1 | tee -a "$report" > "$tmp/devices.txt"
+"$rtcl" devices --api vulkan 2>&1 | tee -a "$report" > "$tmp/vk_devices.txt"
 say '```'
-mapfile -t devices < <(sed -n -E 's/^  device ([0-9]+): .*/\1/p' "$tmp/devices.txt")
-[ "${#devices[@]}" -gt 0 ] || { say "no OpenCL device: nothing to check"; exit 2; }
+# Device backends to check: "opencl:N" and "vulkan:N" for every device found.
+targets=()
+for d in $(sed -n -E 's/^  device ([0-9]+): .*/\1/p' "$tmp/devices.txt"); do targets+=("opencl:$d"); done
+for d in $(sed -n -E 's/^  device ([0-9]+): .*/\1/p' "$tmp/vk_devices.txt"); do targets+=("vulkan:$d"); done
+[ "${#targets[@]}" -gt 0 ] || { say "no OpenCL or Vulkan device: nothing to check"; exit 2; }
 
 # ---- scenes -----------------------------------------------------------------
 scenes=()
@@ -96,10 +100,12 @@ for scene in "${scenes[@]}"; do
         cpu=$(render "$scene" "$tmp/cpu.$ext" --backend cpu --denormals "$policy") || {
             say "| $name | $policy | $cpu | | | | | | |"; status=1; continue; }
         read -r cmin cmed _ <<< "$cpu"
-        for d in "${devices[@]}"; do
+        for d in "${targets[@]}"; do
             declare -A med=()
-            for profile in native portable; do
-                r=$(render "$scene" "$tmp/dev.$ext" --backend opencl --device "$d" \
+            profiles="native portable"
+            [ "${d%%:*}" = vulkan ] && profiles=portable # Vulkan promises no correctly rounded division
+            for profile in $profiles; do
+                r=$(render "$scene" "$tmp/dev.$ext" --backend "$d" \
                     --device-math "$profile" --denormals "$policy") || {
                     say "| $name | $policy | $cmin / $cmed | $d | $profile | $r | | | |"; status=1; continue; }
                 read -r dmin dmed dmr <<< "$r"
@@ -118,8 +124,10 @@ done
 # ---- robustness suite -------------------------------------------------------
 say ""; say "## Robustness suite (watertight), every device, both profiles and policies"; say ""
 words="cpu cpu+flush"
-for d in "${devices[@]}"; do
-    for p in native portable; do words="$words opencl:$d+$p opencl:$d+$p+flush"; done
+for d in "${targets[@]}"; do
+    profiles="native portable"
+    [ "${d%%:*}" = vulkan ] && profiles=portable
+    for p in $profiles; do words="$words $d+$p $d+$p+flush"; done
 done
 mkdir -p "$tmp/robust"
 if RTCL=$rtcl RT_SOURCE_DIR=$root RT_BINARY_DIR=$tmp/robust RT_ROBUST_BACKENDS=$words \

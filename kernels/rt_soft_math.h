@@ -1,17 +1,21 @@
 /* rt_soft_math.h - IEEE 754 binary32 division, square root and difference of
- * products, correctly rounded (round to nearest, ties to even), computed with
- * 32-bit integer arithmetic only.
+ * products, correctly rounded (round to nearest, ties to even), from exact
+ * 32-bit integer arithmetic and correctly rounded float + - *.
  *
- * Valid C99 and valid OpenCL C (1.2 and later, embedded profile included).
- * For devices without fp64 and without a correctly rounded divide or sqrt
- * (OpenCL allows 2.5 ulp division and 3 ulp sqrt, Vulkan 2.5 ulp division):
- * the functions need nothing but exact 32-bit integer arithmetic (unsigned
- * add, subtract, shifts, bitwise operations, compare; 12 x 12-bit products in
- * 32-bit ints). They use no float arithmetic at all, so FP contraction, the
- * device's denormal handling and its rounding of float operations cannot
- * change a result; no double, no 64-bit integers, no division of any kind.
- * docs/PORTABLE_MATH.md has the algorithms and why each result is the
- * correctly rounded one.
+ * Valid C99 and valid OpenCL C (1.2 and later). For devices without fp64
+ * and without a correctly rounded divide or sqrt (OpenCL allows 2.5 ulp
+ * division and 3 ulp sqrt, Vulkan 2.5 ulp division). What the functions use:
+ * 32-bit unsigned add, subtract, multiply (the low 32 bits, wrapping),
+ * shifts, bitwise operations, compare; and, in division and sqrt only, float
+ * add, subtract and multiply on operands scaled to [1, 4), so that no
+ * intermediate is ever subnormal or overflows (the device's denormal mode
+ * cannot change it). The float steps only guess the significand; the exact
+ * integer remainder then fixes it, and the result is correctly rounded for
+ * every input (the guesses' error bounds are checked for every divisor and
+ * every sqrt operand by tests/test_core_soft_math.c). No double, no 64-bit
+ * integers, no division, no sqrt or fma; FP contraction off (set below for
+ * OpenCL; C builds use -ffp-contract=off). docs/PORTABLE_MATH.md has the
+ * algorithms and why each result is the correctly rounded one.
  *
  * API (each also as a _bits function on the raw binary32 bit patterns):
  *   rt_soft_div(a, b)                    a / b
@@ -41,6 +45,9 @@
 #include "rt_layout.h"
 
 #ifdef RT_OPENCL
+/* The float steps assume each + - * is rounded on its own (OpenCL C lets the
+ * compiler fuse a * b + c unless told not to). The kernels set this too. */
+#pragma OPENCL FP_CONTRACT OFF
 #define RT_SM_FN
 #define RT_SM_BITS(f)  as_uint(f)
 #define RT_SM_FLOAT(u) as_float(u)
@@ -75,6 +82,12 @@ static inline rt_u32 rt_sm_clz_(rt_u32 x) {
 #else
 #define RT_SM_CLZ(x) rt_sm_clz_(x)
 #endif
+#endif
+
+/* Called where a fast path's guard sends an operand to the bit-serial path;
+ * the test counts them (there must be none). */
+#ifndef RT_SM_GUARD_HOOK
+#define RT_SM_GUARD_HOOK() ((void)0)
 #endif
 
 #define RT_SM_SIGN  0x80000000u
@@ -142,6 +155,89 @@ RT_SM_FN rt_u32 rt_sm_round_pack_(rt_u32 sign, rt_i32 e, rt_u32 sig, rt_u32 stic
 
 /* ---- division --------------------------------------------------------- */
 
+/* The slow, self-contained path: restoring division, one quotient bit per
+ * step. q = floor(ma 2^24 / mb) in [2^24, 2^25) for ma in [mb, 2 mb), and
+ * the remainder in *r. Invariant: r < mb < 2^24, so 2r < 2^25 fits. */
+RT_SM_FN rt_u32 rt_sm_div_serial_(rt_u32 ma, rt_u32 mb, rt_u32 *rem) {
+    rt_u32 r = ma - mb, q = 1u;
+    for (int i = 0; i < 24; i++) {
+        r <<= 1;
+        rt_u32 t = r - mb;
+        rt_u32 bit = (t >> 31) ^ 1u; /* r >= mb: no wrap-around (both < 2^25) */
+        q = (q << 1) | bit;
+        r = bit ? t : r;
+    }
+    *rem = r;
+    return q;
+}
+
+/* 1 / fb for fb in [1, 2), with |y fb - 1| <= 1.5 2^-24 (the test checks
+ * every fb): the linear minimax start y0 = 24/17 - 8/17 fb (relative error
+ * at most 1/17), e = 1 - fb y0 (exact: Sterbenz), y0 (1 + e) (1 + e^2) =
+ * (1 - e^4) / fb (Goldschmidt: e^2 is computed beside the chain; error below
+ * 1.3e-5), then one Newton step y += y (1 - fb y), which also corrects the
+ * rounding errors so far. The chain is 12 operations long (three Newton
+ * steps: 14). Every intermediate is 0 or a normal float of magnitude in
+ * [2^-50, 2]: no subnormal, no overflow, so a device's denormal flushing
+ * cannot change it. */
+RT_SM_FN float rt_sm_recip_(float fb) {
+    float y = 1.41176471f - 0.470588235f * fb;
+    float e = 1.0f - fb * y;
+    float e2 = e * e;
+    y = y + y * e;
+    y = y + y * e2;
+    e = 1.0f - fb * y;
+    y = y + y * e;
+    return y;
+}
+
+/* A positive float q in [2^-1, 2^1] as the integer q 2^24, and whether its
+ * exponent was outside that range (*bad, then the value is meaningless). */
+RT_SM_FN rt_u32 rt_sm_fix24_(float q, rt_u32 *bad) {
+    rt_u32 qb = RT_SM_BITS(q), sh = (qb >> 23) - 126u; /* 0, 1 or 2 */
+    *bad |= sh > 2u ? 1u : 0u;
+    return ((qb & RT_SM_FRAC) | 0x00800000u) << (sh & 3u);
+}
+
+/* The quotient's first guess: ma 2^24 / mb (ma doubled if dbl) to within
+ * less than 4 units, for ma, mb in [2^23, 2^24) with ma 2^dbl in [mb, 2 mb).
+ * The significands as floats fa = ma 2^(dbl - 23) in [1, 4) and fb in
+ * [1, 2) (integer bit manipulation, so no subnormal ever reaches the float
+ * unit); the quotient fa / fb in [1, 2) as fa * (1 / fb), rounded once. */
+RT_SM_FN rt_u32 rt_sm_div_guess_(rt_u32 ma, rt_u32 mb, rt_u32 dbl, rt_u32 *bad) {
+    float fa = RT_SM_FLOAT(((127u + dbl) << 23) | (ma & RT_SM_FRAC));
+    float fb = RT_SM_FLOAT(0x3f800000u | (mb & RT_SM_FRAC));
+    return rt_sm_fix24_(fa * rt_sm_recip_(fb), bad);
+}
+
+/* Q = floor(ma 2^(24 + dbl) / mb) in [2^24, 2^25) and the remainder in *rem,
+ * for ma, mb in [2^23, 2^24) with ma 2^dbl in [mb, 2 mb): the guess, the
+ * exact remainder, then restoring steps (docs/PORTABLE_MATH.md). */
+RT_SM_FN rt_u32 rt_sm_div_sig_(rt_u32 ma, rt_u32 mb, rt_u32 dbl, rt_u32 *rem) {
+    rt_u32 bad = 0u;
+    rt_u32 q = rt_sm_div_guess_(ma, mb, dbl, &bad) - 4u;
+    ma <<= dbl;
+    /* Q lies in [q, q + 8) (the guess G is within 4 units: Q in [G - 4,
+     * G + 3]): then R' = ma 2^24 - q mb is in [0, 8 mb), below 2^27, and the
+     * 32-bit wrapped products give it exactly. Three restoring steps of 4,
+     * 2 and 1 times mb bring it into [0, mb). */
+    rt_u32 r = (ma << 24) - q * mb;
+    bad |= r >= (mb << 3) ? 1u : 0u;
+    for (int k = 2; k >= 0; k--) {
+        rt_u32 t = r - (mb << k);
+        rt_u32 bit = (t >> 31) ^ 1u; /* r >= mb 2^k (r, t below 2^27) */
+        q += bit << k;
+        r = bit ? t : r;
+    }
+    /* Never taken (the bound is proven); a guard, not a path to rely on. */
+    if (bad) {
+        RT_SM_GUARD_HOOK();
+        q = rt_sm_div_serial_(ma, mb, &r);
+    }
+    *rem = r;
+    return q;
+}
+
 RT_SM_FN rt_u32 rt_sm_div_bits_(rt_u32 a, rt_u32 b, int ftz) {
     if (ftz) {
         a = rt_sm_daz_(a);
@@ -162,25 +258,79 @@ RT_SM_FN rt_u32 rt_sm_div_bits_(rt_u32 a, rt_u32 b, int ftz) {
     rt_sm_unpack_(ab, &mb, &eb);
     /* a / b = (ma / mb) 2^(ea - eb); with ma in [mb, 2 mb) the quotient's
      * biased exponent is ea - eb + 127. */
-    rt_i32 e = ea - eb + 127;
-    if (ma < mb) {
-        ma <<= 1;
-        e -= 1;
-    }
-    /* Restoring division: q = floor(ma 2^24 / mb) in [2^24, 2^25), r the
-     * remainder. Invariant: r < mb < 2^24, so 2r < 2^25 fits. */
-    rt_u32 r = ma - mb, q = 1u;
-    for (int i = 0; i < 24; i++) {
-        r <<= 1;
-        rt_u32 t = r - mb;
-        rt_u32 bit = (t >> 31) ^ 1u; /* r >= mb: no wrap-around (both < 2^25) */
-        q = (q << 1) | bit;
-        r = bit ? t : r;
-    }
+    rt_u32 dbl = ma < mb ? 1u : 0u;
+    rt_i32 e = ea - eb + 127 - (rt_i32)dbl;
+    rt_u32 r, q = rt_sm_div_sig_(ma, mb, dbl, &r);
     return rt_sm_round_pack_(sign, e, q, r, ftz);
 }
 
 /* ---- square root ------------------------------------------------------- */
+
+/* The slow, self-contained path: digit by digit, root = floor(sqrt(t 2^24))
+ * for t in [2^24, 2^26), and the remainder in *rem. */
+RT_SM_FN rt_u32 rt_sm_sqrt_serial_(rt_u32 t, rt_u32 *rem_out) {
+    rt_u32 root = 0u, rem = 0u;
+    /* 13 bit pairs of t, then 12 zero pairs. After each step root =
+     * floor(sqrt(leading pairs)) and rem = leading pairs - root^2 <= 2 root,
+     * below 2^26. */
+    for (int i = 0; i < 25; i++) {
+        rt_u32 pair = i < 13 ? (t >> (24 - 2 * i)) & 3u : 0u;
+        rem = (rem << 2) | pair;
+        rt_u32 trial = (root << 2) | 1u;
+        root <<= 1;
+        rt_u32 d = rem - trial;
+        rt_u32 bit = (d >> 31) ^ 1u; /* rem < 2^28, trial < 2^27 */
+        root |= bit;
+        rem = bit ? d : rem;
+    }
+    *rem_out = rem;
+    return root;
+}
+
+/* The square root's first guess: sqrt(t 2^24) for t = m 2^(1 + odd), m in
+ * [2^23, 2^24), to within 1.7 units (tests check all 2^24 inputs). fx = t
+ * 2^-24 in [1, 4) as a float; y ~ 1 / sqrt(fx) from the integer estimate
+ * and two Newton steps y *= 1.5 - (fx / 2) y y; s = fx y, then one Newton
+ * step on s: s += (y / 2) (fx - s s). Every intermediate is a normal float
+ * of magnitude in [2^-30, 4]. */
+RT_SM_FN rt_u32 rt_sm_sqrt_guess_(rt_u32 m, rt_u32 odd, rt_u32 *bad) {
+    float fx = RT_SM_FLOAT(((127u + odd) << 23) | (m & RT_SM_FRAC));
+    float hx = 0.5f * fx;
+    float y = RT_SM_FLOAT(0x5f3759dfu - (RT_SM_BITS(fx) >> 1));
+    y = y * (1.5f - hx * y * y);
+    y = y * (1.5f - hx * y * y);
+    float s = fx * y;
+    s = s + (0.5f * y) * (fx - s * s);
+    return rt_sm_fix24_(s, bad);
+}
+
+/* root = floor(sqrt(t 2^24)) in [2^24, 2^25) for t = m 2^(1 + odd), m in
+ * [2^23, 2^24), and the remainder t 2^24 - root^2 in *rem_out: the guess,
+ * the exact remainder, then restoring steps (docs/PORTABLE_MATH.md). */
+RT_SM_FN rt_u32 rt_sm_sqrt_sig_(rt_u32 m, rt_u32 odd, rt_u32 *rem_out) {
+    rt_u32 t = m << (1u + odd);
+    rt_u32 bad = 0u;
+    rt_u32 root = rt_sm_sqrt_guess_(m, odd, &bad) - 2u;
+    /* The guess G is within 1.7 units of sqrt(M), so the root is in [G - 2,
+     * G + 1], in [r0, r0 + 4) for r0 = G - 2: then M - r0^2 is in [0, 8 r0 +
+     * 16), below 2^29, and the 32-bit wrapped products give it exactly (M =
+     * t 2^24). Steps of 2 and 1: (r + j)^2 - r^2 = 2 j r + j^2. */
+    rt_u32 rem = (t << 24) - root * root;
+    bad |= rem >= (root << 3) + 16u ? 1u : 0u;
+    for (int k = 1; k >= 0; k--) {
+        rt_u32 d = rem - ((root << (k + 1u)) + (1u << (2u * k)));
+        rt_u32 bit = (d >> 31) ^ 1u; /* rem, d below 2^29 */
+        root += bit << k;
+        rem = bit ? d : rem;
+    }
+    /* Never taken (every fx is checked); a guard, not a path to rely on. */
+    if (bad) {
+        RT_SM_GUARD_HOOK();
+        root = rt_sm_sqrt_serial_(t, &rem);
+    }
+    *rem_out = rem;
+    return root;
+}
 
 RT_SM_FN rt_u32 rt_sm_sqrt_bits_(rt_u32 x, int ftz) {
     if (ftz) x = rt_sm_daz_(x);
@@ -195,23 +345,9 @@ RT_SM_FN rt_u32 rt_sm_sqrt_bits_(rt_u32 x, int ftz) {
     /* x = m 2^(E - 23), E = e - 127 unbiased. Shift m left by k = 25 (E
      * even) or 26 (E odd): M = m 2^k in [2^48, 2^50) and E - 23 - k is even,
      * so sqrt(x) = sqrt(M) 2^((E - 23 - k) / 2) with sqrt(M) in [2^24, 2^25).
-     * M = t 2^24 with t = m 2^(k - 24) below 2^26: 13 bit pairs of t, then
-     * 12 zero pairs. */
+     * M = t 2^24 with t = m 2^(k - 24) below 2^26. */
     rt_u32 odd = (rt_u32)(e + 1) & 1u; /* E = e - 127 is odd when e is even */
-    rt_u32 t = m << (1u + odd);
-    rt_u32 root = 0u, rem = 0u;
-    /* Digit by digit: after each step root = floor(sqrt(M's leading pairs))
-     * and rem = leading pairs - root^2 <= 2 root, below 2^26. */
-    for (int i = 0; i < 25; i++) {
-        rt_u32 pair = i < 13 ? (t >> (24 - 2 * i)) & 3u : 0u;
-        rem = (rem << 2) | pair;
-        rt_u32 trial = (root << 2) | 1u;
-        root <<= 1;
-        rt_u32 d = rem - trial;
-        rt_u32 bit = (d >> 31) ^ 1u; /* rem < 2^28, trial < 2^27 */
-        root |= bit;
-        rem = bit ? d : rem;
-    }
+    rt_u32 rem, root = rt_sm_sqrt_sig_(m, odd, &rem);
     /* Result exponent floor(E / 2), biased: floor((e - 127) / 2) + 127 =
      * floor((e + 149) / 2) - 11, with e + 149 > 0 (e >= -22). */
     rt_i32 er = (rt_i32)((rt_u32)(e + 149) >> 1) - 11;

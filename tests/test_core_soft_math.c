@@ -21,6 +21,10 @@
 #include <stdio.h>
 #include <string.h>
 
+/* How often a fast path's guard fired (rt_soft_math.h calls the hook). */
+static long sm_guard_taken;
+#define RT_SM_GUARD_HOOK() ((void)sm_guard_taken++)
+
 #include "check.h"
 #include "rt_soft_math.h"
 #include "soft_math_cases.h"
@@ -161,6 +165,107 @@ static void check_dop(const char *what, const uint32_t q[4]) {
 #endif
 }
 
+/* ---- the fast paths' significand steps, exactly (64-bit reference) ---- */
+
+static tally t_div_sig = {"div significand steps", 0, 0};
+static tally t_sqrt_sig = {"sqrt significand steps", 0, 0};
+static double worst_div_guess, worst_sqrt_guess; /* in units of the result's last bit */
+
+/* rt_sm_div_sig_ against floor / remainder in 64 bits, and the distance of
+ * the float guess from the exact quotient (the proof needs below 4). */
+static void check_div_sig(uint32_t ma, uint32_t mb) {
+    uint32_t dbl = ma < mb, bad = 0, r;
+    uint64_t num = (uint64_t)ma << (24 + dbl);
+    uint32_t q = rt_sm_div_sig_(ma, mb, dbl, &r);
+    uint32_t in[2] = {ma, mb};
+    uint32_t want_q = (uint32_t)(num / mb), want_r = (uint32_t)(num % mb);
+    report(&t_div_sig, "quotient", in, 2, want_q, q);
+    report(&t_div_sig, "remainder", in, 2, want_r, r);
+    double g = (double)rt_sm_div_guess_(ma, mb, dbl, &bad);
+    double d = fabs(g - (double)num / (double)mb);
+    if (bad) d = 1e9;
+    if (d > worst_div_guess) worst_div_guess = d;
+}
+
+/* rt_sm_sqrt_sig_ against the exact integer root and remainder. */
+static void check_sqrt_sig(uint32_t m, uint32_t odd) {
+    uint32_t bad = 0, rem;
+    uint64_t big = (uint64_t)m << (25 + odd);
+    uint32_t root = rt_sm_sqrt_sig_(m, odd, &rem);
+    uint64_t w = (uint64_t)sqrt((double)big); /* within one of the floor */
+    while (w * w > big) w--;
+    while ((w + 1) * (w + 1) <= big) w++;
+    uint32_t in[2] = {m, odd};
+    report(&t_sqrt_sig, "root", in, 2, (uint32_t)w, root);
+    report(&t_sqrt_sig, "remainder", in, 2, (uint32_t)(big - w * w), rem);
+    double g = (double)rt_sm_sqrt_guess_(m, odd, &bad);
+    double d = fabs(g - sqrt((double)big));
+    if (bad) d = 1e9;
+    if (d > worst_sqrt_guess) worst_sqrt_guess = d;
+}
+
+/* A float from a significand in [2^23, 2^24) and a biased exponent (1 to
+ * 254), or a subnormal when the exponent is 0 or below (the significand
+ * shifted right, only where no bit is lost). Returns 0 where not possible. */
+static int make_float(uint32_t m, int e, uint32_t *out) {
+    if (e >= 255) return 0;
+    if (e >= 1) {
+        *out = ((uint32_t)e << 23) | (m & 0x007fffffu);
+        return 1;
+    }
+    int sh = 1 - e;
+    if (sh > 23 || (m & ((1u << sh) - 1u))) return 0;
+    *out = m >> sh;
+    return 1;
+}
+
+/* The operands whose quotients target the fast path's corners: exact
+ * quotients, quotients one part in 2^40 or so beside a midpoint of two
+ * floats (a normal result has no exact midpoint), the divisor's significand
+ * near 1 and near 2, and results near 2^-126 and 2^127 (and subnormal). */
+static void div_corners(uint64_t *seed) {
+    for (long i = 0; i < 300000; i++) {
+        uint32_t ma, mb = (sm_rand(seed) & 0x00ffffffu) | 0x00800000u;
+        uint32_t kind = sm_rand(seed) % 5u;
+        if (kind == 0) { /* exact: ma = K mb' with mb' = mb >> j */
+            int kb = 1 + (int)(sm_rand(seed) % 23u);
+            uint32_t K = (sm_rand(seed) & ((1u << kb) - 1u)) | 1u, B = mb >> kb;
+            if (!B) B = 1;
+            uint32_t p = K * B; /* below 2^24 */
+            uint32_t s1 = RT_SM_CLZ(p) - 8u, s2 = RT_SM_CLZ(B) - 8u;
+            ma = p << s1, mb = B << s2;
+        } else if (kind <= 2) { /* beside the midpoint M (25 bits, odd) */
+            uint32_t M = (sm_rand(seed) & 0x00ffffffu) | 0x01000001u;
+            uint32_t k = 24u + (kind == 2); /* quotient in [1, 2) or [1/2, 1) */
+            uint64_t prod = (uint64_t)M * mb;
+            ma = (uint32_t)(prod >> k) + (sm_rand(seed) & 1u);
+            if (ma < 0x00800000u || ma > 0x00ffffffu) continue;
+        } else if (kind == 3) { /* mb near 1 or near 2 */
+            uint32_t off = sm_rand(seed) % 64u;
+            mb = sm_rand(seed) & 1u ? 0x00800000u + off : 0x00ffffffu - off;
+            ma = (sm_rand(seed) & 0x00ffffffu) | 0x00800000u;
+            if (sm_rand(seed) & 1u) ma = sm_rand(seed) & 1u ? 0x00800000u + off : 0x00ffffffu - off;
+        } else {
+            ma = (sm_rand(seed) & 0x00ffffffu) | 0x00800000u;
+        }
+        check_div_sig(ma, mb);
+        /* The exponents: a result near 2^-126 (normal or subnormal), near
+         * 2^127, or anywhere; subnormal operands where they can be exact. */
+        int er = (int)(sm_rand(seed) % 8u) - 3; /* result biased exponent -3 .. 4 */
+        uint32_t where = sm_rand(seed) % 3u;
+        if (where == 1) er += 250;
+        if (where == 2) er = 1 + (int)(sm_rand(seed) % 254u);
+        int eb = 1 + (int)(sm_rand(seed) % 254u);
+        if (sm_rand(seed) % 8u == 0) eb = -(int)(sm_rand(seed) % 20u);
+        int ea = er + eb - 127 + (ma < mb); /* ma < mb lowers the exponent by 1 */
+        uint32_t a, b;
+        if (!make_float(ma, ea, &a) || !make_float(mb, eb, &b)) continue;
+        uint32_t sg = sm_rand(seed) & 0x80000000u;
+        check_div("corner", a ^ sg, b);
+        check_div("corner", a, b ^ sg);
+    }
+}
+
 int main(void) {
     uint32_t sp[512];
     int ns = sm_specials(sp);
@@ -239,6 +344,44 @@ int main(void) {
         check_dop("midpoint product", q);
     }
 
+    /* The fast paths, as a proof by exhaustion where it can be one. sqrt's
+     * significand steps depend on m and the exponent's parity only: all
+     * 2^24 of them, exactly. Division's guess uses 1 / fb for each of the
+     * 2^23 divisors: |fb y - 1| <= 1.5 2^-24 for every one is the premise of
+     * the bound docs/PORTABLE_MATH.md proves (guess within 4 units). */
+    for (uint32_t odd = 0; odd < 2; odd++) {
+        for (uint32_t m = 0x00800000u; m <= 0x00ffffffu; m++) check_sqrt_sig(m, odd);
+    }
+    double worst_recip = 0.0;
+    for (uint32_t mb = 0x00800000u; mb <= 0x00ffffffu; mb++) {
+        float fb = flt(0x3f800000u | (mb & 0x007fffffu));
+        double d = fabs((double)fb * (double)rt_sm_recip_(fb) - 1.0); /* exact product */
+        if (d > worst_recip) worst_recip = d;
+    }
+    printf("1/fb for all 2^23 fb: |fb y - 1| <= %.4g 2^-24; sqrt guess within %.4f units\n",
+           worst_recip * 0x1p24, worst_sqrt_guess);
+    CHECK_MSG(worst_recip <= 1.5 * 0x1p-24, "1/fb off by %.4g 2^-24", worst_recip * 0x1p24);
+    CHECK_MSG(worst_sqrt_guess < 2.0, "sqrt guess off by %.4f units", worst_sqrt_guess);
+    div_corners(&seed);
+    for (long i = 0; i < 2000000; i++) { /* random significands */
+        uint32_t ma = (sm_rand(&seed) & 0x00ffffffu) | 0x00800000u;
+        check_div_sig(ma, (sm_rand(&seed) & 0x00ffffffu) | 0x00800000u);
+    }
+    printf("division guess within %.4f units (bound 4)\n", worst_div_guess);
+    CHECK_MSG(worst_div_guess < 4.0, "division guess off by %.4f units", worst_div_guess);
+    /* The guard paths (never taken by the above) still compute the same. */
+    long serial_bad = 0;
+    for (long i = 0; i < 100000; i++) {
+        uint32_t ma = (sm_rand(&seed) & 0x00ffffffu) | 0x00800000u;
+        uint32_t mb = (sm_rand(&seed) & 0x00ffffffu) | 0x00800000u, r1, r2, dbl = ma < mb;
+        uint32_t q1 = rt_sm_div_serial_(ma << dbl, mb, &r1), q2 = rt_sm_div_sig_(ma, mb, dbl, &r2);
+        serial_bad += q1 != q2 || r1 != r2;
+        uint32_t t = ma << (1u + (i & 1));
+        q1 = rt_sm_sqrt_serial_(t, &r1), q2 = rt_sm_sqrt_sig_(ma, (uint32_t)(i & 1), &r2);
+        serial_bad += q1 != q2 || r1 != r2;
+    }
+    CHECK_MSG(serial_bad == 0, "the bit-serial guard paths differ %ld times", serial_bad);
+
     /* Random operands. */
     for (long i = 0; i < n_random; i++) {
         uint32_t a, b;
@@ -258,7 +401,10 @@ int main(void) {
         check_dop("random", q);
     }
 
-    tally *all[] = {&t_div, &t_div_ftz, &t_sqrt, &t_sqrt_ftz, &t_dop, &t_dop_ftz, &t_dop_hw};
+    printf("fast-path guards taken (all of the above): %ld\n", sm_guard_taken);
+    CHECK_MSG(sm_guard_taken == 0, "the fast paths' guards fired %ld times", sm_guard_taken);
+    tally *all[] = {&t_div,     &t_div_ftz, &t_sqrt,    &t_sqrt_ftz, &t_dop,
+                    &t_dop_ftz, &t_dop_hw,  &t_div_sig, &t_sqrt_sig};
     for (unsigned i = 0; i < sizeof all / sizeof all[0]; i++) {
         printf("%-36s %9ld checked, %ld mismatches\n", all[i]->name, all[i]->checked, all[i]->bad);
         CHECK_MSG(all[i]->bad == 0, "%s: %ld mismatches", all[i]->name, all[i]->bad);

@@ -255,7 +255,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
      * another order than the packet tracer's), so that a CI run does not
      * fail on a known, recorded fault; local runs fuzz all four. */
     static int two = -1;
-    if (two < 0) two = getenv("RT_FUZZ_TRACE_TWO_TESTS") && *getenv("RT_FUZZ_TRACE_TWO_TESTS") == '1';
+    if (two < 0)
+        two = getenv("RT_FUZZ_TRACE_TWO_TESTS") && *getenv("RT_FUZZ_TRACE_TWO_TESTS") == '1';
     if (two) opt.tri_test = (rt_triangle_test)((flags >> 1) & 1);
     int n = (int)((size - 1) / (8 * sizeof(float)));
     if (n > MAX_RAYS) n = MAX_RAYS;
