@@ -746,16 +746,60 @@ static void pk_bvh(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, pk
 /* One instance for the groups of gm: the same rays when it is the identity,
  * else each lane's ray moved into object space as rt_trace_instance moves
  * it. */
+/* A kd-tree mesh (RT_INST_KD): the packet has no kd traversal, so each live
+ * lane goes through the oracle's (rt_kd_trace_mesh, kernels/rt_kd.h) from
+ * the lane's best hit so far, and keeps what it finds; the hit is then the
+ * oracle's by construction. */
+static void pk_kd_lanes(pk_state *st, const pk_geom *p, rt_u32 root, rt_u32 inst, pk_groups gm) {
+    for (pk_groups todo = gm & st->alive_groups; todo; todo &= todo - 1) {
+        const int g = lowest_bit(todo);
+        for (uint32_t m = st->alive[g]; m; m &= m - 1) {
+            const int i = lowest_bit(m);
+            rt_ray_d r;
+            rt_ray_pre pre;
+            lane_ray(p, g, i, &r);
+            rt_ray_prepare(&r, &pre);
+            rt_hit_d best;
+            best.t = st->t[g][i];
+            best.u = best.v = 0.0f;
+            best.prim = (rt_u32)st->prim[g][i];
+            best.inst = (rt_u32)st->inst[g][i];
+            best.entry = (rt_u32)st->entry[g][i];
+            rt_counters c = {0, 0, 0};
+            int occluded = rt_kd_trace_mesh(st->s, root, inst, &r, &pre, st->any_hit, &best, &c);
+            st->counts->box_tests += c.box_tests;
+            st->counts->tri_tests += c.tri_tests;
+            if (st->per_lane) {
+                st->box[g][i] += (int32_t)c.box_tests;
+                st->tri[g][i] += (int32_t)c.tri_tests;
+            }
+            if (occluded) {
+                retire(st, g, 1u << i, best.prim);
+            } else if (best.entry != (rt_u32)st->entry[g][i] || best.t != st->t[g][i]) {
+                /* u / 1 and v / 1 are u and v */
+                accept_lane(st, g, i, best.entry, inst, best.t, best.u, best.v, 1.0f);
+            }
+        }
+    }
+}
+
 static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, pk_groups gm) {
     const rt_instance *in = &st->s->instances[inst];
     const rt_u32 entry = st->w->inst_root[inst];
+    const int kd = (in->flags & RT_INST_KD) != 0;
     if (in->flags & RT_INST_IDENTITY) {
-        pk_bvh(st, world, entry, inst, gm);
+        if (kd)
+            pk_kd_lanes(st, world, in->root, inst, gm);
+        else
+            pk_bvh(st, world, entry, inst, gm);
         return;
     }
     pk_geom obj;
     pk_geom_to_object(&obj, world, in);
-    pk_bvh(st, &obj, entry, inst, gm);
+    if (kd)
+        pk_kd_lanes(st, &obj, in->root, inst, gm);
+    else
+        pk_bvh(st, &obj, entry, inst, gm);
 }
 
 void RT_PK_TRACE(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *rays, int any_hit,

@@ -454,6 +454,16 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
 static int trace_instance(sw_ctx *x, rt_u32 inst, const rt_ray_d *r, const rt_ray_pre *p,
                           rt_hit_d *best) {
     const rt_instance *in = &x->s->instances[inst];
+    if (RT_INST_FLAGS(in) & RT_INST_KD) {
+        /* A kd-tree mesh: no wide traversal for it, so the ray goes through
+         * the oracle's (rt_trace_instance, kernels/rt_kd.h) from its best hit
+         * so far; what it finds is the oracle's by construction. */
+        rt_counters c = {0, 0, 0};
+        const int done = rt_trace_instance(x->s, inst, r, p, x->any_hit, best, &c);
+        x->box_tests += c.box_tests;
+        x->tri_tests += c.tri_tests;
+        return done;
+    }
     const rt_u32 entry = x->inst_root[inst];
     /* A mesh whose root is a leaf (a wall, a box) is that leaf's blocks:
      * no traversal to set up (skipping the root's box test only lets the

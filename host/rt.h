@@ -396,6 +396,35 @@ typedef struct rt_trace_options {
 rt_status rt_trace_rays(rt_renderer *renderer, rt_scene *scene, const rt_ray *rays, size_t count,
                         rt_hit *hits, const rt_trace_options *options);
 
+/* ---- acceleration structure per mesh ------------------------------------ */
+
+/* The structure a renderer builds for a mesh: a BVH (the default), or an SAH
+ * kd-tree built exactly (Wald and Havran 2006) or by binning. Every choice
+ * gives identical hits and images; it changes build time, memory and
+ * tracing speed. Meant for static meshes: a kd-tree is rebuilt whole when its
+ * mesh changes, and a deforming mesh (rt_mesh_set_positions, an update
+ * policy other than RT_UPDATE_REBUILD) has a BVH whatever was set. */
+typedef enum rt_accel {
+    RT_ACCEL_BVH = 0,
+    RT_ACCEL_KD = 1,       /* exact SAH kd-tree */
+    RT_ACCEL_KD_BINNED = 2 /* binned SAH kd-tree */
+} rt_accel;
+
+/* Sets mesh_id's structure (the next frame builds it). */
+rt_status rt_mesh_set_accel(rt_scene *scene, uint32_t mesh_id, rt_accel accel);
+
+/* Sets the structure of every static mesh: every mesh that is no keyframe
+ * of an object with several, no blend mesh of one, and whose update policy
+ * is RT_UPDATE_REBUILD (deforming meshes keep theirs, a BVH unless set). */
+rt_status rt_scene_set_static_accel(rt_scene *scene, rt_accel accel);
+
+/* mesh_id's structure, RT_ACCEL_BVH for a mesh that does not exist or
+ * whose update policy is not RT_UPDATE_REBUILD. */
+rt_accel rt_mesh_accel(const rt_scene *scene, uint32_t mesh_id);
+
+/* "bvh", "kd", "kd-binned"; rt_accel_parse gives 0 for an unknown name. */
+const char *rt_accel_name(rt_accel accel);
+int rt_accel_parse(const char *name, rt_accel *accel);
 /* ---- dynamic scenes: deforming meshes, update policies, time ------------ */
 
 /* How a renderer brings a mesh's BVH up to date after its vertices moved
@@ -425,11 +454,13 @@ int rt_update_policy_parse(const char *name, rt_update_policy *out);
 /* Replaces the positions (3 floats each) of all vertex_count vertices of a
  * mesh, and its normals when normals is not NULL (only for a mesh that has
  * normals). vertex_count must equal the mesh's; the triangles stay. The
- * mesh's version is bumped, so renderers update its BVH by its policy. */
+ * mesh's version is bumped, so renderers update its BVH by its policy; a
+ * kd-tree mesh becomes a BVH mesh (RT_ACCEL_BVH: it deforms). */
 rt_status rt_mesh_set_positions(rt_scene *scene, uint32_t mesh_id, const float *positions,
                                 const float *normals, uint32_t vertex_count);
 
-/* The mesh's update policy (RT_UPDATE_REBUILD until set). */
+/* The mesh's update policy (RT_UPDATE_REBUILD until set). Any other policy
+ * gives the mesh a BVH, whatever its rt_accel says. */
 rt_status rt_mesh_set_update(rt_scene *scene, uint32_t mesh_id, rt_update_policy policy);
 
 /* Keyframe animation of an object: keyframe i is shown at time i / rate

@@ -4,12 +4,12 @@
  * the kernels' signatures by a test (tests/test_opencl_kernel_args.c asks the
  * built program for each argument's name). Valid C and OpenCL C.
  *
- * Tracing kernels start with the ten arrays of the scene view (RT_VIEW_ARGS
+ * Tracing kernels start with the eleven arrays of the scene view (RT_VIEW_ARGS
  * in rt_kernel_args.h), in the order of rt_scene_view. */
 #ifndef RT_KERNEL_ARG_INDEX_H
 #define RT_KERNEL_ARG_INDEX_H
 
-/* The scene view, arguments 0..9 of every tracing kernel. */
+/* The scene view, arguments 0..10 of every tracing kernel. */
 enum {
     RT_ARG_HDR,
     RT_ARG_NODES,
@@ -21,6 +21,7 @@ enum {
     RT_ARG_INST_IDS,
     RT_ARG_MATERIALS,
     RT_ARG_LIGHTS,
+    RT_ARG_KD_NODES,
     RT_ARG_VIEW_COUNT
 };
 
@@ -114,14 +115,14 @@ enum {
  * holds the enums above to the .cl files (defined there only). */
 typedef struct rt_kernel_signature {
     const char *kernel;
-    int view;              /* 1: the ten view arguments come first */
+    int view;              /* 1: the view arguments come first */
     int args;              /* the argument count (the *_ARGS enum) */
     const char *names[20]; /* after the view's */
 } rt_kernel_signature;
 
 static const char *const rt_kernel_view_names[RT_ARG_VIEW_COUNT] = {
-    "hdr",      "nodes",     "tris",     "tri_ids",   "tri_normals",
-    "tri_mats", "instances", "inst_ids", "materials", "lights"};
+    "hdr",       "nodes",    "tris",      "tri_ids", "tri_normals", "tri_mats",
+    "instances", "inst_ids", "materials", "lights",  "kd_nodes"};
 
 static const rt_kernel_signature rt_kernel_signatures[] = {
     {"rt_k_camera", 0, RT_K_CAMERA_ARGS, {"hdr", "first", "count", "rays"}},

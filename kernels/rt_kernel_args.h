@@ -1,6 +1,6 @@
 /* rt_kernel_args.h - what the OpenCL kernel files (rt_render.cl, rt_packet.cl)
  * share besides the maths: the scene-view arguments every tracing kernel
- * takes (in this order: host/cl_backend.c sets them as arguments 0..9) and
+ * takes (in this order: host/cl_backend.c sets them as arguments 0..10) and
  * the AOV codes of rt.h. OpenCL C only. */
 #ifndef RT_KERNEL_ARGS_H
 #define RT_KERNEL_ARGS_H
@@ -13,10 +13,14 @@
         __global const rt_tri *tris, __global const uint *tri_ids,                                 \
         __global const float *tri_normals, __global const uint *tri_mats,                          \
         __global const rt_instance *instances, __global const uint *inst_ids,                      \
-        __global const rt_material_d *materials, __global const rt_light_d *lights
+        __global const rt_material_d *materials, __global const rt_light_d *lights,                \
+        __global const rt_kd_node *kd_nodes
 
 #define RT_VIEW_INIT                                                                               \
-    { hdr, nodes, tris, tri_ids, tri_normals, tri_mats, instances, inst_ids, materials, lights }
+    {                                                                                              \
+        hdr, nodes, tris, tri_ids, tri_normals, tri_mats, instances, inst_ids, materials, lights,  \
+            kd_nodes                                                                               \
+    }
 
 /* AOV codes (rt_aov in rt.h). */
 #define AOV_NONE      0

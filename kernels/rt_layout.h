@@ -67,6 +67,7 @@ typedef struct rt_tri {
 /* Instance flags. */
 #define RT_INST_IDENTITY 1u /* object-to-world is the identity: no ray transform */
 #define RT_INST_NORMALS  2u /* the mesh has per-vertex normals */
+#define RT_INST_KD       4u /* the mesh has a kd-tree: see rt_kd_node */
 
 typedef struct rt_instance {
     float world_to_object[12]; /* rows 0..2 of the inverse matrix, row-major */
@@ -134,5 +135,25 @@ typedef struct rt_scene_header {
     float cam_right[3];
     float cam_up[3];
 } rt_scene_header;
+
+/* ---- kd-trees (host/accel/kd.h builds them, kernels/rt_kd.h traverses) ----
+ *
+ * A mesh with a kd-tree (instance flag RT_INST_KD) has one rt_node in 'nodes'
+ * at the instance's root: its box is the tree's root cell and a is the index
+ * of the tree's root in 'kd_nodes'; b is RT_NODE_LEAF_FLAG with count 0, so
+ * code that knows only BVHs sees an empty mesh, never a wrong index.
+ * kd nodes (8 bytes, Wald 2004) are in depth-first order:
+ *   inner: a = the split position's float bits, b = (right child << 2) | axis;
+ *          the left child is the next node;
+ *   leaf:  a = first entry in 'tris', b = (entry count << 2) | RT_KD_LEAF.
+ * A triangle that straddles leaves has one entry in 'tris' per leaf (with
+ * its tri_ids, tri_normals and tri_mats entries), so a leaf is a range of
+ * entries like a BVH leaf and is tested by the same code. */
+#define RT_KD_LEAF 3u
+
+typedef struct rt_kd_node {
+    rt_u32 a;
+    rt_u32 b;
+} rt_kd_node;
 
 #endif /* RT_LAYOUT_H */

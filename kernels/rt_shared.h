@@ -188,6 +188,7 @@ typedef struct rt_scene_view {
     RT_GLOBAL const rt_u32 *inst_ids;
     RT_GLOBAL const rt_material_d *materials;
     RT_GLOBAL const rt_light_d *lights;
+    RT_GLOBAL const rt_kd_node *kd_nodes; /* kd-tree meshes (rt_kd.h) */
 } rt_scene_view;
 
 /* ---- small vector helpers (explicit order of operations) ---------------- */
@@ -522,6 +523,8 @@ RT_FN int rt_descend(const rt_scene_view *s, RT_GLOBAL const rt_node *n, const r
     return 1;
 }
 
+#include "rt_kd.h" /* kd-tree meshes: rt_kd_trace_mesh */
+
 /* Traverses one mesh BVH from node 'root' with a ray already in the mesh's
  * space. best->t is the current upper end of the range. Returns 1 when any_hit
  * found an occluder. */
@@ -564,13 +567,16 @@ RT_FN void rt_ray_to_object(RT_GLOBAL const rt_instance *in, const rt_ray_d *r, 
 RT_FN int rt_trace_instance(const rt_scene_view *s, rt_u32 inst, const rt_ray_d *r,
                             const rt_ray_pre *p, int any_hit, rt_hit_d *best, rt_counters *c) {
     RT_GLOBAL const rt_instance *in = &s->instances[inst];
+    int kd = (RT_INST_FLAGS(in) & RT_INST_KD) != 0;
     if (RT_INST_FLAGS(in) & RT_INST_IDENTITY)
-        return rt_trace_mesh(s, in->root, inst, r, p, any_hit, best, c);
+        return kd ? rt_kd_trace_mesh(s, in->root, inst, r, p, any_hit, best, c)
+                  : rt_trace_mesh(s, in->root, inst, r, p, any_hit, best, c);
     rt_ray_d o;
     rt_ray_pre op;
     rt_ray_to_object(in, r, &o);
     rt_ray_prepare(&o, &op);
-    return rt_trace_mesh(s, in->root, inst, &o, &op, any_hit, best, c);
+    return kd ? rt_kd_trace_mesh(s, in->root, inst, &o, &op, any_hit, best, c)
+              : rt_trace_mesh(s, in->root, inst, &o, &op, any_hit, best, c);
 }
 
 /* The two-level traversal (Langr 2016, section 3.2.1): the object BVH, then

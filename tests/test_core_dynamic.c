@@ -14,7 +14,12 @@
  *   a refit gives exactly the boxes a walk of the tree computes.
  * - rt_scene_set_time: keyframes switch at the rate and loop, blends are
  *   exact at whole keyframes, keyed transforms rotate along the shortest
- *   arc, the camera follows its path; a still scene is left as it is. */
+ *   arc, the camera follows its path; a still scene is left as it is.
+ * - kd-trees (issue 18) are for static meshes: a deforming mesh (positions
+ *   set, a policy other than rebuild) keeps or gets a BVH, a still kd mesh
+ *   beside a refitted one is never refitted, and a layout holding kd meshes
+ *   is made anew each frame (never rewritten in place), with the oracle's
+ *   hits on cpu and packet. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -435,8 +440,80 @@ static void check_time(void) {
     rt_scene_destroy(s);
 }
 
+/* A kd-tree floor beside the refitted grid, frame after frame. */
+static void check_kd_static(const char *backend) {
+    uint32_t grid;
+    rt_scene *s = make_scene(&grid);
+    const uint32_t floor = 0;
+    CHECK(rt_mesh_set_update(s, grid, RT_UPDATE_REFIT) == RT_OK);
+    CHECK(rt_scene_set_static_accel(s, RT_ACCEL_KD) == RT_OK);
+    CHECK(rt_mesh_accel(s, floor) == RT_ACCEL_KD);
+    CHECK_MSG(rt_mesh_accel(s, grid) == RT_ACCEL_BVH, "a refitted mesh must keep its BVH");
+    /* Asked for explicitly, a refitting mesh still gets a BVH. */
+    CHECK(rt_mesh_set_accel(s, grid, RT_ACCEL_KD) == RT_OK);
+    CHECK(rt_mesh_accel(s, grid) == RT_ACCEL_BVH);
+    rt_renderer *r = new_renderer(backend, 2);
+    rt_ray *rays = malloc(sizeof(rt_ray) * RAYS);
+    rt_hit *a = malloc(sizeof(rt_hit) * RAYS), *b = malloc(sizeof(rt_hit) * RAYS);
+    make_rays(rays);
+    for (int fi = 0; fi < 4 && r; fi++) {
+        char what[96];
+        snprintf(what, sizeof what, "kd floor beside a refitted grid on %s, frame %d", backend, fi);
+        float *p = grid_positions(fi);
+        CHECK(rt_mesh_set_positions(s, grid, p, NULL, (GRID + 1) * (GRID + 1)) == RT_OK);
+        free(p);
+        CHECK_MSG(rt_trace_rays(r, s, rays, RAYS, a, NULL) == RT_OK, "%s: %s", what,
+                  rt_renderer_error(r));
+        CHECK_MSG(r->accel.kds[floor].node_count > 0 && r->accel.kds[grid].node_count == 0,
+                  "%s: the floor should be a kd-tree, the grid a BVH", what);
+        CHECK_MSG(r->accel.flat.kd_node_count > 0, "%s: no kd nodes in the layout", what);
+        rt_update_stats us;
+        rt_renderer_update_stats(r, &us);
+        CHECK_MSG(!us.layout_in_place, "%s: a layout with kd meshes was rewritten in place", what);
+        for (uint32_t i = 0; i < us.mesh_count; i++) {
+            if (fi > 0)
+                CHECK_MSG(us.meshes[i].mesh == grid, "%s: the still kd floor was updated", what);
+            if (fi > 0 && us.meshes[i].mesh == grid)
+                CHECK_MSG(us.meshes[i].action == RT_ACTION_REFIT, "%s: the grid was not refitted",
+                          what);
+        }
+        /* The reference: the same geometry with BVHs only, a fresh
+         * renderer, the oracle. */
+        uint32_t ref_grid;
+        rt_scene *rs = make_scene(&ref_grid);
+        p = grid_positions(fi);
+        CHECK(rt_mesh_set_positions(rs, ref_grid, p, NULL, (GRID + 1) * (GRID + 1)) == RT_OK);
+        free(p);
+        rt_renderer *ref = new_renderer("cpu", 1);
+        if (ref) {
+            CHECK(rt_trace_rays(ref, rs, rays, RAYS, b, NULL) == RT_OK);
+            CHECK_MSG(memcmp(a, b, sizeof(rt_hit) * RAYS) == 0,
+                      "%s: hits differ from the BVH oracle's", what);
+            rt_renderer_destroy(ref);
+        }
+        rt_scene_destroy(rs);
+    }
+    /* Positions given to a kd mesh make it a BVH: it deforms. */
+    CHECK(rt_mesh_set_update(s, floor, RT_UPDATE_REBUILD) == RT_OK);
+    const float fp[12] = {-3, -0.6f, -3, 3, -0.6f, -3, 3, -0.6f, 3, -3, -0.6f, 3};
+    CHECK(rt_mesh_set_positions(s, floor, fp, NULL, 4) == RT_OK);
+    CHECK(rt_mesh_accel(s, floor) == RT_ACCEL_BVH);
+    if (r) {
+        CHECK(rt_trace_rays(r, s, rays, RAYS, a, NULL) == RT_OK);
+        CHECK_MSG(r->accel.kds[floor].node_count == 0 && r->accel.flat.kd_node_count == 0,
+                  "a kd mesh given positions should have become a BVH (%s)", backend);
+    }
+    free(rays);
+    free(a);
+    free(b);
+    rt_renderer_destroy(r);
+    rt_scene_destroy(s);
+}
+
 int main(void) {
     check_time();
+    check_kd_static("cpu");
+    check_kd_static("packet");
     check_lbvh();
     const rt_update_policy policies[] = {RT_UPDATE_REFIT, RT_UPDATE_FAST, RT_UPDATE_AUTO,
                                          RT_UPDATE_REBUILD};

@@ -59,7 +59,8 @@ static const error_case cases[] = {
     {"unknown_light_key", "{\n  'lights': [{'position': [0, 0, 5], 'power': 2}]\n}", 2, 38,
      "unknown key 'power' in lights[0] (valid keys: position, color)"},
     {"unknown_mesh_key", "{\n  'meshes': {'t': {'path': 'a.obj'}}\n}", 2, 20,
-     "unknown key 'path' in meshes.t (valid keys: file, positions, triangles, normals, update)"},
+     "unknown key 'path' in meshes.t (valid keys: file, positions, triangles, normals, update, "
+     "accel)"},
     {"unknown_object_key", "{\n" MESH_T "  'objects': [{'mesh': 't', 'visible': true}]\n}", 3, 29,
      "unknown key 'visible' in objects[0] (valid keys: mesh, keyframes, frame, material"},
     {"unknown_transform_key",

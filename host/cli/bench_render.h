@@ -25,6 +25,7 @@ typedef struct bench_render_setup {
     int reps, threads, width, height;
     int device_math; /* rt_device_math of the "opencl" row */
     int denormals;   /* rt_denormals of every row */
+    int accel;       /* rt_accel for every static mesh, or -1: the scene's own */
     void (*progress)(const char *scene, const char *what);
     int verbose; /* print the OpenCL build log on stderr after the warm-up frame */
 } bench_render_setup;

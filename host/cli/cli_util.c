@@ -89,6 +89,10 @@ const char cli_renderer_usage[] =
     "  --device D     the OpenCL or Vulkan device: an index or part of a name (rtcl\n"
     "                 devices)\n"
     "  --threads N    worker threads, 0 = one per core [0]\n"
+    "  --accel A      the structure of every static mesh (one that is no keyframe of\n"
+    "                 an animated object): bvh, kd (exact SAH kd-tree) or kd-binned;\n"
+    "                 without it each mesh's \"accel\" from the scene file [bvh]. All\n"
+    "                 give the same bits\n"
     "  --cl-options OPTS\n"
     "                 extra OpenCL compiler options, e.g. -cl-mad-enable,\n"
     "                 -cl-fast-relaxed-math, -DRT_NATIVE_MATH (options appended to\n"
@@ -131,6 +135,13 @@ int cli_renderer_arg(int argc, char **argv, int *i, const char *command, cli_ren
         if (!(a->backend = cli_value(argc, argv, i, command))) return -1;
     } else if (!strcmp(o, "--device")) {
         if (!(a->device = cli_value(argc, argv, i, command))) return -1;
+    } else if (!strcmp(o, "--accel")) {
+        if (!(v = cli_value(argc, argv, i, command))) return -1;
+        if (!rt_accel_parse(v, &a->accel)) {
+            cli_error(command, "--accel takes bvh, kd or kd-binned, not '%s'", v);
+            return -1;
+        }
+        a->accel_set = 1;
     } else if (!strcmp(o, "--threads")) {
         if (!(v = cli_value(argc, argv, i, command)) ||
             !cli_int(command, o, v, 0, 1024, &a->opt.threads))
@@ -206,6 +217,15 @@ rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a) {
         return NULL;
     }
     return r;
+}
+
+int cli_apply_accel(const char *command, const cli_renderer_args *a, rt_scene *scene) {
+    if (!a->accel_set) return 1;
+    if (rt_scene_set_static_accel(scene, a->accel) != RT_OK) {
+        cli_error(command, "%s", rt_scene_error(scene));
+        return 0;
+    }
+    return 1;
 }
 
 void cli_print_build_log(const char *command, const rt_renderer *renderer) {

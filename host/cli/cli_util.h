@@ -41,6 +41,8 @@ typedef struct cli_renderer_args {
     rt_renderer_options opt;
     const char *backend; /* --backend [cpu] */
     const char *device;  /* --device, or NULL */
+    int accel_set;       /* --accel given: */
+    rt_accel accel;      /* the structure of every static mesh */
     int verbose;         /* --verbose: the device compiler's messages on stderr */
     char spec[256];      /* backend[:device], made by cli_renderer_create */
 } cli_renderer_args;
@@ -58,6 +60,9 @@ int cli_renderer_arg(int argc, char **argv, int *i, const char *command, cli_ren
  * NULL when it cannot. */
 rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a);
 
+/* Applies --accel (if given) to the scene's static meshes; prints the error
+ * and returns 0 on failure. */
+int cli_apply_accel(const char *command, const cli_renderer_args *a, rt_scene *scene);
 /* Prints the renderer's last kernel build messages (rt_renderer_build_log)
  * on stderr, "rtcl COMMAND: opencl build log:" and the lines, if there are
  * any. For --verbose; a failed build's error carries them already. */

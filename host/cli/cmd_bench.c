@@ -16,6 +16,7 @@
 
 #include "bench_render.h"
 #include "accel/bvh.h"
+#include "accel/kd.h"
 #include "base/clock.h"
 #include "commands.h"
 #include "rt.h"
@@ -25,7 +26,7 @@
 #include "peer/embree_peer.h"
 #endif
 
-enum { MAX_ROWS = 8 };
+enum { MAX_ROWS = 10 };
 
 typedef struct row {
     const char *builder;
@@ -33,12 +34,14 @@ typedef struct row {
     double ms_min, ms_median;
     double sah;
     long nodes;      /* -1 for reference rows (no tree) */
+    double bytes;    /* the tree's memory (nodes and leaf entries); 0: not known */
     char error[200]; /* non-empty: this builder failed or is unavailable */
 } row;
 
 typedef struct bench_args {
     int json, reps, threads, progress, render, width, height;
     int device_math, denormals; /* rt_device_math, rt_denormals */
+    int accel;                  /* --accel: rt_accel, or -1 */
     int verbose;                /* --verbose: the OpenCL build log on stderr */
 } bench_args;
 
@@ -56,6 +59,7 @@ static void summarize(row *r, double *times, int n) {
 static void usage(FILE *f) {
     fprintf(f, "usage: rtcl bench SCENE... [--json] [--reps N] [--threads N] [--no-render]\n"
                "                 [--width W] [--height H] [--device-math M] [--denormals P]\n"
+               "                 [--accel A]\n"
                "                 [--verbose]\n"
                "\n"
                "Build: one BVH over all triangles of each scene with every builder\n"
@@ -87,6 +91,10 @@ static void usage(FILE *f) {
                "               preserve or flush, for every row [preserve]\n"
                "  --width W, --height H\n"
                "               render resolution [1024x576, the thesis's]\n"
+               "  --accel A    bvh, kd or kd-binned: the structure of every static mesh in\n"
+               "               the render part; kd and kd-binned also add the build rows\n"
+               "               kd-exact and kd-binned (one SAH kd-tree over all triangles,\n"
+               "               SAH with Ct = 1, Ci = 2 as for the BVH rows, and bytes)\n"
                "  --verbose    print the OpenCL compiler's messages (build log) on stderr\n");
 }
 
@@ -181,8 +189,48 @@ static void bench_ours(const bench_args *a, const tri_input *in, rt_builder buil
             rt_bvh_quality q = rt_bvh_measure(&bvh, o.cost_box, o.cost_tri);
             r->sah = q.sah;
             r->nodes = q.nodes;
+            r->bytes = (double)q.bytes;
         }
         rt_bvh_free(&bvh);
+    }
+    summarize(r, times, a->reps);
+    free(times);
+}
+
+/* A kd-tree over all triangles, timed like bench_ours. */
+static void bench_kd(const bench_args *a, const tri_input *in, rt_kd_builder builder, rt_pool *pool,
+                     row *r) {
+    rt_kd_options o = rt_kd_options_default();
+    o.builder = builder;
+    r->builder = rt_kd_builder_name(builder);
+    r->threads = a->threads;
+    double *times = malloc(sizeof(double) * (size_t)a->reps);
+    if (!times) {
+        snprintf(r->error, sizeof r->error, "out of memory");
+        return;
+    }
+    for (int i = -1; i < a->reps; i++) {
+        rt_kd kd;
+        rt_error msg;
+        memset(&msg, 0, sizeof msg);
+        double t0 = rt_now_ms();
+        rt_status st = rt_kd_build(in->positions, in->vertex_count, in->indices, in->count, &o,
+                                   pool, &kd, &msg);
+        double t = rt_now_ms() - t0;
+        if (st != RT_OK) {
+            snprintf(r->error, sizeof r->error, "%.199s",
+                     msg.message[0] ? msg.message : rt_status_string(st));
+            free(times);
+            return;
+        }
+        if (i >= 0) times[i] = t;
+        if (i == a->reps - 1) {
+            rt_kd_quality q = rt_kd_measure(&kd, 1.0f, 2.0f);
+            r->sah = q.sah;
+            r->nodes = q.nodes;
+            r->bytes = (double)q.bytes;
+        }
+        rt_kd_free(&kd);
     }
     summarize(r, times, a->reps);
     free(times);
@@ -275,6 +323,7 @@ static void print_json_row(const row *r) {
             printf(", \"sah\": null, \"nodes\": null");
         else
             printf(", \"sah\": %.4f, \"nodes\": %ld", r->sah, r->nodes);
+        if (!r->error[0] && r->bytes > 0) printf(", \"bytes\": %.0f", r->bytes);
     }
     putchar('}');
 }
@@ -424,6 +473,12 @@ static int bench_scene(const char *path, const bench_args *a, rt_pool *pool) {
         progress(a, path, rt_builder_name(ours[i]));
         bench_ours(a, &in, ours[i], pool, &rows[n++]);
     }
+    if (a->accel == RT_ACCEL_KD || a->accel == RT_ACCEL_KD_BINNED) {
+        progress(a, path, "kd-exact");
+        bench_kd(a, &in, RT_KD_EXACT, pool, &rows[n++]);
+        progress(a, path, "kd-binned");
+        bench_kd(a, &in, RT_KD_BINNED, pool, &rows[n++]);
+    }
     int n_build = n, n_rows = n;
 #ifdef RT_HAVE_EMBREE
     progress(a, path, "embree");
@@ -437,14 +492,10 @@ static int bench_scene(const char *path, const bench_args *a, rt_pool *pool) {
     int n_render = 0;
     char why[300] = "";
     if (a->render) {
-        bench_render_setup su = {a->reps,
-                                 a->threads,
-                                 a->width,
-                                 a->height,
-                                 a->device_math,
-                                 a->denormals,
-                                 a->progress ? render_progress : NULL,
-                                 a->verbose};
+        bench_render_setup su = {
+            a->reps,        a->threads,   a->width, a->height,
+            a->device_math, a->denormals, a->accel, a->progress ? render_progress : NULL,
+            a->verbose};
         n_render = bench_render(path, &su, rrows, why, sizeof why);
     }
     if (a->progress) fprintf(stderr, "\r\033[K");
@@ -473,8 +524,8 @@ static int parse_int(const char *s, int lo, int hi, int *out) {
 }
 
 int cmd_bench(int argc, char **argv) {
-    bench_args a = {0, 5, 0, isatty(2), 1, 1024, 576, RT_DEVICE_MATH_AUTO, RT_DENORMALS_PRESERVE,
-                    0};
+    bench_args a = {0,  5, 0, isatty(2), 1, 1024, 576, RT_DEVICE_MATH_AUTO, RT_DENORMALS_PRESERVE,
+                    -1, 0};
     const char **scenes = calloc((size_t)argc, sizeof *scenes);
     int n_scenes = 0;
     if (!scenes) return 2;
@@ -488,6 +539,15 @@ int cmd_bench(int argc, char **argv) {
             a.json = 1;
         } else if (!strcmp(s, "--no-render")) {
             a.render = 0;
+        } else if (!strcmp(s, "--accel")) {
+            rt_accel acc;
+            if (i + 1 >= argc || !rt_accel_parse(argv[i + 1], &acc)) {
+                fprintf(stderr, "rtcl bench: --accel takes bvh, kd or kd-binned\n");
+                free(scenes);
+                return 2;
+            }
+            a.accel = (int)acc;
+            i++;
         } else if (!strcmp(s, "--verbose")) {
             a.verbose = 1;
         } else if (!strcmp(s, "--device-math") || !strcmp(s, "--denormals")) {

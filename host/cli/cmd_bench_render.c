@@ -208,6 +208,11 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
         snprintf(err, err_size, "%s", e.message);
         return 0;
     }
+    if (su->accel >= 0 && rt_scene_set_static_accel(scene, (rt_accel)su->accel) != RT_OK) {
+        snprintf(err, err_size, "%s", rt_scene_error(scene));
+        rt_scene_destroy(scene);
+        return 0;
+    }
     rt_camera cam;
     rt_camera_get(scene, &cam);
     cam.width = su->width;

@@ -7,7 +7,8 @@
 #include "scene/scene.h"
 
 static const char usage[] =
-    "usage: rtcl info SCENE [--cl-options OPTS] [--device-math M] [--denormals P] [--help]\n"
+    "usage: rtcl info SCENE [--accel A] [--cl-options OPTS] [--device-math M] [--denormals P]\n"
+    "                 [--help]\n"
     "\n"
     "Prints the triangles, meshes, objects, materials and lights of SCENE (a .json\n"
     "scene, a bare .obj, or builtin:NAME), its camera, and the features it uses:\n"
@@ -15,8 +16,11 @@ static const char usage[] =
     "refractive materials, no instance transforms for one identity object, no\n"
     "normal interpolation without normals; OpenCL as -D switches, Vulkan as\n"
     "specialization constants), whether the OpenCL kernels are the exact build,\n"
-    "and the Vulkan shaders' maths profile.\n"
+    "and the Vulkan shaders' maths profile. Each mesh's line ends with the\n"
+    "structure a renderer builds for it (bvh, kd or kd-binned).\n"
     "\n"
+    "  --accel A          as for rtcl render: bvh, kd or kd-binned for every static\n"
+    "                     mesh; info then shows that choice\n"
     "  --cl-options OPTS  the extra OpenCL compiler options rtcl render would be\n"
     "                     given (the speed-versus-error study): info then says the\n"
     "                     kernels are not the exact build\n"
@@ -26,10 +30,16 @@ static const char usage[] =
 
 int cmd_info(int argc, char **argv) {
     const char *path = NULL, *cl_options = NULL, *math = "auto", *denormals = "preserve";
+    cli_renderer_args ra;
+    cli_renderer_args_init(&ra);
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             fputs(usage, stdout);
             return 0;
+        }
+        if (!strcmp(argv[i], "--accel")) {
+            if (cli_renderer_arg(argc, argv, &i, "info", &ra) < 0) return 2;
+            continue;
         }
         if (!strcmp(argv[i], "--cl-options")) {
             if (!(cl_options = cli_value(argc, argv, &i, "info"))) return 2;
@@ -64,6 +74,10 @@ int cmd_info(int argc, char **argv) {
         cli_error("info", "%s", err.message);
         return 2;
     }
+    if (!cli_apply_accel("info", &ra, s)) {
+        rt_scene_destroy(s);
+        return 2;
+    }
     uint64_t all_tris = 0;
     for (uint32_t i = 0; i < s->mesh_count; i++) all_tris += s->meshes[i].triangle_count;
     printf("scene        %s\n", path);
@@ -71,13 +85,14 @@ int cmd_info(int argc, char **argv) {
            (unsigned long long)rt_scene_triangle_count(s), (unsigned long long)all_tris);
     printf("meshes       %u\n", s->mesh_count);
     for (uint32_t i = 0; i < s->mesh_count; i++)
-        printf("  %-24s %u triangles, %u vertices%s%s%s\n", s->meshes[i].name,
+        printf("  %-24s %u triangles, %u vertices%s%s%s, %s\n", s->meshes[i].name,
                s->meshes[i].triangle_count, s->meshes[i].vertex_count,
                s->meshes[i].normals ? ", normals" : "",
                s->meshes[i].update_policy ? ", update " : "",
                s->meshes[i].update_policy
                    ? rt_update_policy_name((rt_update_policy)s->meshes[i].update_policy)
-                   : "");
+                   : "",
+               rt_accel_name(rt_mesh_accel(s, i)));
     printf("objects      %u\n", s->object_count);
     uint32_t keyed = 0, blended = 0, switched = 0;
     for (uint32_t i = 0; i < s->object_count; i++) {

@@ -11,7 +11,7 @@
 static const char usage_head[] =
     "usage: rtcl render SCENE [-o FILE] [--backend B] [--device D] [--width W] [--height H]\n"
     "                   [--aov AOV] [--threads N] [--frames N] [--direct] [--time T]\n"
-    "                   [--update P]\n"
+    "                   [--update P] [--accel A]\n"
     "                   [--cl-options OPTS] [--packet-isa I] [--stats] [--verbose] [--help]\n"
     "\n"
     "Renders SCENE (a .json scene, a bare .obj, or builtin:NAME) with Whitted-style\n"
@@ -175,6 +175,11 @@ int cmd_render(int argc, char **argv) {
     rt_error err;
     if (cli_load_scene(scene_path, &scene, &err) != RT_OK) {
         cli_error("render", "%s", err.message);
+        rt_renderer_destroy(renderer);
+        return 2;
+    }
+    if (!cli_apply_accel("render", &ra, scene)) {
+        rt_scene_destroy(scene);
         rt_renderer_destroy(renderer);
         return 2;
     }

@@ -13,8 +13,8 @@
 static const char usage_head[] =
     "usage: rtcl trace SCENE --rays RAYS.txt --out HITS.txt [--backend B] [--device D]\n"
     "                  [--tri-test T] [--any-hit] [--offset-origins] [--threads N]\n"
-    "                  [--reps N] [--stats] [--json] [--packet-path P] [--cl-options OPTS]\n"
-    "                  [--packet-isa I] [--verbose] [--help]\n"
+    "                  [--accel A] [--reps N] [--stats] [--json] [--packet-path P]\n"
+    "                  [--cl-options OPTS] [--packet-isa I] [--verbose] [--help]\n"
     "\n"
     "Traces the rays of RAYS.txt through SCENE (a .json scene, a bare .obj, or\n"
     "builtin:NAME) and writes one line per ray to HITS.txt.\n"
@@ -181,6 +181,12 @@ int cmd_trace(int argc, char **argv) {
     rt_error err;
     if (cli_load_scene(scene_path, &scene, &err) != RT_OK) {
         cli_error("trace", "%s", err.message);
+        free(rays);
+        rt_renderer_destroy(renderer);
+        return 2;
+    }
+    if (!cli_apply_accel("trace", &ra, scene)) {
+        rt_scene_destroy(scene);
         free(rays);
         rt_renderer_destroy(renderer);
         return 2;

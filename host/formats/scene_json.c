@@ -660,6 +660,24 @@ static rt_status load_mesh_file(loader *L, json_t *v, uint32_t *id) {
     return st;
 }
 
+/* "accel": the mesh's structure, "bvh" (the default), "kd" or "kd-binned". */
+static rt_status load_mesh_accel(loader *L, json_t *m, uint32_t id) {
+    json_t *a = json_object_get(m, "accel");
+    if (!a) return RT_OK;
+    enter_key(L, "accel");
+    rt_accel accel;
+    rt_status st = RT_OK;
+    if (!json_is_string(a))
+        st = fail(L, "expected \"bvh\", \"kd\" or \"kd-binned\", found %s", type_name(a));
+    else if (!rt_accel_parse(json_string_value(a), &accel))
+        st = fail(L, "expected \"bvh\", \"kd\" or \"kd-binned\", found \"%s\"",
+                  json_string_value(a));
+    else if (rt_mesh_set_accel(L->scene, id, accel) != RT_OK)
+        st = fail_scene(L);
+    leave(L);
+    return st;
+}
+
 /* A mesh's "update": its BVH update policy. */
 static rt_status load_update(loader *L, json_t *m, uint32_t id) {
     json_t *u = json_object_get(m, "update");
@@ -679,7 +697,8 @@ static rt_status load_update(loader *L, json_t *m, uint32_t id) {
 }
 
 static rt_status load_meshes(loader *L, json_t *v) {
-    static const char *const keys[] = {"file", "positions", "triangles", "normals", "update", NULL};
+    static const char *const keys[] = {"file",   "positions", "triangles", "normals",
+                                       "update", "accel",     NULL};
     static const char *const inline_keys[] = {"positions", "triangles", "normals"};
     rt_status st = expect_object(L, v);
     const char *name;
@@ -695,6 +714,7 @@ static rt_status load_meshes(loader *L, json_t *v) {
             st = json_object_get(m, "file") ? load_mesh_file(L, m, &id)
                                             : load_inline_mesh(L, m, name, &id);
         if (st == RT_OK) st = load_update(L, m, id);
+        if (st == RT_OK) st = load_mesh_accel(L, m, id);
         leave(L);
         if (st != RT_OK) return st;
         if (json_object_set_new(L->mesh_ids, name, json_integer(id)) != 0)

@@ -135,8 +135,10 @@ rt_status rt_scene_save_json(const rt_scene *s, const char *dir, const char *nam
     fprintf(f, "  ],\n  \"meshes\": {\n");
     for (uint32_t i = 0; i < s->mesh_count; i++) {
         const char *mesh = saved_name(s, usable, i, mesh_name);
-        fprintf(f, "    \"%s\": {\"file\": \"%s_%s.obj\"}%s\n", mesh, name, mesh,
-                i + 1 < s->mesh_count ? "," : "");
+        uint32_t accel = s->meshes[i].accel;
+        fprintf(f, "    \"%s\": {\"file\": \"%s_%s.obj\"%s%s%s}%s\n", mesh, name, mesh,
+                accel ? ", \"accel\": \"" : "", accel ? rt_accel_name((rt_accel)accel) : "",
+                accel ? "\"" : "", i + 1 < s->mesh_count ? "," : "");
     }
     fprintf(f, "  },\n  \"objects\": [\n");
     for (uint32_t i = 0; i < s->object_count; i++) {

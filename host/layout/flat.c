@@ -15,6 +15,7 @@ void rt_flat_free(rt_flat *f) {
     free(f->inst_ids);
     free(f->materials);
     free(f->lights);
+    free(f->kd_nodes);
     memset(f, 0, sizeof *f);
 }
 
@@ -30,5 +31,6 @@ rt_scene_view rt_flat_view(const rt_flat *f) {
     v.inst_ids = f->inst_ids;
     v.materials = f->materials;
     v.lights = f->lights;
+    v.kd_nodes = f->kd_nodes;
     return v;
 }

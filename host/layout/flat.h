@@ -24,6 +24,8 @@ typedef struct rt_flat {
     uint32_t inst_id_count;
     rt_material_d *materials;
     rt_light_d *lights;
+    rt_kd_node *kd_nodes; /* every kd-tree mesh's nodes (NULL when none) */
+    uint32_t kd_node_count;
 } rt_flat;
 
 /* A range of nodes or triangles of a layout (rewritten in place). */

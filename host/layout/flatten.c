@@ -71,6 +71,55 @@ static int bvh_valid(const rt_bvh *b, uint32_t prim_limit, rt_error *err, const 
     return 1;
 }
 
+/* Checks a kd-tree's indices and depth so that no backend can read out of
+ * bounds or overflow its stack (kernels/rt_kd.h). */
+static int kd_valid(const rt_kd *kd, uint32_t prim_limit, rt_error *err, const char *what) {
+    if (!kd->node_count) return 0;
+    for (uint32_t i = 0; i < kd->node_count; i++) {
+        const rt_kd_node *n = &kd->nodes[i];
+        if ((n->b & 3u) == RT_KD_LEAF) {
+            if ((uint64_t)n->a + (n->b >> 2) > kd->prim_count) {
+                rt_fail(err, RT_ERROR_INVALID_ARGUMENT,
+                        "%s kd-tree: leaf %u references entries past the end", what, i);
+                return 0;
+            }
+        } else if (i + 1 >= kd->node_count || (n->b >> 2) <= i + 1 ||
+                   (n->b >> 2) >= kd->node_count) {
+            /* Depth-first order: children come after their parent, so the
+             * walk below ends. */
+            rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "%s kd-tree: node %u has bad children", what,
+                    i);
+            return 0;
+        }
+    }
+    for (uint32_t i = 0; i < kd->prim_count; i++)
+        if (kd->prims[i] >= prim_limit) {
+            rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "%s kd-tree: triangle index out of range",
+                    what);
+            return 0;
+        }
+    /* Depth: the deepest path from the root, by a walk in node order (a
+     * child's index is larger than its parent's). */
+    uint8_t *depth = calloc(kd->node_count, 1);
+    if (!depth) return 0;
+    depth[0] = 1;
+    int deep = 0;
+    for (uint32_t i = 0; i < kd->node_count && !deep; i++) {
+        const rt_kd_node *n = &kd->nodes[i];
+        if (depth[i] > RT_KD_STACK - 2) deep = 1;
+        if ((n->b & 3u) == RT_KD_LEAF) continue;
+        depth[i + 1] = (uint8_t)(depth[i] + 1);
+        depth[n->b >> 2] = (uint8_t)(depth[i] + 1);
+    }
+    free(depth);
+    if (deep) {
+        rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "%s kd-tree is deeper than traversal supports (%d)",
+                what, RT_KD_STACK - 2);
+        return 0;
+    }
+    return 1;
+}
+
 /* An empty tree: one leaf with no entries and an inverted box. */
 static void empty_node(rt_node *n, uint32_t first) {
     for (int k = 0; k < 3; k++) {
@@ -133,12 +182,24 @@ static void store_tri(const rt_mesh_data *m, uint32_t t, rt_tri *out) {
 
 static void write_mesh(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b, uint32_t node_base,
                        uint32_t tri_base);
-static rt_status write_frame(const rt_scene *scene, const rt_bvh *top, int single,
-                             uint32_t top_root, const uint32_t *node_base, const uint32_t *tri_base,
+static rt_status write_frame(const rt_scene *scene, const rt_bvh *top, const rt_kd *mesh_kds,
+                             int single, uint32_t top_root, const uint32_t *node_base,
+                             const uint32_t *tri_base, const uint32_t *tri_span,
                              const rt_flat_options *opt, rt_flat *out, rt_error *err);
 
 rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bvh *top,
                      const rt_flat_options *options, rt_flat *out, rt_error *err) {
+    return rt_flatten_accel(scene, mesh_bvhs, NULL, top, options, out, err);
+}
+
+/* Whether mesh m goes into the layout as a kd-tree. */
+static const rt_kd *kd_of(const rt_kd *mesh_kds, uint32_t m) {
+    return mesh_kds && mesh_kds[m].node_count ? &mesh_kds[m] : NULL;
+}
+
+rt_status rt_flatten_accel(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_kd *mesh_kds,
+                           const rt_bvh *top, const rt_flat_options *options, rt_flat *out,
+                           rt_error *err) {
     memset(out, 0, sizeof *out);
     rt_flat_options opt = options ? *options : rt_flat_options_default();
     if (opt.tri_method > RT_TRI_BADOUEL || opt.max_depth > RT_MAX_DEPTH) {
@@ -151,17 +212,33 @@ rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bv
     /* Which meshes are shown, and where each goes. */
     uint32_t *node_base = calloc(nmesh ? nmesh : 1, sizeof(uint32_t));
     uint32_t *tri_base = calloc(nmesh ? nmesh : 1, sizeof(uint32_t));
+    uint32_t *tri_span = calloc(nmesh ? nmesh : 1, sizeof(uint32_t));
+    uint32_t *kd_base = calloc(nmesh ? nmesh : 1, sizeof(uint32_t));
     uint8_t *used = calloc(nmesh ? nmesh : 1, 1);
-    if (!node_base || !tri_base || !used) goto oom;
+    if (!node_base || !tri_base || !tri_span || !kd_base || !used) goto oom;
     for (uint32_t o = 0; o < nobj; o++) {
         const rt_object_data *ob = &scene->objects[o];
         used[rt_object_shown_mesh(ob)] = 1;
     }
-    uint64_t nodes = 0, tris = 0;
+    uint64_t nodes = 0, tris = 0, kd_nodes = 0;
     int any_normals = 0, any_mats = 0;
     for (uint32_t m = 0; m < nmesh; m++) {
         if (!used[m]) continue;
         const rt_mesh_data *md = &scene->meshes[m];
+        const rt_kd *kd = kd_of(mesh_kds, m);
+        if (kd) {
+            if (!kd_valid(kd, md->triangle_count, err, md->name)) goto fail;
+            node_base[m] = (uint32_t)nodes;
+            tri_base[m] = (uint32_t)tris;
+            kd_base[m] = (uint32_t)kd_nodes;
+            tri_span[m] = kd->prim_count;
+            nodes += 1;
+            tris += kd->prim_count;
+            kd_nodes += kd->node_count;
+            any_normals |= md->normals != NULL;
+            any_mats |= md->tri_materials != NULL;
+            continue;
+        }
         const rt_bvh *b = &mesh_bvhs[m];
         if (md->triangle_count && (b->prim_count != md->triangle_count || !b->node_count)) {
             rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "mesh '%s': its BVH holds %u of %u triangles",
@@ -173,6 +250,7 @@ rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bv
         tri_base[m] = (uint32_t)tris;
         nodes += md->triangle_count ? b->node_count : 1;
         tris += md->triangle_count;
+        tri_span[m] = md->triangle_count;
         any_normals |= md->normals != NULL;
         any_mats |= md->tri_materials != NULL;
     }
@@ -188,7 +266,7 @@ rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bv
     }
     uint32_t top_root = (uint32_t)nodes;
     if (!single && nobj) nodes += top->node_count ? top->node_count : 1;
-    if (nodes >= RT_NODE_COUNT_MASK || tris >= RT_NODE_COUNT_MASK) {
+    if (nodes >= RT_NODE_COUNT_MASK || tris >= RT_NODE_COUNT_MASK || kd_nodes >= (1u << 30)) {
         rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "scene too large for 31-bit indices");
         goto fail;
     }
@@ -206,30 +284,75 @@ rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bv
     out->materials =
         calloc(scene->material_count ? scene->material_count : 1, sizeof(rt_material_d));
     out->lights = calloc(scene->light_count ? scene->light_count : 1, sizeof(rt_light_d));
+    out->kd_node_count = (uint32_t)kd_nodes;
+    if (kd_nodes) {
+        out->kd_nodes = malloc(sizeof(rt_kd_node) * kd_nodes);
+        if (!out->kd_nodes) goto oom;
+    }
     if (!out->nodes || !out->tris || !out->tri_ids || (any_normals && !out->tri_normals) ||
         (any_mats && !out->tri_mats) || !out->instances || !out->inst_ids || !out->materials ||
         !out->lights)
         goto oom;
 
-    for (uint32_t m = 0; m < nmesh; m++)
-        if (used[m]) write_mesh(out, &scene->meshes[m], &mesh_bvhs[m], node_base[m], tri_base[m]);
-    if (write_frame(scene, top, single, top_root, node_base, tri_base, &opt, out, err) != RT_OK)
+    for (uint32_t m = 0; m < nmesh; m++) {
+        if (!used[m]) continue;
+        const rt_mesh_data *md = &scene->meshes[m];
+        const rt_kd *kd = kd_of(mesh_kds, m);
+        if (!kd) {
+            write_mesh(out, md, &mesh_bvhs[m], node_base[m], tri_base[m]);
+            continue;
+        }
+        /* The root box, then the tree with absolute indices. */
+        rt_node *root = &out->nodes[node_base[m]];
+        memcpy(root->bmin, kd->bounds.bmin, sizeof root->bmin);
+        memcpy(root->bmax, kd->bounds.bmax, sizeof root->bmax);
+        root->a = kd_base[m];
+        root->b = RT_NODE_LEAF_FLAG;
+        for (uint32_t i = 0; i < kd->node_count; i++) {
+            rt_kd_node n = kd->nodes[i];
+            if ((n.b & 3u) == RT_KD_LEAF)
+                n.a += tri_base[m];
+            else
+                n.b = (((n.b >> 2) + kd_base[m]) << 2) | (n.b & 3u);
+            out->kd_nodes[kd_base[m] + i] = n;
+        }
+        for (uint32_t j = 0; j < tri_span[m]; j++) {
+            uint32_t t = kd->prims[j], e = tri_base[m] + j;
+            store_tri(md, t, &out->tris[e]);
+            out->tri_ids[e] = t;
+            if (md->normals) {
+                for (int v = 0; v < 3; v++)
+                    memcpy(out->tri_normals + 9 * (size_t)e + 3 * v,
+                           md->normals + 3 * (size_t)md->indices[3 * t + v], 3 * sizeof(float));
+            }
+            if (out->tri_mats)
+                out->tri_mats[e] = md->tri_materials ? md->tri_materials[t] : RT_NO_MATERIAL;
+        }
+    }
+    if (write_frame(scene, top, mesh_kds, single, top_root, node_base, tri_base, tri_span, &opt,
+                    out, err) != RT_OK)
         goto fail;
 
     free(node_base);
     free(tri_base);
+    free(tri_span);
+    free(kd_base);
     free(used);
     return RT_OK;
 oom:
     rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory flattening the scene");
     free(node_base);
     free(tri_base);
+    free(tri_span);
+    free(kd_base);
     free(used);
     rt_flat_free(out);
     return RT_ERROR_OUT_OF_MEMORY;
 fail:
     free(node_base);
     free(tri_base);
+    free(tri_span);
+    free(kd_base);
     free(used);
     rt_flat_free(out);
     return RT_ERROR_INVALID_ARGUMENT;
@@ -266,8 +389,9 @@ static void write_mesh(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b, ui
 
 /* Writes what changes with every frame: the object BVH, the instances,
  * materials, lights and the header with the camera. */
-static rt_status write_frame(const rt_scene *scene, const rt_bvh *top, int single,
-                             uint32_t top_root, const uint32_t *node_base, const uint32_t *tri_base,
+static rt_status write_frame(const rt_scene *scene, const rt_bvh *top, const rt_kd *mesh_kds,
+                             int single, uint32_t top_root, const uint32_t *node_base,
+                             const uint32_t *tri_base, const uint32_t *tri_span,
                              const rt_flat_options *opt_in, rt_flat *out, rt_error *err) {
     rt_flat_options opt = *opt_in;
     rt_scene_features feat = rt_scene_features_of(scene);
@@ -304,10 +428,11 @@ static rt_status write_frame(const rt_scene *scene, const rt_bvh *top, int singl
         in->root = node_base[m];
         in->material = ob->material;
         in->flags = (rt_transform_is_identity(ob->transform) ? RT_INST_IDENTITY : 0u) |
-                    (scene->meshes[m].normals ? RT_INST_NORMALS : 0u);
+                    (scene->meshes[m].normals ? RT_INST_NORMALS : 0u) |
+                    (kd_of(mesh_kds, m) ? RT_INST_KD : 0u);
         in->mesh = m;
         in->tri_first = tri_base[m];
-        in->tri_count = scene->meshes[m].triangle_count;
+        in->tri_count = tri_span[m];
     }
     for (uint32_t i = 0; i < scene->material_count; i++) {
         const rt_material *s = &scene->materials[i];
@@ -414,7 +539,8 @@ uint64_t rt_flat_bytes(const rt_flat *f) {
            (uint64_t)f->hdr.instance_count * sizeof(rt_instance) +
            (uint64_t)f->inst_id_count * sizeof(uint32_t) +
            (uint64_t)f->hdr.material_count * sizeof(rt_material_d) +
-           (uint64_t)f->hdr.light_count * sizeof(rt_light_d);
+           (uint64_t)f->hdr.light_count * sizeof(rt_light_d) +
+           (uint64_t)f->kd_node_count * sizeof(rt_kd_node);
 }
 
 rt_status rt_flatten_update(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bvh *top,
@@ -422,6 +548,9 @@ rt_status rt_flatten_update(const rt_scene *scene, const rt_bvh *mesh_bvhs, cons
                             uint64_t *bytes) {
     uint32_t nmesh = scene->mesh_count, nobj = scene->object_count;
     *bytes = 0;
+    /* kd-tree meshes are static and their nodes live apart: such a layout
+     * is always made anew. */
+    if (flat->kd_node_count) return RT_ERROR_UNSUPPORTED;
     if (nmesh != shape->mesh_count || nobj != shape->object_count ||
         scene->material_count != shape->material_count || scene->light_count != shape->light_count)
         return RT_ERROR_UNSUPPORTED;
@@ -466,8 +595,8 @@ rt_status rt_flatten_update(const rt_scene *scene, const rt_bvh *mesh_bvhs, cons
     opt.max_depth = flat->hdr.max_depth;
     opt.min_weight = flat->hdr.min_weight;
     rt_error why;
-    if (write_frame(scene, top, single, shape->top_root, shape->node_base, shape->tri_base, &opt,
-                    flat, &why) != RT_OK)
+    if (write_frame(scene, top, NULL, single, shape->top_root, shape->node_base, shape->tri_base,
+                    shape->tri_count, &opt, flat, &why) != RT_OK)
         return RT_ERROR_UNSUPPORTED;
     *bytes += rt_flat_bytes(flat) - mesh_bytes(flat, shape->top_root, flat->tri_count);
     return RT_OK;

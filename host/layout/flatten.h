@@ -6,6 +6,7 @@
 #include <stdint.h>
 
 #include "accel/bvh.h"
+#include "accel/kd.h"
 #include "layout/flat.h"
 #include "scene/scene.h"
 
@@ -25,6 +26,13 @@ rt_flat_options rt_flat_options_default(void);
 rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bvh *top,
                      const rt_flat_options *options, rt_flat *out, rt_error *err);
 
+/* As rt_flatten, with a choice of structure per mesh: where mesh_kds is not
+ * NULL and mesh_kds[m] has nodes, mesh m goes into the layout as that
+ * kd-tree (RT_INST_KD; its leaves' entries in 'tris', a triangle once per
+ * leaf) and mesh_bvhs[m] is not read. */
+rt_status rt_flatten_accel(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_kd *mesh_kds,
+                           const rt_bvh *top, const rt_flat_options *options, rt_flat *out,
+                           rt_error *err);
 /* What a layout was made of: which mesh each object shows, where each
  * shown mesh's nodes and triangles start and how many there are, and the
  * object BVH's size. While these stay, a new frame's layout is the old one
@@ -55,8 +63,9 @@ enum {
  * scene's new state: the nodes and triangles of the meshes marked dirty
  * (RT_DIRTY_*, indexed by mesh id), then the object BVH, instances,
  * materials, lights and header. RT_ERROR_UNSUPPORTED, with flat untouched, when the shape
- * changed (another mesh shown, a tree of another size, ...): then flatten
- * anew. *bytes gets the bytes rewritten. */
+ * changed (another mesh shown, a tree of another size, ...) or the layout
+ * holds kd-tree meshes (static: always flattened anew): then flatten anew. *bytes gets the bytes
+ * rewritten. */
 rt_status rt_flatten_update(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bvh *top,
                             const uint8_t *dirty, rt_flat_shape *shape, rt_flat *flat,
                             uint64_t *bytes);

@@ -51,6 +51,7 @@ enum {
     B_INST_IDS,
     B_MATS,
     B_LIGHTS,
+    B_KD_NODES,
     B_RAYS,
     B_HITS,
     B_COUNTERS,
@@ -63,11 +64,12 @@ enum {
     B_COUNT
 };
 static const char *const buffer_names[B_COUNT] = {
-    "header",   "nodes",     "tris",      "tri_ids", "tri_normals", "tri_mats", "instances",
-    "inst_ids", "materials", "lights",    "rays",    "hits",        "counters", "framebuffer",
-    "queue_a",  "queue_b",   "wave_hits", "records", "queue_count"};
+    "header",      "nodes",     "tris",    "tri_ids",   "tri_normals", "tri_mats",   "instances",
+    "inst_ids",    "materials", "lights",  "kd_nodes",  "rays",        "hits",       "counters",
+    "framebuffer", "queue_a",   "queue_b", "wave_hits", "records",     "queue_count"};
 
-_Static_assert((int)B_HDR == (int)RT_ARG_HDR && (int)B_LIGHTS == (int)RT_ARG_LIGHTS,
+_Static_assert((int)B_HDR == (int)RT_ARG_HDR && (int)B_LIGHTS == (int)RT_ARG_LIGHTS &&
+                   (int)B_KD_NODES == (int)RT_ARG_KD_NODES,
                "the view buffers are the view arguments, in order");
 
 typedef struct cl_state {
@@ -232,7 +234,8 @@ static rt_status probe_flush(cl_state *s, int *flushes, rt_error *err) {
 static void scene_defines(const rt_flat *f, char *out, size_t size) {
     uint32_t flags = f->hdr.flags;
     uint32_t inst_set = (flags & RT_SCENE_SINGLE) ? RT_INST_IDENTITY : 0u;
-    uint32_t inst_mask = RT_INST_IDENTITY | ((flags & RT_SCENE_NORMALS) ? RT_INST_NORMALS : 0u);
+    uint32_t inst_mask = RT_INST_IDENTITY | ((flags & RT_SCENE_NORMALS) ? RT_INST_NORMALS : 0u) |
+                         (f->kd_node_count ? RT_INST_KD : 0u);
     snprintf(out, size,
              "-DRT_STATIC_FLAGS=%uu -DRT_STATIC_INST_SET=%uu -DRT_STATIC_INST_MASK=%uu "
              "-DRT_STATIC_TRI_METHOD=%uu",
@@ -246,11 +249,12 @@ static void keep_build_log(cl_state *s, const char *log, const char *printed);
 static void append_log(rt_error *err, const char *log);
 
 /* The packet kernel's lanes for this device: 16 (4x4 blocks) on CPU devices,
- * 0 (one ray per work-item) elsewhere. The renderer's tuning (for tests and
- * comparisons) runs the one-ray kernels on a CPU device too, or picks another
- * block (4: 2x2, 8: 4x2). */
-static int packet_lanes(const cl_state *s) {
-    if (!s->dev.cpu || s->tune.one_ray_kernels) return 0;
+ * 0 (one ray per work-item) elsewhere and for layouts with kd-tree meshes
+ * (the packet kernel traverses BVHs only; the one-ray kernels trace both). The renderer's tuning
+ * (for tests and comparisons) runs the one-ray kernels on a CPU device too, or picks another block
+ * (4: 2x2, 8: 4x2). */
+static int packet_lanes(const cl_state *s, const rt_flat *f) {
+    if (!s->dev.cpu || s->tune.one_ray_kernels || f->kd_node_count) return 0;
     int n = s->tune.packet_lanes;
     return n == 4 || n == 8 ? n : 16;
 }
@@ -259,7 +263,7 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
     char defines[192], options[768];
     scene_defines(f, defines, sizeof defines);
     const char *extra = s->device_options;
-    int lanes = packet_lanes(s);
+    int lanes = packet_lanes(s, f);
     char packet[32] = "";
     if (lanes) snprintf(packet, sizeof packet, " -DRT_PK_LANES=%d", lanes);
     /* The exact build: no mad or fast-relaxed maths (they change results);
@@ -475,6 +479,7 @@ static rt_status upload_scene(cl_state *s, const rt_backend_layout *layout, uint
         {B_INST_IDS, f->inst_ids, sizeof(uint32_t) * f->inst_id_count, 0},
         {B_MATS, f->materials, sizeof(rt_material_d) * f->hdr.material_count, 0},
         {B_LIGHTS, f->lights, sizeof(rt_light_d) * f->hdr.light_count, 0},
+        {B_KD_NODES, f->kd_nodes, sizeof(rt_kd_node) * f->kd_node_count, 1},
     };
     rt_status st = RT_OK;
     /* The layout was rewritten in place from the generation the device holds:
@@ -552,9 +557,9 @@ static rt_status set_arg(cl_kernel k, cl_uint i, size_t n, const void *v, rt_err
     return RT_OK;
 }
 
-/* The ten scene arrays, the view arguments of every tracing kernel. */
+/* The scene arrays, the view arguments of every tracing kernel. */
 static rt_status set_view(cl_state *s, cl_kernel k, rt_error *err) {
-    for (int b = B_HDR; b <= B_LIGHTS; b++) {
+    for (int b = B_HDR; b <= B_KD_NODES; b++) {
         rt_status st =
             set_arg(k, (cl_uint)(RT_ARG_HDR + (b - B_HDR)), sizeof(cl_mem), &s->buf[b], err);
         if (st != RT_OK) return st;

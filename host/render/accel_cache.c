@@ -13,9 +13,11 @@
 void rt_accel_cache_clear(rt_accel_cache *c) {
     for (uint32_t i = 0; i < c->mesh_count; i++) {
         rt_bvh_free(&c->bvhs[i]);
+        rt_kd_free(&c->kds[i]);
         rt_bvh_refit_info_free(&c->refit[i]);
     }
     free(c->bvhs);
+    free(c->kds);
     free(c->built_version);
     free(c->built_topology);
     free(c->built);
@@ -49,6 +51,7 @@ void rt_accel_cache_clear(rt_accel_cache *c) {
 static int grow(rt_accel_cache *c, uint32_t meshes) {
     if (meshes <= c->mesh_count) return 1;
     GROW(bvhs, meshes);
+    GROW(kds, meshes);
     GROW(built_version, meshes);
     GROW(built_topology, meshes);
     GROW(built, meshes);
@@ -61,6 +64,7 @@ static int grow(rt_accel_cache *c, uint32_t meshes) {
     GROW(dirty_tris, meshes);
     for (uint32_t i = c->mesh_count; i < meshes; i++) {
         memset(&c->bvhs[i], 0, sizeof(rt_bvh));
+        memset(&c->kds[i], 0, sizeof(rt_kd));
         memset(&c->refit[i], 0, sizeof(rt_bvh_refit_info));
         c->built[i] = 0;
         c->dirty[i] = RT_DIRTY_ALL;
@@ -103,6 +107,45 @@ static rt_status refit(rt_accel_cache *c, const rt_mesh_data *md, uint32_t m, rt
     return RT_OK;
 }
 
+/* Whether mesh m gets a kd-tree: its accel says so and it is static (a
+ * mesh with an update policy other than rebuild keeps a BVH, which can be
+ * refitted). rt_mesh_set_positions and rt_mesh_set_update already turn such
+ * a mesh's accel back to BVH; this is the cache's own guard. */
+static int mesh_is_kd(const rt_mesh_data *md) {
+    return (md->accel == RT_ACCEL_KD || md->accel == RT_ACCEL_KD_BINNED) &&
+           md->update_policy == RT_UPDATE_REBUILD;
+}
+
+/* Builds mesh m's kd-tree whole, and a BVH of its one root box for the
+ * object BVH. */
+static rt_status build_kd(rt_accel_cache *c, const rt_mesh_data *md, uint32_t m, rt_pool *pool,
+                          rt_error *err) {
+    rt_bvh_free(&c->bvhs[m]);
+    rt_bvh_refit_info_free(&c->refit[m]);
+    rt_kd_options ko = rt_kd_options_default();
+    ko.builder = md->accel == RT_ACCEL_KD ? RT_KD_EXACT : RT_KD_BINNED;
+    rt_error why;
+    rt_error_clear(&why);
+    rt_status st = rt_kd_build(md->positions, md->vertex_count, md->indices, md->triangle_count,
+                               &ko, pool, &c->kds[m], &why);
+    if (st != RT_OK) return rt_fail(err, st, "kd-tree of mesh '%s': %s", md->name, why.message);
+    /* The object BVH takes each mesh's box from its BVH's root: a kd mesh
+     * gets a BVH of that one node (no entries, never traversed: the layout
+     * holds the kd-tree). A tree with no triangle of any area has no box,
+     * and the object BVH then leaves the object out, as nothing can hit it. */
+    const rt_aabb *bb = &c->kds[m].bounds;
+    if (bb->bmin[0] <= bb->bmax[0]) {
+        rt_bvh *b = &c->bvhs[m];
+        b->nodes = calloc(1, sizeof(rt_node));
+        if (!b->nodes) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+        memcpy(b->nodes[0].bmin, bb->bmin, sizeof bb->bmin);
+        memcpy(b->nodes[0].bmax, bb->bmax, sizeof bb->bmax);
+        b->nodes[0].b = RT_NODE_LEAF_FLAG;
+        b->node_count = 1;
+    }
+    return RT_OK;
+}
+
 /* Brings mesh m's BVH up to date by its policy; records what it did. */
 static rt_status update_mesh(rt_accel_cache *c, const rt_scene *scene, uint32_t m, rt_pool *pool,
                              rt_error *err) {
@@ -113,10 +156,16 @@ static rt_status update_mesh(rt_accel_cache *c, const rt_scene *scene, uint32_t 
     c->built[m] = 0;
     rt_update_action action = RT_ACTION_BUILD;
     double sah = 0.0;
-    if (md->triangle_count) {
+    /* A kd mesh is static (rebuilt whole); what was one loses its tree. */
+    int had_kd = c->kds[m].node_count != 0;
+    rt_kd_free(&c->kds[m]);
+    if (mesh_is_kd(md)) {
+        rt_status st = build_kd(c, md, m, pool, err);
+        if (st != RT_OK) return st;
+    } else if (md->triangle_count) {
         rt_status st = RT_OK;
         rt_update_policy policy = (rt_update_policy)md->update_policy;
-        int can_refit = had && c->built_topology[m] == md->topology_version &&
+        int can_refit = had && !had_kd && c->built_topology[m] == md->topology_version &&
                         c->bvhs[m].prim_count == md->triangle_count && c->bvhs[m].node_count;
         if ((policy == RT_UPDATE_REFIT || policy == RT_UPDATE_AUTO) && can_refit) {
             st = refit(c, md, m, pool, err);
@@ -148,7 +197,10 @@ static rt_status update_mesh(rt_accel_cache *c, const rt_scene *scene, uint32_t 
     double ms = rt_now_ms() - t0;
     /* Measured outside the update's time (but for "auto", which needs it):
      * one pass over the nodes. */
-    if (action != RT_ACTION_REFIT || !sah) sah = rt_bvh_sah(&c->bvhs[m], 1.0f, 2.0f);
+    if (c->kds[m].node_count)
+        sah = rt_kd_measure(&c->kds[m], 1.0f, 2.0f).sah;
+    else if (action != RT_ACTION_REFIT || !sah)
+        sah = rt_bvh_sah(&c->bvhs[m], 1.0f, 2.0f);
     if (action == RT_ACTION_BUILD || action == RT_ACTION_REBUILD || action == RT_ACTION_FAST)
         c->sah_rebuilt[m] = sah;
     c->sah[m] = sah;
@@ -212,8 +264,13 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
         double t2 = rt_now_ms();
         c->object_bvh_ms = t2 - t1;
         rt_status st = RT_OK;
-        if (c->flat_valid && rt_flatten_update(scene, c->bvhs, &c->top, c->dirty, &c->shape,
-                                               &c->flat, &c->layout_bytes) == RT_OK) {
+        /* A layout with kd meshes is made anew (rt_flatten_update refuses one
+         * too): kd nodes live apart and kd meshes are never refitted. */
+        int has_kd = 0;
+        for (uint32_t m = 0; m < scene->mesh_count; m++) has_kd |= c->kds[m].node_count != 0;
+        if (c->flat_valid && !has_kd &&
+            rt_flatten_update(scene, c->bvhs, &c->top, c->dirty, &c->shape, &c->flat,
+                              &c->layout_bytes) == RT_OK) {
             c->layout_in_place = 1;
             /* What changed, for backends holding the previous generation. */
             c->base_generation = c->layout_generation;
@@ -237,9 +294,10 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
             rt_flat_free(&c->flat);
             rt_flat_shape_free(&c->shape);
             c->flat_valid = 0;
-            st = rt_flatten(scene, c->bvhs, &c->top, NULL, &c->flat, &why);
+            st = rt_flatten_accel(scene, c->bvhs, has_kd ? c->kds : NULL, &c->top, NULL, &c->flat,
+                                  &why);
             if (st != RT_OK) return rt_fail(err, st, "%s", why.message);
-            st = rt_flat_shape_of(scene, c->bvhs, &c->top, &c->shape);
+            if (!has_kd) st = rt_flat_shape_of(scene, c->bvhs, &c->top, &c->shape);
             if (st != RT_OK) return rt_fail(err, st, "out of memory");
             c->layout_bytes = rt_flat_bytes(&c->flat);
         }

@@ -14,6 +14,7 @@
 #include <stdint.h>
 
 #include "accel/bvh.h"
+#include "accel/kd.h"
 #include "accel/bvh_refit.h"
 #include "base/thread_pool.h"
 #include "layout/flat.h"
@@ -23,8 +24,9 @@
 typedef struct rt_accel_cache {
     uint64_t scene_uid; /* the scene these structures belong to (0: none) */
     uint32_t mesh_count;
-    rt_bvh *bvhs;             /* per mesh */
-    uint32_t *built_version;  /* the mesh version its BVH was made from */
+    rt_bvh *bvhs;             /* per mesh (one root box where the mesh has a kd-tree) */
+    rt_kd *kds;               /* per mesh (empty where the mesh has a BVH) */
+    uint32_t *built_version;  /* the mesh version its structure was made from */
     uint32_t *built_topology; /* ... and its topology version */
     uint8_t *built;
     uint8_t *dirty;           /* its BVH or vertices changed since the layout was made */
@@ -53,10 +55,12 @@ typedef struct rt_accel_cache {
 } rt_accel_cache;
 
 /* Brings the cache up to date with scene (whose queued transforms must be
- * applied): updates the BVHs of meshes that changed by their policies, the
- * object BVH and the layout when the scene changed. A scene other than the
- * cached one starts afresh. *build_ms gets the time spent, *sah_cost the
- * triangle-weighted mean SAH cost of the shown meshes' BVHs. */
+ * applied): updates the structures of meshes that changed (a BVH by its
+ * update policy; a kd-tree, for static meshes only, is rebuilt whole), the
+ * object BVH and the layout when the scene changed (a layout with kd-tree
+ * meshes is always made anew). A scene other than the cached one starts
+ * afresh. *build_ms gets the time spent, *sah_cost the triangle-weighted mean
+ * SAH cost of the shown meshes' structures. */
 rt_status rt_accel_cache_update(rt_accel_cache *cache, const rt_scene *scene, rt_pool *pool,
                                 double *build_ms, double *sah_cost, rt_error *err);
 

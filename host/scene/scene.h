@@ -26,6 +26,7 @@ typedef struct rt_mesh_data {
     /* Bumped by every change of the mesh's geometry, so that a renderer
      * knows when its BVH is stale. */
     uint32_t version;
+    uint32_t accel; /* rt_accel: the structure a renderer builds for it */
     /* Bumped when triangles are added (not when vertices move): a BVH of the
      * same topology version may be refitted. */
     uint32_t topology_version;

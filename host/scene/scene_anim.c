@@ -58,6 +58,8 @@ rt_status rt_mesh_set_positions(rt_scene *scene, uint32_t mesh_id, const float *
         memmove(m->positions, positions, 3 * sizeof(float) * (size_t)vertex_count);
         if (normals) memmove(m->normals, normals, 3 * sizeof(float) * (size_t)vertex_count);
     }
+    /* A deforming mesh gets a BVH: kd-trees are for static meshes. */
+    m->accel = RT_ACCEL_BVH;
     m->version++;
     scene->version++;
     return RT_OK;
@@ -70,7 +72,14 @@ rt_status rt_mesh_set_update(rt_scene *scene, uint32_t mesh_id, rt_update_policy
     if ((unsigned)policy > RT_UPDATE_AUTO)
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "unknown update policy %d",
                              (int)policy);
-    scene->meshes[mesh_id].update_policy = (uint32_t)policy;
+    rt_mesh_data *m = &scene->meshes[mesh_id];
+    /* A kd mesh given a refitting policy becomes a BVH (kd-trees are for
+     * static meshes): its version tells renderers to rebuild it. */
+    if (m->accel != RT_ACCEL_BVH && m->update_policy != (uint32_t)policy) {
+        m->version++;
+        scene->version++;
+    }
+    m->update_policy = (uint32_t)policy;
     return RT_OK;
 }
 

@@ -736,6 +736,11 @@ static uint32_t next_tile(uint32_t tile, double ms) {
 static rt_status vk_prepare(void *state, const rt_backend_layout *layout, rt_render_stats *stats,
                             rt_error *err) {
     vk_state *s = state;
+    /* The shaders mirror the BVH traversal only (kernels/vulkan/): no
+     * kd-tree traversal yet, so such a layout is refused before any work. */
+    if (layout->flat->kd_node_count)
+        return rt_fail(err, RT_ERROR_UNSUPPORTED,
+                       "vulkan: kd-tree meshes are not supported yet; use --accel bvh");
     rt_status st = ready(s, err);
     uint32_t spec[SPEC_COUNT];
     scene_spec(layout->flat, s->flush, spec);

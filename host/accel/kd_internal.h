@@ -1,0 +1,134 @@
+/* kd_internal.h - what the kd-tree builder's files share: the build context,
+ * the output buffer, the split rules (kd_split.c), perfect-split clipping
+ * (kd_clip.c) and the two split finders (kd_sweep.c exact, kd_binned.c
+ * approximate) behind one interface that the recursion (kd_build.c) drives. */
+#ifndef RT_KD_INTERNAL_H
+#define RT_KD_INTERNAL_H
+
+#include <stdint.h>
+
+#include "accel/kd.h"
+
+/* One triangle's vertices, as the mesh stores them. */
+typedef struct kd_tri {
+    float v[3][3];
+} kd_tri;
+
+typedef struct kd_ctx {
+    const kd_tri *tris; /* indexed by the mesh's triangle index */
+    uint32_t tri_total; /* size of tris (and of every worker's flag array) */
+    rt_kd_options opt;
+    int max_depth;
+} kd_ctx;
+
+/* ---- output: nodes in depth-first order, indices relative to the buffer --- */
+
+/* A placeholder leaf for a subtree built by a task (kd_build.c): b has all
+ * bits set, a is the task's number. */
+#define KD_PLACEHOLDER 0xffffffffu
+
+typedef struct kd_out {
+    rt_kd_node *nodes;
+    uint32_t node_count, node_cap;
+    uint32_t *prims;
+    uint32_t prim_count, prim_cap;
+    int oom;
+} kd_out;
+
+/* Appends an inner node and returns its index; the right child is set by
+ * kd_out_set_right once the left subtree is complete. */
+uint32_t kd_out_inner(kd_out *o, int axis, float split);
+void kd_out_set_right(kd_out *o, uint32_t inner, uint32_t right);
+/* Appends a leaf with n entries (triangle indices, kept in the given order). */
+void kd_out_leaf(kd_out *o, const uint32_t *tris, uint32_t n);
+void kd_out_placeholder(kd_out *o, uint32_t task);
+void kd_out_free(kd_out *o);
+
+/* ---- split rules (kd_split.c) ---------------------------------------------- */
+
+typedef struct kd_split {
+    double cost; /* INFINITY: none found */
+    int axis;
+    float pos;
+    int planar_left; /* triangles lying in the plane go left */
+} kd_split;
+
+/* Which child a triangle whose clipped box spans [lo, hi] on the split axis
+ * belongs to: the same rule for both builders (and the one the event sweep
+ * counts): lo < pos < hi straddles; a box ending at pos goes left, one
+ * starting at pos goes right; a planar one (lo == hi) by its side, and by
+ * planar_left when it lies in the plane. */
+enum { KD_LEFT = 1, KD_RIGHT = 2, KD_BOTH = 3 };
+int kd_side(float lo, float hi, float pos, int planar_left);
+
+/* Surface area of a box (double). */
+double kd_area(const rt_aabb *b);
+
+/* What pricing a plane needs of a cell, computed once per node. */
+typedef struct kd_cell {
+    const rt_aabb *box;
+    double ext[3];   /* extents */
+    double inv_area; /* 1 / surface area (0 when the area is 0: no split) */
+} kd_cell;
+
+/* Fills c for box; returns 0 when the box has no area (a leaf). */
+int kd_cell_init(kd_cell *c, const rt_aabb *box);
+
+/* Offers the plane pos on axis k of the cell to best: nl triangles
+ * entirely left, nr entirely right, np lying in the plane, n in all. Both
+ * places for the planar ones are priced, with the empty-space bonus when a
+ * side is empty; a split that leaves one child equal to the cell with every
+ * triangle (a plane on the cell's face) is refused, so recursion always
+ * progresses. Ties keep the earlier offer. */
+void kd_offer(const kd_ctx *c, const kd_cell *v, int k, float pos, uint32_t nl, uint32_t nr,
+              uint32_t np, uint32_t n, kd_split *best);
+
+/* ---- perfect splits (kd_clip.c) --------------------------------------------- */
+
+/* The box of triangle t clipped to cell, rounded outwards to floats (only
+ * where the clipped coordinate is not already a float), within cell.
+ * Returns 0 when the triangle does not reach the cell. */
+int kd_clip_box(const kd_tri *t, const rt_aabb *cell, rt_aabb *out);
+
+/* ---- the split finders ----------------------------------------------------------- */
+
+/* Per worker scratch: a flag per triangle (zero between uses) and a list. */
+typedef struct kd_scratch {
+    uint8_t *flags;
+    uint32_t *list;
+    uint32_t list_cap;
+} kd_scratch;
+
+/* A node's input: the cell, the depth, the triangle count and the finder's
+ * own data (events or boxes), which the node owns. */
+typedef struct kd_node_in {
+    rt_aabb cell;
+    int depth;
+    uint32_t tris;
+    void *data;
+    uint32_t size;
+} kd_node_in;
+
+typedef struct kd_finder {
+    /* The cheapest split of the node, or best->cost INFINITY. */
+    void (*find)(const kd_ctx *c, const kd_node_in *in, kd_split *best);
+    /* Splits in into l and r (and frees in's data). Returns 0 when out of
+     * memory (in's data freed, l and r empty). */
+    int (*split)(const kd_ctx *c, kd_node_in *in, const kd_split *s, kd_scratch *w, kd_node_in *l,
+                 kd_node_in *r);
+    /* The node's triangles in increasing index order into w->list; returns
+     * the count (or UINT32_MAX when out of memory). */
+    uint32_t (*leaf)(const kd_ctx *c, const kd_node_in *in, kd_scratch *w);
+    /* The root's input from the triangles with area (ids[0..n-1], their
+     * boxes); returns 0 when out of memory. */
+    int (*root)(const kd_ctx *c, const uint32_t *ids, const rt_aabb *boxes, uint32_t n,
+                const rt_aabb *cell, kd_node_in *out);
+} kd_finder;
+
+extern const kd_finder kd_finder_sweep;  /* kd_sweep.c */
+extern const kd_finder kd_finder_binned; /* kd_binned.c */
+
+/* Grows w->list to hold n entries; 0 when out of memory. */
+int kd_scratch_list(kd_scratch *w, uint32_t n);
+
+#endif /* RT_KD_INTERNAL_H */

@@ -1,0 +1,435 @@
+/* test_core_kd.c - SAH kd-trees (host/accel/kd.h, kernels/rt_kd.h).
+ *
+ * - Exactness: the kd traversal gives the brute-force hit over every
+ *   triangle (t, u, v bits, prim, inst) and the BVH's, for both builders and
+ *   every triangle test, on the built-in scenes and on hard synthetic meshes:
+ *   axis-aligned grids and boxes whose triangles lie in split planes, rays
+ *   lying in those planes or starting on them, rays with zero direction
+ *   components (parallel to the planes), flat meshes (flat cells), stacks of
+ *   identical triangles (equal-t ties: the lower index must win), zero-area
+ *   triangles and random soups of straddling triangles.
+ * - Structure: every triangle with area is in the leaf of each of its
+ *   vertices; no tree is deeper than RT_KD_MAX_DEPTH.
+ * - Determinism: the same bytes for any thread count.
+ * - Degenerate input never crashes a build; non-finite input is refused. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "accel/kd.h"
+#include "accel/scene_boxes.h"
+#include "base/thread_pool.h"
+#include "check.h"
+#include "layout/flatten.h"
+#include "oracle_util.h"
+#include "rt_shared.h"
+#include "scene/scene.h"
+#include "scene/scene_builtin.h"
+#include "test_bvh_simple.h"
+
+static rt_error lib_err;
+
+/* The layout of scene with every mesh as a kd-tree (kd: 1 exact, 2 binned)
+ * or as a BVH of the test's own builder (kd: 0). */
+static int build_flat(const rt_scene *scene, int kd, uint32_t method, rt_flat *flat) {
+    rt_bvh *bvhs = calloc(scene->mesh_count + 1, sizeof(rt_bvh));
+    rt_kd *kds = calloc(scene->mesh_count + 1, sizeof(rt_kd));
+    rt_bvh top;
+    memset(&top, 0, sizeof top);
+    int ok = 1;
+    for (uint32_t m = 0; m < scene->mesh_count; m++) {
+        const rt_mesh_data *md = &scene->meshes[m];
+        if (kd) {
+            rt_kd_options o = rt_kd_options_default();
+            o.builder = kd == 1 ? RT_KD_EXACT : RT_KD_BINNED;
+            rt_status st = rt_kd_build(md->positions, md->vertex_count, md->indices,
+                                       md->triangle_count, &o, NULL, &kds[m], &lib_err);
+            CHECK_MSG(st == RT_OK, "kd build: %s", lib_err.message);
+            ok &= st == RT_OK;
+        } else if (md->triangle_count) {
+            rt_aabb *boxes = malloc(sizeof(rt_aabb) * md->triangle_count);
+            rt_mesh_tri_boxes(md, boxes);
+            simple_bvh_build(boxes, md->triangle_count, 4, &bvhs[m]);
+            free(boxes);
+        }
+    }
+    if (scene->object_count) {
+        rt_aabb *boxes = malloc(sizeof(rt_aabb) * scene->object_count);
+        for (uint32_t o = 0; o < scene->object_count; o++) rt_object_world_box(scene, o, &boxes[o]);
+        simple_bvh_build(boxes, scene->object_count, 1, &top);
+        free(boxes);
+    }
+    rt_flat_options opt = rt_flat_options_default();
+    opt.tri_method = method;
+    if (ok) {
+        rt_status st = rt_flatten_accel(scene, bvhs, kd ? kds : NULL, &top, &opt, flat, &lib_err);
+        CHECK_MSG(st == RT_OK, "flatten: %s", lib_err.message);
+        ok = st == RT_OK;
+    }
+    for (uint32_t m = 0; m < scene->mesh_count; m++) {
+        rt_bvh_free(&bvhs[m]);
+        rt_kd_free(&kds[m]);
+    }
+    free(bvhs);
+    free(kds);
+    rt_bvh_free(&top);
+    return ok;
+}
+
+/* ---- hard rays ------------------------------------------------------------ */
+
+/* Coordinates on the grid the synthetic meshes use (multiples of 0.5, some
+ * exactly on their planes), and directions with zero components. */
+static float grid_coord(float lo, float hi) {
+    int steps = (int)((hi - lo) * 2.0f) + 4;
+    return lo - 1.0f + 0.5f * (float)(int)(oracle_rnd() * (float)steps);
+}
+
+static void hard_ray(const float lo[3], const float hi[3], rt_ray_d *r) {
+    float pick = oracle_rnd();
+    for (int k = 0; k < 3; k++) {
+        r->org[k] = grid_coord(lo[k], hi[k]);
+        float d = (float)(int)(oracle_rnd() * 3.0f) - 1.0f; /* -1, 0, 1 */
+        if (pick < 0.3f)
+            d += (oracle_rnd() - 0.5f) * 1e-3f; /* nearly parallel */
+        else if (pick < 0.5f && d != 0.0f)
+            d = oracle_rnd() * 2.0f - 1.0f;
+        r->dir[k] = d;
+    }
+    if (r->dir[0] == 0.0f && r->dir[1] == 0.0f && r->dir[2] == 0.0f) r->dir[2] = 1.0f;
+    r->tmin = oracle_rnd() < 0.2f ? 0.5f : 0.0f;
+    r->tmax = oracle_rnd() < 0.2f ? 1.5f : INFINITY;
+}
+
+/* Traces rays through the kd layouts and the BVH layout of scene and against
+ * brute force; returns the mismatches. */
+static int compare(const char *name, const rt_scene *scene, uint32_t method, int rays, int hard) {
+    rt_flat fb, fk, fkb;
+    if (!build_flat(scene, 0, method, &fb)) return 1;
+    if (!build_flat(scene, 1, method, &fk)) return 1;
+    if (!build_flat(scene, 2, method, &fkb)) return 1;
+    rt_scene_view vb = rt_flat_view(&fb), vk = rt_flat_view(&fk), vkb = rt_flat_view(&fkb);
+    float lo[3], hi[3];
+    rt_scene_bounds(scene, lo, hi);
+    int bad = 0, hits = 0;
+    for (int i = 0; i < rays; i++) {
+        rt_ray_d r;
+        if (hard && i % 3 != 0)
+            hard_ray(lo, hi, &r);
+        else
+            oracle_ray(&fb.hdr, lo, hi, i, &r);
+        for (int any = 0; any < 2; any++) {
+            rt_hit_d brute, hb, hk, hkb;
+            rt_counters c = {0, 0, 0};
+            oracle_brute_force(&vb, &r, any, &brute);
+            rt_trace(&vb, &r, any, &hb, &c);
+            rt_trace(&vk, &r, any, &hk, &c);
+            rt_trace(&vkb, &r, any, &hkb, &c);
+            int ok;
+            if (any) /* any hit: occlusion agrees (which hit is free) */
+                ok = (brute.prim == RT_NO_HIT) == (hk.prim == RT_NO_HIT) &&
+                     (brute.prim == RT_NO_HIT) == (hkb.prim == RT_NO_HIT);
+            else
+                ok = oracle_same_hit(&brute, &hk) && oracle_same_hit(&brute, &hkb) &&
+                     oracle_same_hit(&brute, &hb);
+            hits += !any && brute.prim != RT_NO_HIT;
+            if (!ok && bad < 5)
+                fprintf(stderr,
+                        "%s method %u ray %d any %d org (%a %a %a) dir (%a %a %a) [%a %a]: "
+                        "brute t %a prim %u inst %u; kd t %a prim %u inst %u; binned t %a "
+                        "prim %u; bvh t %a prim %u\n",
+                        name, method, i, any, (double)r.org[0], (double)r.org[1], (double)r.org[2],
+                        (double)r.dir[0], (double)r.dir[1], (double)r.dir[2], (double)r.tmin,
+                        (double)r.tmax, (double)brute.t, brute.prim, brute.inst, (double)hk.t,
+                        hk.prim, hk.inst, (double)hkb.t, hkb.prim, (double)hb.t, hb.prim);
+            bad += !ok;
+        }
+    }
+    printf("%-28s method %u: %d rays, %d closest hits, %d mismatches\n", name, method, rays, hits,
+           bad);
+    CHECK_MSG(hits > rays / 20, "%s: too few hits (%d) for the test to mean much", name, hits);
+    rt_flat_free(&fb);
+    rt_flat_free(&fk);
+    rt_flat_free(&fkb);
+    return bad;
+}
+
+/* ---- synthetic meshes ----------------------------------------------------------- */
+
+static uint32_t add_mesh(rt_scene *s, const float *pos, uint32_t nv, const uint32_t *idx,
+                         uint32_t nt) {
+    uint32_t m, o;
+    CHECK(rt_mesh_create(s, &m) == RT_OK);
+    if (nt) CHECK(rt_mesh_add_triangles(s, m, pos, NULL, nv, idx, nt) == RT_OK);
+    CHECK(rt_object_create(s, 0, &o) == RT_OK);
+    CHECK(rt_object_add_mesh(s, o, m) == RT_OK);
+    return m;
+}
+
+static rt_scene *new_scene(void) {
+    rt_scene *s;
+    CHECK(rt_scene_create(&s) == RT_OK);
+    rt_material mat = rt_material_default();
+    uint32_t id;
+    CHECK(rt_material_add(s, &mat, &id) == RT_OK);
+    return s;
+}
+
+/* An n x n grid of unit quads in the plane axis = c (two triangles each). */
+static void grid(rt_scene *s, int axis, float c, int n) {
+    float *pos = malloc(sizeof(float) * 3 * (size_t)(n + 1) * (size_t)(n + 1));
+    uint32_t *idx = malloc(sizeof(uint32_t) * 6 * (size_t)n * (size_t)n);
+    int a = (axis + 1) % 3, b = (axis + 2) % 3;
+    for (int i = 0; i <= n; i++)
+        for (int j = 0; j <= n; j++) {
+            float *p = pos + 3 * (i * (n + 1) + j);
+            p[axis] = c;
+            p[a] = (float)i;
+            p[b] = (float)j;
+        }
+    uint32_t t = 0;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            uint32_t v = (uint32_t)(i * (n + 1) + j), w = v + (uint32_t)(n + 1);
+            uint32_t q[6] = {v, w, w + 1, v, w + 1, v + 1};
+            memcpy(idx + 6 * t, q, sizeof q);
+            t++;
+        }
+    add_mesh(s, pos, (uint32_t)((n + 1) * (n + 1)), idx, 2 * t);
+    free(pos);
+    free(idx);
+}
+
+/* Axis-aligned boxes on the half-integer grid: triangles in split planes,
+ * edges on planes, flat cells between touching faces. */
+static rt_scene *scene_boxes(void) {
+    rt_scene *s = new_scene();
+    grid(s, 2, 0.0f, 6);
+    grid(s, 0, 2.0f, 4);
+    grid(s, 1, 3.0f, 5);
+    /* Cubes touching face to face. */
+    float pos[8 * 3 * 4];
+    uint32_t idx[36 * 4];
+    static const uint32_t cube[36] = {0, 1, 3, 0, 3, 2, 4, 6, 7, 4, 7, 5, 0, 4, 5, 0, 5, 1,
+                                      2, 3, 7, 2, 7, 6, 0, 2, 6, 0, 6, 4, 1, 5, 7, 1, 7, 3};
+    for (int c = 0; c < 4; c++) {
+        for (int v = 0; v < 8; v++) {
+            pos[3 * (8 * c + v) + 0] = 0.5f + (float)c + (float)(v >> 2 & 1);
+            pos[3 * (8 * c + v) + 1] = 0.5f + (float)(v >> 1 & 1);
+            pos[3 * (8 * c + v) + 2] = 1.0f + 0.5f * (float)(v & 1);
+        }
+        for (int i = 0; i < 36; i++) idx[36 * c + i] = cube[i] + 8u * (uint32_t)c;
+    }
+    add_mesh(s, pos, 32, idx, 48);
+    return s;
+}
+
+/* A flat mesh (every triangle in z = 1), a stack of identical triangles
+ * (ties), zero-area triangles and a triangle twice with opposite winding. */
+static rt_scene *scene_degenerate(void) {
+    rt_scene *s = new_scene();
+    grid(s, 2, 1.0f, 5);
+    float pos[] = {0, 0, 2, 3, 0, 2, 0, 3, 2, /* the stacked triangle */
+                   1, 1, 0, 1, 1, 0, 2, 2, 0, /* zero area: two equal vertices */
+                   0, 0, 3, 1, 1, 3, 2, 2, 3, /* zero area: collinear */
+                   0, 4, 1, 3, 4, 1, 0, 4, 4};
+    uint32_t idx[3 * 40];
+    uint32_t t = 0;
+    for (int i = 0; i < 30; i++, t++) idx[3 * t] = 0, idx[3 * t + 1] = 1, idx[3 * t + 2] = 2;
+    idx[3 * t] = 3, idx[3 * t + 1] = 4, idx[3 * t + 2] = 5, t++;
+    idx[3 * t] = 6, idx[3 * t + 1] = 7, idx[3 * t + 2] = 8, t++;
+    idx[3 * t] = 9, idx[3 * t + 1] = 10, idx[3 * t + 2] = 11, t++;
+    idx[3 * t] = 9, idx[3 * t + 1] = 11, idx[3 * t + 2] = 10, t++;
+    add_mesh(s, pos, 12, idx, t);
+    /* A mesh with no triangle of any area. */
+    add_mesh(s, pos + 9, 6, (const uint32_t[]){0, 1, 2, 3, 4, 5}, 2);
+    return s;
+}
+
+/* Random triangles in a box: large ones straddle many cells. */
+static void soup(rt_scene *s, uint32_t n, float size) {
+    float *pos = malloc(sizeof(float) * 9 * n);
+    uint32_t *idx = malloc(sizeof(uint32_t) * 3 * n);
+    for (uint32_t t = 0; t < n; t++) {
+        float c[3];
+        for (int k = 0; k < 3; k++) c[k] = 8.0f * oracle_rnd();
+        for (int v = 0; v < 3; v++)
+            for (int k = 0; k < 3; k++)
+                pos[9 * t + 3 * v + k] = c[k] + size * (oracle_rnd() - 0.5f);
+        for (int v = 0; v < 3; v++) idx[3 * t + v] = 3 * t + (uint32_t)v;
+    }
+    add_mesh(s, pos, 3 * n, idx, n);
+    free(pos);
+    free(idx);
+}
+
+/* ---- structure ---------------------------------------------------------------- */
+
+/* Is triangle t in the leaf (or, on a split plane, a leaf) holding point p? */
+static int in_leaf_at(const rt_kd *kd, uint32_t node, const float *p, uint32_t t, int depth) {
+    const rt_kd_node *n = &kd->nodes[node];
+    if ((n->b & 3u) == RT_KD_LEAF) {
+        for (uint32_t e = n->a; e < n->a + (n->b >> 2); e++)
+            if (kd->prims[e] == t) return 1;
+        return 0;
+    }
+    if (depth > RT_KD_MAX_DEPTH) return 0;
+    float split;
+    memcpy(&split, &n->a, sizeof split);
+    int k = (int)(n->b & 3u);
+    if (p[k] < split) return in_leaf_at(kd, node + 1, p, t, depth + 1);
+    if (p[k] > split) return in_leaf_at(kd, n->b >> 2, p, t, depth + 1);
+    return in_leaf_at(kd, node + 1, p, t, depth + 1) || in_leaf_at(kd, n->b >> 2, p, t, depth + 1);
+}
+
+static void check_structure(const char *name, const rt_mesh_data *md, const rt_kd *kd) {
+    rt_kd_quality q = rt_kd_measure(kd, 1.0f, 1.5f);
+    CHECK_MSG(q.depth <= RT_KD_MAX_DEPTH, "%s: depth %u", name, q.depth);
+    int missing = 0;
+    for (uint32_t t = 0; t < md->triangle_count; t++) {
+        const float *v[3];
+        for (int i = 0; i < 3; i++) v[i] = md->positions + 3 * md->indices[3 * t + i];
+        float e1[3], e2[3], n[3];
+        for (int k = 0; k < 3; k++) e1[k] = v[1][k] - v[0][k], e2[k] = v[2][k] - v[0][k];
+        rt_cross3(e1, e2, n);
+        if (n[0] == 0.0f && n[1] == 0.0f && n[2] == 0.0f) continue;
+        for (int i = 0; i < 3; i++) missing += !in_leaf_at(kd, 0, v[i], t, 0);
+    }
+    CHECK_MSG(missing == 0, "%s: %d triangle vertices not in their leaves", name, missing);
+}
+
+static int same_tree(const rt_kd *a, const rt_kd *b) {
+    return a->node_count == b->node_count && a->prim_count == b->prim_count &&
+           !memcmp(a->nodes, b->nodes, sizeof(rt_kd_node) * a->node_count) &&
+           !memcmp(a->prims, b->prims, sizeof(uint32_t) * a->prim_count) &&
+           !memcmp(&a->bounds, &b->bounds, sizeof a->bounds);
+}
+
+static void test_determinism(void) {
+    rt_scene *s = new_scene();
+    soup(s, 12000, 0.6f);
+    const rt_mesh_data *md = &s->meshes[0];
+    for (int b = 0; b < 2; b++) {
+        rt_kd_options o = rt_kd_options_default();
+        o.builder = b ? RT_KD_BINNED : RT_KD_EXACT;
+        rt_kd ref;
+        CHECK(rt_kd_build(md->positions, md->vertex_count, md->indices, md->triangle_count, &o,
+                          NULL, &ref, &lib_err) == RT_OK);
+        check_structure(b ? "soup binned" : "soup exact", md, &ref);
+        for (int threads = 1; threads <= 4; threads++) {
+            rt_pool *pool = rt_pool_create(threads);
+            rt_kd kd;
+            CHECK(rt_kd_build(md->positions, md->vertex_count, md->indices, md->triangle_count, &o,
+                              pool, &kd, &lib_err) == RT_OK);
+            CHECK_MSG(same_tree(&ref, &kd), "%s tree differs with %d threads",
+                      rt_kd_builder_name(o.builder), threads);
+            rt_kd_free(&kd);
+            rt_pool_destroy(pool);
+        }
+        rt_kd_free(&ref);
+    }
+    rt_scene_destroy(s);
+}
+
+static void test_degenerate_builds(void) {
+    rt_kd_options o = rt_kd_options_default();
+    for (int b = 0; b < 2; b++) {
+        o.builder = b ? RT_KD_BINNED : RT_KD_EXACT;
+        rt_kd kd;
+        /* Nothing at all; only zero-area triangles: one empty leaf. */
+        CHECK(rt_kd_build(NULL, 0, NULL, 0, &o, NULL, &kd, &lib_err) == RT_OK);
+        CHECK(kd.node_count == 1 && kd.prim_count == 0);
+        rt_kd_free(&kd);
+        float pts[] = {1, 1, 1, 1, 1, 1, 2, 2, 2, 0, 0, 0};
+        uint32_t idx[] = {0, 1, 2, 0, 2, 3, 3, 3, 3};
+        CHECK(rt_kd_build(pts, 4, idx, 3, &o, NULL, &kd, &lib_err) == RT_OK);
+        CHECK(kd.node_count == 1 && kd.prim_count == 0);
+        rt_kd_free(&kd);
+        /* Non-finite coordinates and bad indices are refused. */
+        float bad[] = {0, 0, 0, 1, 0, 0, 0, NAN, 0};
+        uint32_t tri[] = {0, 1, 2};
+        CHECK(rt_kd_build(bad, 3, tri, 1, &o, NULL, &kd, &lib_err) == RT_ERROR_INVALID_ARGUMENT);
+        bad[7] = INFINITY;
+        CHECK(rt_kd_build(bad, 3, tri, 1, &o, NULL, &kd, &lib_err) == RT_ERROR_INVALID_ARGUMENT);
+        uint32_t far[] = {0, 1, 7};
+        CHECK(rt_kd_build(pts, 4, far, 1, &o, NULL, &kd, &lib_err) == RT_ERROR_INVALID_ARGUMENT);
+        /* 3000 copies of one triangle: the depth bound ends it. */
+        uint32_t *many = malloc(sizeof(uint32_t) * 9000);
+        float one[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+        for (int i = 0; i < 9000; i++) many[i] = (uint32_t)(i % 3);
+        CHECK(rt_kd_build(one, 3, many, 3000, &o, NULL, &kd, &lib_err) == RT_OK);
+        rt_kd_quality q = rt_kd_measure(&kd, 1.0f, 1.5f);
+        CHECK(q.depth <= RT_KD_MAX_DEPTH && kd.prim_count >= 3000);
+        rt_kd_free(&kd);
+        free(many);
+    }
+}
+
+/* The per-mesh choice (rt.h): set, read, refused values, names, and the
+ * static-mesh rule (keyframes of an animated object keep theirs). */
+static void test_api(void) {
+    rt_scene *s;
+    CHECK(rt_scene_builtin("cornell", &s, &lib_err) == RT_OK);
+    uint32_t v = s->meshes[0].version, sv = s->version;
+    CHECK(rt_mesh_accel(s, 0) == RT_ACCEL_BVH);
+    CHECK(rt_mesh_set_accel(s, 0, RT_ACCEL_KD) == RT_OK);
+    CHECK(rt_mesh_accel(s, 0) == RT_ACCEL_KD);
+    CHECK(s->meshes[0].version != v && s->version != sv); /* renderers rebuild it */
+    CHECK(rt_mesh_set_accel(s, 0, (rt_accel)7) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK(rt_mesh_set_accel(s, s->mesh_count, RT_ACCEL_KD) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK(rt_mesh_accel(s, s->mesh_count) == RT_ACCEL_BVH);
+    CHECK(rt_scene_set_static_accel(s, RT_ACCEL_KD_BINNED) == RT_OK);
+    for (uint32_t o = 0; o < s->object_count; o++) {
+        const rt_object_data *ob = &s->objects[o];
+        for (uint32_t k = 0; k < ob->mesh_count; k++)
+            CHECK(rt_mesh_accel(s, ob->meshes[k]) ==
+                  (ob->mesh_count > 1 ? RT_ACCEL_BVH : RT_ACCEL_KD_BINNED));
+    }
+    rt_accel a;
+    CHECK(rt_accel_parse("kd", &a) && a == RT_ACCEL_KD);
+    CHECK(rt_accel_parse("kd-binned", &a) && a == RT_ACCEL_KD_BINNED);
+    CHECK(rt_accel_parse("bvh", &a) && a == RT_ACCEL_BVH);
+    CHECK(!rt_accel_parse("KD", &a) && !rt_accel_parse("", &a) && !rt_accel_parse(NULL, &a));
+    rt_scene_destroy(s);
+}
+
+int main(void) {
+    test_api();
+    test_degenerate_builds();
+    test_determinism();
+    int bad = 0;
+    rt_scene *s;
+    for (int i = 0; rt_builtin_scene_names[i]; i++) {
+        CHECK(rt_scene_builtin(rt_builtin_scene_names[i], &s, &lib_err) == RT_OK);
+        for (uint32_t m = 0; m < RT_TRI_BADOUEL + 1; m++)
+            bad += compare(rt_builtin_scene_names[i], s, m, m ? 800 : 3000, 0);
+        rt_scene_destroy(s);
+    }
+    struct {
+        const char *name;
+        rt_scene *(*make)(void);
+    } synth[] = {{"boxes (planes)", scene_boxes}, {"degenerate", scene_degenerate}};
+    for (size_t i = 0; i < sizeof synth / sizeof synth[0]; i++) {
+        s = synth[i].make();
+        for (uint32_t m = 0; m < RT_TRI_BADOUEL + 1; m++)
+            bad += compare(synth[i].name, s, m, m ? 3000 : 20000, 1);
+        for (uint32_t m = 0; m < s->mesh_count; m++) {
+            rt_kd kd;
+            rt_kd_options o = rt_kd_options_default();
+            const rt_mesh_data *md = &s->meshes[m];
+            CHECK(rt_kd_build(md->positions, md->vertex_count, md->indices, md->triangle_count, &o,
+                              NULL, &kd, &lib_err) == RT_OK);
+            check_structure(synth[i].name, md, &kd);
+            rt_kd_free(&kd);
+        }
+        rt_scene_destroy(s);
+    }
+    s = new_scene();
+    soup(s, 3000, 1.5f);
+    soup(s, 500, 0.05f);
+    bad += compare("soup", s, RT_TRI_WATERTIGHT, 6000, 0);
+    bad += compare("soup", s, RT_TRI_MOLLER, 1500, 0);
+    rt_scene_destroy(s);
+    CHECK_MSG(bad == 0, "%d rays differ", bad);
+    return TEST_END();
+}
