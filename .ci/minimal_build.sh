@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build-minimal}
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRT_WERROR=ON \
-    -DRT_JANSSON=OFF -DRT_OIIO=OFF -DRT_EMBREE=OFF
+    -DRT_JANSSON=OFF -DRT_OIIO=OFF -DRT_EMBREE=OFF -DRT_VULKAN=OFF -DRT_VIEW=OFF
 cmake --build "$build" -j "$(nproc)"
 rtcl="$build/rtcl"
 tmp=$(mktemp -d)
