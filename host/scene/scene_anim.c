@@ -314,7 +314,12 @@ static rt_status morph_reset(rt_scene *scene, uint32_t object, uint32_t src) {
     m->tri_materials = mats;
     m->vertex_count = m->vertex_capacity = s->vertex_count;
     m->triangle_count = m->triangle_capacity = s->triangle_count;
-    snprintf(m->name, sizeof m->name, "%.100s (blend)", s->name);
+    /* Through a copy: GCC at -O1 cannot tell the blend mesh from its source
+     * and warns that the two names may overlap (-Wrestrict). */
+    char from[sizeof s->name];
+    memcpy(from, s->name, sizeof from);
+    from[sizeof from - 1] = 0;
+    snprintf(m->name, sizeof m->name, "%.100s (blend)", from);
     m->version++;
     m->topology_version++;
     scene->version++;
