@@ -75,8 +75,9 @@ static inline vi splat_i(int32_t x) {
     return v;
 }
 
-/* m ? a : b per lane (m a comparison result). */
-static inline vf sel(vi m, vf a, vf b) {
+/* m ? a : b per lane (m a comparison result). Unused in some instruction-set
+ * builds (clang warns on an unused static inline function). */
+__attribute__((unused)) static inline vf sel(vi m, vf a, vf b) {
     return (vf)((m & (vi)a) | (~m & (vi)b));
 }
 
