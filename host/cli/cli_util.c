@@ -128,6 +128,30 @@ void cli_renderer_args_init(cli_renderer_args *a) {
     a->backend = "cpu";
 }
 
+int cli_maths_arg(int argc, char **argv, int *i, const char *command, rt_device_math *math,
+                  rt_denormals *denormals) {
+    const char *o = argv[*i], *v;
+    int is_math = !strcmp(o, "--device-math");
+    if (!is_math && strcmp(o, "--denormals") != 0) return 0;
+    if (!(v = cli_value(argc, argv, i, command))) return -1;
+    if (is_math && !strcmp(v, "auto"))
+        *math = RT_DEVICE_MATH_AUTO;
+    else if (is_math && !strcmp(v, "native"))
+        *math = RT_DEVICE_MATH_NATIVE;
+    else if (is_math && !strcmp(v, "portable"))
+        *math = RT_DEVICE_MATH_PORTABLE;
+    else if (!is_math && !strcmp(v, "preserve"))
+        *denormals = RT_DENORMALS_PRESERVE;
+    else if (!is_math && !strcmp(v, "flush"))
+        *denormals = RT_DENORMALS_FLUSH;
+    else {
+        cli_error(command, "%s takes %s, not '%s'", o,
+                  is_math ? "auto, native or portable" : "preserve or flush", v);
+        return -1;
+    }
+    return 1;
+}
+
 int cli_renderer_arg(int argc, char **argv, int *i, const char *command, cli_renderer_args *a) {
     const char *o = argv[*i], *v;
     int n;
@@ -152,28 +176,9 @@ int cli_renderer_arg(int argc, char **argv, int *i, const char *command, cli_ren
         if (!(a->opt.packet_isa = cli_value(argc, argv, i, command))) return -1;
     } else if (!strcmp(o, "--verbose")) {
         a->verbose = 1;
-    } else if (!strcmp(o, "--device-math")) {
-        if (!(v = cli_value(argc, argv, i, command))) return -1;
-        if (!strcmp(v, "auto"))
-            a->opt.device_math = RT_DEVICE_MATH_AUTO;
-        else if (!strcmp(v, "native"))
-            a->opt.device_math = RT_DEVICE_MATH_NATIVE;
-        else if (!strcmp(v, "portable"))
-            a->opt.device_math = RT_DEVICE_MATH_PORTABLE;
-        else {
-            cli_error(command, "--device-math takes auto, native or portable, not '%s'", v);
-            return -1;
-        }
-    } else if (!strcmp(o, "--denormals")) {
-        if (!(v = cli_value(argc, argv, i, command))) return -1;
-        if (!strcmp(v, "preserve"))
-            a->opt.denormals = RT_DENORMALS_PRESERVE;
-        else if (!strcmp(v, "flush"))
-            a->opt.denormals = RT_DENORMALS_FLUSH;
-        else {
-            cli_error(command, "--denormals takes preserve or flush, not '%s'", v);
-            return -1;
-        }
+    } else if ((n = cli_maths_arg(argc, argv, i, command, &a->opt.device_math,
+                                  &a->opt.denormals)) != 0) {
+        return n;
     } else if (!strcmp(o, "--cl-one-ray")) {
         a->opt.opencl.one_ray_kernels = 1;
     } else if (!strcmp(o, "--cl-no-wavefront")) {

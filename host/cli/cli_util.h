@@ -56,6 +56,12 @@ void cli_renderer_args_init(cli_renderer_args *a);
  * returns 1; 0 when it is not one; -1 after printing an error. */
 int cli_renderer_arg(int argc, char **argv, int *i, const char *command, cli_renderer_args *a);
 
+/* --device-math auto|native|portable and --denormals preserve|flush at
+ * argv[*i]: 1 when taken (the value stored, *i past it), 0 when argv[*i] is
+ * neither option, -1 after printing the error for a bad or missing value. */
+int cli_maths_arg(int argc, char **argv, int *i, const char *command, rt_device_math *math,
+                  rt_denormals *denormals);
+
 /* Creates the renderer the options ask for; prints the error and returns
  * NULL when it cannot. */
 rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a);

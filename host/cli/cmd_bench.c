@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "bench_render.h"
+#include "cli_util.h"
 #include "accel/bvh.h"
 #include "accel/kd.h"
 #include "base/clock.h"
@@ -40,9 +41,10 @@ typedef struct row {
 
 typedef struct bench_args {
     int json, reps, threads, progress, render, width, height;
-    int device_math, denormals; /* rt_device_math, rt_denormals */
-    int accel;                  /* --accel: rt_accel, or -1 */
-    int verbose;                /* --verbose: the OpenCL build log on stderr */
+    rt_device_math device_math;
+    rt_denormals denormals;
+    int accel;   /* --accel: rt_accel, or -1 */
+    int verbose; /* --verbose: the OpenCL build log on stderr */
 } bench_args;
 
 static int cmp_double(const void *a, const void *b) {
@@ -529,7 +531,7 @@ int cmd_bench(int argc, char **argv) {
     const char **scenes = calloc((size_t)argc, sizeof *scenes);
     int n_scenes = 0;
     if (!scenes) return 2;
-    for (int i = 1; i < argc; i++) {
+    for (int i = 1, m; i < argc; i++) {
         const char *s = argv[i];
         if (!strcmp(s, "--help") || !strcmp(s, "-h")) {
             usage(stdout);
@@ -550,22 +552,8 @@ int cmd_bench(int argc, char **argv) {
             i++;
         } else if (!strcmp(s, "--verbose")) {
             a.verbose = 1;
-        } else if (!strcmp(s, "--device-math") || !strcmp(s, "--denormals")) {
-            const char *v = i + 1 < argc ? argv[++i] : "";
-            int math = !strcmp(s, "--device-math");
-            if (math && !strcmp(v, "auto"))
-                a.device_math = RT_DEVICE_MATH_AUTO;
-            else if (math && !strcmp(v, "native"))
-                a.device_math = RT_DEVICE_MATH_NATIVE;
-            else if (math && !strcmp(v, "portable"))
-                a.device_math = RT_DEVICE_MATH_PORTABLE;
-            else if (!math && !strcmp(v, "preserve"))
-                a.denormals = RT_DENORMALS_PRESERVE;
-            else if (!math && !strcmp(v, "flush"))
-                a.denormals = RT_DENORMALS_FLUSH;
-            else {
-                fprintf(stderr, "rtcl bench: %s takes %s, not '%s'\n", s,
-                        math ? "auto, native or portable" : "preserve or flush", v);
+        } else if ((m = cli_maths_arg(argc, argv, &i, "bench", &a.device_math, &a.denormals))) {
+            if (m < 0) {
                 free(scenes);
                 return 2;
             }
