@@ -205,6 +205,13 @@ static inline uint32_t node_test(const uint32_t *n, const sw_ray *rv, vf hi, vf 
     return bits((l <= hi) & (l <= far)) & *real;
 }
 
+/* The float at word i of a node or block. */
+static inline float fl(const uint32_t *words, int i) {
+    float f;
+    memcpy(&f, &words[i], sizeof f);
+    return f;
+}
+
 /* rt_box_hi(t) in every lane, as the box test's upper range end; a NaN
  * (which limits nothing in rt_box_test's 'tmax < hi ? tmax : hi') as +inf,
  * which limits nothing either. */
@@ -294,7 +301,16 @@ static int leaf_test(sw_ctx *x, rt_u32 first, rt_u32 count, rt_u32 inst, const r
         uint32_t hit = bits((t >= tmin) & (t <= splat(best->t))) & inside;
         for (; hit; hit &= hit - 1) {
             const int l = lowest_bit(hit);
-            if (!rt_hit_accepted(&x->s->tris[ent[l]], r, p, t[l])) continue;
+            /* rt_hit_accepted, from the block's copies of the vertices
+             * (the layout's triangle is not in cache). */
+            float mn[3], mx[3];
+            for (int k = 0; k < 3; k++) {
+                const float a = fl(blk, k * W + l), b = fl(blk, (3 + k) * W + l);
+                const float c = fl(blk, (6 + k) * W + l);
+                mn[k] = rt_min3(a, b, c);
+                mx[k] = rt_max3(a, b, c);
+            }
+            if (!rt_hit_accepted_box(mn, mx, r, p, t[l])) continue;
             /* u = V / det and v = W / det, divided as the oracle divides. */
             if (take_hit(x, best, t[l], V[l] / det[l], Wf[l] / det[l], ent[l], inst)) return 1;
         }

@@ -529,22 +529,32 @@ RT_FN float rt_max3(float a, float b, float c) {
     return c > m ? c : m;
 }
 
-/* Whether a hit at t on tri (the ray r in the triangle's space, prepared as
- * p) is accepted: see above. */
-RT_FN int rt_hit_accepted(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, const rt_ray_pre *p,
-                          float t) {
+/* rt_hit_accepted for a triangle whose box is [mn, mx] (each the exact
+ * min and max of its vertices' coordinates). */
+RT_FN int rt_hit_accepted_box(const float *mn, const float *mx, const rt_ray_d *r,
+                              const rt_ray_pre *p, float t) {
     /* The instance box passed for [lo, inf] (rt_inst_enter); cut at hi_t it
      * passes unless hi_t falls before its entry (a NaN hi_t cuts nothing, as
      * in rt_slab_end). */
     const float hi_t = rt_box_hi(t);
     if (hi_t < p->inst_lo) return 0;
     float lo = rt_box_lo(r->tmin), hi = RT_INF, tn;
-    for (int i = 0; i < 3; i++) {
-        const float mn = rt_min3(tri->v0[i], tri->v1[i], tri->v2[i]);
-        const float mx = rt_max3(tri->v0[i], tri->v1[i], tri->v2[i]);
-        rt_slab(p->sign[i] ? mx : mn, p->sign[i] ? mn : mx, r->org[i], p->inv[i], &lo, &hi);
-    }
+    for (int i = 0; i < 3; i++)
+        rt_slab(p->sign[i] ? mx[i] : mn[i], p->sign[i] ? mn[i] : mx[i], r->org[i], p->inv[i], &lo,
+                &hi);
     return rt_slab_end(lo, hi, hi_t, &tn);
+}
+
+/* Whether a hit at t on tri (the ray r in the triangle's space, prepared as
+ * p) is accepted: see above. */
+RT_FN int rt_hit_accepted(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, const rt_ray_pre *p,
+                          float t) {
+    float mn[3], mx[3];
+    for (int i = 0; i < 3; i++) {
+        mn[i] = rt_min3(tri->v0[i], tri->v1[i], tri->v2[i]);
+        mx[i] = rt_max3(tri->v0[i], tri->v1[i], tri->v2[i]);
+    }
+    return rt_hit_accepted_box(mn, mx, r, p, t);
 }
 
 /* Tests the triangles of one leaf; returns 1 when any_hit found one. */
