@@ -102,6 +102,7 @@ cat >"$tmp/cam.json" <<EOF
 EOF
 cam_backends="cpu packet"
 "$RTCL" devices >/dev/null 2>&1 && cam_backends="$cam_backends opencl"
+"$RTCL" devices --api vulkan >/dev/null 2>&1 && cam_backends="$cam_backends vulkan"
 for k in 0 1 2 3; do
     t=$(awk "BEGIN { printf \"%.17g\", $k / 4 }")
     expect 0 "" -- "$RTCL" render "$tmp/cam.json" "${size[@]}" --time "$t" -o "$tmp/cref_$k.exr"
@@ -109,8 +110,12 @@ done
 for backend in $cam_backends; do
     dir="$tmp/cam-$backend"
     mkdir -p "$dir"
-    "$RTCL" animate "$tmp/cam.json" --fps 4 --frames 4 "${size[@]}" --backend "$backend" \
-        -o "$dir/f%d.exr" --stats >"$dir/stats" 2>"$dir/err"
+    # Vulkan's driver leaks at unload where no suppression can name it
+    # (tests/CMakeLists.txt): its run goes without the sanitizer's leak check.
+    leaks=()
+    [ "$backend" = vulkan ] && leaks=(env ASAN_OPTIONS=detect_leaks=0 LSAN_OPTIONS=detect_leaks=0)
+    "${leaks[@]}" "$RTCL" animate "$tmp/cam.json" --fps 4 --frames 4 "${size[@]}" \
+        --backend "$backend" -o "$dir/f%d.exr" --stats >"$dir/stats" 2>"$dir/err"
     rc=$?
     checks=$((checks + 1))
     if [ "$rc" != 0 ] || [ -s "$dir/err" ]; then
@@ -119,7 +124,7 @@ for backend in $cam_backends; do
     fi
     for k in 0 1 2 3; do same "$dir/f$k.exr" "$tmp/cref_$k.exr"; done
     checks=$((checks + 1))
-    bad=$(awk -v dev="$([ "$backend" = opencl ] && echo 1)" '
+    bad=$(awk -v dev="$([ "$backend" != cpu ] && [ "$backend" != packet ] && echo 1)" '
         NR == 1 { next }
         {
             ok = index($0, "\"update\": [],") && index($0, "\"object_bvh_ms\": 0.000,") &&

@@ -181,6 +181,7 @@ static void check_backend(const char *backend, int kd) {
     rt_framebuffer_free(&want);
     /* The same time again changes nothing at all. */
     CHECK(rt_scene_set_time(s, 1.5) == RT_OK);
+    rt_framebuffer_free(&fb);
     CHECK(rt_render(r, s, &opt, &fb) == RT_OK);
     rt_renderer_update_stats(r, &u);
     CHECK(!u.camera_only && u.layout_bytes == 0 && r->accel.layout_generation == generation);
