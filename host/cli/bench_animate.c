@@ -1,0 +1,445 @@
+/* bench_animate.c - the keyframe benchmark (bench_animate.h).
+ *
+ * What is timed, per frame k >= 1 (frame 0 builds everything and is left
+ * out): ours, rt_render whole (the mesh BVH updates by the policy, the
+ * object BVH, the layout rewritten in place, the packet backend's wide BVHs,
+ * then primary and shadow rays, one light); its "update" is the mesh BVH
+ * updates the renderer reports. Embree: its update (rtcCommitGeometry of
+ * what changed and rtcCommitScene) plus copying the changed vertices into
+ * its buffers plus its frame (embree_trace.c: the same rays and shading,
+ * its widest native packets). Setting the scene's time (the blend of two
+ * keyframes, the scene's work and not the renderer's) and, for Embree,
+ * making the world-space triangles of the frame are not timed.
+ *
+ * The thesis's method (section 4.1): the build time of each keyframe,
+ * averaged over the keyframes; so each row's figures are its per-run means
+ * over the frames, min and median over the runs. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench_animate.h"
+#include "base/clock.h"
+#include "render/renderer_internal.h"
+#include "rt.h"
+#include "scene/scene.h"
+#ifdef RT_HAVE_EMBREE
+#include "peer/embree_peer.h"
+#endif
+
+enum { OURS = 4 };
+static const rt_update_policy policies[OURS] = {RT_UPDATE_REBUILD, RT_UPDATE_REFIT, RT_UPDATE_FAST,
+                                                RT_UPDATE_AUTO};
+
+static int cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Min and median of v[0..n) (sorted in place). */
+static void min_median(double *v, int n, double *mn, double *med) {
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    *mn = v[0];
+    *med = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* The first object that morphs between keyframes, or -1. */
+static int morph_object(const rt_scene *s) {
+    for (uint32_t o = 0; o < s->object_count; o++)
+        if (s->objects[o].morphing) return (int)o;
+    return -1;
+}
+
+/* FNV-1a over the framebuffer's bytes: equal images, equal hashes. */
+static uint64_t image_hash(const rt_framebuffer *fb) {
+    const unsigned char *p = (const unsigned char *)fb->pixels;
+    size_t n = sizeof(float) * (size_t)fb->width * (size_t)fb->height * (size_t)fb->channels;
+    uint64_t h = 1469598103934665603ull;
+    for (size_t i = 0; i < n; i++) h = (h ^ p[i]) * 1099511628211ull;
+    return h;
+}
+
+static void set_policy(rt_scene *s, rt_update_policy p) {
+    for (uint32_t m = 0; m < s->mesh_count; m++) rt_mesh_set_update(s, m, p);
+}
+
+/* One run of one of our policies: frames 0 .. res->frames on a fresh
+ * renderer. ref: rebuild's image hashes per frame (filled by the rebuild
+ * row, compared by the others; NULL after the first run). */
+static int play_ours(rt_scene *s, const bench_anim_setup *su, bench_anim_result *res,
+                     bench_anim_row *row, rt_update_policy p, int run, uint64_t *ref) {
+    rt_renderer_options ro = rt_renderer_options_default();
+    ro.backend = su->backend ? su->backend : "packet";
+    ro.threads = su->threads;
+    rt_renderer *r = NULL;
+    rt_error e;
+    if (rt_renderer_create(&ro, &r, &e) != RT_OK) {
+        snprintf(row->error, sizeof row->error, "%.199s", e.message);
+        return 0;
+    }
+    set_policy(s, p);
+    rt_render_options o = rt_render_options_default();
+    rt_render_stats st;
+    o.stats = &st;
+    o.direct_only = 1;
+    o.reuse_framebuffer = 1;
+    rt_framebuffer fb;
+    memset(&fb, 0, sizeof fb);
+    int ok = 1;
+    for (int k = 0; k <= res->frames && ok; k++) {
+        rt_scene_set_time(s, k / res->fps);
+        double t0 = rt_now_ms();
+        if (rt_render(r, s, &o, &fb) != RT_OK) {
+            snprintf(row->error, sizeof row->error, "%.199s", rt_renderer_error(r));
+            ok = 0;
+            break;
+        }
+        double frame = rt_now_ms() - t0;
+        rt_update_stats us;
+        rt_renderer_update_stats(r, &us);
+        double upd = 0.0;
+        for (uint32_t i = 0; i < us.mesh_count; i++) upd += us.meshes[i].ms;
+        size_t i = bench_anim_index(res, run, k);
+        row->update[i] = upd;
+        row->frame[i] = frame;
+        row->trace[i] = st.render_ms;
+        row->sah_f[i] = st.sah_cost;
+        row->tests[i] = (double)st.box_tests + 2.0 * (double)st.tri_tests;
+        if (ref) {
+            uint64_t h = image_hash(&fb);
+            if (p == RT_UPDATE_REBUILD)
+                ref[k] = h;
+            else if (h != ref[k])
+                row->images_match = 0;
+        }
+    }
+    rt_framebuffer_free(&fb);
+    rt_renderer_destroy(r);
+    return ok;
+}
+
+#ifdef RT_HAVE_EMBREE
+/* The frame's layout from the helper renderer (its meshes refitted, so that
+ * every mesh keeps its triangle order from frame to frame). */
+static int helper_layout(rt_renderer *helper, rt_scene *s, rt_backend_layout *l,
+                         bench_anim_row *row) {
+    double build_ms, sah;
+    if (rt_renderer_layout(helper, s, l, &build_ms, &sah) == RT_OK) return 1;
+    snprintf(row->error, sizeof row->error, "%.199s", rt_renderer_error(helper));
+    return 0;
+}
+
+/* One run of Embree at one quality: a dynamic scene made at frame 0,
+ * updated and traced at every other frame. */
+static int play_embree(rt_scene *s, rt_embree *em, rt_renderer *helper, int quality,
+                       bench_anim_result *res, bench_anim_row *row, int run) {
+    set_policy(s, RT_UPDATE_REFIT);
+    rt_backend_layout l;
+    rt_error e;
+    memset(&e, 0, sizeof e);
+    rt_scene_set_time(s, 0.0);
+    if (!helper_layout(helper, s, &l, row)) return 0;
+    rt_embree_anim *a = NULL;
+    double ms;
+    if (rt_embree_anim_create(em, l.flat, quality, &a, &ms, &e) != RT_OK) {
+        snprintf(row->error, sizeof row->error, "%.199s", e.message);
+        return 0;
+    }
+    int ok = 1;
+    for (int k = 1; k <= res->frames && ok; k++) {
+        rt_scene_set_time(s, k / res->fps);
+        if (!helper_layout(helper, s, &l, row)) {
+            ok = 0;
+            break;
+        }
+        double copy_ms, commit_ms, trace_ms;
+        uint64_t rays;
+        if (rt_embree_anim_update(a, l.flat, &copy_ms, &commit_ms, &e) != RT_OK) {
+            snprintf(row->error, sizeof row->error, "%.199s", e.message);
+            ok = 0;
+            break;
+        }
+        rt_embree_render(rt_embree_anim_scene(a), row->lanes, l.pool, NULL, &rays, &trace_ms);
+        size_t i = bench_anim_index(res, run, k);
+        row->update[i] = commit_ms;
+        row->trace[i] = trace_ms;
+        row->frame[i] = copy_ms + commit_ms + trace_ms;
+        row->sah_f[i] = NAN;
+        row->tests[i] = NAN;
+    }
+    rt_embree_anim_destroy(a);
+    return ok;
+}
+#endif
+
+/* The row's figures from its samples. */
+static void summarize(bench_anim_result *res, bench_anim_row *row) {
+    if (row->error[0]) return;
+    double *u = malloc(sizeof(double) * (size_t)res->runs * 3);
+    if (!u) {
+        snprintf(row->error, sizeof row->error, "out of memory");
+        return;
+    }
+    double *f = u + res->runs, *t = f + res->runs, sah = 0.0;
+    for (int run = 0; run < res->runs; run++) {
+        u[run] = f[run] = t[run] = 0.0;
+        for (int k = 1; k <= res->frames; k++) {
+            size_t i = bench_anim_index(res, run, k);
+            u[run] += row->update[i] / res->frames;
+            f[run] += row->frame[i] / res->frames;
+            t[run] += row->trace[i] / res->frames;
+            sah += row->sah_f[i] / ((double)res->frames * res->runs);
+        }
+    }
+    min_median(u, res->runs, &row->update_ms_min, &row->update_ms_median);
+    min_median(f, res->runs, &row->frame_ms_min, &row->frame_ms_median);
+    min_median(t, res->runs, &row->trace_ms_min, &row->trace_ms_median);
+    row->sah = sah;
+    free(u);
+}
+
+static int row_init(bench_anim_row *row, const char *engine, const char *policy, size_t n) {
+    memset(row, 0, sizeof *row);
+    snprintf(row->engine, sizeof row->engine, "%s", engine);
+    snprintf(row->policy, sizeof row->policy, "%s", policy);
+    row->images_match = -1;
+    row->update = calloc(n, sizeof(double));
+    row->frame = calloc(n, sizeof(double));
+    row->trace = calloc(n, sizeof(double));
+    row->sah_f = calloc(n, sizeof(double));
+    row->tests = calloc(n, sizeof(double));
+    return row->update && row->frame && row->trace && row->sah_f && row->tests;
+}
+
+void bench_anim_free(bench_anim_result *res) {
+    for (int i = 0; i < res->n_rows; i++) {
+        bench_anim_row *r = &res->rows[i];
+        free(r->update);
+        free(r->frame);
+        free(r->trace);
+        free(r->sah_f);
+        free(r->tests);
+    }
+    res->n_rows = 0;
+}
+
+int bench_animate(const char *path, const bench_anim_setup *su, bench_anim_result *res, char *err,
+                  size_t err_size) {
+    memset(res, 0, sizeof *res);
+    rt_scene *s = NULL;
+    rt_error e;
+    if (su->progress) su->progress(path, "loading");
+    if (rt_scene_load(path, &s, &e) != RT_OK) {
+        snprintf(err, err_size, "%s", e.message);
+        return 0;
+    }
+    int mo = morph_object(s);
+    if (mo < 0) {
+        snprintf(err, err_size,
+                 "%s: no object morphs between keyframes (--animate needs an object with "
+                 "\"animation\": {\"keyframe_rate\": R, \"interpolate\": true} over keyframes of "
+                 "one topology)",
+                 path);
+        rt_scene_destroy(s);
+        return 0;
+    }
+    rt_camera cam;
+    rt_camera_get(s, &cam);
+    cam.width = su->width;
+    cam.height = su->height;
+    if (rt_camera_set(s, &cam) != RT_OK) {
+        snprintf(err, err_size, "%s", rt_scene_error(s));
+        rt_scene_destroy(s);
+        return 0;
+    }
+    const rt_object_data *od = &s->objects[mo];
+    res->keyframes = od->mesh_count;
+    res->morph_triangles = s->meshes[od->morph_mesh].triangle_count;
+    for (uint32_t o = 0; o < s->object_count; o++)
+        res->triangles += s->meshes[rt_object_shown_mesh(&s->objects[o])].triangle_count;
+    res->runs = su->runs;
+    res->frames = su->frames > 0 ? su->frames : (int)od->mesh_count;
+    res->fps = su->fps > 0.0 ? su->fps : (double)od->keyframe_rate;
+    size_t n = (size_t)res->runs * (size_t)(res->frames + 1);
+    uint64_t *ref = calloc((size_t)res->frames + 1, sizeof *ref);
+    int ok = ref != NULL;
+    for (int p = 0; p < OURS && ok; p++) {
+        ok = row_init(&res->rows[res->n_rows++], "rtcl", rt_update_policy_name(policies[p]), n);
+        if (p) res->rows[p].images_match = 1;
+    }
+    int n_ours = res->n_rows;
+#ifdef RT_HAVE_EMBREE
+    static const char *const qualities[3] = {"refit", "low", "medium"};
+    rt_embree *em = NULL;
+    rt_renderer *helper = NULL;
+    if (!su->embree) {
+        snprintf(res->embree_note, sizeof res->embree_note, "left out (--no-embree)");
+    } else if (ok) {
+        rt_error ee;
+        memset(&ee, 0, sizeof ee);
+        rt_renderer_options ro = rt_renderer_options_default();
+        ro.threads = su->threads;
+        if (rt_embree_create(su->threads, &em, &ee) != RT_OK) {
+            snprintf(res->embree_note, sizeof res->embree_note, "%.199s", ee.message);
+        } else if (rt_renderer_create(&ro, &helper, &ee) != RT_OK) {
+            snprintf(res->embree_note, sizeof res->embree_note, "%.199s", ee.message);
+        } else {
+            int lanes = 1;
+            for (int w = 4; w <= 16; w *= 2)
+                if (rt_embree_native_lanes(em, w)) lanes = w;
+            for (int q = 0; q < 3 && ok; q++) {
+                ok = row_init(&res->rows[res->n_rows++], "embree", qualities[q], n);
+                res->rows[res->n_rows - 1].lanes = lanes;
+            }
+        }
+    }
+#else
+    snprintf(res->embree_note, sizeof res->embree_note,
+             "this build has no Embree (libembree-dev was not found when it was configured)");
+#endif
+    if (!ok) snprintf(err, err_size, "out of memory");
+    for (int run = 0; run < res->runs && ok; run++) {
+        for (int r = 0; r < res->n_rows; r++) {
+            bench_anim_row *row = &res->rows[r];
+            if (row->error[0]) continue;
+            if (su->progress) {
+                char what[80];
+                snprintf(what, sizeof what, "run %d of %d: %s %s", run + 1, res->runs, row->engine,
+                         row->policy);
+                su->progress(path, what);
+            }
+            if (r < n_ours) {
+                play_ours(s, su, res, row, policies[r], run, run == 0 ? ref : NULL);
+            } else {
+#ifdef RT_HAVE_EMBREE
+                play_embree(s, em, helper, r - n_ours, res, row, run);
+#endif
+            }
+        }
+    }
+    for (int r = 0; r < res->n_rows && ok; r++) summarize(res, &res->rows[r]);
+#ifdef RT_HAVE_EMBREE
+    rt_renderer_destroy(helper);
+    rt_embree_destroy(em);
+#endif
+    free(ref);
+    rt_scene_destroy(s);
+    if (!ok) bench_anim_free(res);
+    return ok;
+}
+
+/* ---- output ------------------------------------------------------------------ */
+
+static void json_string(const char *s) {
+    putchar('"');
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            printf("\\%c", c);
+        else if (c < 0x20)
+            printf("\\u%04x", c);
+        else
+            putchar(c);
+    }
+    putchar('"');
+}
+
+static void json_number(const char *key, double v) {
+    if (isfinite(v))
+        printf(", \"%s\": %.4f", key, v);
+    else
+        printf(", \"%s\": null", key);
+}
+
+/* Per frame 1 .. frames: the median over the runs of samples v. */
+static void json_series(const char *key, const bench_anim_result *res, const double *v,
+                        double *scratch) {
+    printf("%s\"%s\": [", key[0] == 'u' ? "" : ", ", key);
+    for (int k = 1; k <= res->frames; k++) {
+        for (int run = 0; run < res->runs; run++) scratch[run] = v[bench_anim_index(res, run, k)];
+        double mn, med;
+        min_median(scratch, res->runs, &mn, &med);
+        if (isfinite(med))
+            printf("%s%.4f", k > 1 ? ", " : "", med);
+        else
+            printf("%snull", k > 1 ? ", " : "");
+    }
+    putchar(']');
+}
+
+void bench_anim_print_json(const char *path, const bench_anim_result *res, int series) {
+    printf(", \"triangles\": %u, \"morph_triangles\": %u, \"keyframes\": %u, \"frames\": %d, "
+           "\"fps\": %.4f, \"runs\": %d",
+           res->triangles, res->morph_triangles, res->keyframes, res->frames, res->fps, res->runs);
+    if (res->embree_note[0]) {
+        printf(", \"embree_missing\": ");
+        json_string(res->embree_note);
+    }
+    printf(", \"dynamic\": [");
+    double *scratch = malloc(sizeof(double) * (size_t)(res->runs ? res->runs : 1));
+    for (int i = 0; i < res->n_rows; i++) {
+        const bench_anim_row *r = &res->rows[i];
+        printf("%s{\"scene\": ", i ? ", " : "");
+        json_string(path);
+        printf(", \"engine\": \"%s\", \"policy\": \"%s\"", r->engine, r->policy);
+        if (r->lanes) printf(", \"lanes\": %d", r->lanes);
+        if (r->error[0]) {
+            printf(", \"error\": ");
+            json_string(r->error);
+            putchar('}');
+            continue;
+        }
+        json_number("update_ms_min", r->update_ms_min);
+        json_number("update_ms_median", r->update_ms_median);
+        json_number("frame_ms_min", r->frame_ms_min);
+        json_number("frame_ms_median", r->frame_ms_median);
+        json_number("trace_ms_min", r->trace_ms_min);
+        json_number("trace_ms_median", r->trace_ms_median);
+        json_number("sah", r->sah);
+        if (!isfinite(r->sah))
+            printf(", \"sah_note\": \"Embree's trees are not exposed by its scene API\"");
+        if (r->images_match >= 0)
+            printf(", \"images_match_rebuild\": %s", r->images_match ? "true" : "false");
+        if (series && scratch) {
+            printf(", \"series\": {");
+            json_series("update_ms", res, r->update, scratch);
+            json_series("trace_ms", res, r->trace, scratch);
+            json_series("frame_ms", res, r->frame, scratch);
+            json_series("sah", res, r->sah_f, scratch);
+            json_series("tests", res, r->tests, scratch);
+            putchar('}');
+        }
+        putchar('}');
+    }
+    free(scratch);
+    putchar(']');
+}
+
+void bench_anim_print_text(const char *path, const bench_anim_result *res) {
+    printf("%s: %u triangles morphing (of %u), %u keyframes; %d frames at %g fps after the first "
+           "build, %d interleaved runs (per-run mean over the frames, min and median over the "
+           "runs)\n",
+           path, res->morph_triangles, res->triangles, res->keyframes, res->frames, res->fps,
+           res->runs);
+    printf("  %-7s %-8s %10s %10s %10s %10s %10s %10s %8s %s\n", "engine", "policy", "update min",
+           "median", "trace min", "median", "frame min", "median", "SAH", "images");
+    for (int i = 0; i < res->n_rows; i++) {
+        const bench_anim_row *r = &res->rows[i];
+        printf("  %-7s %-8s ", r->engine, r->policy);
+        if (r->error[0]) {
+            printf("failed: %s\n", r->error);
+            continue;
+        }
+        printf("%10.2f %10.2f %10.2f %10.2f %10.2f %10.2f ", r->update_ms_min, r->update_ms_median,
+               r->trace_ms_min, r->trace_ms_median, r->frame_ms_min, r->frame_ms_median);
+        if (isfinite(r->sah))
+            printf("%8.2f ", r->sah);
+        else
+            printf("%8s ", "-");
+        printf("%s\n", r->images_match < 0 ? "-"
+                       : r->images_match   ? "= rebuild"
+                                           : "DIFFER from rebuild");
+    }
+    if (res->embree_note[0]) printf("  embree: no rows: %s\n", res->embree_note);
+}
