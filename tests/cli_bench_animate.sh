@@ -3,7 +3,7 @@
 # scene at a tiny size: one JSON object with a "dynamic" array holding our
 # four update policies (and Embree's three qualities where the build has
 # Embree; otherwise no Embree rows and the object says why), every row with
-# the documented fields and sane numbers, our SAH costs positive, and every
+# the documented fields and sane numbers, the SAH costs positive, and every
 # policy's frames bit-identical to rebuild's (the command compares each
 # frame's image with rebuild's); a scene where nothing morphs is refused with
 # a message.
@@ -58,14 +58,14 @@ for p, r in ours.items():
     if p != "rebuild":
         assert r["images_match_rebuild"] is True, "%s frames differ from rebuild's" % p
 # refit keeps frame 0's tree: its SAH cost is never below a fresh SAH build's
-# by much, and the fast builder's trees are no better than the binned SAH's.
+# by much.
 assert ours["refit"]["sah"] >= ours["rebuild"]["sah"] * 0.9, ours
 has = sys.argv[2]
 if emb:
     assert sorted(emb) == ["low", "medium", "refit"], sorted(emb)
     assert "embree_missing" not in obj
     for r in emb.values():
-        assert r["lanes"] in (1, 4, 8, 16) and r["sah"] is None and r["sah_note"], r
+        assert r["lanes"] in (1, 4, 8, 16) and r["sah"] > 0 and r["sah_note"], r
     assert has != "no", "Embree rows from a build without Embree"
     print("embree rows:", sorted(emb), "lanes", emb["low"]["lanes"])
 else:

@@ -98,6 +98,14 @@ rt_status rt_embree_dynamic_update(rt_embree_dynamic *d, const float *positions,
                                    rt_error *err);
 void rt_embree_dynamic_destroy(rt_embree_dynamic *d);
 
+/* rt_embree_build_bvh at quality RT_EMBREE_LOW (rtcBuildBVH's Morton
+ * builder) or RT_EMBREE_MEDIUM (its binned SAH builder, as
+ * rt_embree_build_bvh): the trees Embree's commits of those qualities are
+ * made by, as binary trees our measures read (embree_build.c). */
+rt_status rt_embree_build_bvh_quality(rt_embree *em, const rt_aabb *boxes, uint32_t count,
+                                      const rt_build_options *options, int quality, rt_bvh *out,
+                                      double *ms, rt_error *err);
+
 /* ---- a traced scene that changes per frame (embree_anim.c) ----------------- */
 
 typedef struct rt_embree_anim rt_embree_anim;
