@@ -2,8 +2,8 @@
  * deforming meshes: an animated scene morphing between its keyframes, frame
  * by frame, with each update policy of ours on one renderer, beside Embree
  * committing the same positions into a dynamic scene at build quality REFIT,
- * LOW (Morton) and MEDIUM (binned SAH). Runs are interleaved (every engine
- * once per run) so that the machine's noise spreads over all of them.
+ * LOW (Morton) and MEDIUM (binned SAH), tracing them too. Engines are
+ * interleaved frame by frame so that the machine's noise spreads over all.
  *
  * The measuring is 'rtcl bench --animate's (host/cli/bench_animate.c,
  * built into this program too); this program prints its table and, from

@@ -8,6 +8,7 @@ section is read from those files or computed here from them, the Pareto
 fronts too. Python's standard library and gnuplot (through study_report.py's
 helpers)."""
 import argparse
+import datetime
 import json
 import os
 import statistics
@@ -145,12 +146,36 @@ def long_section(obj, data_dir):
         summary += (' Embree over the same frames, whole frame mean: ' + ', '.join(
             '%s %s ms' % (p.upper(), sr.ms(statistics.mean(r['series']['frame_ms'])))
             for p, r in emb.items()) + '.')
+    smean = {p: statistics.mean(sah[p]) for p in want}
+    tests = {p: rows[p]['series'].get('tests') for p in want}
+    summary += (' Mean SAH cost: %.2f / %.2f / %.2f.' % (smean['refit'], smean['auto'],
+                                                          smean['rebuild']))
+    if all(tests[p] and None not in tests[p] for p in want):
+        tr = [tests['refit'][k] / tests['rebuild'][k] for k in range(n)]
+        summary += (' The counted traversal work (box tests + 2 x triangle tests of all rays, '
+                    'which the SAH cost predicts and the machine\'s noise does not touch) of the '
+                    'refitted tree is %.2f to %.2f times the rebuilt tree\'s (mean %.3f).'
+                    % (min(tr), max(tr), statistics.mean(tr)))
+    if rebuilt:
+        after = [k for k in range(rebuilt[0] - 1, n)]
+        a_s = statistics.mean(sah['auto'][k] for k in after)
+        r_s = statistics.mean(sah['refit'][k] for k in after)
+        summary += (' From auto\'s first rebuild (frame %d) on, its mean SAH cost is %.2f against '
+                    'refit\'s %.2f: %s.'
+                    % (rebuilt[0], a_s, r_s,
+                       'the tree rebuilt for one pose fits the other poses worse than the tree '
+                       'of frame 0 does, so the bound relative to the last rebuild lets it drift '
+                       'further' if a_s > r_s else 'the rebuilds paid off'))
     out.append(summary)
     # Line panels: SAH and trace ms per frame.
     colors = {'refit': '#1f77b4', 'auto': '#2ca02c', 'rebuild': '#d62728'}
     panels = []
     for key, ylabel, title in (('sah', 'SAH cost (Ct 1, Ci 2)', 'long morph: SAH per frame'),
-                               ('trace_ms', 'trace ms (median)', 'long morph: trace ms per frame')):
+                               ('trace_ms', 'trace ms (median)', 'long morph: trace ms per frame'),
+                               ('tests', 'box tests + 2 x triangle tests',
+                                'long morph: counted traversal work per frame')):
+        if any(v is None for p in want for v in rows[p]['series'].get(key) or [None]):
+            continue
         path = os.path.join(data_dir, 'plot_long_%s.dat' % key)
         with open(path, 'w') as f:
             for k in range(n):
@@ -179,8 +204,21 @@ def main():
     pol = [json.loads(l) for l in open(os.path.join(a.data, 'policies.jsonl')) if l.strip()]
     lng = [json.loads(l) for l in open(os.path.join(a.data, 'long.jsonl')) if l.strip()]
     first = pol[0]
-    text = ['## Dynamic scenes: update policies beside Embree (the thesis\'s keyframe benchmark)',
-            '', '```', a.command, '```', '',
+    # When and where (the section is also appended on its own, outside report.sh).
+    try:
+        commit = subprocess.run(['git', '-C', a.root, 'rev-parse', '--short', 'HEAD'],
+                                capture_output=True, text=True).stdout.strip() or 'unknown'
+        cpu = next((l.split(':', 1)[1].strip() for l in
+                    subprocess.run(['lscpu'], capture_output=True, text=True).stdout.splitlines()
+                    if l.startswith('Model name:')), 'unknown CPU')
+    except OSError:
+        commit, cpu = 'unknown', 'unknown CPU'
+    stamp = ('Measured %s from commit `%s` on `%s`, %d cores (a shared virtual machine: other '
+             'jobs ran at the same time, so the figures are noisy).'
+             % (datetime.datetime.now(datetime.timezone.utc).strftime('%Y-%m-%d'), commit, cpu,
+                os.cpu_count() or 0))
+    text = ['## Dynamic scenes (issue 16): update policies beside Embree, `rtcl bench --animate`',
+            '', stamp, '', '```', a.command, '```', '',
             'What `rtcl bench --animate` measures (`host/cli/bench_animate.c`): the scene\'s '
             'morphing object played frame by frame (frame k at time k/fps; the blend of two '
             'keyframes is the scene\'s work and not timed), %dx%d, one point light, primary plus '
@@ -195,7 +233,7 @@ def main():
             'with its widest native packets and shading them as we do. Frame 0 (the first '
             'build) is not counted; each figure is a run\'s mean over the frames (the thesis\'s '
             'section 4.1: build time averaged over the keyframes), min and median over the runs, '
-            'the rows interleaved run by run. "frames = rebuild": every frame\'s image is the '
+            'the rows interleaved frame by frame (every row\'s frame k before any row\'s frame k + 1). "frames = rebuild": every frame\'s image is the '
             'rebuild row\'s, bit for bit. SAH: ours, the mesh BVHs\' cost (Ct 1, Ci 2, '
             'triangle-weighted) averaged over the frames; Embree\'s commit trees are not exposed, '
             'so its rows show the binary trees of its builders of that quality (`rtcBuildBVH`: '
@@ -224,11 +262,13 @@ def main():
         sys.exit('study_dynamic.py: gnuplot with a png or pngcairo terminal is needed')
     font = 'Sans,10' if term == 'pngcairo' else 'Sans 10'
     png = os.path.join(a.out, 'plots', 'dynamic.png')
-    script = ['set terminal %s size 1400,1000 font %s noenhanced' % (term, sr.gp_str(font)),
+    script = ['set terminal %s size 1400,%d font %s noenhanced'
+              % (term, 500 * ((len(panels) + 1) // 2), sr.gp_str(font)),
               'set output %s' % sr.gp_str(png),
-              'set multiplot layout 2,2 title %s font ",12"'
-              % sr.gp_str('Dynamic scenes: update against trace per frame (red, connected: the '
-                          'Pareto front); over a long morph, refit against auto and rebuild')]
+              'set multiplot layout %d,2 title %s font ",12"'
+              % ((len(panels) + 1) // 2,
+                 sr.gp_str('Dynamic scenes: update against trace per frame (red, connected: the '
+                           'Pareto front); over a long morph, refit against auto and rebuild'))]
     for p in panels:
         script += p
     script.append('unset multiplot')

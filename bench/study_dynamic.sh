@@ -10,7 +10,7 @@
 #
 # Everything is measured by 'rtcl bench --animate' (host/cli/bench_animate.c):
 # frame k at time k/F, each row's frames after the first build, rows
-# interleaved run by run; the short runs use one frame per keyframe (the
+# interleaved frame by frame; the short runs use one frame per keyframe (the
 # thesis's section 4.1 method), the long morph FPS x seconds frames.
 set -euo pipefail
 . "$(dirname "$0")/common_study_args.sh"
@@ -34,5 +34,11 @@ echo "study_dynamic: long morph ($long_frames frames, $long_reps runs)" >&2
     >"$data/long.jsonl"
 cmd="bash bench/study_dynamic.sh build \$S OUT"
 [ $quick = 1 ] && cmd+=" --quick"
+rel() { local p=$1; p=${p#"$root/"}; echo "${p/#$shared/\$S}"; }
+cmd+=$'\n# which runs\n'"build/rtcl bench --animate"
+for s in "${scenes[@]}"; do cmd+=" $(rel "$s")"; done
+cmd+=" --json --reps $reps --threads $threads --width $width --height $height"
+cmd+=$'\n'"build/rtcl bench --animate $(rel "$long_scene") --json --reps $long_reps --threads $threads"
+cmd+=" --width $width --height $height --fps $long_fps --frames $long_frames --series"
 python3 "$root/bench/study_dynamic.py" "$data" "$out" --command "$cmd" --root "$root" \
     --shared "$shared" --threads $threads

@@ -66,59 +66,71 @@ static void set_policy(rt_scene *s, rt_update_policy p) {
     for (uint32_t m = 0; m < s->mesh_count; m++) rt_mesh_set_update(s, m, p);
 }
 
-/* One run of one of our policies: frames 0 .. res->frames on a fresh
- * renderer. ref: rebuild's image hashes per frame (filled by the rebuild
- * row, compared by the others; NULL after the first run). */
-static int play_ours(rt_scene *s, const bench_anim_setup *su, bench_anim_result *res,
-                     bench_anim_row *row, rt_update_policy p, int run, uint64_t *ref) {
+/* What a row keeps from frame to frame within a run. */
+typedef struct row_state {
+    rt_renderer *r; /* ours: a fresh renderer per run */
+    rt_framebuffer fb;
+    rt_render_options o;
+    rt_render_stats st;
+#ifdef RT_HAVE_EMBREE
+    rt_embree_anim *a; /* Embree: its dynamic scene */
+    struct embree_trees *trees;
+#endif
+} row_state;
+
+static int ours_start(const bench_anim_setup *su, bench_anim_row *row, row_state *rs) {
     rt_renderer_options ro = rt_renderer_options_default();
     ro.backend = su->backend ? su->backend : "packet";
     ro.threads = su->threads;
-    rt_renderer *r = NULL;
     rt_error e;
-    if (rt_renderer_create(&ro, &r, &e) != RT_OK) {
+    if (rt_renderer_create(&ro, &rs->r, &e) != RT_OK) {
         snprintf(row->error, sizeof row->error, "%.199s", e.message);
         return 0;
     }
+    rs->o = rt_render_options_default();
+    rs->o.stats = &rs->st;
+    rs->o.direct_only = 1;
+    rs->o.reuse_framebuffer = 1;
+    return 1;
+}
+
+static void ours_end(row_state *rs) {
+    rt_framebuffer_free(&rs->fb);
+    rt_renderer_destroy(rs->r);
+    rs->r = NULL;
+}
+
+/* Frame k of run run for one of our policies (the scene already at the
+ * frame's time; policies are the scene's, so set before each row's frame).
+ * ref: rebuild's image hashes per frame (filled by the rebuild row, which
+ * renders first, compared by the others; NULL after the first run). */
+static int ours_frame(rt_scene *s, bench_anim_result *res, bench_anim_row *row, row_state *rs,
+                      rt_update_policy p, int run, int k, uint64_t *ref) {
     set_policy(s, p);
-    rt_render_options o = rt_render_options_default();
-    rt_render_stats st;
-    o.stats = &st;
-    o.direct_only = 1;
-    o.reuse_framebuffer = 1;
-    rt_framebuffer fb;
-    memset(&fb, 0, sizeof fb);
-    int ok = 1;
-    for (int k = 0; k <= res->frames && ok; k++) {
-        rt_scene_set_time(s, k / res->fps);
-        double t0 = rt_now_ms();
-        if (rt_render(r, s, &o, &fb) != RT_OK) {
-            snprintf(row->error, sizeof row->error, "%.199s", rt_renderer_error(r));
-            ok = 0;
-            break;
-        }
-        double frame = rt_now_ms() - t0;
-        rt_update_stats us;
-        rt_renderer_update_stats(r, &us);
-        double upd = 0.0;
-        for (uint32_t i = 0; i < us.mesh_count; i++) upd += us.meshes[i].ms;
-        size_t i = bench_anim_index(res, run, k);
-        row->update[i] = upd;
-        row->frame[i] = frame;
-        row->trace[i] = st.render_ms;
-        row->sah_f[i] = st.sah_cost;
-        row->tests[i] = (double)st.box_tests + 2.0 * (double)st.tri_tests;
-        if (ref) {
-            uint64_t h = image_hash(&fb);
-            if (p == RT_UPDATE_REBUILD)
-                ref[k] = h;
-            else if (h != ref[k])
-                row->images_match = 0;
-        }
+    double t0 = rt_now_ms();
+    if (rt_render(rs->r, s, &rs->o, &rs->fb) != RT_OK) {
+        snprintf(row->error, sizeof row->error, "%.199s", rt_renderer_error(rs->r));
+        return 0;
     }
-    rt_framebuffer_free(&fb);
-    rt_renderer_destroy(r);
-    return ok;
+    double frame = rt_now_ms() - t0;
+    rt_update_stats us;
+    rt_renderer_update_stats(rs->r, &us);
+    double upd = 0.0;
+    for (uint32_t i = 0; i < us.mesh_count; i++) upd += us.meshes[i].ms;
+    size_t i = bench_anim_index(res, run, k);
+    row->update[i] = upd;
+    row->frame[i] = frame;
+    row->trace[i] = rs->st.render_ms;
+    row->sah_f[i] = rs->st.sah_cost;
+    row->tests[i] = (double)rs->st.box_tests + 2.0 * (double)rs->st.tri_tests;
+    if (ref) {
+        uint64_t h = image_hash(&rs->fb);
+        if (p == RT_UPDATE_REBUILD)
+            ref[k] = h;
+        else if (h != ref[k])
+            row->images_match = 0;
+    }
+    return 1;
 }
 
 #ifdef RT_HAVE_EMBREE
@@ -229,50 +241,49 @@ static double embree_sah(rt_embree *em, const rt_scene *s, int quality, embree_t
     return weight > 0 ? sah / weight : 0.0;
 }
 
-/* One run of Embree at one quality: a dynamic scene made at frame 0,
- * updated and traced at every other frame. */
-static int play_embree(rt_scene *s, rt_embree *em, rt_renderer *helper, int quality,
-                       bench_anim_result *res, bench_anim_row *row, int run) {
-    set_policy(s, RT_UPDATE_REFIT);
-    rt_backend_layout l;
+/* Frame k of run run for Embree at one quality, from the frame's layout l:
+ * frame 0 makes the dynamic scene, every other frame updates and traces it. */
+static int embree_frame(rt_scene *s, rt_embree *em, const rt_backend_layout *l, int quality,
+                        bench_anim_result *res, bench_anim_row *row, row_state *rs, int run,
+                        int k) {
     rt_error e;
     memset(&e, 0, sizeof e);
-    rt_scene_set_time(s, 0.0);
-    if (!helper_layout(helper, s, &l, row)) return 0;
-    rt_embree_anim *a = NULL;
-    double ms;
-    if (rt_embree_anim_create(em, l.flat, quality, &a, &ms, &e) != RT_OK) {
+    if (k == 0) {
+        double ms;
+        rs->trees = calloc(1, sizeof *rs->trees);
+        if (!rs->trees) {
+            snprintf(row->error, sizeof row->error, "out of memory");
+            return 0;
+        }
+        if (rt_embree_anim_create(em, l->flat, quality, &rs->a, &ms, &e) != RT_OK) {
+            snprintf(row->error, sizeof row->error, "%.199s", e.message);
+            return 0;
+        }
+        embree_sah(em, s, quality, rs->trees); /* the trees REFIT keeps */
+        return 1;
+    }
+    double copy_ms, commit_ms, trace_ms;
+    uint64_t rays;
+    if (rt_embree_anim_update(rs->a, l->flat, &copy_ms, &commit_ms, &e) != RT_OK) {
         snprintf(row->error, sizeof row->error, "%.199s", e.message);
         return 0;
     }
-    embree_trees trees;
-    memset(&trees, 0, sizeof trees);
-    embree_sah(em, s, quality, &trees); /* frame 0: the trees REFIT keeps */
-    int ok = 1;
-    for (int k = 1; k <= res->frames && ok; k++) {
-        rt_scene_set_time(s, k / res->fps);
-        if (!helper_layout(helper, s, &l, row)) {
-            ok = 0;
-            break;
-        }
-        double copy_ms, commit_ms, trace_ms;
-        uint64_t rays;
-        if (rt_embree_anim_update(a, l.flat, &copy_ms, &commit_ms, &e) != RT_OK) {
-            snprintf(row->error, sizeof row->error, "%.199s", e.message);
-            ok = 0;
-            break;
-        }
-        rt_embree_render(rt_embree_anim_scene(a), row->lanes, l.pool, NULL, &rays, &trace_ms);
-        size_t i = bench_anim_index(res, run, k);
-        row->update[i] = commit_ms;
-        row->trace[i] = trace_ms;
-        row->frame[i] = copy_ms + commit_ms + trace_ms;
-        row->sah_f[i] = embree_sah(em, s, quality, &trees);
-        row->tests[i] = NAN;
-    }
-    trees_free(&trees);
-    rt_embree_anim_destroy(a);
-    return ok;
+    rt_embree_render(rt_embree_anim_scene(rs->a), row->lanes, l->pool, NULL, &rays, &trace_ms);
+    size_t i = bench_anim_index(res, run, k);
+    row->update[i] = commit_ms;
+    row->trace[i] = trace_ms;
+    row->frame[i] = copy_ms + commit_ms + trace_ms;
+    row->sah_f[i] = embree_sah(em, s, quality, rs->trees); /* not timed */
+    row->tests[i] = NAN;
+    return 1;
+}
+
+static void embree_end(row_state *rs) {
+    if (rs->trees) trees_free(rs->trees);
+    free(rs->trees);
+    rs->trees = NULL;
+    rt_embree_anim_destroy(rs->a);
+    rs->a = NULL;
 }
 #endif
 
@@ -402,23 +413,50 @@ int bench_animate(const char *path, const bench_anim_setup *su, bench_anim_resul
              "this build has no Embree (libembree-dev was not found when it was configured)");
 #endif
     if (!ok) snprintf(err, err_size, "out of memory");
+    /* Run by run, frame by frame, every row's frame k before any row's frame
+     * k + 1, so that the machine's noise falls on every row alike; each row
+     * keeps its renderer (or Embree scene) through the run. */
+    row_state rs[BENCH_ANIM_MAX_ROWS];
+    memset(rs, 0, sizeof rs);
     for (int run = 0; run < res->runs && ok; run++) {
-        for (int r = 0; r < res->n_rows; r++) {
-            bench_anim_row *row = &res->rows[r];
-            if (row->error[0]) continue;
+        for (int r = 0; r < n_ours; r++)
+            if (!res->rows[r].error[0]) ours_start(su, &res->rows[r], &rs[r]);
+        for (int k = 0; k <= res->frames; k++) {
             if (su->progress) {
                 char what[80];
-                snprintf(what, sizeof what, "run %d of %d: %s %s", run + 1, res->runs, row->engine,
-                         row->policy);
+                snprintf(what, sizeof what, "run %d of %d, frame %d of %d", run + 1, res->runs, k,
+                         res->frames);
                 su->progress(path, what);
             }
-            if (r < n_ours) {
-                play_ours(s, su, res, row, policies[r], run, run == 0 ? ref : NULL);
-            } else {
+            rt_scene_set_time(s, k / res->fps); /* the scene's work, not timed */
+            for (int r = 0; r < n_ours; r++)
+                if (!res->rows[r].error[0] && rs[r].r &&
+                    !ours_frame(s, res, &res->rows[r], &rs[r], policies[r], run, k,
+                                run == 0 ? ref : NULL))
+                    ours_end(&rs[r]);
 #ifdef RT_HAVE_EMBREE
-                play_embree(s, em, helper, r - n_ours, res, row, run);
-#endif
+            if (res->n_rows > n_ours) {
+                /* The frame's layout, once for the Embree rows (not timed). */
+                rt_backend_layout l;
+                set_policy(s, RT_UPDATE_REFIT);
+                if (!helper_layout(helper, s, &l, &res->rows[n_ours])) {
+                    for (int r = n_ours + 1; r < res->n_rows; r++)
+                        snprintf(res->rows[r].error, sizeof res->rows[r].error, "%s",
+                                 res->rows[n_ours].error);
+                } else {
+                    for (int r = n_ours; r < res->n_rows; r++)
+                        if (!res->rows[r].error[0])
+                            embree_frame(s, em, &l, r - n_ours, res, &res->rows[r], &rs[r], run, k);
+                }
             }
+#endif
+        }
+        for (int r = 0; r < res->n_rows; r++) {
+            if (r < n_ours) ours_end(&rs[r]);
+#ifdef RT_HAVE_EMBREE
+            else
+                embree_end(&rs[r]);
+#endif
         }
     }
     for (int r = 0; r < res->n_rows && ok; r++) summarize(res, &res->rows[r]);
@@ -524,7 +562,8 @@ void bench_anim_print_json(const char *path, const bench_anim_result *res, int s
 
 void bench_anim_print_text(const char *path, const bench_anim_result *res) {
     printf("%s: %u triangles morphing (of %u), %u keyframes; %d frames at %g fps after the first "
-           "build, %d interleaved runs (per-run mean over the frames, min and median over the "
+           "build, %d runs, rows interleaved frame by frame (per-run mean over the frames, min and "
+           "median over the "
            "runs)\n",
            path, res->morph_triangles, res->triangles, res->keyframes, res->frames, res->fps,
            res->runs);

@@ -12,7 +12,7 @@
 enum { BENCH_ANIM_MAX_ROWS = 7 };
 
 typedef struct bench_anim_setup {
-    int runs;            /* interleaved runs: every row plays every frame once per run */
+    int runs;            /* runs: every row plays every frame once per run */
     int frames;          /* frames after frame 0 (the first build, not timed); 0: one per
                             keyframe of the first morphing object (the thesis's method) */
     double fps;          /* frame k shows time k / fps; 0: the object's keyframe rate */
@@ -54,7 +54,8 @@ typedef struct bench_anim_result {
  * on a renderer of its own (ours: a fresh renderer with every mesh's update
  * policy set; Embree: a dynamic scene at the row's quality, updated from our
  * layout of the frame and traced with its widest native packets), rows
- * interleaved per run so that the machine's noise falls on all alike.
+ * interleaved frame by frame (every row's frame k before any row's frame
+ * k + 1) so that the machine's noise falls on all alike.
  * Returns 1, or 0 with the reason in err (the scene could not be loaded, or
  * nothing in it morphs). Free the result with bench_anim_free. */
 int bench_animate(const char *path, const bench_anim_setup *setup, bench_anim_result *res,
