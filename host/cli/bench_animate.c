@@ -459,6 +459,8 @@ int bench_animate(const char *path, const bench_anim_setup *su, bench_anim_resul
 #endif
         }
     }
+    /* Without rebuild's images there is nothing to compare with. */
+    for (int r = 1; r < n_ours && res->rows[0].error[0]; r++) res->rows[r].images_match = -1;
     for (int r = 0; r < res->n_rows && ok; r++) summarize(res, &res->rows[r]);
 #ifdef RT_HAVE_EMBREE
     rt_renderer_destroy(helper);
