@@ -409,8 +409,9 @@ int bench_animate(const char *path, const bench_anim_setup *su, bench_anim_resul
         }
     }
 #else
-    snprintf(res->embree_note, sizeof res->embree_note,
-             "this build has no Embree (libembree-dev was not found when it was configured)");
+    snprintf(
+        res->embree_note, sizeof res->embree_note,
+        "this build has no Embree (configured with RT_EMBREE=OFF, or libembree-dev was not found)");
 #endif
     if (!ok) snprintf(err, err_size, "out of memory");
     /* Run by run, frame by frame, every row's frame k before any row's frame
@@ -440,9 +441,10 @@ int bench_animate(const char *path, const bench_anim_setup *su, bench_anim_resul
                 rt_backend_layout l;
                 set_policy(s, RT_UPDATE_REFIT);
                 if (!helper_layout(helper, s, &l, &res->rows[n_ours])) {
+                    char why[sizeof res->rows[0].error];
+                    memcpy(why, res->rows[n_ours].error, sizeof why);
                     for (int r = n_ours + 1; r < res->n_rows; r++)
-                        snprintf(res->rows[r].error, sizeof res->rows[r].error, "%s",
-                                 res->rows[n_ours].error);
+                        memcpy(res->rows[r].error, why, sizeof why);
                 } else {
                     for (int r = n_ours; r < res->n_rows; r++)
                         if (!res->rows[r].error[0])
