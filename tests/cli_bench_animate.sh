@@ -84,4 +84,13 @@ if "$RTCL" bench --animate "$RT_SOURCE_DIR/scenes/cornell.json" --reps 1 --width
     echo "a scene without a morphing object was accepted"; exit 1
 fi
 grep -q "no object morphs between keyframes" "$dir/err" || { echo "unclear refusal:"; cat "$dir/err"; exit 1; }
+# Options of the other mode are refused, not ignored.
+for args in "--animate --accel kd" "--animate --no-render" "--animate --denormals flush" \
+    "--frames 2" "--series"; do
+    # shellcheck disable=SC2086
+    if "$RTCL" bench $args "$scene" >/dev/null 2>"$dir/err"; then
+        echo "rtcl bench $args was accepted"; exit 1
+    fi
+    grep -q "does not apply\|need --animate" "$dir/err" || { echo "$args: unclear error:"; cat "$dir/err"; exit 1; }
+done
 echo "ok"

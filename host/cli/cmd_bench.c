@@ -660,6 +660,23 @@ int cmd_bench(int argc, char **argv) {
         free(scenes);
         return 2;
     }
+    /* Options of one mode given to the other would be ignored: say so. */
+    const char *odd = NULL;
+    if (a.animate && a.accel >= 0)
+        odd = "--accel does not apply to --animate (morphing meshes keep BVHs)";
+    else if (a.animate && !a.render)
+        odd = "--no-render does not apply to --animate (it renders every frame)";
+    else if (a.animate &&
+             (a.device_math != RT_DEVICE_MATH_AUTO || a.denormals != RT_DENORMALS_PRESERVE))
+        odd =
+            "--device-math and --denormals do not apply to --animate (it runs the packet backend)";
+    else if (!a.animate && (a.anim_frames || a.anim_fps || a.anim_series))
+        odd = "--frames, --fps and --series need --animate";
+    if (odd) {
+        fprintf(stderr, "rtcl bench: %s\n", odd);
+        free(scenes);
+        return 2;
+    }
     if (a.threads <= 0) a.threads = rt_cpu_count();
     rt_pool *pool = rt_pool_create(a.threads);
     if (!pool) {
