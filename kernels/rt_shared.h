@@ -134,10 +134,16 @@ static inline float rt_as_float_(rt_i32 i) {
  * flat box behind the origin was culled (tests/robust, grazing rays). */
 #define RT_BOX_FAR_SCALE_NEG 0.999999523162841796875f
 
-/* The t range a box is tested against is widened by this relative margin, so
- * that a triangle whose computed t rounds onto the range's end is never culled
- * by its box (the triangle test's t has rounding errors of its own). */
-#define RT_BOX_T_MARGIN 0.0000152587890625f /* 2^-16 */
+/* The t range a box is tested against is widened by this relative margin:
+ * a triangle test's t has rounding errors of its own, and a hit is accepted
+ * only where its t passes its triangle's box test (rt_hit_accepted), so the
+ * margin is also how far a t may fall before its box and still count. The
+ * watertight test's t is off by up to ~1e-2 relative on large triangles
+ * crossed near the origin (t error ~ eps |v - o| / |dir|): 2^-16 refused 5
+ * of 30k random rays and 2 of 195k diffuse bounces on Sponza (light through
+ * a wall), 2^-10 the bounces; 2^-6 none of 770k on Sponza and Sibenik. It
+ * costs only boxes entered up to 1.6% beyond the best hit. */
+#define RT_BOX_T_MARGIN 0.015625f /* 2^-6 */
 
 /* Shadow rays run from the offset surface point (t = 0) to the light (t = 1),
  * excluding the light itself. */

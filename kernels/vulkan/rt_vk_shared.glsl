@@ -47,7 +47,7 @@ layout(constant_id = 4) const uint SC_DENORM_FLUSH = 0u;  /* 1: the _ftz soft ma
 #define RT_SHADE_STACK     12
 #define RT_BOX_FAR_SCALE     1.000000476837158203125
 #define RT_BOX_FAR_SCALE_NEG 0.999999523162841796875
-#define RT_BOX_T_MARGIN      0.0000152587890625
+#define RT_BOX_T_MARGIN      0.015625
 #define RT_SHADOW_TMAX       0.999999940395355224609375
 #define RT_INF               uintBitsToFloat(0x7f800000u)
 
