@@ -4,22 +4,27 @@
 # random rays, on the packet backend through each of its paths (packets, and
 # the single-ray path over wide BVHs, which hands kd instances to the
 # oracle's traversal); then the --accel and "accel" errors, rtcl info's
-# report, deforming meshes keeping BVHs, and the Vulkan backend's refusal.
+# report, deforming meshes keeping BVHs, and the Vulkan backend's
+# specialisation (the kd traversal compiled in only for kd layouts).
 # The kd images and closest hits must be the BVH oracle's (cpu, --accel bvh)
 # exactly: the closest hit has a total order, so the structure cannot change
 # it. Any-hit queries may report another hit in range and are held to the
 # robustness suite's expectations instead.
 source "$RT_SOURCE_DIR/tests/shell_check.sh"
 
-BACKENDS=${RT_KD_BACKENDS:-"cpu packet opencl"}
+BACKENDS=${RT_KD_BACKENDS:-"cpu packet opencl vulkan"}
 ACCELS="kd kd-binned"
 if ! "$RTCL" devices > "$tmp/devices.txt" 2>&1; then
     # Only a build or machine without any OpenCL device gets here; CI has PoCL.
     echo "skipped backend opencl: $(head -1 "$tmp/devices.txt")"
     BACKENDS=${BACKENDS//opencl/}
 fi
-# The Vulkan backend has no kd traversal: it refuses kd layouts (checked below).
-BACKENDS=${BACKENDS//vulkan/}
+if ! "$RTCL" devices --api vulkan > "$tmp/vk_devices.txt" 2>&1; then
+    # A build without the Vulkan backend or a machine without a Vulkan
+    # device; CI has lavapipe.
+    echo "skipped backend vulkan: $(head -1 "$tmp/vk_devices.txt")"
+    BACKENDS=${BACKENDS//vulkan/}
+fi
 
 # ---- images: every shipped and built-in scene ---------------------------
 # A smaller frame than the scenes' own keeps the test short; every pixel
@@ -208,17 +213,17 @@ expect 0 'column_0 +100 triangles, 52 vertices, bvh' -- "$RTCL" info builtin:cor
 expect 0 'mirror_sphere +2208 triangles, 1225 vertices, normals, kd' -- "$RTCL" info \
     builtin:cornell --accel kd
 
-# ---- the Vulkan backend refuses kd meshes ---------------------------------
-if "$RTCL" devices --api vulkan > "$tmp/vk_devices.txt" 2>&1; then
-    echo "0.1 1 3 0 0 -1 0 inf" > "$tmp/vk.rays"
-    expect 2 'vulkan: kd-tree meshes are not supported yet; use --accel bvh' -- "$RTCL" render \
-        builtin:cornell -o "$tmp/vk.png" --width 32 --height 18 --backend vulkan --accel kd
-    expect 2 'vulkan: kd-tree meshes are not supported yet; use --accel bvh' -- "$RTCL" trace \
-        builtin:cornell --rays "$tmp/vk.rays" --out "$tmp/vk.hits" --backend vulkan \
-        --accel kd-binned
-    expect 0 '' -- "$RTCL" render builtin:cornell -o "$tmp/vk.png" --width 32 --height 18 \
-        --backend vulkan --accel bvh
-else
-    echo "skipped the Vulkan refusal of kd meshes: $(head -1 "$tmp/vk_devices.txt")"
+# ---- the Vulkan backend: the kd traversal only where a kd mesh is --------
+if [[ " $BACKENDS " == *" vulkan "* ]]; then
+    expect 0 'specialisation +specialization constants: .*inst_mask=7 .*kd=yes' -- "$RTCL" \
+        render builtin:cornell -o "$tmp/vk.png" --width 32 --height 18 --backend vulkan \
+        --accel kd --stats
+    expect 0 'specialisation +specialization constants: .*inst_mask=3 .*kd=no' -- "$RTCL" \
+        render builtin:cornell -o "$tmp/vk.png" --width 32 --height 18 --backend vulkan \
+        --accel bvh --stats
+    expect 0 'vulkan +specialization constants: .*kd-tree traversal on' -- "$RTCL" info \
+        builtin:cornell --accel kd
+    expect 0 'vulkan +specialization constants: .*kd-tree traversal off' -- "$RTCL" info \
+        builtin:cornell
 fi
 finish

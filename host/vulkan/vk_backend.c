@@ -57,11 +57,12 @@ enum {
     B_HITS,     /* 11: their hits (results) */
     B_COUNTERS, /* 12: per pixel or ray of a tile */
     B_FB,       /* 13: the tile's pixels */
+    B_KD_NODES, /* 14: kd-tree nodes (kernels/vulkan/rt_vk_kd.glsl) */
     B_COUNT
 };
 static const char *const buffer_names[B_COUNT] = {
-    "header",   "nodes",     "tris",   "tri_ids", "tri_normals", "tri_mats", "instances",
-    "inst_ids", "materials", "lights", "rays",    "hits",        "counters", "framebuffer"};
+    "header",    "nodes",  "tris", "tri_ids", "tri_normals", "tri_mats",    "instances", "inst_ids",
+    "materials", "lights", "rays", "hits",    "counters",    "framebuffer", "kd_nodes"};
 
 /* The push constants of every shader (Push in kernels/vulkan/rt_vk_io.glsl). */
 typedef struct vk_push {
@@ -484,7 +485,8 @@ static void scene_spec(const rt_flat *f, int flush, uint32_t spec[SPEC_COUNT]) {
     uint32_t flags = f->hdr.flags;
     spec[SPEC_FLAGS] = flags;
     spec[SPEC_INST_SET] = (flags & RT_SCENE_SINGLE) ? RT_INST_IDENTITY : 0u;
-    spec[SPEC_INST_MASK] = RT_INST_IDENTITY | ((flags & RT_SCENE_NORMALS) ? RT_INST_NORMALS : 0u);
+    spec[SPEC_INST_MASK] = RT_INST_IDENTITY | ((flags & RT_SCENE_NORMALS) ? RT_INST_NORMALS : 0u) |
+                           (f->kd_node_count ? RT_INST_KD : 0u); /* the kd traversal */
     spec[SPEC_TRI_METHOD] = f->hdr.tri_method;
     spec[SPEC_FLUSH] = flush ? 1u : 0u; /* the soft maths' denormal mode, the policy's */
 }
@@ -589,7 +591,7 @@ static rt_status bind_all(vk_state *s, rt_error *err) {
  * still points at the same place. */
 static uint32_t *mesh_signature(const rt_backend_layout *layout, size_t *len) {
     const rt_flat *f = layout->flat;
-    size_t n = 5 + 3 * (size_t)f->hdr.instance_count;
+    size_t n = 6 + 3 * (size_t)f->hdr.instance_count;
     uint32_t *sig = malloc(n * sizeof *sig);
     if (!sig) return NULL;
     sig[0] = layout->mesh_generation;
@@ -597,10 +599,11 @@ static uint32_t *mesh_signature(const rt_backend_layout *layout, size_t *len) {
     sig[2] = f->tri_count;
     sig[3] = f->hdr.flags & (RT_SCENE_NORMALS | RT_SCENE_TRI_MATS);
     sig[4] = f->hdr.instance_count;
+    sig[5] = f->kd_node_count;
     for (uint32_t i = 0; i < f->hdr.instance_count; i++) {
-        sig[5 + 3 * i] = f->instances[i].mesh;
-        sig[6 + 3 * i] = f->instances[i].root;
-        sig[7 + 3 * i] = f->instances[i].tri_first;
+        sig[6 + 3 * i] = f->instances[i].mesh;
+        sig[7 + 3 * i] = f->instances[i].root;
+        sig[8 + 3 * i] = f->instances[i].tri_first;
     }
     *len = n;
     return sig;
@@ -640,6 +643,7 @@ static rt_status upload_scene(vk_state *s, const rt_backend_layout *layout, uint
         {B_INST_IDS, f->inst_ids, sizeof(uint32_t) * f->inst_id_count, 0},
         {B_MATS, f->materials, sizeof(rt_material_d) * f->hdr.material_count, 0},
         {B_LIGHTS, f->lights, sizeof(rt_light_d) * f->hdr.light_count, 0},
+        {B_KD_NODES, f->kd_nodes, sizeof(rt_kd_node) * f->kd_node_count, 1},
     };
     rt_status st = RT_OK;
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0] && st == RT_OK; i++) {
@@ -736,11 +740,6 @@ static uint32_t next_tile(uint32_t tile, double ms) {
 static rt_status vk_prepare(void *state, const rt_backend_layout *layout, rt_render_stats *stats,
                             rt_error *err) {
     vk_state *s = state;
-    /* The shaders mirror the BVH traversal only (kernels/vulkan/): no
-     * kd-tree traversal yet, so such a layout is refused before any work. */
-    if (layout->flat->kd_node_count)
-        return rt_fail(err, RT_ERROR_UNSUPPORTED,
-                       "vulkan: kd-tree meshes are not supported yet; use --accel bvh");
     rt_status st = ready(s, err);
     uint32_t spec[SPEC_COUNT];
     scene_spec(layout->flat, s->flush, spec);
@@ -749,9 +748,9 @@ static rt_status vk_prepare(void *state, const rt_backend_layout *layout, rt_ren
     if (st != RT_OK) return named(err, st);
     snprintf(s->spec_text, sizeof s->spec_text,
              "specialization constants: flags=%u inst_set=%u inst_mask=%u tri_method=%u "
-             "denormal_flush=%u",
+             "denormal_flush=%u kd=%s",
              spec[SPEC_FLAGS], spec[SPEC_INST_SET], spec[SPEC_INST_MASK], spec[SPEC_TRI_METHOD],
-             spec[SPEC_FLUSH]);
+             spec[SPEC_FLUSH], (spec[SPEC_INST_MASK] & RT_INST_KD) ? "yes" : "no");
     snprintf(stats->device, sizeof stats->device, "%.127s", s->dev.name);
     snprintf(stats->specialisation, sizeof stats->specialisation, "%s", s->spec_text);
     stats->device_options[0] = 0;
