@@ -20,7 +20,9 @@
  *   every shipped scene the image and every AOV with the same ray and test
  *   counts as the oracle's kd traversal, the image, depth and primitive ids
  *   as the BVH's, random ray queries, an instance turned about an oblique
- *   axis;
+ *   axis; the traversal stack's private overflow (the shaders keep 21 cells
+ *   in shared memory, more than these trees need) run by keeping 0 and 2
+ *   cells there instead, on random rays;
  * - a device that does not exist is an error with a reason.
  * Skips only when the build has no Vulkan backend or no Vulkan device
  * exists. */
@@ -479,6 +481,68 @@ static void check_kd_scene(const char *name, rt_accel accel, int full) {
     if (bvh) rt_scene_destroy(bvh);
 }
 
+/* The kd stack's overflow path: random rays through cornell with kd meshes
+ * (a pool of cells reaches about 5 deep) on the Vulkan traversal keeping 0
+ * cells (every cell private), 2 (both paths in one traversal) and 21 (the
+ * backend's choice) in shared memory, each hit the oracle's. */
+static void check_kd_stack(void) {
+    rt_scene *s = load_shipped("cornell", 32, 18);
+    if (!s) return;
+    CHECK(rt_scene_set_static_accel(s, RT_ACCEL_KD) == RT_OK);
+    enum { N = 20000 };
+    rt_ray *rays = make_rays(s, oracle_ray, N);
+    rt_hit *want = malloc(sizeof *want * N);
+    rt_ray_d *rd = malloc(sizeof *rd * N);
+    rt_hit_d *got = malloc(sizeof *got * N);
+    CHECK(rays && want && rd && got);
+    for (int any = 0; any <= 1 && rays && want && rd && got; any++) {
+        rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
+        CHECK(rt_trace_rays(cpu_r, s, rays, N, want, &q) == RT_OK);
+        for (int i = 0; i < N; i++) {
+            memcpy(rd[i].org, rays[i].org, sizeof rd[i].org);
+            memcpy(rd[i].dir, rays[i].dir, sizeof rd[i].dir);
+            rd[i].tmin = rays[i].tmin;
+            rd[i].tmax = rays[i].tmax;
+        }
+        const rt_flat *flat = test_layout(s, 0);
+        CHECK(flat && flat->kd_node_count > 0);
+        if (!flat) break;
+        static const uint32_t cells[] = {0, 2, 21};
+        for (int c = 0; c < 3; c++) {
+            rt_error err;
+            memset(&err, 0, sizeof err);
+            rt_status st = rt_vk_trace_kd_stack(NULL, flat, rd, N, any, cells[c], got, &err);
+            CHECK_MSG(st == RT_OK, "kd stack with %u shared cells: %s", cells[c], err.message);
+            if (st != RT_OK) continue;
+            int differ = 0, hits = 0, first = -1;
+            for (int i = 0; i < N; i++) {
+                int hit = got[i].prim != RT_NO_HIT;
+                hits += hit;
+                int same = hit == want[i].hit &&
+                           (!hit || (!memcmp(&got[i].t, &want[i].t, 4) &&
+                                     !memcmp(&got[i].u, &want[i].u, 4) &&
+                                     !memcmp(&got[i].v, &want[i].v, 4) &&
+                                     got[i].prim == want[i].prim && got[i].inst == want[i].inst));
+                if (!same && !differ++) first = i;
+            }
+            /* Any hit: whether the ray hits (which hit in range may differ). */
+            if (any) {
+                differ = 0;
+                for (int i = 0; i < N; i++) differ += (got[i].prim != RT_NO_HIT) != want[i].hit;
+            }
+            CHECK_MSG(differ == 0,
+                      "kd stack with %u shared cells, %s: %d of %d hits differ (first ray %d)",
+                      cells[c], any ? "any hit" : "closest", differ, N, first);
+            CHECK_MSG(hits > N / 10, "kd stack: only %d of %d rays hit", hits, N);
+        }
+    }
+    free(rays);
+    free(want);
+    free(rd);
+    free(got);
+    rt_scene_destroy(s);
+}
+
 /* The GLSL soft maths against the C header, bit for bit. */
 static void check_soft_math(void) {
     uint32_t sp[512];
@@ -561,6 +625,7 @@ int main(void) {
         check_kd_scene(shipped[i], RT_ACCEL_KD, 1);
         check_kd_scene(shipped[i], RT_ACCEL_KD_BINNED, 0);
     }
+    check_kd_stack();
     /* A device that does not exist is an error with a reason. */
     rt_scene *s = test_builtin_scene("cornell", 32, 18);
     rt_renderer *bad = test_renderer("vulkan:99", 0);

@@ -70,8 +70,20 @@ typedef struct vk_push {
     int32_t aov, channels, any_hit, query;
 } vk_push;
 
-/* The specialization constants (constant_id 0..4 in rt_vk_shared.glsl). */
-enum { SPEC_FLAGS, SPEC_INST_SET, SPEC_INST_MASK, SPEC_TRI_METHOD, SPEC_FLUSH, SPEC_COUNT };
+/* The specialization constants (constant_id 0..4 in rt_vk_shared.glsl, 5
+ * in rt_vk_kd.glsl). */
+enum {
+    SPEC_FLAGS,
+    SPEC_INST_SET,
+    SPEC_INST_MASK,
+    SPEC_TRI_METHOD,
+    SPEC_FLUSH,
+    SPEC_KD_SHARED,
+    SPEC_COUNT
+};
+/* kd traversal stack cells in shared memory: the most that fit in the mesh
+ * BVH's stack (RT_STACK_SIZE words, 3 per cell). */
+#define RT_VK_KD_SHARED_CELLS 21u
 
 enum { P_MAIN, P_SOFT, P_COUNT };
 static const char *const pipeline_names[P_COUNT] = {"rt_vk_main", "rt_vk_soft_test"};
@@ -85,7 +97,8 @@ typedef struct vk_buf {
 
 typedef struct vk_state {
     char selector[128];
-    int flush; /* the denormal policy: 1 flush (rt_backend_config.flush_denormals) */
+    int flush;          /* the denormal policy: 1 flush (rt_backend_config.flush_denormals) */
+    uint32_t kd_shared; /* SPEC_KD_SHARED: RT_VK_KD_SHARED_CELLS, lower in a test */
     rt_vk_device_info dev;
     VkInstance inst;
     VkPhysicalDevice phys;
@@ -282,6 +295,7 @@ static rt_status vk_create(const rt_backend_config *config, void **state, rt_err
     }
     snprintf(s->selector, sizeof s->selector, "%s", config->device ? config->device : "");
     s->flush = config->flush_denormals;
+    s->kd_shared = RT_VK_KD_SHARED_CELLS;
     s->tile = RT_VK_TILE_FIRST;
     *state = s;
     return RT_OK;
@@ -481,7 +495,7 @@ static rt_status pipeline(vk_state *s, int p, const uint32_t spec[SPEC_COUNT], d
 
 /* The specialization constants for the scene: its header flags and triangle
  * test, as OpenCL's -D switches (scene_defines in cl_backend.c). */
-static void scene_spec(const rt_flat *f, int flush, uint32_t spec[SPEC_COUNT]) {
+static void scene_spec(const rt_flat *f, int flush, uint32_t kd_shared, uint32_t spec[SPEC_COUNT]) {
     uint32_t flags = f->hdr.flags;
     spec[SPEC_FLAGS] = flags;
     spec[SPEC_INST_SET] = (flags & RT_SCENE_SINGLE) ? RT_INST_IDENTITY : 0u;
@@ -489,6 +503,7 @@ static void scene_spec(const rt_flat *f, int flush, uint32_t spec[SPEC_COUNT]) {
                            (f->kd_node_count ? RT_INST_KD : 0u); /* the kd traversal */
     spec[SPEC_TRI_METHOD] = f->hdr.tri_method;
     spec[SPEC_FLUSH] = flush ? 1u : 0u; /* the soft maths' denormal mode, the policy's */
+    spec[SPEC_KD_SHARED] = kd_shared;
 }
 
 /* ---- buffers ----------------------------------------------------------------- */
@@ -742,7 +757,7 @@ static rt_status vk_prepare(void *state, const rt_backend_layout *layout, rt_ren
     vk_state *s = state;
     rt_status st = ready(s, err);
     uint32_t spec[SPEC_COUNT];
-    scene_spec(layout->flat, s->flush, spec);
+    scene_spec(layout->flat, s->flush, s->kd_shared, spec);
     if (st == RT_OK) st = pipeline(s, P_MAIN, spec, &stats->compile_ms, err);
     if (st == RT_OK) st = upload_scene(s, layout, &stats->upload_bytes, &stats->upload_ms, err);
     if (st != RT_OK) return named(err, st);
@@ -851,7 +866,7 @@ rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size
     rt_status st = vk_create(&config, &state, err);
     if (st != RT_OK) return st;
     vk_state *s = state;
-    uint32_t spec[SPEC_COUNT] = {0, 0, 3, 0, ftz ? 1u : 0u};
+    uint32_t spec[SPEC_COUNT] = {0, 0, 3, 0, ftz ? 1u : 0u, RT_VK_KD_SHARED_CELLS};
     double ms = 0.0;
     int remade;
     st = ready(s, err);
@@ -870,6 +885,34 @@ rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size
     }
     vk_destroy(s);
     return named(err, st);
+}
+
+rt_status rt_vk_trace_kd_stack(const char *device, const rt_flat *flat, const rt_ray_d *rays,
+                               size_t count, int any_hit, uint32_t kd_shared_cells, rt_hit_d *hits,
+                               rt_error *err) {
+    if (kd_shared_cells > RT_VK_KD_SHARED_CELLS)
+        return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "vulkan: at most %u shared kd stack cells",
+                       RT_VK_KD_SHARED_CELLS);
+    rt_backend_config config;
+    memset(&config, 0, sizeof config);
+    config.device = device;
+    void *state = NULL;
+    rt_status st = vk_create(&config, &state, err);
+    if (st != RT_OK) return st;
+    vk_state *s = state;
+    s->kd_shared = kd_shared_cells;
+    rt_backend_layout layout;
+    memset(&layout, 0, sizeof layout);
+    layout.flat = flat;
+    layout.layout_generation = 1;
+    layout.mesh_generation = 1;
+    rt_render_stats stats;
+    memset(&stats, 0, sizeof stats);
+    st = vk_prepare(s, &layout, &stats, err);
+    if (st == RT_OK)
+        st = vk_trace(s, &layout, rays, count, hits, any_hit, RT_TRACE_PATH_AUTO, NULL, err);
+    vk_destroy(s);
+    return st;
 }
 
 const rt_backend_ops rt_backend_vulkan = {"vulkan",  vk_available, vk_create,  vk_prepare,

@@ -13,17 +13,20 @@
  * The stack: (node, entry t, exit t) per cell. The workgroup's shared
  * memory is full (the two BVH stacks take 32 KiB, Vulkan's usual limit), so
  * the kd stack takes the mesh BVH's stack (level 1 of STACK_AT), which a kd
- * mesh does not use, three words per cell: RT_VK_KD_SHARED cells. A tree
- * deep enough to need more (host/layout/flatten.c admits depth up to
- * RT_KD_STACK - 2) goes on in a private array, which a driver may keep in
- * slow memory but only such deep paths touch. */
+ * mesh does not use, three words per cell: SC_KD_SHARED cells (21, the
+ * most that fit; specialization constant 5, which test_vulkan_oracle sets
+ * lower to run the other path). A tree deep enough to need more
+ * (host/layout/flatten.c admits depth up to RT_KD_STACK - 2) goes on in a
+ * private array, which a driver may keep in slow memory but only such deep
+ * paths touch. */
 #ifndef RT_VK_KD_GLSL
 #define RT_VK_KD_GLSL
 
 #define RT_INST_KD   4u
 #define RT_KD_LEAF   3u
 #define RT_KD_STACK  64
-#define RT_VK_KD_SHARED (RT_STACK_SIZE / 3)
+layout(constant_id = 5) const uint SC_KD_SHARED = 21u; /* at most RT_STACK_SIZE / 3 */
+#define RT_VK_KD_SHARED int(SC_KD_SHARED)
 
 struct rt_kd_node {
     uint a;
@@ -53,28 +56,28 @@ bool rt_kd_root_interval(uint node, rt_ray_d r, rt_ray_pre p, float lo, float hi
 }
 
 /* Stack cell k: words 3k .. 3k + 2 of the mesh level's stack while k is
- * below RT_VK_KD_SHARED, else the private overflow array. */
-#define KD_PUSH(k, nd, n0, f0)                                   \
-    if ((k) < RT_VK_KD_SHARED) {                                 \
-        STACK_AT(1, 3 * (k)) = (nd);                             \
-        STACK_AT(1, 3 * (k) + 1) = floatBitsToUint(n0);          \
-        STACK_AT(1, 3 * (k) + 2) = floatBitsToUint(f0);          \
-    } else {                                                     \
-        ov_node[(k) - RT_VK_KD_SHARED] = (nd);                   \
-        ov_tn[(k) - RT_VK_KD_SHARED] = (n0);                     \
-        ov_tf[(k) - RT_VK_KD_SHARED] = (f0);                     \
+ * below SC_KD_SHARED, else entry k of the private overflow arrays. */
+#define KD_PUSH(k, nd, n0, f0)                                         \
+    if ((k) < RT_VK_KD_SHARED) {                                       \
+        STACK_AT(1, 3 * (k)) = (nd);                                   \
+        STACK_AT(1, 3 * (k) + 1) = floatBitsToUint(n0);                \
+        STACK_AT(1, 3 * (k) + 2) = floatBitsToUint(f0);                \
+    } else {                                                           \
+        ov_node[k] = (nd);                                             \
+        ov_tn[k] = (n0);                                               \
+        ov_tf[k] = (f0);                                               \
     }
-#define KD_TN(k) \
-    ((k) < RT_VK_KD_SHARED ? uintBitsToFloat(STACK_AT(1, 3 * (k) + 1)) : ov_tn[(k) - RT_VK_KD_SHARED])
-#define KD_POP(k)                                                \
-    if ((k) < RT_VK_KD_SHARED) {                                 \
-        node = STACK_AT(1, 3 * (k));                             \
-        tn = uintBitsToFloat(STACK_AT(1, 3 * (k) + 1));          \
-        tf = uintBitsToFloat(STACK_AT(1, 3 * (k) + 2));          \
-    } else {                                                     \
-        node = ov_node[(k) - RT_VK_KD_SHARED];                   \
-        tn = ov_tn[(k) - RT_VK_KD_SHARED];                       \
-        tf = ov_tf[(k) - RT_VK_KD_SHARED];                       \
+#define KD_TN(k)                                                       \
+    ((k) < RT_VK_KD_SHARED ? uintBitsToFloat(STACK_AT(1, 3 * (k) + 1)) : ov_tn[k])
+#define KD_POP(k)                                                      \
+    if ((k) < RT_VK_KD_SHARED) {                                       \
+        node = STACK_AT(1, 3 * (k));                                   \
+        tn = uintBitsToFloat(STACK_AT(1, 3 * (k) + 1));                \
+        tf = uintBitsToFloat(STACK_AT(1, 3 * (k) + 2));                \
+    } else {                                                           \
+        node = ov_node[k];                                             \
+        tn = ov_tn[k];                                                 \
+        tf = ov_tf[k];                                                 \
     }
 
 /* rt_kd_trace_mesh: the kd-tree of the mesh whose bounding rt_node is root,
@@ -86,8 +89,8 @@ bool rt_kd_trace_mesh(uint root, uint inst, rt_ray_d r, rt_ray_pre p, bool any_h
     c.box_tests++;
     if (!rt_kd_root_interval(root, r, p, rt_box_lo(r.tmin), rt_box_hi(best.t), tn, tf))
         return false;
-    uint ov_node[RT_KD_STACK - RT_VK_KD_SHARED];
-    float ov_tn[RT_KD_STACK - RT_VK_KD_SHARED], ov_tf[RT_KD_STACK - RT_VK_KD_SHARED];
+    uint ov_node[RT_KD_STACK];
+    float ov_tn[RT_KD_STACK], ov_tf[RT_KD_STACK];
     int sp = 0;
     uint node = nodes[root].a;
     for (;;) {
