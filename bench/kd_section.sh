@@ -43,7 +43,8 @@ rel() { local p=$1; p=${p#"$root/"}; echo "${p/#$shared/\$S}"; }
 
 step "builds and frames (bench/kd_report.sh, $rounds rounds)"
 KD_KEEP_JSON=$tmp KD_BENCH_ARGS="--width 512 --height 288 --threads $threads" \
-    bash "$root/bench/kd_report.sh" "$rtcl" "$rounds" "$reps" "${scenes[@]}" > "$tmp/frames.md"
+    bash "$root/bench/kd_report.sh" "$rtcl" "$rounds" "$reps" "${scenes[@]}" |
+    sed -e "s|$root/||g" -e "s|$shared|\$S|g" > "$tmp/frames.md"
 step "incoherent ray queries (bench_kd_rays, $nrays rays)"
 "$rays_bench" --json --rays "$nrays" --reps "$reps" --threads $threads "${scenes[@]}" \
     > "$tmp/rays.jsonl"
