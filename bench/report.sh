@@ -75,7 +75,7 @@ bash "$root/bench/whitted_table.sh" "$rtcl" "$shared" $frames >"$tmp/whitted.md"
 
 mkdir -p "$tmp/studies/plots"
 studies=()
-for name in tri_tests builders opencl_options; do
+for name in tri_tests builders opencl_options dynamic; do
     script=$root/bench/study_$name.sh
     [ -f "$script" ] || continue
     step "study $name"

@@ -61,6 +61,12 @@ if [ -f "$RT_SOURCE_DIR/bench/study_opencl_options.sh" ]; then
     need '^\| none \(exact build\) \| yes \| [0-9.]+ / [0-9.]+ \| \+0\.0% \| 0 \| inf \| 0 \(0\.00%\) \| 0 \||No OpenCL device on this machine'
     need '^\| `-cl-fast-relaxed-math` \| no \||No OpenCL device on this machine'
 fi
+if [ -f "$RT_SOURCE_DIR/bench/study_dynamic.sh" ]; then
+    need '^## Dynamic scenes \(issue 16\): update policies beside Embree'
+    need '^\| rtcl \| refit \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| yes \|'
+    need '^### A long morph'
+    ! grep -q -E '^\| rtcl \| [a-z]+ \|.*\| NO \|' "$md" || { echo "FAIL: a policy changed the frames"; fails=$((fails + 1)); }
+fi
 # The kd-tree section (bench/kd_section.sh): build rows, kd frames, the
 # incoherent queries with the kd hits equal to the BVH's, the thesis's figures.
 need '^## SAH kd-trees against the BVH in one run'
