@@ -9,6 +9,7 @@
 #
 # usage: bench/kd_report.sh RTCL ROUNDS REPS SCENE...
 # KD_BENCH_ARGS: more rtcl bench options (e.g. "--width 512 --height 288")
+# KD_KEEP_JSON: a folder to keep the runs' JSON lines in (bvh.jsonl, kd.jsonl)
 set -eu
 RTCL=$1 ROUNDS=$2 REPS=$3
 shift 3
@@ -22,6 +23,7 @@ for scene in "$@"; do
         done
     done
 done
+if [ -n "${KD_KEEP_JSON:-}" ]; then cp "$tmp/bvh.jsonl" "$tmp/kd.jsonl" "$KD_KEEP_JSON/"; fi
 python3 - "$tmp" << 'PY'
 import json, statistics, sys, collections
 tmp = sys.argv[1]

@@ -83,6 +83,17 @@ for name in tri_tests builders opencl_options dynamic; do
     studies+=("$name")
 done
 
+# Separately callable sections: each prints its Markdown on stdout and runs
+# alone too (bash bench/kd_section.sh [BUILD] [SHARED] [--quick]).
+sections=()
+for name in kd_section; do
+    step "section $name"
+    quick_arg=()
+    [ $quick = 1 ] && quick_arg=(--quick)
+    bash "$root/bench/$name.sh" "$build" "$shared" "${quick_arg[@]}" >"$tmp/$name.md"
+    sections+=("$name")
+done
+
 rel() { local p=$1; p=${p#"$root/"}; echo "${p/#$shared/\$S}"; }
 render_cmd="build/rtcl bench"
 for s in "${scenes_render[@]}"; do render_cmd+=" $(rel "$s")"; done
@@ -199,6 +210,10 @@ EOF
     for name in "${studies[@]}"; do
         echo
         cat "$tmp/studies/$name.md"
+    done
+    for name in "${sections[@]}"; do
+        echo
+        cat "$tmp/$name.md"
     done
 } >"$tmp/BENCHMARKS.md"
 

@@ -67,5 +67,14 @@ if [ -f "$RT_SOURCE_DIR/bench/study_dynamic.sh" ]; then
     need '^### A long morph'
     ! grep -q -E '^\| rtcl \| [a-z]+ \|.*\| NO \|' "$md" || { echo "FAIL: a policy changed the frames"; fails=$((fails + 1)); }
 fi
+# The kd-tree section (bench/kd_section.sh): build rows, kd frames, the
+# incoherent queries with the kd hits equal to the BVH's, the thesis's figures.
+need '^## SAH kd-trees against the BVH in one run'
+need '^\| kd-exact \| 2 \| [0-9.]+ \| [0-9.]+ \|'
+need '^\| cpu \| kd \| [0-9.]+ \| [0-9.]+ \|'
+need '^\| cornell.json \| random \| closest \| cpu \| [0-9.]+ / [0-9.]+ \| [0-9.]+ / [0-9.]+ \| .* \| 0 \|$'
+need '^\| Wald and Havran 2006 \| .* \| 3200 \|'
+! grep -E '^\| [a-z_.]+ \| (diffuse|random) \| closest \|.* \| [1-9][0-9]* \|$' "$md" ||
+    { echo "FAIL: kd closest hits differ from the BVH's"; fails=$((fails + 1)); }
 [ $fails = 0 ] || { echo "--- report:"; head -c 6000 "$md"; exit 1; }
 echo "cli_report: ok"

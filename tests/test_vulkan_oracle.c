@@ -16,6 +16,13 @@
  *   on a scene 1e-13 across (denormal t numerators) the device is held to
  *   the oracle of each policy it promises (float controls), and what it
  *   gives elsewhere is printed;
+ * - kd-tree meshes (--accel kd, kd-binned; kernels/vulkan/rt_vk_kd.glsl): on
+ *   every shipped scene the image and every AOV with the same ray and test
+ *   counts as the oracle's kd traversal, the image, depth and primitive ids
+ *   as the BVH's, random ray queries, an instance turned about an oblique
+ *   axis; the traversal stack's private overflow (the shaders keep 21 cells
+ *   in shared memory, more than these trees need) run by keeping 0 and 2
+ *   cells there instead, on random rays;
  * - a device that does not exist is an error with a reason.
  * Skips only when the build has no Vulkan backend or no Vulkan device
  * exists. */
@@ -403,6 +410,139 @@ static void check_denormals(const rt_vk_device_info *dev) {
     rt_scene_destroy(s);
 }
 
+/* ---- kd-tree meshes ---------------------------------------------------- */
+
+/* The image, depth and primitive ids of s on the Vulkan renderer equal the
+ * BVH oracle's (bvh: the same scene with BVH meshes). */
+static void same_as_bvh(const char *label, rt_scene *kd, rt_scene *bvh) {
+    for (int aov = RT_AOV_NONE; aov <= RT_AOV_PRIMID; aov++) {
+        rt_framebuffer a, b;
+        CHECK(render_with(cpu_r, bvh, (rt_aov)aov, 0, RT_TRI_TEST_WATERTIGHT, &a, NULL) == RT_OK);
+        if (render_with(vk_r, kd, (rt_aov)aov, 0, RT_TRI_TEST_WATERTIGHT, &b, NULL) == RT_OK) {
+            char what[64];
+            snprintf(what, sizeof what, "%s against the BVH", aov_names[aov]);
+            same_pixels(label, what, &a, &b);
+            rt_framebuffer_free(&b);
+        } else {
+            CHECK_MSG(0, "%s: %s", label, rt_renderer_error(vk_r));
+        }
+        rt_framebuffer_free(&a);
+    }
+}
+
+static rt_scene *load_shipped(const char *name, int width, int height) {
+    char rel[256];
+    snprintf(rel, sizeof rel, "scenes/%s.json", name);
+    rt_scene *s = NULL;
+    rt_error err;
+    rt_status st = rt_scene_load(test_source_path(rel), &s, &err);
+    CHECK_MSG(st == RT_OK, "%s: %s", rel, err.message);
+    if (st != RT_OK) return NULL;
+    rt_camera cam;
+    rt_camera_get(s, &cam);
+    cam.width = width;
+    cam.height = height;
+    CHECK(rt_camera_set(s, &cam) == RT_OK);
+    return s;
+}
+
+/* A shipped scene with every static mesh a kd-tree of the given builder:
+ * Vulkan against the oracle's kd traversal (every AOV, counts included;
+ * with full 0 the image only: the binned trees go through the same code),
+ * against the BVH, random rays; then an oblique instance transform. */
+static void check_kd_scene(const char *name, rt_accel accel, int full) {
+    rt_scene *s = load_shipped(name, 96, 54), *bvh = load_shipped(name, 96, 54);
+    if (s && bvh) {
+        CHECK(rt_scene_set_static_accel(s, accel) == RT_OK);
+        char label[96];
+        snprintf(label, sizeof label, "%s --accel %s", name, rt_accel_name(accel));
+        rt_framebuffer fb;
+        rt_render_stats st;
+        CHECK(render_with(vk_r, s, RT_AOV_DEPTH, 0, RT_TRI_TEST_WATERTIGHT, &fb, &st) == RT_OK);
+        rt_framebuffer_free(&fb);
+        CHECK_CONTAINS(st.specialisation, "kd=yes");
+        check_images(label, s, 0, RT_TRI_TEST_WATERTIGHT, RT_AOV_NONE,
+                     full ? RT_AOV_TRI_TESTS : RT_AOV_NONE);
+        if (full) check_images(label, s, 1, RT_TRI_TEST_WATERTIGHT, RT_AOV_NONE, RT_AOV_NONE);
+        same_as_bvh(label, s, bvh);
+        check_hits(label, s);
+        int cornell = strcmp(name, "cornell") == 0;
+        const float centre_cornell[3] = {-0.8f, 0.4f, -0.2f},
+                    centre_keyframes[3] = {0.5f, 1.0f, 0.0f};
+        oblique_turn(s, cornell ? 4 : 1, cornell ? centre_cornell : centre_keyframes);
+        oblique_turn(bvh, cornell ? 4 : 1, cornell ? centre_cornell : centre_keyframes);
+        snprintf(label, sizeof label, "%s --accel %s (turned)", name, rt_accel_name(accel));
+        check_images(label, s, 0, RT_TRI_TEST_WATERTIGHT, RT_AOV_NONE,
+                     full ? RT_AOV_TRI_TESTS : RT_AOV_NONE);
+        if (full) same_as_bvh(label, s, bvh);
+        check_hits(label, s);
+    }
+    if (s) rt_scene_destroy(s);
+    if (bvh) rt_scene_destroy(bvh);
+}
+
+/* The kd stack's overflow path: random rays through cornell with kd meshes
+ * (a pool of cells reaches about 5 deep) on the Vulkan traversal keeping 0
+ * cells (every cell private), 2 (both paths in one traversal) and 21 (the
+ * backend's choice) in shared memory, each hit the oracle's. */
+static void check_kd_stack(void) {
+    rt_scene *s = load_shipped("cornell", 32, 18);
+    if (!s) return;
+    CHECK(rt_scene_set_static_accel(s, RT_ACCEL_KD) == RT_OK);
+    enum { N = 20000 };
+    rt_ray *rays = make_rays(s, oracle_ray, N);
+    rt_hit *want = malloc(sizeof *want * N);
+    rt_ray_d *rd = malloc(sizeof *rd * N);
+    rt_hit_d *got = malloc(sizeof *got * N);
+    CHECK(rays && want && rd && got);
+    for (int any = 0; any <= 1 && rays && want && rd && got; any++) {
+        rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
+        CHECK(rt_trace_rays(cpu_r, s, rays, N, want, &q) == RT_OK);
+        for (int i = 0; i < N; i++) {
+            memcpy(rd[i].org, rays[i].org, sizeof rd[i].org);
+            memcpy(rd[i].dir, rays[i].dir, sizeof rd[i].dir);
+            rd[i].tmin = rays[i].tmin;
+            rd[i].tmax = rays[i].tmax;
+        }
+        const rt_flat *flat = test_layout(s, 0);
+        CHECK(flat && flat->kd_node_count > 0);
+        if (!flat) break;
+        static const uint32_t cells[] = {0, 2, 21};
+        for (int c = 0; c < 3; c++) {
+            rt_error err;
+            memset(&err, 0, sizeof err);
+            rt_status st = rt_vk_trace_kd_stack(NULL, flat, rd, N, any, cells[c], got, &err);
+            CHECK_MSG(st == RT_OK, "kd stack with %u shared cells: %s", cells[c], err.message);
+            if (st != RT_OK) continue;
+            int differ = 0, hits = 0, first = -1;
+            for (int i = 0; i < N; i++) {
+                int hit = got[i].prim != RT_NO_HIT;
+                hits += hit;
+                int same = hit == want[i].hit &&
+                           (!hit || (!memcmp(&got[i].t, &want[i].t, 4) &&
+                                     !memcmp(&got[i].u, &want[i].u, 4) &&
+                                     !memcmp(&got[i].v, &want[i].v, 4) &&
+                                     got[i].prim == want[i].prim && got[i].inst == want[i].inst));
+                if (!same && !differ++) first = i;
+            }
+            /* Any hit: whether the ray hits (which hit in range may differ). */
+            if (any) {
+                differ = 0;
+                for (int i = 0; i < N; i++) differ += (got[i].prim != RT_NO_HIT) != want[i].hit;
+            }
+            CHECK_MSG(differ == 0,
+                      "kd stack with %u shared cells, %s: %d of %d hits differ (first ray %d)",
+                      cells[c], any ? "any hit" : "closest", differ, N, first);
+            CHECK_MSG(hits > N / 10, "kd stack: only %d of %d rays hit", hits, N);
+        }
+    }
+    free(rays);
+    free(want);
+    free(rd);
+    free(got);
+    rt_scene_destroy(s);
+}
+
 /* The GLSL soft maths against the C header, bit for bit. */
 static void check_soft_math(void) {
     uint32_t sp[512];
@@ -481,6 +621,11 @@ int main(void) {
     for (int i = 0; i < 2; i++) check_scene(shipped[i]);
     check_uploads();
     check_denormals(&dev);
+    for (int i = 0; i < 2; i++) {
+        check_kd_scene(shipped[i], RT_ACCEL_KD, 1);
+        check_kd_scene(shipped[i], RT_ACCEL_KD_BINNED, 0);
+    }
+    check_kd_stack();
     /* A device that does not exist is an error with a reason. */
     rt_scene *s = test_builtin_scene("cornell", 32, 18);
     rt_renderer *bad = test_renderer("vulkan:99", 0);

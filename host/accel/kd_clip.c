@@ -35,6 +35,14 @@ static float round_up(double d, int exact) {
     return f;
 }
 
+/* Whether every vertex is on the kept side of the plane (then clip_plane
+ * would return the polygon unchanged). */
+static int all_kept(const cvert *in, int n, int k, double plane, int keep_above) {
+    for (int i = 0; i < n; i++)
+        if (!(keep_above ? in[i].p[k] >= plane : in[i].p[k] <= plane)) return 0;
+    return 1;
+}
+
 /* Keeps the part of the polygon with x[k] >= plane (keep_above) or <= plane;
  * points on the plane are kept. Returns the new vertex count. */
 static int clip_plane(const cvert *in, int n, cvert *out, int k, double plane, int keep_above) {
@@ -65,18 +73,28 @@ static int clip_plane(const cvert *in, int n, cvert *out, int k, double plane, i
 }
 
 int kd_clip_box(const kd_tri *t, const rt_aabb *cell, rt_aabb *out) {
-    cvert a[MAX_VERTS], b[MAX_VERTS];
+    cvert buf[2][MAX_VERTS];
+    cvert *a = buf[0];
     int n = 3;
     for (int i = 0; i < 3; i++) {
         for (int k = 0; k < 3; k++) a[i].p[k] = (double)t->v[i][k];
         a[i].exact = 7u;
     }
-    for (int k = 0; k < 3 && n; k++) {
-        n = clip_plane(a, n, b, k, (double)cell->bmin[k], 1);
-        if (!n) break;
-        n = clip_plane(b, n, a, k, (double)cell->bmax[k], 0);
-    }
+    /* Most planes of a cell miss a straddling triangle (often all but the
+     * split plane): those are skipped, which clip_plane would have done
+     * too, copying the polygon unchanged. */
+    cvert *cur = buf[0], *other = buf[1];
+    for (int k = 0; k < 3 && n; k++)
+        for (int side = 0; side < 2 && n; side++) {
+            double plane = (double)(side ? cell->bmax[k] : cell->bmin[k]);
+            if (all_kept(cur, n, k, plane, !side)) continue;
+            n = clip_plane(cur, n, other, k, plane, !side);
+            cvert *swap = cur;
+            cur = other;
+            other = swap;
+        }
     if (!n) return 0;
+    a = cur;
     for (int k = 0; k < 3; k++) {
         double lo = a[0].p[k], hi = a[0].p[k];
         int lo_exact = (a[0].exact >> k) & 1, hi_exact = lo_exact;

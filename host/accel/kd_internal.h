@@ -67,7 +67,9 @@ double kd_area(const rt_aabb *b);
 /* What pricing a plane needs of a cell, computed once per node. */
 typedef struct kd_cell {
     const rt_aabb *box;
-    double ext[3];   /* extents */
+    double ext[3]; /* extents */
+    /* the sum and product of the other two extents, per axis k */
+    double other_sum[3], other_prod[3];
     double inv_area; /* 1 / surface area (0 when the area is 0: no split) */
 } kd_cell;
 
@@ -80,8 +82,33 @@ int kd_cell_init(kd_cell *c, const rt_aabb *box);
  * side is empty; a split that leaves one child equal to the cell with every
  * triangle (a plane on the cell's face) is refused, so recursion always
  * progresses. Ties keep the earlier offer. */
-void kd_offer(const kd_ctx *c, const kd_cell *v, int k, float pos, uint32_t nl, uint32_t nr,
-              uint32_t np, uint32_t n, kd_split *best);
+static inline void kd_offer(const kd_ctx *c, const kd_cell *v, int k, float pos, uint32_t nl,
+                            uint32_t nr, uint32_t np, uint32_t n, kd_split *best) {
+    /* The children's areas: the cell's with the extent on k cut at pos.
+     * Inline: the sweep offers every event position (a quarter of the
+     * exact build's time went to the calls). */
+    double s = v->other_sum[k], p = v->other_prod[k];
+    double l = (double)pos - (double)v->box->bmin[k], r = (double)v->box->bmax[k] - (double)pos;
+    double pl = 2.0 * (l * s + p) * v->inv_area;
+    double pr = 2.0 * (r * s + p) * v->inv_area;
+    /* A plane on a face of the cell leaves one child equal to the cell. */
+    int left_is_cell = pos == v->box->bmax[k], right_is_cell = pos == v->box->bmin[k];
+    double kt = (double)c->opt.cost_traverse, ki = (double)c->opt.cost_intersect;
+    for (int side = 0; side < 2; side++) {
+        int planar_left = side == 0;
+        uint32_t na = nl + (planar_left ? np : 0u), nb = nr + (planar_left ? 0u : np);
+        if ((left_is_cell && na == n) || (right_is_cell && nb == n)) continue;
+        double bonus = (na == 0 || nb == 0) ? (double)c->opt.empty_bonus : 1.0;
+        double cost = bonus * (kt + ki * (pl * (double)na + pr * (double)nb));
+        if (cost < best->cost) {
+            best->cost = cost;
+            best->axis = k;
+            best->pos = pos;
+            best->planar_left = planar_left;
+        }
+        if (!np) break; /* the same price both ways */
+    }
+}
 
 /* ---- perfect splits (kd_clip.c) --------------------------------------------- */
 

@@ -25,33 +25,12 @@ double kd_area(const rt_aabb *b) {
 int kd_cell_init(kd_cell *c, const rt_aabb *box) {
     c->box = box;
     for (int k = 0; k < 3; k++) c->ext[k] = (double)box->bmax[k] - (double)box->bmin[k];
+    for (int k = 0; k < 3; k++) {
+        double a = c->ext[(k + 1) % 3], b = c->ext[(k + 2) % 3];
+        c->other_sum[k] = a + b;
+        c->other_prod[k] = a * b;
+    }
     double area = kd_area(box);
     c->inv_area = area > 0.0 ? 1.0 / area : 0.0;
     return area > 0.0;
-}
-
-void kd_offer(const kd_ctx *c, const kd_cell *v, int k, float pos, uint32_t nl, uint32_t nr,
-              uint32_t np, uint32_t n, kd_split *best) {
-    /* The children's areas: the cell's with the extent on k cut at pos. */
-    double a = v->ext[(k + 1) % 3], b = v->ext[(k + 2) % 3];
-    double l = (double)pos - (double)v->box->bmin[k], r = (double)v->box->bmax[k] - (double)pos;
-    double pl = 2.0 * (l * (a + b) + a * b) * v->inv_area;
-    double pr = 2.0 * (r * (a + b) + a * b) * v->inv_area;
-    /* A plane on a face of the cell leaves one child equal to the cell. */
-    int left_is_cell = pos == v->box->bmax[k], right_is_cell = pos == v->box->bmin[k];
-    double kt = (double)c->opt.cost_traverse, ki = (double)c->opt.cost_intersect;
-    for (int side = 0; side < 2; side++) {
-        int planar_left = side == 0;
-        uint32_t na = nl + (planar_left ? np : 0u), nb = nr + (planar_left ? 0u : np);
-        if ((left_is_cell && na == n) || (right_is_cell && nb == n)) continue;
-        double bonus = (na == 0 || nb == 0) ? (double)c->opt.empty_bonus : 1.0;
-        double cost = bonus * (kt + ki * (pl * (double)na + pr * (double)nb));
-        if (cost < best->cost) {
-            best->cost = cost;
-            best->axis = k;
-            best->pos = pos;
-            best->planar_left = planar_left;
-        }
-        if (!np) break; /* the same price both ways */
-    }
 }

@@ -149,13 +149,16 @@ int cmd_info(int argc, char **argv) {
            !strcmp(denormals, "flush") ? ": compared with a flushing oracle (FTZ/DAZ)" : " (IEEE)");
 #ifdef RT_HAVE_VULKAN
     /* The Vulkan shaders take the same switches as specialization constants
-     * (rtcl render --stats prints their values). */
+     * (rtcl render --stats prints their values); the kd-tree traversal is
+     * compiled in only where a mesh has a kd-tree. */
+    int kd = 0;
+    for (uint32_t i = 0; i < s->mesh_count; i++) kd |= rt_mesh_accel(s, i) != RT_ACCEL_BVH;
     printf("vulkan       specialization constants: secondary rays %s, instance transforms %s, "
-           "normal interpolation %s, per-triangle materials %s; portable maths (software "
-           "division and sqrt, no fp64, no contraction): the CPU oracle's bits where the device "
-           "promises them (rtcl devices)\n",
+           "normal interpolation %s, per-triangle materials %s, kd-tree traversal %s; portable "
+           "maths (software division and sqrt, no fp64, no contraction): the CPU oracle's bits "
+           "where the device promises them (rtcl devices)\n",
            (f.reflection || f.refraction) ? "on" : "off", f.instancing ? "on" : "off",
-           f.normals ? "on" : "off", f.tri_materials ? "on" : "off");
+           f.normals ? "on" : "off", f.tri_materials ? "on" : "off", kd ? "on" : "off");
 #endif
     rt_scene_destroy(s);
     return 0;

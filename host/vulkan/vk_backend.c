@@ -57,11 +57,12 @@ enum {
     B_HITS,     /* 11: their hits (results) */
     B_COUNTERS, /* 12: per pixel or ray of a tile */
     B_FB,       /* 13: the tile's pixels */
+    B_KD_NODES, /* 14: kd-tree nodes (kernels/vulkan/rt_vk_kd.glsl) */
     B_COUNT
 };
 static const char *const buffer_names[B_COUNT] = {
-    "header",   "nodes",     "tris",   "tri_ids", "tri_normals", "tri_mats", "instances",
-    "inst_ids", "materials", "lights", "rays",    "hits",        "counters", "framebuffer"};
+    "header",    "nodes",  "tris", "tri_ids", "tri_normals", "tri_mats",    "instances", "inst_ids",
+    "materials", "lights", "rays", "hits",    "counters",    "framebuffer", "kd_nodes"};
 
 /* The push constants of every shader (Push in kernels/vulkan/rt_vk_io.glsl). */
 typedef struct vk_push {
@@ -69,8 +70,20 @@ typedef struct vk_push {
     int32_t aov, channels, any_hit, query;
 } vk_push;
 
-/* The specialization constants (constant_id 0..4 in rt_vk_shared.glsl). */
-enum { SPEC_FLAGS, SPEC_INST_SET, SPEC_INST_MASK, SPEC_TRI_METHOD, SPEC_FLUSH, SPEC_COUNT };
+/* The specialization constants (constant_id 0..4 in rt_vk_shared.glsl, 5
+ * in rt_vk_kd.glsl). */
+enum {
+    SPEC_FLAGS,
+    SPEC_INST_SET,
+    SPEC_INST_MASK,
+    SPEC_TRI_METHOD,
+    SPEC_FLUSH,
+    SPEC_KD_SHARED,
+    SPEC_COUNT
+};
+/* kd traversal stack cells in shared memory: the most that fit in the mesh
+ * BVH's stack (RT_STACK_SIZE words, 3 per cell). */
+#define RT_VK_KD_SHARED_CELLS 21u
 
 enum { P_MAIN, P_SOFT, P_COUNT };
 static const char *const pipeline_names[P_COUNT] = {"rt_vk_main", "rt_vk_soft_test"};
@@ -84,7 +97,8 @@ typedef struct vk_buf {
 
 typedef struct vk_state {
     char selector[128];
-    int flush; /* the denormal policy: 1 flush (rt_backend_config.flush_denormals) */
+    int flush;          /* the denormal policy: 1 flush (rt_backend_config.flush_denormals) */
+    uint32_t kd_shared; /* SPEC_KD_SHARED: RT_VK_KD_SHARED_CELLS, lower in a test */
     rt_vk_device_info dev;
     VkInstance inst;
     VkPhysicalDevice phys;
@@ -281,6 +295,7 @@ static rt_status vk_create(const rt_backend_config *config, void **state, rt_err
     }
     snprintf(s->selector, sizeof s->selector, "%s", config->device ? config->device : "");
     s->flush = config->flush_denormals;
+    s->kd_shared = RT_VK_KD_SHARED_CELLS;
     s->tile = RT_VK_TILE_FIRST;
     *state = s;
     return RT_OK;
@@ -480,13 +495,15 @@ static rt_status pipeline(vk_state *s, int p, const uint32_t spec[SPEC_COUNT], d
 
 /* The specialization constants for the scene: its header flags and triangle
  * test, as OpenCL's -D switches (scene_defines in cl_backend.c). */
-static void scene_spec(const rt_flat *f, int flush, uint32_t spec[SPEC_COUNT]) {
+static void scene_spec(const rt_flat *f, int flush, uint32_t kd_shared, uint32_t spec[SPEC_COUNT]) {
     uint32_t flags = f->hdr.flags;
     spec[SPEC_FLAGS] = flags;
     spec[SPEC_INST_SET] = (flags & RT_SCENE_SINGLE) ? RT_INST_IDENTITY : 0u;
-    spec[SPEC_INST_MASK] = RT_INST_IDENTITY | ((flags & RT_SCENE_NORMALS) ? RT_INST_NORMALS : 0u);
+    spec[SPEC_INST_MASK] = RT_INST_IDENTITY | ((flags & RT_SCENE_NORMALS) ? RT_INST_NORMALS : 0u) |
+                           (f->kd_node_count ? RT_INST_KD : 0u); /* the kd traversal */
     spec[SPEC_TRI_METHOD] = f->hdr.tri_method;
     spec[SPEC_FLUSH] = flush ? 1u : 0u; /* the soft maths' denormal mode, the policy's */
+    spec[SPEC_KD_SHARED] = kd_shared;
 }
 
 /* ---- buffers ----------------------------------------------------------------- */
@@ -589,7 +606,7 @@ static rt_status bind_all(vk_state *s, rt_error *err) {
  * still points at the same place. */
 static uint32_t *mesh_signature(const rt_backend_layout *layout, size_t *len) {
     const rt_flat *f = layout->flat;
-    size_t n = 5 + 3 * (size_t)f->hdr.instance_count;
+    size_t n = 6 + 3 * (size_t)f->hdr.instance_count;
     uint32_t *sig = malloc(n * sizeof *sig);
     if (!sig) return NULL;
     sig[0] = layout->mesh_generation;
@@ -597,10 +614,11 @@ static uint32_t *mesh_signature(const rt_backend_layout *layout, size_t *len) {
     sig[2] = f->tri_count;
     sig[3] = f->hdr.flags & (RT_SCENE_NORMALS | RT_SCENE_TRI_MATS);
     sig[4] = f->hdr.instance_count;
+    sig[5] = f->kd_node_count;
     for (uint32_t i = 0; i < f->hdr.instance_count; i++) {
-        sig[5 + 3 * i] = f->instances[i].mesh;
-        sig[6 + 3 * i] = f->instances[i].root;
-        sig[7 + 3 * i] = f->instances[i].tri_first;
+        sig[6 + 3 * i] = f->instances[i].mesh;
+        sig[7 + 3 * i] = f->instances[i].root;
+        sig[8 + 3 * i] = f->instances[i].tri_first;
     }
     *len = n;
     return sig;
@@ -650,6 +668,7 @@ static rt_status upload_scene(vk_state *s, const rt_backend_layout *layout, uint
         {B_INST_IDS, f->inst_ids, sizeof(uint32_t) * f->inst_id_count, 0},
         {B_MATS, f->materials, sizeof(rt_material_d) * f->hdr.material_count, 0},
         {B_LIGHTS, f->lights, sizeof(rt_light_d) * f->hdr.light_count, 0},
+        {B_KD_NODES, f->kd_nodes, sizeof(rt_kd_node) * f->kd_node_count, 1},
     };
     rt_status st = RT_OK;
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0] && st == RT_OK; i++) {
@@ -746,22 +765,17 @@ static uint32_t next_tile(uint32_t tile, double ms) {
 static rt_status vk_prepare(void *state, const rt_backend_layout *layout, rt_render_stats *stats,
                             rt_error *err) {
     vk_state *s = state;
-    /* The shaders mirror the BVH traversal only (kernels/vulkan/): no
-     * kd-tree traversal yet, so such a layout is refused before any work. */
-    if (layout->flat->kd_node_count)
-        return rt_fail(err, RT_ERROR_UNSUPPORTED,
-                       "vulkan: kd-tree meshes are not supported yet; use --accel bvh");
     rt_status st = ready(s, err);
     uint32_t spec[SPEC_COUNT];
-    scene_spec(layout->flat, s->flush, spec);
+    scene_spec(layout->flat, s->flush, s->kd_shared, spec);
     if (st == RT_OK) st = pipeline(s, P_MAIN, spec, &stats->compile_ms, err);
     if (st == RT_OK) st = upload_scene(s, layout, &stats->upload_bytes, &stats->upload_ms, err);
     if (st != RT_OK) return named(err, st);
     snprintf(s->spec_text, sizeof s->spec_text,
              "specialization constants: flags=%u inst_set=%u inst_mask=%u tri_method=%u "
-             "denormal_flush=%u",
+             "denormal_flush=%u kd=%s",
              spec[SPEC_FLAGS], spec[SPEC_INST_SET], spec[SPEC_INST_MASK], spec[SPEC_TRI_METHOD],
-             spec[SPEC_FLUSH]);
+             spec[SPEC_FLUSH], (spec[SPEC_INST_MASK] & RT_INST_KD) ? "yes" : "no");
     snprintf(stats->device, sizeof stats->device, "%.127s", s->dev.name);
     snprintf(stats->specialisation, sizeof stats->specialisation, "%s", s->spec_text);
     stats->device_options[0] = 0;
@@ -862,7 +876,7 @@ rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size
     rt_status st = vk_create(&config, &state, err);
     if (st != RT_OK) return st;
     vk_state *s = state;
-    uint32_t spec[SPEC_COUNT] = {0, 0, 3, 0, ftz ? 1u : 0u};
+    uint32_t spec[SPEC_COUNT] = {0, 0, 3, 0, ftz ? 1u : 0u, RT_VK_KD_SHARED_CELLS};
     double ms = 0.0;
     int remade;
     st = ready(s, err);
@@ -881,6 +895,34 @@ rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size
     }
     vk_destroy(s);
     return named(err, st);
+}
+
+rt_status rt_vk_trace_kd_stack(const char *device, const rt_flat *flat, const rt_ray_d *rays,
+                               size_t count, int any_hit, uint32_t kd_shared_cells, rt_hit_d *hits,
+                               rt_error *err) {
+    if (kd_shared_cells > RT_VK_KD_SHARED_CELLS)
+        return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "vulkan: at most %u shared kd stack cells",
+                       RT_VK_KD_SHARED_CELLS);
+    rt_backend_config config;
+    memset(&config, 0, sizeof config);
+    config.device = device;
+    void *state = NULL;
+    rt_status st = vk_create(&config, &state, err);
+    if (st != RT_OK) return st;
+    vk_state *s = state;
+    s->kd_shared = kd_shared_cells;
+    rt_backend_layout layout;
+    memset(&layout, 0, sizeof layout);
+    layout.flat = flat;
+    layout.layout_generation = 1;
+    layout.mesh_generation = 1;
+    rt_render_stats stats;
+    memset(&stats, 0, sizeof stats);
+    st = vk_prepare(s, &layout, &stats, err);
+    if (st == RT_OK)
+        st = vk_trace(s, &layout, rays, count, hits, any_hit, RT_TRACE_PATH_AUTO, NULL, err);
+    vk_destroy(s);
+    return st;
 }
 
 const rt_backend_ops rt_backend_vulkan = {"vulkan",  vk_available, vk_create,  vk_prepare,

@@ -1,6 +1,6 @@
 /* vk_backend.h - the Vulkan compute backend (host/backend/backend.h), built
  * where the build found the Vulkan loader and glslangValidator
- * (RT_HAVE_VULKAN); and two hooks for the tests. */
+ * (RT_HAVE_VULKAN); and hooks for the tests. */
 #ifndef RT_VK_BACKEND_H
 #define RT_VK_BACKEND_H
 
@@ -32,5 +32,15 @@ uint32_t *rt_vk_with_float_controls(const uint32_t *words, size_t bytes, int rte
  * maths to rt_soft_math.h. */
 rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size_t count, int ftz,
                               uint32_t *results, rt_error *err);
+
+/* Traces count rays (closest hits, or any hits when any_hit) through the
+ * layout flat on device (NULL: the default) with the kd-tree traversal
+ * keeping only the first kd_shared_cells cells of its stack (0..21) in
+ * shared memory and the rest in its private overflow array (the backend
+ * keeps 21 there, which only trees deeper than any test scene's outgrow).
+ * For the test that runs that overflow path. */
+rt_status rt_vk_trace_kd_stack(const char *device, const struct rt_flat *flat, const rt_ray_d *rays,
+                               size_t count, int any_hit, uint32_t kd_shared_cells, rt_hit_d *hits,
+                               rt_error *err);
 
 #endif /* RT_VK_BACKEND_H */

@@ -567,6 +567,8 @@ bool rt_trace_mesh(uint root, uint inst, rt_ray_d r, rt_ray_pre p, bool any_hit,
     return false;
 }
 
+#include "rt_vk_kd.glsl" /* kd-tree meshes: rt_kd_trace_mesh */
+
 void rt_ray_to_object(uint inst, rt_ray_d r, out rt_ray_d o) {
     for (int i = 0; i < 3; i++) {
         float m0 = instances[inst].world_to_object[4 * i];
@@ -580,8 +582,9 @@ void rt_ray_to_object(uint inst, rt_ray_d r, out rt_ray_d o) {
     o.tmax = r.tmax;
 }
 
-/* One call of rt_trace_mesh for both cases of the C function (the ray
- * transformed or not): one inlined copy of the traversal. */
+/* One call of rt_trace_mesh (and of rt_kd_trace_mesh) for both cases of the
+ * C function (the ray transformed or not): one inlined copy of each
+ * traversal. */
 bool rt_trace_instance(uint inst, rt_ray_d r, rt_ray_pre p, bool any_hit, inout rt_hit_d best,
                        inout rt_counters c) {
     uint root = instances[inst].root;
@@ -595,6 +598,8 @@ bool rt_trace_instance(uint inst, rt_ray_d r, rt_ray_pre p, bool any_hit, inout 
         rt_ray_prepare(o, op);
     }
     op.inst_lo = inst_lo;
+    if ((RT_INST_FLAGS(instances[inst].flags) & RT_INST_KD) != 0u)
+        return rt_kd_trace_mesh(root, inst, o, op, any_hit, best, c);
     return rt_trace_mesh(root, inst, o, op, any_hit, best, c);
 }
 
