@@ -16,6 +16,7 @@
 
 #include "bench_render.h"
 #include "cli_util.h"
+#include "incoherent_bench.h"
 #include "accel/bvh.h"
 #include "accel/kd.h"
 #include "base/clock.h"
@@ -43,8 +44,9 @@ typedef struct bench_args {
     int json, reps, threads, progress, render, width, height;
     rt_device_math device_math;
     rt_denormals denormals;
-    int accel;   /* --accel: rt_accel, or -1 */
-    int verbose; /* --verbose: the OpenCL build log on stderr */
+    int accel;            /* --accel: rt_accel, or -1 */
+    int verbose;          /* --verbose: the OpenCL build log on stderr */
+    int incoherent, rays; /* --incoherent, --rays (incoherent_bench.h) */
 } bench_args;
 
 static int cmp_double(const void *a, const void *b) {
@@ -62,7 +64,7 @@ static void usage(FILE *f) {
     fprintf(f, "usage: rtcl bench SCENE... [--json] [--reps N] [--threads N] [--no-render]\n"
                "                 [--width W] [--height H] [--device-math M] [--denormals P]\n"
                "                 [--accel A]\n"
-               "                 [--verbose]\n"
+               "                 [--verbose] [--incoherent [--rays N]]\n"
                "\n"
                "Build: one BVH over all triangles of each scene with every builder\n"
                "(thesis-scalar, thesis-neon, thesis-mt, fast, and embree when available):\n"
@@ -97,7 +99,23 @@ static void usage(FILE *f) {
                "               the render part; kd and kd-binned also add the build rows\n"
                "               kd-exact and kd-binned (one SAH kd-tree over all triangles,\n"
                "               SAH with Ct = 1, Ci = 2 as for the BVH rows, and bytes)\n"
-               "  --verbose    print the OpenCL compiler's messages (build log) on stderr\n");
+               "  --verbose    print the OpenCL compiler's messages (build log) on stderr\n"
+               "\n"
+               "Incoherent rays (--incoherent, instead of the build and render parts): per\n"
+               "scene two sets of rays, diffuse bounces from the camera rays' closest hits\n"
+               "and random rays inside the scene (fixed seed 7), each traced for the\n"
+               "closest hit and for any hit by rt_trace_rays on cpu (the oracle) and on\n"
+               "packet (auto path), and by Embree's rtcIntersect1/rtcOccluded1 and\n"
+               "rtcIntersect16/rtcOccluded16 (16 consecutive rays per call) where this build\n"
+               "has Embree (else the output says why its rows are absent), with the same\n"
+               "thread count: min and median ms and Mrays/s over N rounds after one warm-up\n"
+               "round (interleaved), speed against Embree, and packet hits unlike the\n"
+               "oracle's; then Whitted frames (W x H) on packet and cpu.\n"
+               "  --incoherent run this benchmark; --json: one object per scene per line\n"
+               "               with an \"incoherent\" array of {scene, rays, query, engine,\n"
+               "               path, ms_min, ms_median, mrays_min, mrays_median, ...} and a\n"
+               "               \"whitted\" array; --no-render leaves the Whitted frames out\n"
+               "  --rays N     rays per set [1000000]\n");
 }
 
 /* The triangles of every mesh: boxes, and positions/indices for Embree. */
@@ -527,7 +545,7 @@ static int parse_int(const char *s, int lo, int hi, int *out) {
 
 int cmd_bench(int argc, char **argv) {
     bench_args a = {0,  5, 0, isatty(2), 1, 1024, 576, RT_DEVICE_MATH_AUTO, RT_DENORMALS_PRESERVE,
-                    -1, 0};
+                    -1, 0, 0, 0};
     const char **scenes = calloc((size_t)argc, sizeof *scenes);
     int n_scenes = 0;
     if (!scenes) return 2;
@@ -549,6 +567,15 @@ int cmd_bench(int argc, char **argv) {
                 return 2;
             }
             a.accel = (int)acc;
+            i++;
+        } else if (!strcmp(s, "--incoherent")) {
+            a.incoherent = 1;
+        } else if (!strcmp(s, "--rays")) {
+            if (i + 1 >= argc || !parse_int(argv[i + 1], 1, 100000000, &a.rays)) {
+                fprintf(stderr, "rtcl bench: --rays needs a number from 1 to 100000000\n");
+                free(scenes);
+                return 2;
+            }
             i++;
         } else if (!strcmp(s, "--verbose")) {
             a.verbose = 1;
@@ -585,6 +612,19 @@ int cmd_bench(int argc, char **argv) {
         return 2;
     }
     if (a.threads <= 0) a.threads = rt_cpu_count();
+    if (a.incoherent) {
+        incoh_setup su = incoh_setup_default();
+        if (a.rays) su.rays = (size_t)a.rays;
+        su.reps = a.reps;
+        su.threads = a.threads;
+        su.width = a.width;
+        su.height = a.height;
+        su.whitted = a.render;
+        su.progress = a.progress ? render_progress : NULL;
+        int rc = incoh_run(scenes, n_scenes, &su, a.json, "rtcl bench");
+        free(scenes);
+        return rc;
+    }
     rt_pool *pool = rt_pool_create(a.threads);
     if (!pool) {
         fprintf(stderr, "rtcl bench: cannot create %d threads\n", a.threads);
