@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # cli_bench_incoherent.sh - 'rtcl bench --incoherent' (issue 20) on the
-# shipped Cornell box with few rays: one JSON object per scene whose
+# shipped Cornell box (or its room, without JSON) with few rays: one JSON object per scene whose
 # "incoherent" array has a row per (rays, query, engine, path) with the
 # documented fields and sane numbers, the packet rows' hits equal the
 # oracle's bit for bit, and the Whitted rows are there. Where this build has
@@ -10,6 +10,9 @@
 source "$RT_SOURCE_DIR/tests/shell_check.sh"
 command -v python3 >/dev/null || { echo "skipped: python3 is needed to parse JSON"; exit 77; }
 scene=$RT_SOURCE_DIR/scenes/cornell.json
+# A build without jansson (CI's minimal build, which also lacks Embree) reads
+# the room of the box as a bare OBJ.
+"$RTCL" info "$scene" >/dev/null 2>&1 || scene=$RT_SOURCE_DIR/scenes/cornell_room.obj
 args=(--incoherent --rays 3000 --reps 2 --threads 2 --width 48 --height 27)
 
 checks=$((checks + 1))
@@ -23,7 +26,7 @@ lines = [l for l in open(sys.argv[1]) if l.strip()]
 assert len(lines) == 1, "one JSON object per scene, got %d lines" % len(lines)
 obj = json.loads(lines[0])
 embree = sys.argv[2] in ("ON", "1", "TRUE", "YES")
-assert obj["scene"].endswith("cornell.json") and obj["triangles"] > 0, obj
+assert "cornell" in obj["scene"] and obj["triangles"] > 0, obj
 assert obj["rays_per_set"] == 3000 and obj["reps"] == 2 and obj["threads"] == 2, obj
 rows = obj["incoherent"]
 keys = {"scene", "rays", "query", "engine", "path", "mrays_min", "mrays_median"}
@@ -57,7 +60,7 @@ else:
 w = {x["backend"]: x for x in obj["whitted"]}
 assert set(w) == {"packet", "cpu"}, obj["whitted"]
 assert w["packet"]["secondary"] == "single-ray" and w["cpu"]["secondary"] == "oracle", w
-assert w["packet"]["rays"] == w["cpu"]["rays"] > 48 * 27, w
+assert w["packet"]["rays"] == w["cpu"]["rays"] >= 48 * 27, w
 assert all(0 < x["ms_min"] <= x["ms_median"] for x in w.values()), w
 assert "no longer selectable" in obj["whitted_packet_oracle_secondary"], obj
 print("rows:", len(rows))
