@@ -80,4 +80,5 @@ checks=$((checks + 1))
 "$RTCL" bench "$scene" "${args[@]}" --no-render --json | grep -q '"whitted"' &&
     { echo "FAIL: --no-render still timed Whitted frames"; fails=$((fails + 1)); }
 expect 2 'rays needs a number' -- "$RTCL" bench "$scene" --incoherent --rays 0
+expect 2 'applies to --incoherent only' -- "$RTCL" bench "$scene" --rays 10
 finish

@@ -611,6 +611,11 @@ int cmd_bench(int argc, char **argv) {
         free(scenes);
         return 2;
     }
+    if (a.rays && !a.incoherent) {
+        fprintf(stderr, "rtcl bench: --rays applies to --incoherent only\n");
+        free(scenes);
+        return 2;
+    }
     if (a.threads <= 0) a.threads = rt_cpu_count();
     if (a.incoherent) {
         incoh_setup su = incoh_setup_default();
