@@ -66,6 +66,10 @@ typedef struct pk_state {
      * traversal is done, as the oracle divides) and its names. */
     rt_vf V[G], W[G], det[G];
     rt_vi prim[G], inst[G], entry[G];
+    /* The instance being traced: the lanes whose ray meets its box and their
+     * entry distances (rt_inst_enter), for rt_hit_accepted. */
+    uint32_t inst_ok[G];
+    rt_vf inst_lo[G];
     rt_vi box[G], tri[G]; /* tests per lane, when per_lane */
     int per_lane;         /* counts->per_lane */
     float hi_max;         /* the greatest of hi (for the interval test) ... */
@@ -392,24 +396,42 @@ static void accept_lane(pk_state *st, int g, int i, rt_u32 e, rt_u32 inst, float
     st->hi_stale = 1;
 }
 
+/* rt_hit_accepted on the lanes of group g for their hits at t on tri: the
+ * lanes in the instance's box whose t lies in the slabs of tri's box. */
+static inline uint32_t pk_hit_accepted(const pk_state *st, const pk_geom *p, int g,
+                                       const rt_tri *tri, rt_vf t) {
+    const rt_vf hi_t = box_hi(t);
+    rt_vf lo = p->lo[g], hi = rt_vsplat(RT_INF);
+    for (int k = 0; k < 3; k++) {
+        const rt_vf mn = rt_vsplat(rt_min3(tri->v0[k], tri->v1[k], tri->v2[k]));
+        const rt_vf mx = rt_vsplat(rt_max3(tri->v0[k], tri->v1[k], tri->v2[k]));
+        const rt_vf a = rt_vsel(p->neg[k][g], mx, mn), b = rt_vsel(p->neg[k][g], mn, mx);
+        lo = rt_vmax_of((a - p->org[k][g]) * p->inv[k][g], lo);
+        hi = rt_vmin_of((b - p->org[k][g]) * p->inv[k][g], hi);
+    }
+    hi = hi * rt_vsel(hi < rt_vsplat(0.0f), rt_vsplat(RT_BOX_FAR_SCALE_NEG),
+                      rt_vsplat(RT_BOX_FAR_SCALE));
+    hi = rt_vmin_of(hi_t, hi);
+    return rt_vbits((lo <= hi) & ~(hi_t < st->inst_lo[g])) & st->inst_ok[g];
+}
+
 /* The lanes of m in group g through the shared scalar test (rt_leaf_test's
  * body): the other triangle tests, and lanes that need the watertight test's
  * exact re-check of a zero edge function. */
 static void pk_tri_lanes(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u32 e, rt_u32 inst) {
     const rt_tri *tri = &st->s->tris[e];
     const rt_u32 prim = st->s->tri_ids[e];
-    for (; m; m &= m - 1) {
+    for (m &= st->inst_ok[g]; m; m &= m - 1) {
         const int i = lowest_bit(m);
         rt_ray_d lr;
         lane_ray(p, g, i, &lr);
         const rt_ray_d *r = &lr;
-        rt_ray_pre pre; /* only the watertight test reads it */
+        rt_ray_pre pre;
         float t, u, v;
-        if (st->method == RT_TRI_WATERTIGHT)
-            rt_ray_prepare(r, &pre);
-        else
-            memset(&pre, 0, sizeof pre);
+        rt_ray_prepare(r, &pre);
+        pre.inst_lo = st->inst_lo[g][i];
         if (!rt_tri_test(st->method, tri, r, &pre, r->tmin, st->t[g][i], &t, &u, &v)) continue;
+        if (!rt_hit_accepted(tri, r, &pre, t)) continue;
         if (st->any_hit)
             retire(st, g, 1u << i, prim);
         else if (t < st->t[g][i] || tie_before(st, g, i, inst, prim))
@@ -481,6 +503,8 @@ static void pk_tri(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u32 e, 
     rt_vf T = (U * (sz * Az) + V * (sz * Bz)) + W * (sz * Cz);
     rt_vf t = T / det;
     uint32_t hit = rt_vbits((t >= p->tmin[g]) & (t <= st->t[g])) & inside;
+    if (!hit) return;
+    hit &= pk_hit_accepted(st, p, g, tri, t);
     if (!hit) return;
     const rt_u32 prim = st->s->tri_ids[e];
     if (st->any_hit) {
@@ -753,12 +777,13 @@ static void pk_bvh(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, pk
 static void pk_kd_lanes(pk_state *st, const pk_geom *p, rt_u32 root, rt_u32 inst, pk_groups gm) {
     for (pk_groups todo = gm & st->alive_groups; todo; todo &= todo - 1) {
         const int g = lowest_bit(todo);
-        for (uint32_t m = st->alive[g]; m; m &= m - 1) {
+        for (uint32_t m = st->alive[g] & st->inst_ok[g]; m; m &= m - 1) {
             const int i = lowest_bit(m);
             rt_ray_d r;
             rt_ray_pre pre;
             lane_ray(p, g, i, &r);
             rt_ray_prepare(&r, &pre);
+            pre.inst_lo = st->inst_lo[g][i];
             rt_hit_d best;
             best.t = st->t[g][i];
             best.u = best.v = 0.0f;
@@ -783,10 +808,41 @@ static void pk_kd_lanes(pk_state *st, const pk_geom *p, rt_u32 root, rt_u32 inst
     }
 }
 
+/* rt_inst_enter on the lanes of the groups of gm (the world rays), into
+ * st->inst_ok and st->inst_lo; returns the groups with a lane in the box. */
+static pk_groups pk_inst_enter(pk_state *st, const pk_geom *p, const rt_instance *in,
+                               pk_groups gm) {
+    pk_groups out = 0;
+    for (pk_groups todo = gm; todo; todo &= todo - 1) {
+        const int g = lowest_bit(todo);
+        if (st->s->hdr->flags & RT_SCENE_SINGLE) {
+            st->inst_lo[g] = rt_vsplat(-RT_INF);
+            st->inst_ok[g] = (1u << N) - 1u;
+            out |= 1u << g;
+            continue;
+        }
+        rt_vf lo = p->lo[g], hi = rt_vsplat(RT_INF);
+        for (int k = 0; k < 3; k++) {
+            const rt_vf a = rt_vsel(p->neg[k][g], rt_vsplat(in->bmax[k]), rt_vsplat(in->bmin[k]));
+            const rt_vf b = rt_vsel(p->neg[k][g], rt_vsplat(in->bmin[k]), rt_vsplat(in->bmax[k]));
+            lo = rt_vmax_of((a - p->org[k][g]) * p->inv[k][g], lo);
+            hi = rt_vmin_of((b - p->org[k][g]) * p->inv[k][g], hi);
+        }
+        hi = hi * rt_vsel(hi < rt_vsplat(0.0f), rt_vsplat(RT_BOX_FAR_SCALE_NEG),
+                          rt_vsplat(RT_BOX_FAR_SCALE));
+        st->inst_lo[g] = lo;
+        st->inst_ok[g] = rt_vbits(lo <= hi);
+        if (st->inst_ok[g] & st->alive[g]) out |= 1u << g;
+    }
+    return out;
+}
+
 static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, pk_groups gm) {
     const rt_instance *in = &st->s->instances[inst];
     const rt_u32 entry = st->w->inst_root[inst];
     const int kd = (in->flags & RT_INST_KD) != 0;
+    gm = pk_inst_enter(st, world, in, gm);
+    if (!gm) return;
     if (in->flags & RT_INST_IDENTITY) {
         if (kd)
             pk_kd_lanes(st, world, in->root, inst, gm);

@@ -205,6 +205,13 @@ static inline uint32_t node_test(const uint32_t *n, const sw_ray *rv, vf hi, vf 
     return bits((l <= hi) & (l <= far)) & *real;
 }
 
+/* The float at word i of a node or block. */
+static inline float fl(const uint32_t *words, int i) {
+    float f;
+    memcpy(&f, &words[i], sizeof f);
+    return f;
+}
+
 /* rt_box_hi(t) in every lane, as the box test's upper range end; a NaN
  * (which limits nothing in rt_box_test's 'tmax < hi ? tmax : hi') as +inf,
  * which limits nothing either. */
@@ -236,6 +243,7 @@ static int tri_scalar(sw_ctx *x, rt_u32 e, rt_u32 inst, const rt_ray_d *r, const
                       rt_hit_d *best) {
     float t, u, v;
     if (!rt_tri_test(x->method, &x->s->tris[e], r, p, r->tmin, best->t, &t, &u, &v)) return 0;
+    if (!rt_hit_accepted(&x->s->tris[e], r, p, t)) return 0;
     return take_hit(x, best, t, u, v, e, inst);
 }
 
@@ -293,6 +301,16 @@ static int leaf_test(sw_ctx *x, rt_u32 first, rt_u32 count, rt_u32 inst, const r
         uint32_t hit = bits((t >= tmin) & (t <= splat(best->t))) & inside;
         for (; hit; hit &= hit - 1) {
             const int l = lowest_bit(hit);
+            /* rt_hit_accepted, from the block's copies of the vertices
+             * (the layout's triangle is not in cache). */
+            float mn[3], mx[3];
+            for (int k = 0; k < 3; k++) {
+                const float a = fl(blk, k * W + l), b = fl(blk, (3 + k) * W + l);
+                const float c = fl(blk, (6 + k) * W + l);
+                mn[k] = rt_min3(a, b, c);
+                mx[k] = rt_max3(a, b, c);
+            }
+            if (!rt_hit_accepted_box(mn, mx, r, p, t[l])) continue;
             /* u = V / det and v = W / det, divided as the oracle divides. */
             if (take_hit(x, best, t[l], V[l] / det[l], Wf[l] / det[l], ent[l], inst)) return 1;
         }
@@ -472,14 +490,20 @@ static int trace_instance(sw_ctx *x, rt_u32 inst, const rt_ray_d *r, const rt_ra
     const uint32_t *en = x->nodes + (size_t)NODE_WORDS * entry;
     const rt_u32 root_info = en[7 * W];
     const int identity = (RT_INST_FLAGS(in) & RT_INST_IDENTITY) != 0;
+    /* rt_trace_instance's instance box, for rt_hit_accepted. */
+    float inst_lo = -RT_INF;
+    if (!(RT_SCENE_FLAGS(x->s) & RT_SCENE_SINGLE) && !rt_inst_enter(in, r, p, &inst_lo)) return 0;
     rt_ray_d o;
     rt_ray_pre op;
-    if (!identity) {
+    if (identity) {
+        op = *p;
+    } else {
         rt_ray_to_object(in, r, &o);
         rt_ray_prepare(&o, &op);
         r = &o;
-        p = &op;
     }
+    op.inst_lo = inst_lo;
+    p = &op;
     if (root_info & RT_NODE_LEAF_FLAG)
         return leaf_test(x, en[6 * W], root_info & RT_NODE_COUNT_MASK, inst, r, p, best);
     return traverse(x, entry, inst, r, p, best, 0);

@@ -78,6 +78,10 @@ typedef struct rt_instance {
     rt_u32 mesh;      /* the scene's mesh id (for information) */
     rt_u32 tri_first; /* the mesh's entries in tris: tri_first .. + tri_count - 1 */
     rt_u32 tri_count;
+    /* The world box the object BVH was built over (its leaves hold one
+     * instance each): a hit must lie in its slabs (rt_hit_accepted). */
+    float bmin[3];
+    float bmax[3];
 } rt_instance;
 
 typedef struct rt_material_d {

@@ -130,6 +130,10 @@ typedef struct pk_ray {
     pk_i kx, ky, kz;
     pk_f sx, sy, sz;
     pk_f box_lo; /* rt_box_lo(tmin) */
+    /* rt_ray_pre.inst_lo per lane, and the lanes whose ray meets the
+     * instance box (rt_inst_enter; all lanes outside an object BVH). */
+    pk_f inst_lo;
+    pk_i inst_ok;
 } pk_ray;
 
 /* rt_hit_d per lane, and the lanes' test counters (rt_counters). */
@@ -185,6 +189,8 @@ static void pk_prepare(pk_ray *p) {
     p->sy = PK_DIV(PK_PICK(p->dir[0], p->dir[1], p->dir[2], ky), dkz);
     p->sz = PK_PICK(p->inv[0], p->inv[1], p->inv[2], kz); /* 1 / dkz, as the oracle */
     p->box_lo = p->tmin - RT_FABS(p->tmin) * RT_BOX_T_MARGIN;
+    p->inst_lo = (pk_f)(-RT_INF);
+    p->inst_ok = (pk_i)(-1);
 }
 
 /* The packet of the lanes' rays r[0 .. RT_PK_LANES - 1] (each lane's own
@@ -239,6 +245,43 @@ static pk_i pk_box(RT_GLOBAL const rt_node *n, const pk_ray *p, pk_f lo, pk_f tm
     hi = select(hi, tmax, tmax < hi);
     *tnear = lo;
     return lo <= hi;
+}
+
+/* Mirrors rt_hit_accepted per lane: the hits at t on tri that lie in the
+ * slabs of its box and of the instance's. */
+static pk_i pk_hit_accepted(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f t) {
+    pk_f hi_t = t + RT_FABS(t) * RT_BOX_T_MARGIN; /* rt_box_hi(t) */
+    pk_f lo = p->box_lo, hi = (pk_f)RT_INF;
+    for (int i = 0; i < 3; i++) {
+        pk_f mn = (pk_f)rt_min3(tri->v0[i], tri->v1[i], tri->v2[i]);
+        pk_f mx = (pk_f)rt_max3(tri->v0[i], tri->v1[i], tri->v2[i]);
+        pk_f a = select(mn, mx, p->neg[i]);
+        pk_f b = select(mx, mn, p->neg[i]);
+        pk_f t0 = (a - p->org[i]) * p->inv[i];
+        pk_f t1 = (b - p->org[i]) * p->inv[i];
+        lo = select(lo, t0, t0 > lo);
+        hi = select(hi, t1, t1 < hi);
+    }
+    hi = hi * select((pk_f)RT_BOX_FAR_SCALE, (pk_f)RT_BOX_FAR_SCALE_NEG, hi < 0.0f);
+    hi = select(hi, hi_t, hi_t < hi);
+    return (lo <= hi) & ~(hi_t < p->inst_lo) & p->inst_ok;
+}
+
+/* Mirrors rt_inst_enter per lane, into p->inst_lo and p->inst_ok. */
+static void pk_inst_enter(RT_GLOBAL const rt_instance *in, const pk_ray *w, pk_ray *p) {
+    pk_f lo = w->box_lo, hi = (pk_f)RT_INF;
+    for (int i = 0; i < 3; i++) {
+        pk_f bmin = (pk_f)in->bmin[i], bmax = (pk_f)in->bmax[i];
+        pk_f a = select(bmin, bmax, w->neg[i]);
+        pk_f b = select(bmax, bmin, w->neg[i]);
+        pk_f t0 = (a - w->org[i]) * w->inv[i];
+        pk_f t1 = (b - w->org[i]) * w->inv[i];
+        lo = select(lo, t0, t0 > lo);
+        hi = select(hi, t1, t1 < hi);
+    }
+    hi = hi * select((pk_f)RT_BOX_FAR_SCALE, (pk_f)RT_BOX_FAR_SCALE_NEG, hi < 0.0f);
+    p->inst_lo = lo;
+    p->inst_ok = lo <= hi;
 }
 
 /* ---- ray/triangle: each returns the lanes of act that hit, with t, u, v ---- */
@@ -439,6 +482,8 @@ static void pk_leaf(const rt_scene_view *s, rt_u32 first, rt_u32 count, rt_u32 i
         st->tris -= act; /* c->tri_tests++ in the active lanes */
         pk_i hit = pk_tri(method, &s->tris[e], p, p->tmin, st->t, act, &t, &u, &v);
         if (!pk_any(hit)) continue;
+        hit &= pk_hit_accepted(&s->tris[e], p, t);
+        if (!pk_any(hit)) continue;
         rt_u32 prim = s->tri_ids[e];
         pk_i take = st->any_hit ? hit : hit & pk_before(t, inst, prim, st);
         st->t = select(st->t, t, take);
@@ -528,12 +573,16 @@ static void pk_mesh(const rt_scene_view *s, rt_u32 root, rt_u32 inst, const pk_r
 static void pk_instance(const rt_scene_view *s, rt_u32 inst, const pk_ray *p, pk_i active,
                         pk_state *st) {
     RT_GLOBAL const rt_instance *in = &s->instances[inst];
-    if (RT_INST_FLAGS(in) & RT_INST_IDENTITY) {
-        pk_mesh(s, in->root, inst, p, active, st);
-        return;
-    }
     pk_ray o;
-    pk_to_object(in, p, &o);
+    if (RT_INST_FLAGS(in) & RT_INST_IDENTITY)
+        o = *p;
+    else
+        pk_to_object(in, p, &o);
+    if (!(RT_SCENE_FLAGS(s) & RT_SCENE_SINGLE)) {
+        pk_inst_enter(in, p, &o);
+        active &= o.inst_ok;
+        if (!pk_any(active)) return;
+    }
     pk_mesh(s, in->root, inst, &o, active, st);
 }
 

@@ -161,6 +161,10 @@ typedef struct rt_ray_pre {
     rt_i32 sign[3]; /* inv < 0 */
     rt_i32 kx, ky, kz;
     float sx, sy, sz; /* watertight shear */
+    /* The entry distance of the ray's instance box (rt_inst_enter), -inf
+     * outside an object BVH: a hit at t is accepted only where
+     * inst_lo <= rt_box_hi(t) (rt_hit_accepted). */
+    float inst_lo;
 } rt_ray_pre;
 
 typedef struct rt_hit_d {
@@ -237,6 +241,7 @@ RT_FN void rt_ray_prepare(const rt_ray_d *r, rt_ray_pre *p) {
     p->sx = RT_DIV(r->dir[kx], r->dir[kz]);
     p->sy = RT_DIV(r->dir[ky], r->dir[kz]);
     p->sz = p->inv[kz]; /* 1 / dir[kz], the same operation: one division less */
+    p->inst_lo = -RT_INF;
 }
 
 /* The primary ray through the centre of pixel (px, py); see rt_layout.h. Its
@@ -285,24 +290,36 @@ RT_FN void rt_offset_point(const float *p, const float *n, float sign, float *ou
 
 /* ---- ray/box: robust slab test (Ize 2013) --------------------------------- */
 
-/* Tests the box against [tmin, tmax]; *tnear is the entry distance. A 0 * inf
- * (origin on a slab plane, direction parallel to it) gives NaN, which the
- * comparisons below skip, keeping the test conservative. */
-RT_FN int rt_box_test(RT_GLOBAL const rt_node *n, const rt_ray_d *r, const rt_ray_pre *p,
-                      float tmin, float tmax, float *tnear) {
-    float lo = tmin, hi = RT_INF;
-    for (int i = 0; i < 3; i++) {
-        float a = p->sign[i] ? n->bmax[i] : n->bmin[i];
-        float b = p->sign[i] ? n->bmin[i] : n->bmax[i];
-        float t0 = (a - r->org[i]) * p->inv[i];
-        float t1 = (b - r->org[i]) * p->inv[i];
-        lo = t0 > lo ? t0 : lo;
-        hi = t1 < hi ? t1 : hi;
-    }
+/* One slab of the test: the ray's distances to the planes a (entered) and b
+ * (left) on axis i narrow [*lo, *hi]. Every box test is built from these two
+ * steps, so that a box containing another never passes less (the rounding
+ * is monotonic in a and b). */
+RT_FN void rt_slab(float a, float b, float org, float inv, float *lo, float *hi) {
+    float t0 = (a - org) * inv;
+    float t1 = (b - org) * inv;
+    *lo = t0 > *lo ? t0 : *lo;
+    *hi = t1 < *hi ? t1 : *hi;
+}
+
+/* The end of the test: the far distance made conservative (Ize), cut at
+ * tmax; *tnear is the entry distance. */
+RT_FN int rt_slab_end(float lo, float hi, float tmax, float *tnear) {
     hi = hi * (hi < 0.0f ? RT_BOX_FAR_SCALE_NEG : RT_BOX_FAR_SCALE);
     hi = tmax < hi ? tmax : hi;
     *tnear = lo;
     return lo <= hi;
+}
+
+/* Tests the box against [tmin, tmax]; *tnear is the entry distance. A 0 * inf
+ * (origin on a slab plane, direction parallel to it) gives NaN, which the
+ * comparisons skip, keeping the test conservative. */
+RT_FN int rt_box_test(RT_GLOBAL const rt_node *n, const rt_ray_d *r, const rt_ray_pre *p,
+                      float tmin, float tmax, float *tnear) {
+    float lo = tmin, hi = RT_INF;
+    for (int i = 0; i < 3; i++)
+        rt_slab(p->sign[i] ? n->bmax[i] : n->bmin[i], p->sign[i] ? n->bmin[i] : n->bmax[i],
+                r->org[i], p->inv[i], &lo, &hi);
+    return rt_slab_end(lo, hi, tmax, tnear);
 }
 
 /* ---- ray/triangle tests --------------------------------------------------- */
@@ -475,6 +492,71 @@ RT_FN float rt_box_hi(float tmax) {
     return tmax + RT_FABS(tmax) * RT_BOX_T_MARGIN;
 }
 
+/* ---- hit acceptance -----------------------------------------------------
+ *
+ * A triangle test's t carries rounding errors that grow with the distance of
+ * the triangle from the origin over |dir|; in the nasty cases (a tiny
+ * direction, flushed denormals, a ray through a vertex) t lands far outside
+ * the slabs of the triangle's own box. Which boxes a tree tests then decided
+ * whether the hit was seen: a wide tree, a merged leaf or another traversal
+ * order gave another answer. So a hit at t is accepted only where the box
+ * test of its triangle's own box passes for the range
+ * [rt_box_lo(tmin), rt_box_hi(t)], and, under an object BVH, that of its
+ * instance's world box too. Every box of any tree above the triangle contains
+ * these boxes and is tested with a range that reaches at least as far
+ * (rt_box_hi(best t), best t >= t), and the slab test is monotonic in the
+ * box: an accepted hit's boxes always pass, so the closest accepted hit is
+ * the same whatever the tree, its width, its leaves or the order. */
+
+/* The instance box's entry distance for the ray r in world space, into
+ * p_obj->inst_lo; returns 0 when the ray misses the box at every t (the
+ * instance then has no acceptable hit). */
+RT_FN int rt_inst_enter(RT_GLOBAL const rt_instance *in, const rt_ray_d *r, const rt_ray_pre *p,
+                        float *inst_lo) {
+    float lo = rt_box_lo(r->tmin), hi = RT_INF;
+    for (int i = 0; i < 3; i++)
+        rt_slab(p->sign[i] ? in->bmax[i] : in->bmin[i], p->sign[i] ? in->bmin[i] : in->bmax[i],
+                r->org[i], p->inv[i], &lo, &hi);
+    return rt_slab_end(lo, hi, RT_INF, inst_lo);
+}
+
+RT_FN float rt_min3(float a, float b, float c) {
+    float m = a < b ? a : b;
+    return c < m ? c : m;
+}
+RT_FN float rt_max3(float a, float b, float c) {
+    float m = a > b ? a : b;
+    return c > m ? c : m;
+}
+
+/* rt_hit_accepted for a triangle whose box is [mn, mx] (each the exact
+ * min and max of its vertices' coordinates). */
+RT_FN int rt_hit_accepted_box(const float *mn, const float *mx, const rt_ray_d *r,
+                              const rt_ray_pre *p, float t) {
+    /* The instance box passed for [lo, inf] (rt_inst_enter); cut at hi_t it
+     * passes unless hi_t falls before its entry (a NaN hi_t cuts nothing, as
+     * in rt_slab_end). */
+    const float hi_t = rt_box_hi(t);
+    if (hi_t < p->inst_lo) return 0;
+    float lo = rt_box_lo(r->tmin), hi = RT_INF, tn;
+    for (int i = 0; i < 3; i++)
+        rt_slab(p->sign[i] ? mx[i] : mn[i], p->sign[i] ? mn[i] : mx[i], r->org[i], p->inv[i], &lo,
+                &hi);
+    return rt_slab_end(lo, hi, hi_t, &tn);
+}
+
+/* Whether a hit at t on tri (the ray r in the triangle's space, prepared as
+ * p) is accepted: see above. */
+RT_FN int rt_hit_accepted(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, const rt_ray_pre *p,
+                          float t) {
+    float mn[3], mx[3];
+    for (int i = 0; i < 3; i++) {
+        mn[i] = rt_min3(tri->v0[i], tri->v1[i], tri->v2[i]);
+        mx[i] = rt_max3(tri->v0[i], tri->v1[i], tri->v2[i]);
+    }
+    return rt_hit_accepted_box(mn, mx, r, p, t);
+}
+
 /* Tests the triangles of one leaf; returns 1 when any_hit found one. */
 RT_FN int rt_leaf_test(const rt_scene_view *s, rt_u32 first, rt_u32 count, rt_u32 inst,
                        const rt_ray_d *r, const rt_ray_pre *p, int any_hit, rt_hit_d *best,
@@ -484,6 +566,7 @@ RT_FN int rt_leaf_test(const rt_scene_view *s, rt_u32 first, rt_u32 count, rt_u3
         float t, u, v;
         c->tri_tests++;
         if (!rt_tri_test(method, &s->tris[e], r, p, r->tmin, best->t, &t, &u, &v)) continue;
+        if (!rt_hit_accepted(&s->tris[e], r, p, t)) continue;
         rt_u32 prim = s->tri_ids[e];
         if (any_hit || rt_hit_before(t, inst, prim, best)) {
             best->t = t;
@@ -568,13 +651,19 @@ RT_FN int rt_trace_instance(const rt_scene_view *s, rt_u32 inst, const rt_ray_d 
                             const rt_ray_pre *p, int any_hit, rt_hit_d *best, rt_counters *c) {
     RT_GLOBAL const rt_instance *in = &s->instances[inst];
     int kd = (RT_INST_FLAGS(in) & RT_INST_KD) != 0;
-    if (RT_INST_FLAGS(in) & RT_INST_IDENTITY)
-        return kd ? rt_kd_trace_mesh(s, in->root, inst, r, p, any_hit, best, c)
-                  : rt_trace_mesh(s, in->root, inst, r, p, any_hit, best, c);
+    float inst_lo = -RT_INF;
+    if (!(RT_SCENE_FLAGS(s) & RT_SCENE_SINGLE) && !rt_inst_enter(in, r, p, &inst_lo)) return 0;
     rt_ray_d o;
     rt_ray_pre op;
+    if (RT_INST_FLAGS(in) & RT_INST_IDENTITY) {
+        op = *p;
+        op.inst_lo = inst_lo;
+        return kd ? rt_kd_trace_mesh(s, in->root, inst, r, &op, any_hit, best, c)
+                  : rt_trace_mesh(s, in->root, inst, r, &op, any_hit, best, c);
+    }
     rt_ray_to_object(in, r, &o);
     rt_ray_prepare(&o, &op);
+    op.inst_lo = inst_lo;
     return kd ? rt_kd_trace_mesh(s, in->root, inst, &o, &op, any_hit, best, c)
               : rt_trace_mesh(s, in->root, inst, &o, &op, any_hit, best, c);
 }

@@ -19,6 +19,7 @@
 #include "formats/obj_load.h"
 #include "layout/flat.h"
 #include "oracle_util.h"
+#include "rt_fp_mode.h"
 #include "ray_sets.h"
 #include "rt.h"
 #include "scene/scene_builtin.h"
@@ -207,6 +208,10 @@ static void check_special(const rt_flat *flat, const char *name) {
             for (int k = 0; k < 3; k++) r->dir[k] = k == axis ? (i % 2 ? 1.0f : -1.0f) : 0.0f;
         }
         if (i % 7 == 3) odd_ray(i / 7, r);
+        if (i % 11 == 5) { /* rt_hit_accepted's cases: see oracle_vertex_ray */
+            const rt_scene_view v = rt_flat_view(flat);
+            oracle_vertex_ray(&v, lo, hi, r);
+        }
     }
     char what[128];
     for (rt_u32 m = 0; m < 4; m++) {
@@ -214,6 +219,20 @@ static void check_special(const rt_flat *flat, const char *name) {
         f.hdr.tri_method = m;
         snprintf(what, sizeof what, "%s special (triangle test %u)", name, (unsigned)m);
         check_set(&f, rays, N, what, N / 50);
+    }
+    /* The same rays with flushed denormals, as the 'flush' policy traces. */
+    if (rt_fp_can_flush()) {
+        const rt_fp_saved saved = rt_fp_set_flush(1);
+        for (rt_u32 m = 0; m < 4; m += 2) {
+            rt_flat f = *flat;
+            f.hdr.tri_method = m;
+            snprintf(what, sizeof what, "%s special, flushed (triangle test %u)", name,
+                     (unsigned)m);
+            check_set(&f, rays, N, what, N / 50);
+        }
+        rt_fp_restore(saved);
+    } else {
+        printf("%s: flush-to-zero not settable on this CPU, flushed rays not tested\n", name);
     }
     free(rays);
 }

@@ -1,6 +1,7 @@
 /* tlas.c - the object BVH over the objects' world-space boxes (tlas.h). */
 #include "accel/tlas.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -58,6 +59,17 @@ rt_status rt_tlas_build(const rt_scene *scene, const rt_bvh *mesh_bvhs,
         memcpy(local.bmin, mesh->nodes[0].bmin, sizeof local.bmin);
         memcpy(local.bmax, mesh->nodes[0].bmax, sizeof local.bmax);
         boxes[used] = rt_aabb_transform(&local, obj->transform);
+        /* The corners were transformed with rounding, and rays are moved
+         * into object space with rounding of their own: a relative 2^-20
+         * keeps hits found in object space inside the box. Widened here,
+         * before the build, so that every node is the exact union of its
+         * objects' boxes (rt_hit_accepted relies on boxes nesting). */
+        for (int k = 0; k < 3; k++) {
+            rt_aabb *b = &boxes[used];
+            const float pad = (fabsf(b->bmin[k]) + fabsf(b->bmax[k])) * 0x1p-20f;
+            b->bmin[k] -= pad;
+            b->bmax[k] += pad;
+        }
         ids[used++] = i;
     }
     rt_status st = rt_bvh_build(boxes, used, &o, pool, out, err);

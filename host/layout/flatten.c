@@ -397,20 +397,26 @@ static rt_status write_frame(const rt_scene *scene, const rt_bvh *top, const rt_
     rt_scene_features feat = rt_scene_features_of(scene);
     uint32_t nobj = scene->object_count;
     int any_normals = out->tri_normals != NULL, any_mats = out->tri_mats != NULL;
+    for (uint32_t o = 0; o < nobj; o++) /* no box: an object the object BVH left out */
+        for (int k = 0; k < 3; k++) {
+            out->instances[o].bmin[k] = RT_INF;
+            out->instances[o].bmax[k] = -RT_INF;
+        }
     if (!single && nobj && !top->node_count) empty_node(&out->nodes[top_root], 0);
     if (!single && nobj && top->node_count) {
         copy_nodes(top, out->nodes + top_root, top_root, 0);
         memcpy(out->inst_ids, top->prim_indices, sizeof(uint32_t) * top->prim_count);
-        /* World boxes come from transformed, rounded corners and rays are
-         * transformed into object space with rounding of their own: widen
-         * the object BVH's boxes by a relative 2^-20 so that no hit found in
-         * object space falls outside them. */
+        /* Each instance's acceptance box (rt_hit_accepted): the box of the
+         * leaf holding it, which contains its own box (tlas.c widened it)
+         * and lies inside every box above it, in this tree and in the wide
+         * copies the CPU backends make of it. */
         for (uint32_t i = 0; i < top->node_count; i++) {
-            rt_node *n = &out->nodes[top_root + i];
-            for (int k = 0; k < 3; k++) {
-                float pad = (fabsf(n->bmin[k]) + fabsf(n->bmax[k])) * 0x1p-20f;
-                n->bmin[k] -= pad;
-                n->bmax[k] += pad;
+            const rt_node *n = &top->nodes[i];
+            if (!(n->b & RT_NODE_LEAF_FLAG)) continue;
+            for (uint32_t e = n->a; e < n->a + (n->b & RT_NODE_COUNT_MASK); e++) {
+                rt_instance *in = &out->instances[top->prim_indices[e]];
+                memcpy(in->bmin, n->bmin, sizeof in->bmin);
+                memcpy(in->bmax, n->bmax, sizeof in->bmax);
             }
         }
     }

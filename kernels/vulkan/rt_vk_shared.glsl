@@ -73,6 +73,8 @@ struct rt_instance {
     uint mesh;
     uint tri_first;
     uint tri_count;
+    float bmin[3];
+    float bmax[3];
 };
 struct rt_material_d {
     float color[3];
@@ -117,6 +119,7 @@ struct rt_ray_pre {
     int sign[3];
     int kx, ky, kz;
     float sx, sy, sz;
+    float inst_lo;
 };
 struct rt_hit_d {
     float t, u, v;
@@ -229,6 +232,7 @@ void rt_ray_prepare(rt_ray_d r, out rt_ray_pre p) {
     p.sx = q[3];
     p.sy = q[4];
     p.sz = q[5];
+    p.inst_lo = -RT_INF;
 }
 
 float rt_camera_sx(int px) {
@@ -439,6 +443,52 @@ float rt_box_hi(float tmax) {
     return tmax + RT_FABS(tmax) * RT_BOX_T_MARGIN;
 }
 
+/* ---- hit acceptance (rt_shared.h says why) ---- */
+
+void rt_slab(float a, float b, float org, float inv, inout float lo, inout float hi) {
+    float t0 = (a - org) * inv;
+    float t1 = (b - org) * inv;
+    lo = t0 > lo ? t0 : lo;
+    hi = t1 < hi ? t1 : hi;
+}
+
+bool rt_slab_end(float lo, float hi, float tmax, out float tnear) {
+    hi = hi * (hi < 0.0 ? RT_BOX_FAR_SCALE_NEG : RT_BOX_FAR_SCALE);
+    hi = tmax < hi ? tmax : hi;
+    tnear = lo;
+    return lo <= hi;
+}
+
+bool rt_inst_enter(uint inst, rt_ray_d r, rt_ray_pre p, out float inst_lo) {
+    float lo = rt_box_lo(r.tmin), hi = RT_INF;
+    for (int i = 0; i < 3; i++) {
+        float mn = instances[inst].bmin[i], mx = instances[inst].bmax[i];
+        rt_slab(p.sign[i] != 0 ? mx : mn, p.sign[i] != 0 ? mn : mx, r.org[i], p.inv[i], lo, hi);
+    }
+    return rt_slab_end(lo, hi, RT_INF, inst_lo);
+}
+
+float rt_min3(float a, float b, float c) {
+    float m = a < b ? a : b;
+    return c < m ? c : m;
+}
+float rt_max3(float a, float b, float c) {
+    float m = a > b ? a : b;
+    return c > m ? c : m;
+}
+
+bool rt_hit_accepted(uint e, rt_ray_d r, rt_ray_pre p, float t) {
+    float hi_t = rt_box_hi(t);
+    if (hi_t < p.inst_lo) return false;
+    float lo = rt_box_lo(r.tmin), hi = RT_INF, tn;
+    for (int i = 0; i < 3; i++) {
+        float mn = rt_min3(tris[e].v0[i], tris[e].v1[i], tris[e].v2[i]);
+        float mx = rt_max3(tris[e].v0[i], tris[e].v1[i], tris[e].v2[i]);
+        rt_slab(p.sign[i] != 0 ? mx : mn, p.sign[i] != 0 ? mn : mx, r.org[i], p.inv[i], lo, hi);
+    }
+    return rt_slab_end(lo, hi, hi_t, tn);
+}
+
 bool rt_leaf_test(uint first, uint count, uint inst, rt_ray_d r, rt_ray_pre p, bool any_hit,
                   inout rt_hit_d best, inout rt_counters c) {
     uint method = RT_TRI_METHOD();
@@ -446,6 +496,7 @@ bool rt_leaf_test(uint first, uint count, uint inst, rt_ray_d r, rt_ray_pre p, b
         float t, u, v;
         c.tri_tests++;
         if (!rt_tri_test(method, e, r, p, r.tmin, best.t, t, u, v)) continue;
+        if (!rt_hit_accepted(e, r, p, t)) continue;
         uint prim = tri_ids[e];
         if (any_hit || rt_hit_before(t, inst, prim, best)) {
             best.t = t;
@@ -534,12 +585,16 @@ void rt_ray_to_object(uint inst, rt_ray_d r, out rt_ray_d o) {
 bool rt_trace_instance(uint inst, rt_ray_d r, rt_ray_pre p, bool any_hit, inout rt_hit_d best,
                        inout rt_counters c) {
     uint root = instances[inst].root;
+    float inst_lo = -RT_INF;
+    if ((RT_SCENE_FLAGS() & RT_SCENE_SINGLE) == 0u && !rt_inst_enter(inst, r, p, inst_lo))
+        return false;
     rt_ray_d o = r;
     rt_ray_pre op = p;
     if ((RT_INST_FLAGS(instances[inst].flags) & RT_INST_IDENTITY) == 0u) {
         rt_ray_to_object(inst, r, o);
         rt_ray_prepare(o, op);
     }
+    op.inst_lo = inst_lo;
     return rt_trace_mesh(root, inst, o, op, any_hit, best, c);
 }
 

@@ -248,16 +248,6 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     memset(&opt, 0, sizeof opt);
     opt.any_hit = flags & 1;
     opt.tri_test = (rt_triangle_test)((flags >> 1) & 3);
-    /* RT_FUZZ_TRACE_TWO_TESTS=1 (CI's short run): the watertight and the
-     * Moller-Trumbore tests only. Pluecker and Badouel have an open finding
-     * (tests/fuzz/open/trace: a direction near FLT_MAX overflows n . dir and
-     * ties two walls at t = 0, which the oracle's box culling breaks in
-     * another order than the packet tracer's), so that a CI run does not
-     * fail on a known, recorded fault; local runs fuzz all four. */
-    static int two = -1;
-    if (two < 0)
-        two = getenv("RT_FUZZ_TRACE_TWO_TESTS") && *getenv("RT_FUZZ_TRACE_TWO_TESTS") == '1';
-    if (two) opt.tri_test = (rt_triangle_test)((flags >> 1) & 1);
     int n = (int)((size - 1) / (8 * sizeof(float)));
     if (n > MAX_RAYS) n = MAX_RAYS;
     rt_ray rays[MAX_RAYS];
