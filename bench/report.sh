@@ -81,7 +81,7 @@ fi
 
 mkdir -p "$tmp/studies/plots"
 studies=()
-for name in tri_tests builders opencl_options; do
+for name in tri_tests builders opencl_options dynamic; do
     script=$root/bench/study_$name.sh
     [ -f "$script" ] || continue
     step "study $name"

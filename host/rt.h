@@ -535,6 +535,7 @@ typedef struct rt_update_stats {
     double layout_ms;      /* the flattened layout (whole or in place) */
     int layout_in_place;   /* 1: only changed ranges were rewritten */
     uint64_t layout_bytes; /* bytes of the layout rewritten */
+    int camera_only;       /* 1: only the camera changed: the header alone was rewritten */
 } rt_update_stats;
 
 /* The renderer's last update (after rt_render or rt_trace_rays). */

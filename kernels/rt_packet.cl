@@ -229,22 +229,29 @@ static void pk_to_object(RT_GLOBAL const rt_instance *in, const pk_ray *r, pk_ra
 
 /* ---- ray/box -------------------------------------------------------------- */
 
+/* Mirrors rt_slab per lane: axis i of a box [mn, mx] narrows [*lo, *hi]. */
+static void pk_slab(pk_f mn, pk_f mx, const pk_ray *p, int i, pk_f *lo, pk_f *hi) {
+    pk_f a = select(mn, mx, p->neg[i]);
+    pk_f b = select(mx, mn, p->neg[i]);
+    pk_f t0 = (a - p->org[i]) * p->inv[i];
+    pk_f t1 = (b - p->org[i]) * p->inv[i];
+    *lo = select(*lo, t0, t0 > *lo);
+    *hi = select(*hi, t1, t1 < *hi);
+}
+
+/* Mirrors rt_slab_end per lane (without tnear). */
+static pk_i pk_slab_end(pk_f lo, pk_f hi, pk_f tmax) {
+    hi = hi * select((pk_f)RT_BOX_FAR_SCALE, (pk_f)RT_BOX_FAR_SCALE_NEG, hi < 0.0f);
+    hi = select(hi, tmax, tmax < hi);
+    return lo <= hi;
+}
+
 /* Mirrors rt_box_test: lo is rt_box_lo(tmin), tmax is rt_box_hi(best t). */
 static pk_i pk_box(RT_GLOBAL const rt_node *n, const pk_ray *p, pk_f lo, pk_f tmax, pk_f *tnear) {
     pk_f hi = (pk_f)RT_INF;
-    for (int i = 0; i < 3; i++) {
-        pk_f bmin = (pk_f)n->bmin[i], bmax = (pk_f)n->bmax[i];
-        pk_f a = select(bmin, bmax, p->neg[i]);
-        pk_f b = select(bmax, bmin, p->neg[i]);
-        pk_f t0 = (a - p->org[i]) * p->inv[i];
-        pk_f t1 = (b - p->org[i]) * p->inv[i];
-        lo = select(lo, t0, t0 > lo);
-        hi = select(hi, t1, t1 < hi);
-    }
-    hi = hi * select((pk_f)RT_BOX_FAR_SCALE, (pk_f)RT_BOX_FAR_SCALE_NEG, hi < 0.0f);
-    hi = select(hi, tmax, tmax < hi);
+    for (int i = 0; i < 3; i++) pk_slab((pk_f)n->bmin[i], (pk_f)n->bmax[i], p, i, &lo, &hi);
     *tnear = lo;
-    return lo <= hi;
+    return pk_slab_end(lo, hi, tmax);
 }
 
 /* Mirrors rt_hit_accepted per lane: the hits at t on tri that lie in the
@@ -252,36 +259,19 @@ static pk_i pk_box(RT_GLOBAL const rt_node *n, const pk_ray *p, pk_f lo, pk_f tm
 static pk_i pk_hit_accepted(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f t) {
     pk_f hi_t = t + RT_FABS(t) * RT_BOX_T_MARGIN; /* rt_box_hi(t) */
     pk_f lo = p->box_lo, hi = (pk_f)RT_INF;
-    for (int i = 0; i < 3; i++) {
-        pk_f mn = (pk_f)rt_min3(tri->v0[i], tri->v1[i], tri->v2[i]);
-        pk_f mx = (pk_f)rt_max3(tri->v0[i], tri->v1[i], tri->v2[i]);
-        pk_f a = select(mn, mx, p->neg[i]);
-        pk_f b = select(mx, mn, p->neg[i]);
-        pk_f t0 = (a - p->org[i]) * p->inv[i];
-        pk_f t1 = (b - p->org[i]) * p->inv[i];
-        lo = select(lo, t0, t0 > lo);
-        hi = select(hi, t1, t1 < hi);
-    }
-    hi = hi * select((pk_f)RT_BOX_FAR_SCALE, (pk_f)RT_BOX_FAR_SCALE_NEG, hi < 0.0f);
-    hi = select(hi, hi_t, hi_t < hi);
-    return (lo <= hi) & ~(hi_t < p->inst_lo) & p->inst_ok;
+    for (int i = 0; i < 3; i++)
+        pk_slab((pk_f)rt_min3(tri->v0[i], tri->v1[i], tri->v2[i]),
+                (pk_f)rt_max3(tri->v0[i], tri->v1[i], tri->v2[i]), p, i, &lo, &hi);
+    return pk_slab_end(lo, hi, hi_t) & ~(hi_t < p->inst_lo) & p->inst_ok;
 }
 
-/* Mirrors rt_inst_enter per lane, into p->inst_lo and p->inst_ok. */
+/* Mirrors rt_inst_enter per lane (w the world rays), into p->inst_lo and
+ * p->inst_ok. */
 static void pk_inst_enter(RT_GLOBAL const rt_instance *in, const pk_ray *w, pk_ray *p) {
     pk_f lo = w->box_lo, hi = (pk_f)RT_INF;
-    for (int i = 0; i < 3; i++) {
-        pk_f bmin = (pk_f)in->bmin[i], bmax = (pk_f)in->bmax[i];
-        pk_f a = select(bmin, bmax, w->neg[i]);
-        pk_f b = select(bmax, bmin, w->neg[i]);
-        pk_f t0 = (a - w->org[i]) * w->inv[i];
-        pk_f t1 = (b - w->org[i]) * w->inv[i];
-        lo = select(lo, t0, t0 > lo);
-        hi = select(hi, t1, t1 < hi);
-    }
-    hi = hi * select((pk_f)RT_BOX_FAR_SCALE, (pk_f)RT_BOX_FAR_SCALE_NEG, hi < 0.0f);
+    for (int i = 0; i < 3; i++) pk_slab((pk_f)in->bmin[i], (pk_f)in->bmax[i], w, i, &lo, &hi);
     p->inst_lo = lo;
-    p->inst_ok = lo <= hi;
+    p->inst_ok = pk_slab_end(lo, hi, (pk_f)RT_INF);
 }
 
 /* ---- ray/triangle: each returns the lanes of act that hit, with t, u, v ---- */

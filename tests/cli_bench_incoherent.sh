@@ -81,4 +81,6 @@ checks=$((checks + 1))
     { echo "FAIL: --no-render still timed Whitted frames"; fails=$((fails + 1)); }
 expect 2 'rays needs a number' -- "$RTCL" bench "$scene" --incoherent --rays 0
 expect 2 'applies to --incoherent only' -- "$RTCL" bench "$scene" --rays 10
+expect 2 'one at a time' -- "$RTCL" bench "$scene" --incoherent --animate
+expect 2 'accel does not apply to --incoherent' -- "$RTCL" bench "$scene" --incoherent --accel kd
 finish

@@ -64,5 +64,11 @@ if [ -f "$RT_SOURCE_DIR/bench/study_opencl_options.sh" ]; then
     need '^\| none \(exact build\) \| yes \| [0-9.]+ / [0-9.]+ \| \+0\.0% \| 0 \| inf \| 0 \(0\.00%\) \| 0 \||No OpenCL device on this machine'
     need '^\| `-cl-fast-relaxed-math` \| no \||No OpenCL device on this machine'
 fi
+if [ -f "$RT_SOURCE_DIR/bench/study_dynamic.sh" ]; then
+    need '^## Dynamic scenes \(issue 16\): update policies beside Embree'
+    need '^\| rtcl \| refit \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \| yes \|'
+    need '^### A long morph'
+    ! grep -q -E '^\| rtcl \| [a-z]+ \|.*\| NO \|' "$md" || { echo "FAIL: a policy changed the frames"; fails=$((fails + 1)); }
+fi
 [ $fails = 0 ] || { echo "--- report:"; head -c 6000 "$md"; exit 1; }
 echo "cli_report: ok"

@@ -178,6 +178,12 @@ static int add_node(conv *cv, const em_node *node, const float lo[3], const floa
 rt_status rt_embree_build_bvh(rt_embree *em, const rt_aabb *boxes, uint32_t count,
                               const rt_build_options *options, rt_bvh *out, double *ms,
                               rt_error *err) {
+    return rt_embree_build_bvh_quality(em, boxes, count, options, RT_EMBREE_MEDIUM, out, ms, err);
+}
+
+rt_status rt_embree_build_bvh_quality(rt_embree *em, const rt_aabb *boxes, uint32_t count,
+                                      const rt_build_options *options, int quality, rt_bvh *out,
+                                      double *ms, rt_error *err) {
     memset(out, 0, sizeof *out);
     *ms = 0.0;
     if (count == 0) return rt_embree_fail(err, RT_ERROR_INVALID_ARGUMENT, "no primitives", NULL);
@@ -202,7 +208,8 @@ rt_status rt_embree_build_bvh(rt_embree *em, const rt_aabb *boxes, uint32_t coun
     }
     struct RTCBuildArguments args = rtcDefaultBuildArguments();
     args.byteSize = sizeof args;
-    args.buildQuality = RTC_BUILD_QUALITY_MEDIUM;
+    /* LOW: Embree's Morton builder; MEDIUM: its binned SAH builder. */
+    args.buildQuality = quality == RT_EMBREE_LOW ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM;
     args.buildFlags = RTC_BUILD_FLAG_NONE;
     args.maxBranchingFactor = 2;
     args.maxDepth = 1024;

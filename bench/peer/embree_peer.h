@@ -98,4 +98,38 @@ rt_status rt_embree_dynamic_update(rt_embree_dynamic *d, const float *positions,
                                    rt_error *err);
 void rt_embree_dynamic_destroy(rt_embree_dynamic *d);
 
+/* rt_embree_build_bvh at quality RT_EMBREE_LOW (rtcBuildBVH's Morton
+ * builder) or RT_EMBREE_MEDIUM (its binned SAH builder, as
+ * rt_embree_build_bvh): the trees Embree's commits of those qualities are
+ * made by, as binary trees our measures read (embree_build.c). */
+rt_status rt_embree_build_bvh_quality(rt_embree *em, const rt_aabb *boxes, uint32_t count,
+                                      const rt_build_options *options, int quality, rt_bvh *out,
+                                      double *ms, rt_error *err);
+
+/* ---- a traced scene that changes per frame (embree_anim.c) ----------------- */
+
+typedef struct rt_embree_anim rt_embree_anim;
+
+/* The layout's instances in world space, one triangle geometry each (as
+ * rt_embree_scene_create), in a dynamic scene (RTC_SCENE_FLAG_DYNAMIC)
+ * where every geometry has build quality REFIT, LOW (Morton) or MEDIUM
+ * (binned SAH) by quality (RT_EMBREE_*), the scene LOW for the first two and
+ * MEDIUM for the last. flat must stay valid until the next update. *ms: the
+ * first rtcCommitScene. */
+rt_status rt_embree_anim_create(rt_embree *em, const rt_flat *flat, int quality,
+                                rt_embree_anim **out, double *ms, rt_error *err);
+
+/* The next frame's layout (the same instances; a triangle count may
+ * change). Instances whose world-space triangles changed are written into
+ * Embree's buffers and committed. Not timed: computing the world-space
+ * triangles and which changed. *copy_ms: the copy into Embree's buffers;
+ * *commit_ms: rtcUpdateGeometryBuffer and rtcCommitGeometry of the changed
+ * geometries and rtcCommitScene. */
+rt_status rt_embree_anim_update(rt_embree_anim *a, const rt_flat *flat, double *copy_ms,
+                                double *commit_ms, rt_error *err);
+
+/* The scene to trace (rt_embree_render), valid until the next update. */
+const rt_embree_scene *rt_embree_anim_scene(const rt_embree_anim *a);
+void rt_embree_anim_destroy(rt_embree_anim *a);
+
 #endif /* RT_EMBREE_PEER_H */

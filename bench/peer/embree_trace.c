@@ -12,6 +12,7 @@
 
 #include "base/clock.h"
 #include "embree_peer.h"
+#include "embree_scene.h"
 #include "rt_shade.h"
 
 /* Embree's C API names its types as struct tags only. */
@@ -24,12 +25,6 @@ typedef struct RTCRay16 RTCRay16;
 typedef struct RTCRayHit4 RTCRayHit4;
 typedef struct RTCRayHit8 RTCRayHit8;
 typedef struct RTCRayHit16 RTCRayHit16;
-
-struct rt_embree_scene {
-    RTCScene scene;
-    const rt_flat *flat;
-    rt_scene_view view;
-};
 
 /* One triangle geometry per instance, in world space, so that geomID is the
  * instance and primID + tri_first the layout's entry. Instances flattened

@@ -60,7 +60,7 @@ void cli_print_update_json(const rt_renderer *renderer, const rt_scene *scene) {
                m->sah);
     }
     printf("], \"object_bvh_ms\": %.3f, \"layout_ms\": %.3f, \"layout_in_place\": %s, "
-           "\"layout_bytes\": %llu",
+           "\"layout_bytes\": %llu, \"camera_only\": %s",
            u.object_bvh_ms, u.layout_ms, u.layout_in_place ? "true" : "false",
-           (unsigned long long)u.layout_bytes);
+           (unsigned long long)u.layout_bytes, u.camera_only ? "true" : "false");
 }

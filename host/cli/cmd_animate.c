@@ -10,16 +10,18 @@
 #include "cli_util.h"
 #include "commands.h"
 #include "formats/image.h"
+#include "video_out.h"
 
 static const char usage_head[] =
     "usage: rtcl animate SCENE --fps F (--duration S | --frames N) [--frame-range A:B]\n"
-    "                    -o DIR/frame_%04d.png [--update P] [--backend B] [--width W]\n"
+    "                    -o DIR/frame_%04d.png|VIDEO.mp4 [--update P] [--backend B] [--width W]\n"
     "                    [--height H] [--direct] [--stats] [--help]\n"
     "\n"
     "Renders the frames of an animated scene (docs/SCENE_FORMAT.md, \"Time\"): frame k\n"
     "shows time k / F seconds. One renderer renders them in order, so each frame only\n"
     "updates what moved: the BVHs of meshes whose vertices changed, by their update\n"
-    "policy, the object BVH, and the layout in place. Every frame is the image that\n"
+    "policy, the object BVH, and the layout in place; a frame where only the camera\n"
+    "moved rewrites the camera alone. Every frame is the image that\n"
     "'rtcl render SCENE --time k/F' gives, bit for bit, whatever the policy.\n"
     "\n"
     "  --fps F        frames per second (> 0)\n"
@@ -30,6 +32,12 @@ static const char usage_head[] =
     "                 animation over machines [all]\n"
     "  -o PATTERN     output images, a path with one %d conversion (%04d: 4 digits,\n"
     "                 zero-padded) that the frame number replaces; format by extension\n"
+    "  -o VIDEO       a path ending in .mp4, .mkv or .webm: one video of the frames at\n"
+    "                 F frames per second, encoded by ffmpeg (which must be on PATH;\n"
+    "                 Debian: apt-get install ffmpeg): H.264 (libx264, CRF 18) in .mp4\n"
+    "                 and .mkv, else MPEG-4 part 2; VP9 in .webm; 8 bits, 4:2:0 chroma\n"
+    "                 (lossy: use images for exact frames); an odd width or height gets\n"
+    "                 one black column or row. ffmpeg's messages show only on failure\n"
     "  --update P     every mesh's BVH update policy: rebuild, refit, fast, auto\n"
     "                 [the scene's, rebuild where it says none]\n"
     "  --width W, --height H\n"
@@ -37,8 +45,10 @@ static const char usage_head[] =
     "  --direct       primary and shadow rays only, no reflection or refraction\n"
     "  --stats        one JSON line per frame on stdout: the frame, its time, what\n"
     "                 each updated mesh's BVH did (action, ms, SAH cost), object-BVH ms,\n"
-    "                 layout ms and bytes rewritten, upload bytes (device backends),\n"
-    "                 build ms (all host work of the frame), render ms\n"
+    "                 layout ms and bytes rewritten, camera_only (true when only the\n"
+    "                 camera moved: no BVH touched, the layout's header alone rewritten\n"
+    "                 and uploaded), upload bytes (device backends), build ms (all host\n"
+    "                 work of the frame), render ms\n"
     "A progress bar appears on stderr when it is a terminal; nothing else is printed\n"
     "unless something fails.\n";
 
@@ -190,7 +200,15 @@ int cmd_animate(int argc, char **argv) {
         cli_error("animate", "-o PATTERN is required (e.g. -o out/frame_%%04d.png)");
         return 2;
     }
-    if (!check_pattern(pattern)) {
+    int video = cli_is_video_path(pattern);
+    if (video && !cli_have_ffmpeg()) {
+        cli_error("animate",
+                  "-o %s: writing a video needs ffmpeg, which is not on PATH (Debian: apt-get "
+                  "install ffmpeg); or write the frames as images with -o DIR/frame_%%04d.png",
+                  pattern);
+        return 2;
+    }
+    if (!video && !check_pattern(pattern)) {
         cli_error("animate",
                   "-o: '%s' must hold exactly one %%d conversion (e.g. frame_%%04d.png) and no "
                   "other %% but %%%%",
@@ -238,6 +256,8 @@ int cmd_animate(int argc, char **argv) {
     rt_framebuffer fb;
     memset(&fb, 0, sizeof fb);
     int shown_notice = 0;
+    cli_video *vid = NULL;
+    char why[2048];
     for (int k = first; k <= last && !code; k++) {
         double t = (double)k / fps;
         if (rt_scene_set_time(scene, t) != RT_OK) {
@@ -255,11 +275,27 @@ int cmd_animate(int argc, char **argv) {
             fprintf(stderr, "rtcl animate: notice: %s\n", st.notice);
             shown_notice = 1;
         }
+        double w0 = rt_now_ms();
+        if (video) {
+            /* The video starts with the first frame, at its size. */
+            if (!vid &&
+                !(vid = cli_video_open(pattern, fb.width, fb.height, fps, why, sizeof why))) {
+                cli_progress_done();
+                cli_error("animate", "-o %s: %s", pattern, why);
+                code = 2;
+                break;
+            }
+            if (!cli_video_write(vid, fb.pixels, why, sizeof why)) {
+                cli_progress_done();
+                cli_error("animate", "-o %s: frame %d: %s", pattern, k, why);
+                code = 2;
+                break;
+            }
+        }
         char path[4096];
         frame_name(pattern, k, path, sizeof path);
         rt_image img = {fb.width, fb.height, fb.channels, fb.pixels};
-        double w0 = rt_now_ms();
-        if (rt_image_write(path, &img, &err) != RT_OK) {
+        if (!video && rt_image_write(path, &img, &err) != RT_OK) {
             cli_progress_done();
             cli_error("animate", "frame %d: %s", k, err.message);
             code = 2;
@@ -278,6 +314,12 @@ int cmd_animate(int argc, char **argv) {
         cli_progress((void *)"animate", (double)(k - first + 1) / (double)(last - first + 1));
     }
     cli_progress_done();
+    if (vid && code == 0 && !cli_video_close(vid, why, sizeof why)) {
+        cli_error("animate", "-o %s: %s", pattern, why);
+        code = 2;
+    } else if (vid && code != 0) {
+        cli_video_abort(vid);
+    }
     rt_framebuffer_free(&fb);
     rt_scene_destroy(scene);
     rt_renderer_destroy(renderer);

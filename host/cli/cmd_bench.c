@@ -14,6 +14,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "bench_animate.h"
 #include "bench_render.h"
 #include "cli_util.h"
 #include "incoherent_bench.h"
@@ -44,8 +45,11 @@ typedef struct bench_args {
     int json, reps, threads, progress, render, width, height;
     rt_device_math device_math;
     rt_denormals denormals;
-    int accel;            /* --accel: rt_accel, or -1 */
-    int verbose;          /* --verbose: the OpenCL build log on stderr */
+    int accel;   /* --accel: rt_accel, or -1 */
+    int verbose; /* --verbose: the OpenCL build log on stderr */
+    /* --animate (bench_animate.h): the keyframe benchmark instead */
+    int animate, anim_frames, anim_series;
+    double anim_fps;
     int incoherent, rays; /* --incoherent, --rays (incoherent_bench.h) */
 } bench_args;
 
@@ -64,7 +68,11 @@ static void usage(FILE *f) {
     fprintf(f, "usage: rtcl bench SCENE... [--json] [--reps N] [--threads N] [--no-render]\n"
                "                 [--width W] [--height H] [--device-math M] [--denormals P]\n"
                "                 [--accel A]\n"
-               "                 [--verbose] [--incoherent [--rays N]]\n"
+               "                 [--verbose]\n"
+               "       rtcl bench --animate SCENE... [--json] [--reps N] [--threads N]\n"
+               "                 [--width W] [--height H] [--frames K] [--fps F] [--series]\n"
+               "       rtcl bench --incoherent SCENE... [--json] [--reps N] [--threads N]\n"
+               "                 [--rays N] [--width W] [--height H] [--no-render]\n"
                "\n"
                "Build: one BVH over all triangles of each scene with every builder\n"
                "(thesis-scalar, thesis-neon, thesis-mt, fast, and embree when available):\n"
@@ -100,21 +108,37 @@ static void usage(FILE *f) {
                "               kd-exact and kd-binned (one SAH kd-tree over all triangles,\n"
                "               SAH with Ct = 1, Ci = 2 as for the BVH rows, and bytes)\n"
                "  --verbose    print the OpenCL compiler's messages (build log) on stderr\n"
-               "\n"
-               "Incoherent rays (--incoherent, instead of the build and render parts): per\n"
-               "scene two sets of rays, diffuse bounces from the camera rays' closest hits\n"
-               "and random rays inside the scene (fixed seed 7), each traced for the\n"
-               "closest hit and for any hit by rt_trace_rays on cpu (the oracle) and on\n"
-               "packet (auto path), and by Embree's rtcIntersect1/rtcOccluded1 and\n"
-               "rtcIntersect16/rtcOccluded16 (16 consecutive rays per call) where this build\n"
-               "has Embree (else the output says why its rows are absent), with the same\n"
-               "thread count: min and median ms and Mrays/s over N rounds after one warm-up\n"
-               "round (interleaved), speed against Embree, and packet hits unlike the\n"
-               "oracle's; then Whitted frames (W x H) on packet and cpu.\n"
-               "  --incoherent run this benchmark; --json: one object per scene per line\n"
-               "               with an \"incoherent\" array of {scene, rays, query, engine,\n"
-               "               path, ms_min, ms_median, mrays_min, mrays_median, ...} and a\n"
-               "               \"whitted\" array; --no-render leaves the Whitted frames out\n"
+               "  --animate    the keyframe benchmark instead (Langr 2016, section 4.1):\n"
+               "               each SCENE's first morphing object played frame by frame,\n"
+               "               frame k at time k/F, on the packet backend with the update\n"
+               "               policies rebuild, refit, fast and auto, beside Embree (when\n"
+               "               built with it) updating and tracing the same frames at build\n"
+               "               quality REFIT, LOW and MEDIUM (its widest packets); N runs,\n"
+               "               rows interleaved frame by frame; per row the mesh update, trace and "
+               "whole-frame\n"
+               "               ms (the update included), each a mean over the frames (min\n"
+               "               and median over the runs), the SAH cost (Embree's: of\n"
+               "               rtcBuildBVH's trees of that quality) and whether every\n"
+               "               frame's image is rebuild's, bit for bit; with --json a\n"
+               "               \"dynamic\" array per scene. Frame 0 (the first build) is\n"
+               "               not counted.\n"
+               "  --frames K   with --animate: frames after frame 0 [one per keyframe]\n"
+               "  --fps F      with --animate: frames per second [the keyframe rate]\n"
+               "  --series     with --animate --json: each row's per-frame medians too\n"
+               "  --incoherent the incoherent-ray benchmark instead: per SCENE two sets of\n"
+               "               rays (diffuse bounces from the camera rays' closest hits,\n"
+               "               random rays inside the scene; fixed seed 7), each traced for\n"
+               "               the closest hit and for any hit by rt_trace_rays on cpu (the\n"
+               "               oracle) and packet (auto path), and by Embree's\n"
+               "               rtcIntersect1/rtcOccluded1 and rtcIntersect16/rtcOccluded16 (16\n"
+               "               consecutive rays per call) where this build has Embree (else\n"
+               "               the output says why its rows are absent), same thread count;\n"
+               "               min and median ms and Mrays/s over N rounds after a warm-up\n"
+               "               round (interleaved), speed against Embree, packet hits unlike\n"
+               "               the oracle's; then Whitted frames (W x H) on packet and cpu\n"
+               "               (--no-render: none). With --json an \"incoherent\" array of\n"
+               "               {scene, rays, query, engine, path, ms_min, ms_median,\n"
+               "               mrays_min, mrays_median, ...} and a \"whitted\" array per scene.\n"
                "  --rays N     rays per set [1000000]\n");
 }
 
@@ -535,6 +559,43 @@ static int bench_scene(const char *path, const bench_args *a, rt_pool *pool) {
     return 1;
 }
 
+static void animate_progress(const char *scene, const char *what) {
+    fprintf(stderr, "\r\033[K%s: %s", scene, what);
+}
+
+/* rtcl bench --animate: one scene's keyframe benchmark (bench_animate.h). */
+static int animate_scene(const char *path, const bench_args *a) {
+    bench_anim_setup su = {a->reps,
+                           a->anim_frames,
+                           a->anim_fps,
+                           a->threads,
+                           a->width,
+                           a->height,
+                           "packet",
+                           1,
+                           a->progress ? animate_progress : NULL};
+    bench_anim_result res;
+    char why[400] = "";
+    int ok = bench_animate(path, &su, &res, why, sizeof why);
+    if (a->progress) fprintf(stderr, "\r\033[K");
+    if (!ok) {
+        fprintf(stderr, "rtcl bench: %s\n", why);
+        return 0;
+    }
+    if (a->json) {
+        printf("{\"scene\": ");
+        json_string(path);
+        printf(", \"threads\": %d, \"width\": %d, \"height\": %d", a->threads, a->width, a->height);
+        bench_anim_print_json(path, &res, a->anim_series);
+        printf("}\n");
+    } else {
+        bench_anim_print_text(path, &res);
+    }
+    fflush(stdout);
+    bench_anim_free(&res);
+    return 1;
+}
+
 static int parse_int(const char *s, int lo, int hi, int *out) {
     char *end;
     long v = strtol(s, &end, 10);
@@ -544,8 +605,9 @@ static int parse_int(const char *s, int lo, int hi, int *out) {
 }
 
 int cmd_bench(int argc, char **argv) {
-    bench_args a = {0,  5, 0, isatty(2), 1, 1024, 576, RT_DEVICE_MATH_AUTO, RT_DENORMALS_PRESERVE,
-                    -1, 0, 0, 0};
+    bench_args a = {
+        0, 5, 0, isatty(2), 1,   1024, 576, RT_DEVICE_MATH_AUTO, RT_DENORMALS_PRESERVE, -1,
+        0, 0, 0, 0,         0.0, 0,    0};
     const char **scenes = calloc((size_t)argc, sizeof *scenes);
     int n_scenes = 0;
     if (!scenes) return 2;
@@ -579,6 +641,22 @@ int cmd_bench(int argc, char **argv) {
             i++;
         } else if (!strcmp(s, "--verbose")) {
             a.verbose = 1;
+        } else if (!strcmp(s, "--animate")) {
+            a.animate = 1;
+        } else if (!strcmp(s, "--series")) {
+            a.anim_series = 1;
+        } else if (!strcmp(s, "--frames") || !strcmp(s, "--fps")) {
+            int v;
+            if (i + 1 >= argc || !parse_int(argv[i + 1], 1, 100000, &v)) {
+                fprintf(stderr, "rtcl bench: %s needs a number from 1 to 100000\n", s);
+                free(scenes);
+                return 2;
+            }
+            if (s[3] == 'r')
+                a.anim_frames = v;
+            else
+                a.anim_fps = v;
+            i++;
         } else if ((m = cli_maths_arg(argc, argv, &i, "bench", &a.device_math, &a.denormals))) {
             if (m < 0) {
                 free(scenes);
@@ -611,8 +689,30 @@ int cmd_bench(int argc, char **argv) {
         free(scenes);
         return 2;
     }
-    if (a.rays && !a.incoherent) {
-        fprintf(stderr, "rtcl bench: --rays applies to --incoherent only\n");
+    /* Options of one mode given to the other would be ignored: say so. */
+    const char *odd = NULL;
+    if (a.animate && a.incoherent)
+        odd = "--animate and --incoherent are two benchmarks: run one at a time";
+    else if (a.animate && a.accel >= 0)
+        odd = "--accel does not apply to --animate (morphing meshes keep BVHs)";
+    else if (a.animate && !a.render)
+        odd = "--no-render does not apply to --animate (it renders every frame)";
+    else if (a.animate &&
+             (a.device_math != RT_DEVICE_MATH_AUTO || a.denormals != RT_DENORMALS_PRESERVE))
+        odd =
+            "--device-math and --denormals do not apply to --animate (it runs the packet backend)";
+    else if (!a.animate && (a.anim_frames || a.anim_fps || a.anim_series))
+        odd = "--frames, --fps and --series need --animate";
+    else if (a.incoherent && a.accel >= 0)
+        odd = "--accel does not apply to --incoherent (it traces the scene's own structures)";
+    else if (a.incoherent &&
+             (a.device_math != RT_DEVICE_MATH_AUTO || a.denormals != RT_DENORMALS_PRESERVE))
+        odd = "--device-math and --denormals do not apply to --incoherent (it runs the CPU "
+              "backends)";
+    else if (a.rays && !a.incoherent)
+        odd = "--rays applies to --incoherent only";
+    if (odd) {
+        fprintf(stderr, "rtcl bench: %s\n", odd);
         free(scenes);
         return 2;
     }
@@ -637,7 +737,8 @@ int cmd_bench(int argc, char **argv) {
         return 2;
     }
     int failed = 0;
-    for (int i = 0; i < n_scenes; i++) failed |= !bench_scene(scenes[i], &a, pool);
+    for (int i = 0; i < n_scenes; i++)
+        failed |= a.animate ? !animate_scene(scenes[i], &a) : !bench_scene(scenes[i], &a, pool);
     rt_pool_destroy(pool);
     free(scenes);
     return failed ? 2 : 0;

@@ -2,6 +2,7 @@
 #include "formats/scene_save.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,8 +10,22 @@
 #include "base/error.h"
 #include "scene/scene.h"
 
+/* A number that reads back as the same bits: %.9g for a float, %.17g for a
+ * double; a negative zero as -0.0 (JSON's -0 is an integer, read as +0). */
+static void write_num(FILE *f, double x, int digits) {
+    if (x == 0.0 && signbit(x))
+        fputs("-0.0", f);
+    else
+        fprintf(f, "%.*g", digits, x);
+}
+
 static void write_vec3(FILE *f, const float v[3]) {
-    fprintf(f, "[%.9g, %.9g, %.9g]", (double)v[0], (double)v[1], (double)v[2]);
+    fputc('[', f);
+    for (int i = 0; i < 3; i++) {
+        if (i) fputs(", ", f);
+        write_num(f, (double)v[i], 9);
+    }
+    fputc(']', f);
 }
 
 static rt_status write_obj(const rt_mesh_data *m, const char *mesh_name, const char *path,
@@ -61,18 +76,92 @@ static int by_name(const void *a, const void *b) {
  * files of the same name) every mesh is saved as mesh_INDEX: a name written
  * as it was broke the JSON, collided, or pointed outside dir (found by
  * tests/fuzz/fuzz_json). */
-static rt_status names_usable(const rt_scene *s, int *usable) {
+static rt_status names_usable(const rt_scene *s, const uint8_t *blend, int *usable) {
     *usable = 1;
-    for (uint32_t i = 0; i < s->mesh_count && *usable; i++) *usable = plain_name(s->meshes[i].name);
-    if (!*usable || s->mesh_count < 2) return RT_OK;
-    const char **names = malloc(s->mesh_count * sizeof *names);
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < s->mesh_count && *usable; i++)
+        if (!blend[i]) *usable = plain_name(s->meshes[i].name), n++;
+    if (!*usable || n < 2) return RT_OK;
+    const char **names = malloc(n * sizeof *names);
     if (!names) return RT_ERROR_OUT_OF_MEMORY;
-    for (uint32_t i = 0; i < s->mesh_count; i++) names[i] = s->meshes[i].name;
-    qsort(names, s->mesh_count, sizeof *names, by_name);
-    for (uint32_t i = 1; i < s->mesh_count && *usable; i++)
-        *usable = strcmp(names[i - 1], names[i]) != 0;
+    n = 0;
+    for (uint32_t i = 0; i < s->mesh_count; i++)
+        if (!blend[i]) names[n++] = s->meshes[i].name;
+    qsort(names, n, sizeof *names, by_name);
+    for (uint32_t i = 1; i < n && *usable; i++) *usable = strcmp(names[i - 1], names[i]) != 0;
     free(names);
     return RT_OK;
+}
+
+/* Which meshes are blends of morphing objects (made by rt_scene_set_time,
+ * not read from the file): they are not saved, the loader makes them again.
+ * NULL when out of memory. */
+static uint8_t *blend_meshes(const rt_scene *s) {
+    uint8_t *blend = calloc(s->mesh_count ? s->mesh_count : 1, 1);
+    if (!blend) return NULL;
+    for (uint32_t o = 0; o < s->object_count; o++) {
+        uint32_t m = s->objects[o].morph_mesh;
+        if (m < s->mesh_count) blend[m] = 1;
+    }
+    return blend;
+}
+
+/* The camera: its path (which places the eye and the look-at point at
+ * every time) or its position and look-at point; up, fov and size. */
+static void write_camera(FILE *f, const rt_scene *s) {
+    const rt_camera *c = &s->camera;
+    fprintf(f, "{\n  \"camera\": {");
+    if (s->camera_path_count) {
+        fprintf(f, "\"path\": [");
+        for (uint32_t i = 0; i < s->camera_path_count; i++) {
+            const rt_camera_key *k = &s->camera_path[i];
+            fprintf(f, "%s{\"time\": ", i ? ",\n                      " : "");
+            write_num(f, k->time, 17);
+            fprintf(f, ", \"position\": ");
+            write_vec3(f, k->position);
+            fprintf(f, ", \"look_at\": ");
+            write_vec3(f, k->look_at);
+            fputc('}', f);
+        }
+        fprintf(f, "],\n             ");
+    } else {
+        fprintf(f, "\"position\": ");
+        write_vec3(f, c->position);
+        fprintf(f, ", \"look_at\": ");
+        write_vec3(f, c->look_at);
+        fprintf(f, ", ");
+    }
+    fprintf(f, "\"up\": ");
+    write_vec3(f, c->up);
+    fprintf(f, ",\n             \"fov\": ");
+    write_num(f, (double)c->hfov_degrees, 9);
+    fprintf(f, ", \"width\": %d, \"height\": %d},\n", c->width, c->height);
+}
+
+/* An object's animation and keyed transform (docs/SCENE_FORMAT.md, "Time"). */
+static void write_object_time(FILE *f, const rt_object_data *o) {
+    if (o->keyframe_rate > 0.0f) {
+        fprintf(f, ",\n     \"animation\": {\"keyframe_rate\": ");
+        write_num(f, (double)o->keyframe_rate, 9);
+        fprintf(f, ", \"interpolate\": %s}", o->interpolate ? "true" : "false");
+    }
+    if (!o->transform_key_count) return;
+    fprintf(f, ",\n     \"transform_keys\": [");
+    for (uint32_t i = 0; i < o->transform_key_count; i++) {
+        const rt_transform_key *k = &o->transform_keys[i];
+        fprintf(f, "%s{\"time\": ", i ? ",\n                        " : "");
+        write_num(f, k->time, 17);
+        fprintf(f, ", \"translate\": ");
+        write_vec3(f, k->translate);
+        fprintf(f, ", \"rotate\": {\"axis\": ");
+        write_vec3(f, k->axis);
+        fprintf(f, ", \"degrees\": ");
+        write_num(f, (double)k->degrees, 9);
+        fprintf(f, "}, \"scale\": ");
+        write_num(f, (double)k->scale, 9);
+        fputc('}', f);
+    }
+    fputc(']', f);
 }
 
 /* Mesh i's name in the saved files. */
@@ -85,29 +174,34 @@ static const char *saved_name(const rt_scene *s, int usable, uint32_t i, char bu
 rt_status rt_scene_save_json(const rt_scene *s, const char *dir, const char *name, rt_error *err) {
     char path[1024], mesh_name[32], other_name[32];
     int usable;
-    if (names_usable(s, &usable) != RT_OK)
+    uint8_t *blend = blend_meshes(s);
+    if (!blend || names_usable(s, blend, &usable) != RT_OK) {
+        free(blend);
         return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, NULL, 0, 0, "out of memory");
-    for (uint32_t i = 0; i < s->mesh_count; i++) {
-        if (s->meshes[i].tri_materials)
-            return rt_error_set(err, RT_ERROR_UNSUPPORTED, NULL, 0, 0,
-                                "mesh %u has per-triangle materials, which JSON cannot express", i);
+    }
+    rt_status st = RT_OK;
+    for (uint32_t i = 0; i < s->mesh_count && st == RT_OK; i++) {
+        if (blend[i]) continue;
+        if (s->meshes[i].tri_materials) {
+            st = rt_error_set(err, RT_ERROR_UNSUPPORTED, NULL, 0, 0,
+                              "mesh %u has per-triangle materials, which JSON cannot express", i);
+            break;
+        }
         const char *mesh = saved_name(s, usable, i, mesh_name);
         snprintf(path, sizeof path, "%s/%s_%s.obj", dir, name, mesh);
-        rt_status st = write_obj(&s->meshes[i], mesh, path, err);
-        if (st != RT_OK) return st;
+        st = write_obj(&s->meshes[i], mesh, path, err);
+    }
+    if (st != RT_OK) {
+        free(blend);
+        return st;
     }
     snprintf(path, sizeof path, "%s/%s.json", dir, name);
     FILE *f = fopen(path, "wb");
-    if (!f) return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot write: %s", strerror(errno));
-    const rt_camera *c = &s->camera;
-    fprintf(f, "{\n  \"camera\": {\"position\": ");
-    write_vec3(f, c->position);
-    fprintf(f, ", \"look_at\": ");
-    write_vec3(f, c->look_at);
-    fprintf(f, ", \"up\": ");
-    write_vec3(f, c->up);
-    fprintf(f, ",\n             \"fov\": %.9g, \"width\": %d, \"height\": %d},\n",
-            (double)c->hfov_degrees, c->width, c->height);
+    if (!f) {
+        free(blend);
+        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot write: %s", strerror(errno));
+    }
+    write_camera(f, s);
     fprintf(f, "  \"background\": ");
     write_vec3(f, s->background);
     fprintf(f, ",\n  \"ambient\": ");
@@ -132,38 +226,56 @@ rt_status rt_scene_save_json(const rt_scene *s, const char *dir, const char *nam
         write_vec3(f, s->lights[i].color);
         fprintf(f, "}%s\n", i + 1 < s->light_count ? "," : "");
     }
-    fprintf(f, "  ],\n  \"meshes\": {\n");
+    fprintf(f, "  ],\n  \"meshes\": {");
+    int first = 1;
     for (uint32_t i = 0; i < s->mesh_count; i++) {
+        if (blend[i]) continue;
+        const rt_mesh_data *md = &s->meshes[i];
         const char *mesh = saved_name(s, usable, i, mesh_name);
-        uint32_t accel = s->meshes[i].accel;
-        fprintf(f, "    \"%s\": {\"file\": \"%s_%s.obj\"%s%s%s}%s\n", mesh, name, mesh,
-                accel ? ", \"accel\": \"" : "", accel ? rt_accel_name((rt_accel)accel) : "",
-                accel ? "\"" : "", i + 1 < s->mesh_count ? "," : "");
+        fprintf(f, "%s\n    \"%s\": {\"file\": \"%s_%s.obj\"", first ? "" : ",", mesh, name, mesh);
+        if (md->accel) fprintf(f, ", \"accel\": \"%s\"", rt_accel_name((rt_accel)md->accel));
+        if (md->update_policy != RT_UPDATE_REBUILD)
+            fprintf(f, ", \"update\": \"%s\"",
+                    rt_update_policy_name((rt_update_policy)md->update_policy));
+        fputc('}', f);
+        first = 0;
     }
-    fprintf(f, "  },\n  \"objects\": [\n");
+    fprintf(f, "\n  },\n  \"objects\": [\n");
     for (uint32_t i = 0; i < s->object_count; i++) {
         const rt_object_data *o = &s->objects[i];
-        if (o->mesh_count == 1) {
+        int animated = o->keyframe_rate > 0.0f;
+        if (o->mesh_count == 1 && !animated) {
             fprintf(f, "    {\"mesh\": \"%s\"", saved_name(s, usable, o->meshes[0], mesh_name));
         } else {
             fprintf(f, "    {\"keyframes\": [");
             for (uint32_t k = 0; k < o->mesh_count; k++)
                 fprintf(f, "%s\"%s\"", k ? ", " : "",
                         saved_name(s, usable, o->meshes[k], other_name));
-            fprintf(f, "], \"frame\": %u", o->selected);
+            /* An animation chooses the keyframe from the time ("frame" and
+             * "animation" exclude each other). */
+            if (animated)
+                fputc(']', f);
+            else
+                fprintf(f, "], \"frame\": %u", o->selected);
         }
         fprintf(f, ", \"material\": \"m%u\"", o->material);
         float id[16];
         rt_mat4_identity(id);
-        if (memcmp(id, o->transform, sizeof id) != 0) {
+        /* Keyed transforms place the object at every time ("transform" and
+         * "transform_keys" exclude each other). */
+        if (!o->transform_key_count && memcmp(id, o->transform, sizeof id) != 0) {
             fprintf(f, ",\n     \"transform\": {\"matrix\": [");
-            for (int k = 0; k < 16; k++)
-                fprintf(f, "%.9g%s", (double)o->transform[k], k < 15 ? ", " : "");
+            for (int k = 0; k < 16; k++) {
+                write_num(f, (double)o->transform[k], 9);
+                if (k < 15) fputs(", ", f);
+            }
             fprintf(f, "]}");
         }
+        write_object_time(f, o);
         fprintf(f, "}%s\n", i + 1 < s->object_count ? "," : "");
     }
     fprintf(f, "  ]\n}\n");
+    free(blend);
     int bad = ferror(f);
     if (fclose(f) != 0 || bad)
         return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "write failed: %s", strerror(errno));

@@ -478,6 +478,12 @@ static rt_status write_frame(const rt_scene *scene, const rt_bvh *top, const rt_
 
 /* ---- rewriting a layout in place ------------------------------------------------ */
 
+void rt_flatten_camera(const rt_scene *scene, rt_flat *flat) {
+    rt_camera cam;
+    rt_camera_get(scene, &cam);
+    camera_of(&cam, &flat->hdr);
+}
+
 void rt_flat_shape_free(rt_flat_shape *shape) {
     free(shape->shown);
     free(shape->node_base);

@@ -70,6 +70,11 @@ rt_status rt_flatten_update(const rt_scene *scene, const rt_bvh *mesh_bvhs, cons
                             const uint8_t *dirty, rt_flat_shape *shape, rt_flat *flat,
                             uint64_t *bytes);
 
+/* Rewrites the camera of flat's header (position, frame, size) from the
+ * scene's camera, as rt_flatten writes it; nothing else changes. For a frame
+ * where only the camera moved: the arrays stay valid as they are. */
+void rt_flatten_camera(const rt_scene *scene, rt_flat *flat);
+
 /* The layout's size in bytes, all arrays. */
 uint64_t rt_flat_bytes(const rt_flat *flat);
 

@@ -461,6 +461,23 @@ static rt_status upload_scene(cl_state *s, const rt_backend_layout *layout, uint
         free(sig);
         return RT_OK;
     }
+    if (mesh_same && s->uploaded_generation == layout->layout_generation) {
+        /* The same layout with another header (the camera moved, or another
+         * triangle test or feature set): the header alone. */
+        free(sig);
+        rt_status st = write_buf(s, B_HDR, 0, &f->hdr, sizeof f->hdr, bytes, err);
+        cl_int ce = st == RT_OK ? clFinish(s->queue) : CL_SUCCESS;
+        if (st == RT_OK && ce != CL_SUCCESS)
+            st = rt_fail(err, out_of_memory(ce) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
+                         "upload to '%s' failed (%s)", s->dev.name, rt_cl_error_name(ce));
+        if (st != RT_OK) {
+            s->uploaded = 0;
+            return st;
+        }
+        s->uploaded_hdr = f->hdr;
+        *ms += rt_now_ms() - t0;
+        return RT_OK;
+    }
     uint32_t mesh_nodes = sig[1];
     size_t tri_n = f->tri_count;
     struct {

@@ -245,7 +245,19 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
     c->object_bvh_ms = c->layout_ms = 0.0;
     c->layout_bytes = 0;
     c->layout_in_place = 0;
-    if (!c->flat_valid || c->flat_scene_version != scene->version) {
+    c->camera_only = 0;
+    if (c->flat_valid && c->flat_scene_version == scene->version &&
+        c->flat_camera_version != scene->camera_version) {
+        /* Only the camera moved: the BVHs and every array of the layout
+         * hold; the header takes the new camera. */
+        double t1 = rt_now_ms();
+        rt_flatten_camera(scene, &c->flat);
+        c->flat_camera_version = scene->camera_version;
+        c->layout_ms = rt_now_ms() - t1;
+        c->layout_bytes = sizeof c->flat.hdr;
+        c->layout_in_place = 1;
+        c->camera_only = 1;
+    } else if (!c->flat_valid || c->flat_scene_version != scene->version) {
         /* Each mesh once, though several objects show it. */
         for (uint32_t o = 0; o < scene->object_count; o++) {
             rt_status st =
@@ -305,6 +317,7 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
         c->layout_ms = rt_now_ms() - t2;
         c->flat_valid = 1;
         c->flat_scene_version = scene->version;
+        c->flat_camera_version = scene->camera_version;
         c->layout_generation++;
     }
     *build_ms = rt_now_ms() - t0;

@@ -41,9 +41,10 @@ typedef struct rt_accel_cache {
     rt_flat flat;
     rt_flat_shape shape; /* what flat was made of, to know when it can be rewritten in place */
     int flat_valid;
-    uint32_t flat_scene_version; /* the scene version flat was made from */
-    uint32_t layout_generation;  /* bumped by every change of flat */
-    uint32_t mesh_generation;    /* bumped by every mesh BVH update */
+    uint32_t flat_scene_version;  /* the scene version flat was made from */
+    uint32_t flat_camera_version; /* ... and the camera version its header holds */
+    uint32_t layout_generation;   /* bumped by every change of flat */
+    uint32_t mesh_generation;     /* bumped by every mesh BVH update */
     /* After an in-place rewrite: what changed since generation base_generation. */
     uint32_t base_generation;
     rt_flat_range *dirty_nodes, *dirty_tris;
@@ -51,6 +52,7 @@ typedef struct rt_accel_cache {
     int shapes_kept; /* ... and no mesh tree changed shape */
     double object_bvh_ms, layout_ms;
     int layout_in_place;
+    int camera_only; /* the last update rewrote only the header's camera */
     uint64_t layout_bytes;
 } rt_accel_cache;
 
@@ -58,7 +60,10 @@ typedef struct rt_accel_cache {
  * applied): updates the structures of meshes that changed (a BVH by its
  * update policy; a kd-tree, for static meshes only, is rebuilt whole), the
  * object BVH and the layout when the scene changed (a layout with kd-tree
- * meshes is always made anew). A scene other than the cached one starts
+ * meshes is always made anew). When only the camera changed (its own
+ * version), only the header's camera is rewritten: no BVH is touched and
+ * layout_generation stays, so backends keep every array and send the header
+ * alone. A scene other than the cached one starts
  * afresh. *build_ms gets the time spent, *sah_cost the triangle-weighted mean
  * SAH cost of the shown meshes' structures. */
 rt_status rt_accel_cache_update(rt_accel_cache *cache, const rt_scene *scene, rt_pool *pool,

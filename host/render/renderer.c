@@ -193,5 +193,6 @@ rt_status rt_renderer_update_stats(const rt_renderer *r, rt_update_stats *out) {
     out->layout_ms = r->accel.layout_ms;
     out->layout_in_place = r->accel.layout_in_place;
     out->layout_bytes = r->accel.layout_bytes;
+    out->camera_only = r->accel.camera_only;
     return RT_OK;
 }

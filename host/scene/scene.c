@@ -462,7 +462,9 @@ rt_status rt_camera_set(rt_scene *scene, const rt_camera *cam) {
                              cam->width, cam->height);
     scene->camera = *cam;
     scene->has_camera = 1;
-    scene->version++;
+    /* The camera's own version: a camera move rewrites only the layout's
+     * header (render/accel_cache.c), no BVH. */
+    scene->camera_version++;
     return RT_OK;
 }
 

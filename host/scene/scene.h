@@ -79,6 +79,9 @@ struct rt_scene {
     uint32_t camera_path_count;
     double time;      /* the last rt_scene_set_time */
     uint32_t version; /* bumped by every change, so renderers know what to redo */
+    /* Bumped by rt_camera_set (and so by the camera path), not version: a
+     * camera-only change rewrites the layout's header and nothing else. */
+    uint32_t camera_version;
     /* Unique among the scenes of the process (never reused), so that a
      * renderer given another scene knows its caches are not this one's. */
     uint64_t uid;

@@ -623,6 +623,16 @@ static rt_status upload_scene(vk_state *s, const rt_backend_layout *layout, uint
         free(sig);
         return RT_OK;
     }
+    if (mesh_same && s->uploaded_generation == layout->layout_generation) {
+        /* The same layout with another header (the camera moved, or another
+         * triangle test or feature set): the header alone. */
+        free(sig);
+        memcpy(s->buf[B_HDR].map, &f->hdr, sizeof f->hdr);
+        *bytes += sizeof f->hdr;
+        s->uploaded_hdr = f->hdr;
+        *ms += rt_now_ms() - t0;
+        return RT_OK;
+    }
     size_t tri_n = f->tri_count, mesh_nodes = sig[1];
     struct {
         int b;
