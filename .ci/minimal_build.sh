@@ -26,5 +26,5 @@ if "$rtcl" render scenes/cornell_room.obj -o "$tmp/x.png" 2>"$tmp/err"; then
 fi
 grep -q 'no PNG or EXR support' "$tmp/err" || { echo "FAIL: unclear PNG error:"; cat "$tmp/err"; exit 1; }
 # The tests that need no optional part, the install and ray queries among them.
-ctest --test-dir "$build" --output-on-failure -j "$(nproc)" -R 'test_core_|cli_install|cli_trace|cli_startup'
+ctest --test-dir "$build" --output-on-failure -j "$(nproc)" -R 'test_core_|cli_install|cli_trace|cli_startup|cli_bench_incoherent|cli_shared_symbols'
 echo "minimal build: ok"

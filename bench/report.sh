@@ -72,6 +72,12 @@ step "renders, thesis set-up (rtcl bench)"
 "$rtcl" bench "${scenes_render[@]}" --json --reps $reps --threads $threads >"$tmp/render.json"
 step "renders, Whitted"
 bash "$root/bench/whitted_table.sh" "$rtcl" "$shared" $frames >"$tmp/whitted.md"
+step "incoherent rays (bench/incoherent_report.sh)"
+if [ $quick = 1 ]; then
+    bash "$root/bench/incoherent_report.sh" "$rtcl" "$shared" 4000 2 --quick >"$tmp/incoherent.md"
+else
+    bash "$root/bench/incoherent_report.sh" "$rtcl" "$shared" 1000000 $frames >"$tmp/incoherent.md"
+fi
 
 mkdir -p "$tmp/studies/plots"
 studies=()
@@ -206,6 +212,21 @@ whole packet; one triangle against a group of lanes) per primary packet, its sha
 included.
 
 $(cat "$tmp/whitted.md")
+
+## Incoherent rays, \`rtcl bench --incoherent\`: our tracers beside Embree's single rays and 16-wide streams
+
+Per scene two sets of rays (\`cpu_ref/ray_sets.h\`, seed 7): *diffuse*, a cosine bounce from
+the closest hit of the camera ray through a random pixel, and *random*, origins uniform in
+the scene's bounds and directions uniform on the sphere; each traced for the closest hit
+and for any hit, by \`rt_trace_rays\` on \`cpu\` (the scalar oracle) and on \`packet\` (path
+auto: incoherent groups of 64 rays go one at a time through the wide BVHs), and by Embree 3's
+\`rtcIntersect1\`/\`rtcOccluded1\` and \`rtcIntersect16\`/\`rtcOccluded16\` on 16 consecutive rays
+(scene: the layout's triangles in world space, default quality, the incoherent-ray hint),
+on the same pool of $threads threads. Each time is one whole call. Then Whitted frames of the
+shipped Cornell box on \`packet\` (secondary rays through the single-ray tracer) and on
+\`cpu\`. The section alone: \`bash bench/incoherent_report.sh build/rtcl ../shared/scenes\`.
+
+$(cat "$tmp/incoherent.md")
 EOF
     for name in "${studies[@]}"; do
         echo

@@ -31,6 +31,9 @@ need '^- packet rate / Embree'
 need '^- OpenCL \(PoCL\) rate'
 need '^## Rendering, Whitted'
 need '^\| cornell.json \| [0-9]+ \| [0-9.]+ / [0-9.]+ \|'
+need '^## Incoherent rays'
+need '^\| stanford-bunny.obj \| 69451 \| random \| any \| [0-9.]+ / [0-9.]+ \| [0-9.]+ / [0-9.]+ \|'
+need '^\| packet \| single-ray \| [0-9.]+ / [0-9.]+ \|'
 for script in "$RT_SOURCE_DIR"/bench/study_*.sh; do
     [ -f "$script" ] || continue
     name=$(basename "$script" .sh)

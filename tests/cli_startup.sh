@@ -11,6 +11,12 @@ checks=$((checks + 1))
 if ldd "$RTCL" | grep -i -E 'OpenImageIO|rtcl_image'; then
     echo "FAIL: rtcl links OpenImageIO"; fails=$((fails + 1))
 fi
+# ... nor SDL2 (about 50 libraries: X11, Wayland, PulseAudio): the viewer
+# opens it when it starts (host/cli/view/view_sdl_load.c).
+checks=$((checks + 1))
+if ldd "$RTCL" | grep -E 'libSDL2'; then
+    echo "FAIL: rtcl links SDL2"; fails=$((fails + 1))
+fi
 
 # loads CMD...: the libraries the dynamic loader loaded while CMD ran.
 loads() {
@@ -34,6 +40,8 @@ for cmd in "--help" "info $cornell" "info builtin:keyframes" "render --help" \
     elif grep -q -i -E 'OpenImageIO|rtcl_image' <<<"$loaded"; then
         echo "FAIL: rtcl $cmd loads the image layer:"; grep -i -E 'OpenImageIO|rtcl_image' <<<"$loaded"
         fails=$((fails + 1))
+    elif grep -q -E 'libSDL2' <<<"$loaded"; then
+        echo "FAIL: rtcl $cmd loads SDL2"; fails=$((fails + 1))
     fi
 done
 

@@ -17,6 +17,7 @@
 #include "bench_animate.h"
 #include "bench_render.h"
 #include "cli_util.h"
+#include "incoherent_bench.h"
 #include "accel/bvh.h"
 #include "accel/kd.h"
 #include "base/clock.h"
@@ -49,6 +50,7 @@ typedef struct bench_args {
     /* --animate (bench_animate.h): the keyframe benchmark instead */
     int animate, anim_frames, anim_series;
     double anim_fps;
+    int incoherent, rays; /* --incoherent, --rays (incoherent_bench.h) */
 } bench_args;
 
 static int cmp_double(const void *a, const void *b) {
@@ -69,6 +71,8 @@ static void usage(FILE *f) {
                "                 [--verbose]\n"
                "       rtcl bench --animate SCENE... [--json] [--reps N] [--threads N]\n"
                "                 [--width W] [--height H] [--frames K] [--fps F] [--series]\n"
+               "       rtcl bench --incoherent SCENE... [--json] [--reps N] [--threads N]\n"
+               "                 [--rays N] [--width W] [--height H] [--no-render]\n"
                "\n"
                "Build: one BVH over all triangles of each scene with every builder\n"
                "(thesis-scalar, thesis-neon, thesis-mt, fast, and embree when available):\n"
@@ -120,7 +124,22 @@ static void usage(FILE *f) {
                "               not counted.\n"
                "  --frames K   with --animate: frames after frame 0 [one per keyframe]\n"
                "  --fps F      with --animate: frames per second [the keyframe rate]\n"
-               "  --series     with --animate --json: each row's per-frame medians too\n");
+               "  --series     with --animate --json: each row's per-frame medians too\n"
+               "  --incoherent the incoherent-ray benchmark instead: per SCENE two sets of\n"
+               "               rays (diffuse bounces from the camera rays' closest hits,\n"
+               "               random rays inside the scene; fixed seed 7), each traced for\n"
+               "               the closest hit and for any hit by rt_trace_rays on cpu (the\n"
+               "               oracle) and packet (auto path), and by Embree's\n"
+               "               rtcIntersect1/rtcOccluded1 and rtcIntersect16/rtcOccluded16 (16\n"
+               "               consecutive rays per call) where this build has Embree (else\n"
+               "               the output says why its rows are absent), same thread count;\n"
+               "               min and median ms and Mrays/s over N rounds after a warm-up\n"
+               "               round (interleaved), speed against Embree, packet hits unlike\n"
+               "               the oracle's; then Whitted frames (W x H) on packet and cpu\n"
+               "               (--no-render: none). With --json an \"incoherent\" array of\n"
+               "               {scene, rays, query, engine, path, ms_min, ms_median,\n"
+               "               mrays_min, mrays_median, ...} and a \"whitted\" array per scene.\n"
+               "  --rays N     rays per set [1000000]\n");
 }
 
 /* The triangles of every mesh: boxes, and positions/indices for Embree. */
@@ -586,8 +605,9 @@ static int parse_int(const char *s, int lo, int hi, int *out) {
 }
 
 int cmd_bench(int argc, char **argv) {
-    bench_args a = {0,  5, 0, isatty(2), 1, 1024, 576, RT_DEVICE_MATH_AUTO, RT_DENORMALS_PRESERVE,
-                    -1, 0, 0, 0,         0, 0.0};
+    bench_args a = {
+        0, 5, 0, isatty(2), 1,   1024, 576, RT_DEVICE_MATH_AUTO, RT_DENORMALS_PRESERVE, -1,
+        0, 0, 0, 0,         0.0, 0,    0};
     const char **scenes = calloc((size_t)argc, sizeof *scenes);
     int n_scenes = 0;
     if (!scenes) return 2;
@@ -609,6 +629,15 @@ int cmd_bench(int argc, char **argv) {
                 return 2;
             }
             a.accel = (int)acc;
+            i++;
+        } else if (!strcmp(s, "--incoherent")) {
+            a.incoherent = 1;
+        } else if (!strcmp(s, "--rays")) {
+            if (i + 1 >= argc || !parse_int(argv[i + 1], 1, 100000000, &a.rays)) {
+                fprintf(stderr, "rtcl bench: --rays needs a number from 1 to 100000000\n");
+                free(scenes);
+                return 2;
+            }
             i++;
         } else if (!strcmp(s, "--verbose")) {
             a.verbose = 1;
@@ -662,7 +691,9 @@ int cmd_bench(int argc, char **argv) {
     }
     /* Options of one mode given to the other would be ignored: say so. */
     const char *odd = NULL;
-    if (a.animate && a.accel >= 0)
+    if (a.animate && a.incoherent)
+        odd = "--animate and --incoherent are two benchmarks: run one at a time";
+    else if (a.animate && a.accel >= 0)
         odd = "--accel does not apply to --animate (morphing meshes keep BVHs)";
     else if (a.animate && !a.render)
         odd = "--no-render does not apply to --animate (it renders every frame)";
@@ -672,12 +703,33 @@ int cmd_bench(int argc, char **argv) {
             "--device-math and --denormals do not apply to --animate (it runs the packet backend)";
     else if (!a.animate && (a.anim_frames || a.anim_fps || a.anim_series))
         odd = "--frames, --fps and --series need --animate";
+    else if (a.incoherent && a.accel >= 0)
+        odd = "--accel does not apply to --incoherent (it traces the scene's own structures)";
+    else if (a.incoherent &&
+             (a.device_math != RT_DEVICE_MATH_AUTO || a.denormals != RT_DENORMALS_PRESERVE))
+        odd = "--device-math and --denormals do not apply to --incoherent (it runs the CPU "
+              "backends)";
+    else if (a.rays && !a.incoherent)
+        odd = "--rays applies to --incoherent only";
     if (odd) {
         fprintf(stderr, "rtcl bench: %s\n", odd);
         free(scenes);
         return 2;
     }
     if (a.threads <= 0) a.threads = rt_cpu_count();
+    if (a.incoherent) {
+        incoh_setup su = incoh_setup_default();
+        if (a.rays) su.rays = (size_t)a.rays;
+        su.reps = a.reps;
+        su.threads = a.threads;
+        su.width = a.width;
+        su.height = a.height;
+        su.whitted = a.render;
+        su.progress = a.progress ? render_progress : NULL;
+        int rc = incoh_run(scenes, n_scenes, &su, a.json, "rtcl bench");
+        free(scenes);
+        return rc;
+    }
     rt_pool *pool = rt_pool_create(a.threads);
     if (!pool) {
         fprintf(stderr, "rtcl bench: cannot create %d threads\n", a.threads);
