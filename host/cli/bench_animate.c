@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "bench_animate.h"
+#include "json_out.h"
 #include "accel/bvh.h"
 #include "base/clock.h"
 #include "render/renderer_internal.h"
@@ -476,20 +477,6 @@ int bench_animate(const char *path, const bench_anim_setup *su, bench_anim_resul
 
 /* ---- output ------------------------------------------------------------------ */
 
-static void json_string(const char *s) {
-    putchar('"');
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            printf("\\%c", c);
-        else if (c < 0x20)
-            printf("\\u%04x", c);
-        else
-            putchar(c);
-    }
-    putchar('"');
-}
-
 static void json_number(const char *key, double v) {
     if (isfinite(v))
         printf(", \"%s\": %.4f", key, v);
@@ -519,19 +506,19 @@ void bench_anim_print_json(const char *path, const bench_anim_result *res, int s
            res->triangles, res->morph_triangles, res->keyframes, res->frames, res->fps, res->runs);
     if (res->embree_note[0]) {
         printf(", \"embree_missing\": ");
-        json_string(res->embree_note);
+        json_out_string(res->embree_note);
     }
     printf(", \"dynamic\": [");
     double *scratch = malloc(sizeof(double) * (size_t)(res->runs ? res->runs : 1));
     for (int i = 0; i < res->n_rows; i++) {
         const bench_anim_row *r = &res->rows[i];
         printf("%s{\"scene\": ", i ? ", " : "");
-        json_string(path);
+        json_out_string(path);
         printf(", \"engine\": \"%s\", \"policy\": \"%s\"", r->engine, r->policy);
         if (r->lanes) printf(", \"lanes\": %d", r->lanes);
         if (r->error[0]) {
             printf(", \"error\": ");
-            json_string(r->error);
+            json_out_string(r->error);
             putchar('}');
             continue;
         }

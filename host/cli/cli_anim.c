@@ -1,5 +1,6 @@
 /* cli_anim.c - the --update and --stats parts of the dynamic-scene commands. */
 #include "cli_anim.h"
+#include "json_out.h"
 
 #include <stdio.h>
 
@@ -32,22 +33,6 @@ static const char *action_name(rt_update_action a) {
     return "?";
 }
 
-/* A mesh name as a JSON string: quotes, backslashes and control characters
- * escaped. */
-static void json_string(const char *s) {
-    putchar('"');
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            printf("\\%c", c);
-        else if (c < 0x20)
-            printf("\\u%04x", c);
-        else
-            putchar(c);
-    }
-    putchar('"');
-}
-
 void cli_print_update_json(const rt_renderer *renderer, const rt_scene *scene) {
     rt_update_stats u;
     rt_renderer_update_stats(renderer, &u);
@@ -55,7 +40,7 @@ void cli_print_update_json(const rt_renderer *renderer, const rt_scene *scene) {
     for (uint32_t i = 0; i < u.mesh_count; i++) {
         const rt_mesh_update *m = &u.meshes[i];
         printf("%s{\"mesh\": %u, \"name\": ", i ? ", " : "", m->mesh);
-        json_string(m->mesh < scene->mesh_count ? scene->meshes[m->mesh].name : "");
+        json_out_string(m->mesh < scene->mesh_count ? scene->meshes[m->mesh].name : "");
         printf(", \"action\": \"%s\", \"ms\": %.3f, \"sah\": %.4f}", action_name(m->action), m->ms,
                m->sah);
     }

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "bench_animate.h"
+#include "json_out.h"
 #include "bench_render.h"
 #include "cli_util.h"
 #include "incoherent_bench.h"
@@ -338,27 +339,13 @@ static int bench_embree(const bench_args *a, const tri_input *in, row *rows) {
 }
 #endif
 
-static void json_string(const char *s) {
-    putchar('"');
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            printf("\\%c", c);
-        else if (c < 0x20)
-            printf("\\u%04x", c);
-        else
-            putchar(c);
-    }
-    putchar('"');
-}
-
 static void print_json_row(const row *r) {
     printf("{\"builder\": ");
-    json_string(r->builder);
+    json_out_string(r->builder);
     printf(", \"threads\": %d", r->threads);
     if (r->error[0]) {
         printf(", \"ms_min\": null, \"ms_median\": null, \"error\": ");
-        json_string(r->error);
+        json_out_string(r->error);
     } else {
         printf(", \"ms_min\": %.4f, \"ms_median\": %.4f", r->ms_min, r->ms_median);
     }
@@ -375,7 +362,7 @@ static void print_json_row(const row *r) {
 static void print_json(const char *path, const tri_input *in, const bench_args *a, const row *rows,
                        int n_build, int n_rows) {
     printf("{\"scene\": ");
-    json_string(path);
+    json_out_string(path);
     printf(", \"triangles\": %u, \"reps\": %d, \"warmup\": 1, \"build\": [", in->count, a->reps);
     for (int i = 0; i < n_build; i++) {
         if (i) printf(", ");
@@ -401,12 +388,12 @@ static void print_json_render(const bench_args *a, const render_row *rows, int n
     for (int i = 0; i < n; i++) {
         const render_row *r = &rows[i];
         printf("%s{\"backend\": ", i ? ", " : "");
-        json_string(r->backend);
+        json_out_string(r->backend);
         printf(", \"threads\": %d", r->threads);
         if (r->lanes) printf(", \"lanes\": %d", r->lanes);
         if (r->error[0]) {
             printf(", \"ms_min\": null, \"ms_median\": null, \"error\": ");
-            json_string(r->error);
+            json_out_string(r->error);
             putchar('}');
             continue;
         }
@@ -584,7 +571,7 @@ static int animate_scene(const char *path, const bench_args *a) {
     }
     if (a->json) {
         printf("{\"scene\": ");
-        json_string(path);
+        json_out_string(path);
         printf(", \"threads\": %d, \"width\": %d, \"height\": %d", a->threads, a->width, a->height);
         bench_anim_print_json(path, &res, a->anim_series);
         printf("}\n");

@@ -1,5 +1,6 @@
 /* incoherent_bench.c - the incoherent-ray benchmark (incoherent_bench.h). */
 #include "incoherent_bench.h"
+#include "json_out.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -315,20 +316,6 @@ static const char *const old_secondary_note =
     "the packet backend with secondary rays one by one through the oracle (before issue 20) "
     "is no longer selectable; docs/BENCHMARKS.md records its frame times";
 
-static void json_string(const char *s) {
-    putchar('"');
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            printf("\\%c", c);
-        else if (c < 0x20)
-            printf("\\u%04x", c);
-        else
-            putchar(c);
-    }
-    putchar('"');
-}
-
 /* Speed of r against Embree's row of the same rays and query (above 1: r is
  * faster), at the min and at the median; 0 when there is no such row. */
 static int ratio(const incoh_result *res, const incoh_row *r, int lanes, double *min,
@@ -344,14 +331,14 @@ static int ratio(const incoh_result *res, const incoh_row *r, int lanes, double 
 
 static void print_json(const char *path, const incoh_setup *su, const incoh_result *res) {
     printf("{\"scene\": ");
-    json_string(path);
+    json_out_string(path);
     printf(", \"triangles\": %u, \"rays_per_set\": %zu, \"seed\": %u, \"reps\": %d, "
            "\"warmup\": 1, \"threads\": %d, \"incoherent\": [",
            res->triangles, su->rays, su->seed, su->reps, su->threads);
     for (int i = 0; i < res->n_rows; i++) {
         const incoh_row *r = &res->rows[i];
         printf("%s{\"scene\": ", i ? ", " : "");
-        json_string(path);
+        json_out_string(path);
         printf(", \"rays\": \"%s\", \"query\": \"%s\", \"engine\": \"%s\", \"path\": \"%s\", "
                "\"ms_min\": %.4f, \"ms_median\": %.4f, \"mrays_min\": %.4f, "
                "\"mrays_median\": %.4f",
@@ -368,7 +355,7 @@ static void print_json(const char *path, const incoh_setup *su, const incoh_resu
     putchar(']');
     if (res->embree_absent[0]) {
         printf(", \"embree_absent\": ");
-        json_string(res->embree_absent);
+        json_out_string(res->embree_absent);
     }
     if (su->whitted) {
         printf(", \"whitted_width\": %d, \"whitted_height\": %d, \"whitted\": [", su->width,
@@ -383,10 +370,10 @@ static void print_json(const char *path, const incoh_setup *su, const incoh_resu
         putchar(']');
         if (res->whitted_error[0]) {
             printf(", \"whitted_error\": ");
-            json_string(res->whitted_error);
+            json_out_string(res->whitted_error);
         }
         printf(", \"whitted_packet_oracle_secondary\": ");
-        json_string(old_secondary_note);
+        json_out_string(old_secondary_note);
     }
     printf("}\n");
 }
