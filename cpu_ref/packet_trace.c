@@ -320,27 +320,38 @@ static inline uint32_t pk_ia_children(const rt_pk_node *n, const pk_geom *p, flo
 
 /* ---- box test: rt_box_test on the lanes of group g ------------------------ */
 
+/* rt_slab on the lanes of group g, axis k: the planes a (entered) and b
+ * (left) narrow [*lo, *hi]. */
+static inline void pk_slab(rt_vf a, rt_vf b, const pk_geom *p, int k, int g, rt_vf *lo, rt_vf *hi) {
+    *lo = rt_vmax_of((a - p->org[k][g]) * p->inv[k][g], *lo);
+    *hi = rt_vmin_of((b - p->org[k][g]) * p->inv[k][g], *hi);
+}
+
+/* The box [mn, mx] on axis k of group g: rt_slab with the planes ordered by
+ * each lane's direction. */
+static inline void pk_slab_box(float mn, float mx, const pk_geom *p, int k, int g, rt_vf *lo,
+                               rt_vf *hi) {
+    const rt_vf vmn = rt_vsplat(mn), vmx = rt_vsplat(mx);
+    pk_slab(rt_vsel(p->neg[k][g], vmx, vmn), rt_vsel(p->neg[k][g], vmn, vmx), p, k, g, lo, hi);
+}
+
+/* rt_slab_end's far scale (Ize) per lane. */
+static inline rt_vf pk_far(rt_vf hi) {
+    return hi * rt_vsel(hi < rt_vsplat(0.0f), rt_vsplat(RT_BOX_FAR_SCALE_NEG),
+                        rt_vsplat(RT_BOX_FAR_SCALE));
+}
+
 static inline uint32_t pk_box(const rt_pk_node *n, int c, const pk_geom *p, const pk_state *st,
                               int g, rt_vf *tnear) {
     rt_vf lo = p->lo[g], hi = rt_vsplat(RT_INF);
     for (int k = 0; k < 3; k++) {
-        rt_vf a, b;
-        if (p->uniform) {
-            a = rt_vsplat(p->neg_axis[k] ? n->bmax[k][c] : n->bmin[k][c]);
-            b = rt_vsplat(p->neg_axis[k] ? n->bmin[k][c] : n->bmax[k][c]);
-        } else {
-            rt_vf bmin = rt_vsplat(n->bmin[k][c]), bmax = rt_vsplat(n->bmax[k][c]);
-            a = rt_vsel(p->neg[k][g], bmax, bmin);
-            b = rt_vsel(p->neg[k][g], bmin, bmax);
-        }
-        rt_vf t0 = (a - p->org[k][g]) * p->inv[k][g];
-        rt_vf t1 = (b - p->org[k][g]) * p->inv[k][g];
-        lo = rt_vmax_of(t0, lo);
-        hi = rt_vmin_of(t1, hi);
+        if (p->uniform) /* every lane enters at the same plane: no select */
+            pk_slab(rt_vsplat(p->neg_axis[k] ? n->bmax[k][c] : n->bmin[k][c]),
+                    rt_vsplat(p->neg_axis[k] ? n->bmin[k][c] : n->bmax[k][c]), p, k, g, &lo, &hi);
+        else
+            pk_slab_box(n->bmin[k][c], n->bmax[k][c], p, k, g, &lo, &hi);
     }
-    hi = hi * rt_vsel(hi < rt_vsplat(0.0f), rt_vsplat(RT_BOX_FAR_SCALE_NEG),
-                      rt_vsplat(RT_BOX_FAR_SCALE));
-    hi = rt_vmin_of(st->hi[g], hi);
+    hi = rt_vmin_of(st->hi[g], pk_far(hi));
     *tnear = lo;
     return rt_vbits(lo <= hi) & st->alive[g];
 }
@@ -402,16 +413,10 @@ static inline uint32_t pk_hit_accepted(const pk_state *st, const pk_geom *p, int
                                        const rt_tri *tri, rt_vf t) {
     const rt_vf hi_t = box_hi(t);
     rt_vf lo = p->lo[g], hi = rt_vsplat(RT_INF);
-    for (int k = 0; k < 3; k++) {
-        const rt_vf mn = rt_vsplat(rt_min3(tri->v0[k], tri->v1[k], tri->v2[k]));
-        const rt_vf mx = rt_vsplat(rt_max3(tri->v0[k], tri->v1[k], tri->v2[k]));
-        const rt_vf a = rt_vsel(p->neg[k][g], mx, mn), b = rt_vsel(p->neg[k][g], mn, mx);
-        lo = rt_vmax_of((a - p->org[k][g]) * p->inv[k][g], lo);
-        hi = rt_vmin_of((b - p->org[k][g]) * p->inv[k][g], hi);
-    }
-    hi = hi * rt_vsel(hi < rt_vsplat(0.0f), rt_vsplat(RT_BOX_FAR_SCALE_NEG),
-                      rt_vsplat(RT_BOX_FAR_SCALE));
-    hi = rt_vmin_of(hi_t, hi);
+    for (int k = 0; k < 3; k++)
+        pk_slab_box(rt_min3(tri->v0[k], tri->v1[k], tri->v2[k]),
+                    rt_max3(tri->v0[k], tri->v1[k], tri->v2[k]), p, k, g, &lo, &hi);
+    hi = rt_vmin_of(hi_t, pk_far(hi));
     return rt_vbits((lo <= hi) & ~(hi_t < st->inst_lo[g])) & st->inst_ok[g];
 }
 
@@ -822,16 +827,9 @@ static pk_groups pk_inst_enter(pk_state *st, const pk_geom *p, const rt_instance
             continue;
         }
         rt_vf lo = p->lo[g], hi = rt_vsplat(RT_INF);
-        for (int k = 0; k < 3; k++) {
-            const rt_vf a = rt_vsel(p->neg[k][g], rt_vsplat(in->bmax[k]), rt_vsplat(in->bmin[k]));
-            const rt_vf b = rt_vsel(p->neg[k][g], rt_vsplat(in->bmin[k]), rt_vsplat(in->bmax[k]));
-            lo = rt_vmax_of((a - p->org[k][g]) * p->inv[k][g], lo);
-            hi = rt_vmin_of((b - p->org[k][g]) * p->inv[k][g], hi);
-        }
-        hi = hi * rt_vsel(hi < rt_vsplat(0.0f), rt_vsplat(RT_BOX_FAR_SCALE_NEG),
-                          rt_vsplat(RT_BOX_FAR_SCALE));
+        for (int k = 0; k < 3; k++) pk_slab_box(in->bmin[k], in->bmax[k], p, k, g, &lo, &hi);
         st->inst_lo[g] = lo;
-        st->inst_ok[g] = rt_vbits(lo <= hi);
+        st->inst_ok[g] = rt_vbits(lo <= pk_far(hi));
         if (st->inst_ok[g] & st->alive[g]) out |= 1u << g;
     }
     return out;

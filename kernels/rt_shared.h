@@ -316,16 +316,23 @@ RT_FN int rt_slab_end(float lo, float hi, float tmax, float *tnear) {
     return lo <= hi;
 }
 
-/* Tests the box against [tmin, tmax]; *tnear is the entry distance. A 0 * inf
- * (origin on a slab plane, direction parallel to it) gives NaN, which the
- * comparisons skip, keeping the test conservative. */
-RT_FN int rt_box_test(RT_GLOBAL const rt_node *n, const rt_ray_d *r, const rt_ray_pre *p,
-                      float tmin, float tmax, float *tnear) {
+/* Tests the box [bmin, bmax] against [tmin, tmax]; *tnear is the entry
+ * distance. A 0 * inf (origin on a slab plane, direction parallel to it)
+ * gives NaN, which the comparisons skip, keeping the test conservative. */
+RT_FN int rt_box_test_bounds(RT_GLOBAL const float *bmin, RT_GLOBAL const float *bmax,
+                             const rt_ray_d *r, const rt_ray_pre *p, float tmin, float tmax,
+                             float *tnear) {
     float lo = tmin, hi = RT_INF;
     for (int i = 0; i < 3; i++)
-        rt_slab(p->sign[i] ? n->bmax[i] : n->bmin[i], p->sign[i] ? n->bmin[i] : n->bmax[i],
-                r->org[i], p->inv[i], &lo, &hi);
+        rt_slab(p->sign[i] ? bmax[i] : bmin[i], p->sign[i] ? bmin[i] : bmax[i], r->org[i],
+                p->inv[i], &lo, &hi);
     return rt_slab_end(lo, hi, tmax, tnear);
+}
+
+/* rt_box_test_bounds on a node's box. */
+RT_FN int rt_box_test(RT_GLOBAL const rt_node *n, const rt_ray_d *r, const rt_ray_pre *p,
+                      float tmin, float tmax, float *tnear) {
+    return rt_box_test_bounds(n->bmin, n->bmax, r, p, tmin, tmax, tnear);
 }
 
 /* ---- ray/triangle tests --------------------------------------------------- */
@@ -519,11 +526,7 @@ RT_FN float rt_box_hi(float tmax) {
  * instance then has no acceptable hit). */
 RT_FN int rt_inst_enter(RT_GLOBAL const rt_instance *in, const rt_ray_d *r, const rt_ray_pre *p,
                         float *inst_lo) {
-    float lo = rt_box_lo(r->tmin), hi = RT_INF;
-    for (int i = 0; i < 3; i++)
-        rt_slab(p->sign[i] ? in->bmax[i] : in->bmin[i], p->sign[i] ? in->bmin[i] : in->bmax[i],
-                r->org[i], p->inv[i], &lo, &hi);
-    return rt_slab_end(lo, hi, RT_INF, inst_lo);
+    return rt_box_test_bounds(in->bmin, in->bmax, r, p, rt_box_lo(r->tmin), RT_INF, inst_lo);
 }
 
 RT_FN float rt_min3(float a, float b, float c) {
