@@ -321,27 +321,14 @@ static void check_uploads(void) {
  * below the smallest normal float, so the denormal policy decides many bits
  * of t. */
 static rt_scene *denormal_scene(void) {
-    rt_scene *s = NULL;
-    uint32_t mesh, mat, obj;
-    rt_material m = rt_material_default();
-    CHECK(rt_scene_create(&s) == RT_OK);
-    if (!s) return NULL;
-    CHECK(rt_mesh_create(s, &mesh) == RT_OK);
     enum { TRIS = 200 };
     float pos[9 * TRIS];
-    uint32_t idx[3 * TRIS];
-    for (uint32_t i = 0; i < 3 * TRIS; i++) idx[i] = i;
     uint32_t seed = 12345u;
     for (int i = 0; i < 9 * TRIS; i++) {
         seed = seed * 1664525u + 1013904223u;
         pos[i] = (float)(seed >> 8) * (1e-13f / 16777216.0f);
     }
-    CHECK(rt_mesh_add_triangles(s, mesh, pos, NULL, 3 * TRIS, idx, TRIS) == RT_OK);
-    CHECK(rt_material_add(s, &m, &mat) == RT_OK);
-    CHECK(rt_object_create(s, mat, &obj) == RT_OK);
-    CHECK(rt_object_add_mesh(s, obj, mesh) == RT_OK);
-    CHECK(rt_scene_commit(s) == RT_OK);
-    return s;
+    return test_soup_scene(pos, TRIS);
 }
 
 static rt_renderer *flushing(const char *backend) {
@@ -613,31 +600,19 @@ static void check_soft_math(void) {
  * differed there. */
 static rt_scene *slab_scene(int tied) {
     enum { TRIS = 3000 };
-    rt_scene *s = NULL;
-    uint32_t mesh, mat, obj;
-    rt_material m = rt_material_default();
-    CHECK(rt_scene_create(&s) == RT_OK);
-    if (!s) return NULL;
-    CHECK(rt_mesh_create(s, &mesh) == RT_OK);
     float *pos = malloc(sizeof(float) * 9 * TRIS);
-    uint32_t *idx = malloc(sizeof(uint32_t) * 3 * TRIS);
-    CHECK(pos && idx);
+    CHECK(pos != NULL);
+    if (!pos) return NULL;
     float x = 1.0f;
-    for (int i = 0; pos && idx && i < TRIS; i++, x *= 0.995f) {
+    for (int i = 0; i < TRIS; i++, x *= 0.995f) {
         /* tied: every triangle in the plane x = 0, sizes 0.01 .. 0.02, so
          * that each ray has hundreds of hits at exactly one t. */
         float px = tied ? 0.0f : x, w = tied ? 0.01f + 0.01f * (float)i / TRIS : 0.01f;
         const float v[9] = {px, 0.0f, 0.0f, px, w, 0.0f, px, 0.0f, w};
         memcpy(pos + 9 * i, v, sizeof v);
-        for (int k = 0; k < 3; k++) idx[3 * i + k] = (uint32_t)(3 * i + k);
     }
-    if (pos && idx) CHECK(rt_mesh_add_triangles(s, mesh, pos, NULL, 3 * TRIS, idx, TRIS) == RT_OK);
+    rt_scene *s = test_soup_scene(pos, TRIS);
     free(pos);
-    free(idx);
-    CHECK(rt_material_add(s, &m, &mat) == RT_OK);
-    CHECK(rt_object_create(s, mat, &obj) == RT_OK);
-    CHECK(rt_object_add_mesh(s, obj, mesh) == RT_OK);
-    CHECK(rt_scene_commit(s) == RT_OK);
     return s;
 }
 
