@@ -10,15 +10,14 @@
 #include "accel/kd_internal.h"
 
 #include <math.h>
-#include <stdatomic.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "base/error.h"
 #include "base/thread_pool.h"
 
-#define KD_TASK_DEPTH 5    /* at most 32 tasks */
-#define KD_TASK_MIN   1024 /* smaller subtrees are not worth a task */
+#define KD_TASK_MIN 1024 /* smaller subtrees are not worth a task */
 
 rt_kd_options rt_kd_options_default(void) {
     rt_kd_options o;
@@ -99,159 +98,248 @@ void kd_out_free(kd_out *o) {
 
 /* ---- the recursion ------------------------------------------------------------ */
 
+/* A subtree built by one worker into its own buffer; its placeholders name
+ * the tasks of subtrees split off from it. */
 typedef struct kd_task {
     kd_node_in in;
     kd_out out;
-    int oom;
+    uint64_t nodes, prims; /* the subtree's, placeholders expanded (assemble) */
 } kd_task;
 
-typedef struct kd_tasks {
-    kd_task *t;
+/* The parallel build: a stack of tasks waiting and every task made, shared
+ * by the pool's workers. The numbering of the tasks depends on timing; the
+ * tree does not (assemble follows the placeholders). */
+typedef struct kd_sched {
+    const kd_ctx *c;
+    const kd_finder *f;
+    pthread_mutex_t lock;
+    pthread_cond_t wake;
+    kd_task **all; /* by task number */
     uint32_t count, cap;
+    uint32_t *waiting; /* task numbers not taken yet */
+    uint32_t waiting_count;
+    uint32_t busy; /* workers inside a task */
     int oom;
-} kd_tasks;
+} kd_sched;
 
 static void node_free(kd_node_in *in) {
     free(in->data);
     in->data = NULL;
 }
 
-/* Builds the subtree of in into o; with tasks, nodes at KD_TASK_DEPTH
- * become tasks. Frees in's data. */
-static void build_rec(const kd_ctx *c, const kd_finder *f, kd_node_in *in, kd_scratch *w, kd_out *o,
-                      kd_tasks *tasks) {
-    if (o->oom) {
-        node_free(in);
-        return;
-    }
-    if (tasks && in->depth == KD_TASK_DEPTH && in->tris >= KD_TASK_MIN) {
-        if (tasks->count == tasks->cap) {
-            uint32_t cap = tasks->cap ? 2 * tasks->cap : 32;
-            kd_task *t = realloc(tasks->t, sizeof(kd_task) * cap);
-            if (!t) {
-                o->oom = 1;
-                node_free(in);
-                return;
-            }
-            tasks->t = t;
-            tasks->cap = cap;
+/* Makes in a task (taking its data) and returns its number; UINT32_MAX when
+ * out of memory (in's data freed). */
+static uint32_t sched_push(kd_sched *s, kd_node_in *in) {
+    kd_task *t = calloc(1, sizeof *t);
+    uint32_t id = UINT32_MAX;
+    pthread_mutex_lock(&s->lock);
+    if (t && s->count == s->cap) {
+        uint32_t cap = s->cap ? 2 * s->cap : 64;
+        kd_task **a = realloc(s->all, sizeof(kd_task *) * cap);
+        uint32_t *q = a ? realloc(s->waiting, sizeof(uint32_t) * cap) : NULL;
+        if (a) s->all = a;
+        if (q) {
+            s->waiting = q;
+            s->cap = cap;
         }
-        kd_task *t = &tasks->t[tasks->count];
-        memset(t, 0, sizeof *t);
+    }
+    if (t && s->count < s->cap) {
         t->in = *in;
         in->data = NULL;
-        kd_out_placeholder(o, tasks->count++);
-        return;
+        id = s->count++;
+        s->all[id] = t;
+        s->waiting[s->waiting_count++] = id;
+        pthread_cond_signal(&s->wake);
     }
-    kd_split s;
-    s.cost = INFINITY;
-    if (in->tris && in->depth < c->max_depth) f->find(c, in, &s);
-    /* SAH termination: split only when it is cheaper than the leaf. */
-    if (!(s.cost < (double)c->opt.cost_intersect * (double)in->tris)) {
-        uint32_t n = f->leaf(c, in, w);
-        if (n == UINT32_MAX)
-            o->oom = 1;
-        else
-            kd_out_leaf(o, w->list, n);
+    pthread_mutex_unlock(&s->lock);
+    if (id == UINT32_MAX) {
+        free(t);
         node_free(in);
-        return;
     }
-    kd_node_in l, r;
-    if (!f->split(c, in, &s, w, &l, &r)) {
-        o->oom = 1;
-        return;
-    }
-    uint32_t inner = kd_out_inner(o, s.axis, s.pos);
-    build_rec(c, f, &l, w, o, tasks);
-    kd_out_set_right(o, inner, o->node_count);
-    build_rec(c, f, &r, w, o, tasks);
+    return id;
 }
 
-typedef struct kd_job {
-    const kd_ctx *c;
-    const kd_finder *f;
-    kd_tasks *tasks;
-    atomic_uint next;
-} kd_job;
+/* Builds the subtree of in into o and frees in's data. With s, a right
+ * child of at least KD_TASK_MIN triangles becomes a task (a placeholder
+ * here) for an idle worker to take. */
+static void build_rec(const kd_ctx *c, const kd_finder *f, kd_node_in *in, kd_scratch *w, kd_out *o,
+                      kd_sched *s) {
+    for (;;) {
+        if (o->oom) {
+            node_free(in);
+            return;
+        }
+        kd_split sp;
+        sp.cost = INFINITY;
+        if (in->tris && in->depth < c->max_depth) f->find(c, in, &sp);
+        /* SAH termination: split only when it is cheaper than the leaf. */
+        if (!(sp.cost < (double)c->opt.cost_intersect * (double)in->tris)) {
+            uint32_t n = f->leaf(c, in, w);
+            if (n == UINT32_MAX)
+                o->oom = 1;
+            else
+                kd_out_leaf(o, w->list, n);
+            node_free(in);
+            return;
+        }
+        kd_node_in l, r;
+        if (!f->split(c, in, &sp, w, &l, &r)) {
+            o->oom = 1;
+            return;
+        }
+        uint32_t inner = kd_out_inner(o, sp.axis, sp.pos);
+        if (s && r.tris >= KD_TASK_MIN) {
+            build_rec(c, f, &l, w, o, s);
+            kd_out_set_right(o, inner, o->node_count);
+            uint32_t id = sched_push(s, &r);
+            if (id == UINT32_MAX)
+                o->oom = 1;
+            else
+                kd_out_placeholder(o, id);
+            return;
+        }
+        build_rec(c, f, &l, w, o, s);
+        kd_out_set_right(o, inner, o->node_count);
+        /* The right child in this frame: no recursion on the longer side. */
+        *in = r;
+    }
+}
 
 static void run_tasks(void *ctx, int worker, int workers) {
     (void)worker;
     (void)workers;
-    kd_job *j = ctx;
-    kd_scratch w = {calloc(j->c->tri_total ? j->c->tri_total : 1, 1), NULL, 0};
+    kd_sched *s = ctx;
+    kd_scratch w = {calloc(s->c->tri_total ? s->c->tri_total : 1, 1), NULL, 0};
+    pthread_mutex_lock(&s->lock);
     for (;;) {
-        uint32_t i = atomic_fetch_add(&j->next, 1u);
-        if (i >= j->tasks->count) break;
-        kd_task *t = &j->tasks->t[i];
-        if (!w.flags) {
-            t->oom = 1;
-            node_free(&t->in);
-            continue;
-        }
-        build_rec(j->c, j->f, &t->in, &w, &t->out, NULL);
-        t->oom = t->out.oom;
+        while (!s->waiting_count && s->busy) pthread_cond_wait(&s->wake, &s->lock);
+        if (!s->waiting_count) break;
+        kd_task *t = s->all[s->waiting[--s->waiting_count]];
+        s->busy++;
+        pthread_mutex_unlock(&s->lock);
+        if (w.flags)
+            build_rec(s->c, s->f, &t->in, &w, &t->out, s);
+        else
+            t->out.oom = 1;
+        node_free(&t->in);
+        pthread_mutex_lock(&s->lock);
+        s->oom |= t->out.oom;
+        /* The last busy worker with nothing waiting ends everyone's loop. */
+        if (--s->busy == 0 && !s->waiting_count) pthread_cond_broadcast(&s->wake);
     }
+    pthread_mutex_unlock(&s->lock);
     free(w.flags);
     free(w.list);
 }
 
-/* Splices the tasks' subtrees into the placeholders of top, depth-first. */
-static int assemble(const kd_out *top, const kd_tasks *tasks, rt_kd *out) {
-    uint32_t n = top->node_count;
-    uint64_t nodes = 0, prims = top->prim_count;
-    uint32_t *at = malloc(sizeof(uint32_t) * ((size_t)n + 1)); /* new index of top's nodes */
-    if (!at) return 0;
-    for (uint32_t i = 0; i < n; i++) {
-        at[i] = (uint32_t)nodes;
-        const rt_kd_node *d = &top->nodes[i];
+/* Sets the nodes and entries of task id's subtree, placeholders expanded,
+ * and of the subtrees below it. */
+static void task_totals(const kd_sched *s, uint32_t id) {
+    kd_task *t = s->all[id];
+    t->nodes = 0;
+    t->prims = t->out.prim_count;
+    for (uint32_t i = 0; i < t->out.node_count; i++) {
+        const rt_kd_node *d = &t->out.nodes[i];
         if (d->b == KD_PLACEHOLDER) {
-            nodes += tasks->t[d->a].out.node_count;
-            prims += tasks->t[d->a].out.prim_count;
+            task_totals(s, d->a);
+            t->nodes += s->all[d->a]->nodes;
+            t->prims += s->all[d->a]->prims;
         } else {
-            nodes++;
+            t->nodes++;
         }
     }
-    if (nodes >= (1u << 30) || prims >= (1u << 30)) {
-        free(at);
-        return 0;
-    }
-    out->nodes = malloc(sizeof(rt_kd_node) * (nodes + 1));
-    out->prims = malloc(sizeof(uint32_t) * (prims + 1));
-    if (!out->nodes || !out->prims) {
-        free(at);
-        return 0;
-    }
-    uint32_t pn = 0;
+}
+
+/* Writes task id's subtree to out->nodes + base, depth-first, its leaves'
+ * entries from out->prims + *pn on (task_totals done). Returns 0 when out
+ * of memory. */
+static int place(const kd_sched *s, uint32_t id, uint32_t base, uint32_t *pn, rt_kd *out) {
+    const kd_out *o = &s->all[id]->out;
+    uint32_t n = o->node_count;
+    uint32_t *at = malloc(sizeof(uint32_t) * ((size_t)n + 1)); /* new index of o's nodes */
+    if (!at) return 0;
+    uint32_t next = base;
     for (uint32_t i = 0; i < n; i++) {
-        const rt_kd_node *d = &top->nodes[i];
+        at[i] = next;
+        if (o->nodes[i].b == KD_PLACEHOLDER)
+            next += (uint32_t)s->all[o->nodes[i].a]->nodes;
+        else
+            next++;
+    }
+    int ok = 1;
+    for (uint32_t i = 0; i < n && ok; i++) {
+        const rt_kd_node *d = &o->nodes[i];
         rt_kd_node *dst = out->nodes + at[i];
         if (d->b == KD_PLACEHOLDER) {
-            const kd_out *s = &tasks->t[d->a].out;
-            for (uint32_t k = 0; k < s->node_count; k++) {
-                rt_kd_node x = s->nodes[k];
-                if ((x.b & 3u) == RT_KD_LEAF)
-                    x.a += pn;
-                else
-                    x.b = (((x.b >> 2) + at[i]) << 2) | (x.b & 3u);
-                dst[k] = x;
-            }
-            if (s->prim_count) memcpy(out->prims + pn, s->prims, sizeof(uint32_t) * s->prim_count);
-            pn += s->prim_count;
+            ok = place(s, d->a, at[i], pn, out);
         } else if ((d->b & 3u) == RT_KD_LEAF) {
             uint32_t cnt = d->b >> 2;
-            if (cnt) memcpy(out->prims + pn, top->prims + d->a, sizeof(uint32_t) * cnt);
-            dst->a = pn;
+            if (cnt) memcpy(out->prims + *pn, o->prims + d->a, sizeof(uint32_t) * cnt);
+            dst->a = *pn;
             dst->b = d->b;
-            pn += cnt;
+            *pn += cnt;
         } else {
             dst->a = d->a;
             dst->b = (at[d->b >> 2] << 2) | (d->b & 3u);
         }
     }
+    free(at);
+    return ok;
+}
+
+/* Splices the tasks' subtrees into their placeholders from task 0 (the
+ * root) on. */
+static int assemble(const kd_sched *s, rt_kd *out) {
+    task_totals(s, 0);
+    uint64_t nodes = s->all[0]->nodes, prims = s->all[0]->prims;
+    if (nodes >= (1u << 30) || prims >= (1u << 30)) return 0;
+    out->nodes = malloc(sizeof(rt_kd_node) * (nodes + 1));
+    out->prims = malloc(sizeof(uint32_t) * (prims + 1));
+    if (!out->nodes || !out->prims) return 0;
+    uint32_t pn = 0;
+    if (!place(s, 0, 0, &pn, out)) return 0;
     out->node_count = (uint32_t)nodes;
     out->prim_count = pn;
-    free(at);
     return 1;
+}
+
+/* Builds the tree of root into out: on the calling thread, or on pool's
+ * workers from one stack of subtree tasks. Returns 0 when out of memory. */
+static int build_tree(const kd_ctx *c, const kd_finder *f, kd_node_in *root, kd_scratch *w,
+                      rt_pool *pool, rt_kd *out) {
+    if (!pool || rt_pool_size(pool) < 2) {
+        kd_out o;
+        memset(&o, 0, sizeof o);
+        build_rec(c, f, root, w, &o, NULL);
+        if (o.oom || o.node_count >= (1u << 30) || o.prim_count >= (1u << 30)) {
+            kd_out_free(&o);
+            return 0;
+        }
+        out->nodes = o.nodes;
+        out->node_count = o.node_count;
+        out->prims = o.prims ? o.prims : malloc(sizeof(uint32_t));
+        out->prim_count = o.prim_count;
+        return out->prims != NULL;
+    }
+    kd_sched s;
+    memset(&s, 0, sizeof s);
+    s.c = c;
+    s.f = f;
+    pthread_mutex_init(&s.lock, NULL);
+    pthread_cond_init(&s.wake, NULL);
+    int ok = sched_push(&s, root) == 0;
+    if (ok) rt_pool_run(pool, run_tasks, &s);
+    ok = ok && !s.oom && assemble(&s, out);
+    for (uint32_t i = 0; i < s.count; i++) {
+        node_free(&s.all[i]->in);
+        kd_out_free(&s.all[i]->out);
+        free(s.all[i]);
+    }
+    free(s.all);
+    free(s.waiting);
+    pthread_mutex_destroy(&s.lock);
+    pthread_cond_destroy(&s.wake);
+    return ok;
 }
 
 static int finite_tri(const kd_tri *t) {
@@ -294,6 +382,11 @@ rt_status rt_kd_build(const float *positions, uint32_t vertex_count, const uint3
         return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "kd-tree options out of range");
     if (triangle_count && (!positions || !indices))
         return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "kd-tree: no triangles given");
+    /* The exact builder's events keep a triangle index in 30 bits; a tree
+     * of more entries could not be assembled anyway (below 2^30). */
+    if (triangle_count >= (1u << 30))
+        return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "kd-tree: %u triangles, at most %u",
+                       triangle_count, (1u << 30) - 1u);
     kd_ctx c;
     memset(&c, 0, sizeof c);
     c.opt = opt;
@@ -302,10 +395,6 @@ rt_status rt_kd_build(const float *positions, uint32_t vertex_count, const uint3
     uint32_t *ids = malloc(sizeof(uint32_t) * ((size_t)triangle_count + 1));
     rt_aabb *boxes = malloc(sizeof(rt_aabb) * ((size_t)triangle_count + 1));
     kd_scratch w = {calloc((size_t)triangle_count + 1, 1), NULL, 0};
-    kd_out top;
-    kd_tasks tasks;
-    memset(&top, 0, sizeof top);
-    memset(&tasks, 0, sizeof tasks);
     rt_status st = RT_OK;
     if (!tris || !ids || !boxes || !w.flags) {
         st = rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory building a kd-tree");
@@ -376,29 +465,13 @@ rt_status rt_kd_build(const float *positions, uint32_t vertex_count, const uint3
     }
     free(boxes);
     boxes = NULL;
-    build_rec(&c, f, &root, &w, &top, &tasks);
-    int oom = top.oom;
-    if (!oom && tasks.count) {
-        kd_job job = {&c, f, &tasks, 0};
-        if (pool)
-            rt_pool_run(pool, run_tasks, &job);
-        else
-            run_tasks(&job, 0, 1);
-        for (uint32_t i = 0; i < tasks.count; i++) oom |= tasks.t[i].oom;
-    }
-    if (oom || !assemble(&top, &tasks, out)) {
+    if (!build_tree(&c, f, &root, &w, pool, out)) {
         rt_kd_free(out);
         st = rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory building a kd-tree");
         goto done;
     }
     out->bounds = cell;
 done:
-    for (uint32_t i = 0; i < tasks.count; i++) {
-        node_free(&tasks.t[i].in);
-        kd_out_free(&tasks.t[i].out);
-    }
-    free(tasks.t);
-    kd_out_free(&top);
     free(tris);
     free(ids);
     free(boxes);

@@ -158,4 +158,7 @@ extern const kd_finder kd_finder_binned; /* kd_binned.c */
 /* Grows w->list to hold n entries; 0 when out of memory. */
 int kd_scratch_list(kd_scratch *w, uint32_t n);
 
+/* Sorts v[0..n) ascending (a leaf's entries: insertion sort while short). */
+void kd_sort_u32(uint32_t *v, uint32_t n);
+
 #endif /* RT_KD_INTERNAL_H */
