@@ -78,10 +78,10 @@ static int binned_split(const kd_ctx *c, kd_node_in *in, const kd_split *s, kd_s
         } else if (side == KD_RIGHT) {
             ri[nr++] = it[i];
         } else {
-            kd_item x = it[i];
-            if (kd_clip_box(&c->tris[x.tri], &l->cell, &x.box)) li[nl++] = x;
-            x = it[i];
-            if (kd_clip_box(&c->tris[x.tri], &r->cell, &x.box)) ri[nr++] = x;
+            kd_item x = it[i], y = it[i];
+            int got = kd_clip_pair(&c->tris[x.tri], &in->cell, s->axis, s->pos, &x.box, &y.box);
+            if (got & KD_LEFT) li[nl++] = x;
+            if (got & KD_RIGHT) ri[nr++] = y;
         }
     }
     free(in->data);

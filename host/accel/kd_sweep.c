@@ -49,8 +49,28 @@ static sw_lists *lists_alloc(const size_t cap[3]) {
     return l;
 }
 
+/* The events' order (position as floats compare, then type, then triangle)
+ * as one integer: the position's float order (-0 as +0) above the key. */
+static inline uint64_t ev_order(sw_ev v) {
+    uint32_t u;
+    memcpy(&u, &v.pos, sizeof u);
+    u = (u & 0x7fffffffu) ? u : 0u;
+    u ^= (uint32_t)((int32_t)u >> 31) | 0x80000000u;
+    return (uint64_t)u << 32 | v.key;
+}
+
+/* After every event in ev_order: a NaN position whose order is all ones,
+ * and a key no event has. */
+static inline sw_ev ev_sentinel(void) {
+    uint32_t u = 0x7fffffffu;
+    sw_ev v;
+    memcpy(&v.pos, &u, sizeof u);
+    v.key = 0xffffffffu;
+    return v;
+}
+
 static inline int ev_before(sw_ev a, sw_ev b) {
-    return a.pos < b.pos || (a.pos == b.pos && a.key < b.key);
+    return ev_order(a) < ev_order(b);
 }
 
 /* Sorts e[0..n) by ev_before: insertion sort for short runs, then
@@ -86,30 +106,52 @@ static void ev_sort(sw_ev *e, uint32_t n, sw_ev *tmp) {
     if (src != e) memcpy(e, src, sizeof(sw_ev) * n);
 }
 
-/* Merges two sorted lists into out. out may be a, less the first nb
- * entries (out + nb == a): the output index never passes a's read index. */
-static void merge(const sw_ev *a, uint32_t na, const sw_ev *b, uint32_t nb, sw_ev *out) {
-    uint32_t i = 0, j = 0, o = 0;
-    while (i < na && j < nb) out[o++] = ev_before(b[j], a[i]) ? b[j++] : a[i++];
-    while (i < na) out[o++] = a[i++];
-    while (j < nb) out[o++] = b[j++];
+/* Merges two sorted lists into out, where out + nb == a (in place: the
+ * output index never passes a's read index). a[na] and b[nb] must be
+ * writable: they hold sentinels, so that the loop takes the smaller of two
+ * events without a branch (the lists interleave unpredictably). */
+static void merge(sw_ev *a, uint32_t na, sw_ev *b, uint32_t nb, sw_ev *out) {
+    if (!nb) return; /* out == a */
+    a[na] = b[nb] = ev_sentinel();
+    uint32_t i = 0, j = 0, total = na + nb;
+    uint64_t ka = ev_order(a[0]), kb = ev_order(b[0]);
+    for (uint32_t o = 0; o < total; o++) {
+        uint64_t va, vb;
+        memcpy(&va, &a[i], sizeof va);
+        memcpy(&vb, &b[j], sizeof vb);
+        uint64_t take_b = kb < ka;
+        uint64_t v = va ^ ((va ^ vb) & (0 - take_b));
+        memcpy(&out[o], &v, sizeof v);
+        i += (uint32_t)(take_b ^ 1u);
+        j += (uint32_t)take_b;
+        ka = ev_order(a[i]);
+        kb = ev_order(b[j]);
+    }
 }
 
 /* The offers of one axis, in the sweep's order (kd_offer keeps the earlier
- * of equal offers, so the order is part of the result). */
+ * of equal offers, so the order is part of the result): one per position,
+ * with the events there counted by type (they are consecutive). */
 static void sweep_axis(const kd_ctx *c, const kd_cell *cell, int k, const sw_ev *e, uint32_t m,
                        uint32_t n, kd_split *best) {
+    kd_axis x;
+    kd_axis_init(&x, c, cell, k);
     uint32_t nl = 0, nr = n, i = 0;
     /* A flat cell on this axis can still separate planar triangles from
      * others lying beside them; kd_offer refuses splits without progress. */
     while (i < m) {
         float p = e[i].pos;
+        uint32_t j = i + 1;
+        while (j < m && e[j].pos == p) j++;
         uint32_t pe = 0, pp = 0, ps = 0;
-        while (i < m && e[i].pos == p && (e[i].key >> EV_SHIFT) == EV_END) pe++, i++;
-        while (i < m && e[i].pos == p && (e[i].key >> EV_SHIFT) == EV_PLANAR) pp++, i++;
-        while (i < m && e[i].pos == p && (e[i].key >> EV_SHIFT) == EV_START) ps++, i++;
+        for (; i < j; i++) {
+            uint32_t type = e[i].key >> EV_SHIFT;
+            pe += type == EV_END;
+            pp += type == EV_PLANAR;
+            ps += type == EV_START;
+        }
         nr -= pp + pe;
-        kd_offer(c, cell, k, p, nl, nr, pp, n, best);
+        kd_offer_axis(&x, p, nl, nr, pp, n, best);
         nl += ps + pp;
     }
 }
@@ -183,27 +225,28 @@ static int sweep_split(const kd_ctx *c, kd_node_in *in, const kd_split *s, kd_sc
     uint32_t one_l = nl, one_r = nr;
     /* The straddling triangles, clipped to each child: at most 2 events per
      * axis and side each; cl[side][k] counts them. */
-    sw_ev *clip = malloc(sizeof(sw_ev) * (14 * (size_t)nb + 1));
+    sw_ev *clip = malloc(sizeof(sw_ev) * (14 * (size_t)nb + 7));
     sw_lists *le = NULL, *re = NULL;
     int ok = clip != NULL;
     uint32_t cl[2][3] = {{0, 0, 0}, {0, 0, 0}};
     sw_ev *cb[2][3];
     if (ok) {
         for (int sd = 0; sd < 2; sd++)
-            for (int k = 0; k < 3; k++) cb[sd][k] = clip + (size_t)(3 * sd + k) * 2 * nb;
+            for (int k = 0; k < 3; k++) cb[sd][k] = clip + (size_t)(3 * sd + k) * (2 * nb + 1);
         for (uint32_t j = 0; j < nb; j++) {
             uint32_t t = w->list[j];
-            rt_aabb box;
-            if (kd_clip_box(&c->tris[t], &l->cell, &box)) {
-                for (int k = 0; k < 3; k++) cl[0][k] = box_events(&box, k, t, cb[0][k], cl[0][k]);
+            rt_aabb lb, rb;
+            int got = kd_clip_pair(&c->tris[t], &in->cell, a, pos, &lb, &rb);
+            if (got & KD_LEFT) {
+                for (int k = 0; k < 3; k++) cl[0][k] = box_events(&lb, k, t, cb[0][k], cl[0][k]);
                 nl++;
             }
-            if (kd_clip_box(&c->tris[t], &r->cell, &box)) {
-                for (int k = 0; k < 3; k++) cl[1][k] = box_events(&box, k, t, cb[1][k], cl[1][k]);
+            if (got & KD_RIGHT) {
+                for (int k = 0; k < 3; k++) cl[1][k] = box_events(&rb, k, t, cb[1][k], cl[1][k]);
                 nr++;
             }
         }
-        sw_ev *tmp = clip + 12 * (size_t)nb;
+        sw_ev *tmp = clip + 6 * (2 * (size_t)nb + 1);
         for (int sd = 0; sd < 2; sd++)
             for (int k = 0; k < 3; k++) ev_sort(cb[sd][k], cl[sd][k], tmp);
         /* Room per axis: the one-sided triangles' events (at most two each,
