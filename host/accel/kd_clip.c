@@ -119,26 +119,48 @@ static inline cpoly *clip_axis(cpoly *cur, cpoly *buf, int k, float lo, float hi
     return clip_plane(r, o, k, (double)hi, 0);
 }
 
-/* The rounded box of a clipped polygon within cell; 0 when empty. */
+/* The zero at a bound of axis k (either: the rule is the same): of the
+ * vertices at zero, the last inexact one after the first, else the first. */
+static double zero_bound(const cpoly *a, int k) {
+    double z = 0.0;
+    int found = 0;
+    for (int i = 0; i < a->n; i++) {
+        double x = a->p[i][k];
+        if (x != 0.0) continue;
+        if (!found || !((a->exact[i] >> k) & 1u)) z = x;
+        found = 1;
+    }
+    return z;
+}
+
+/* The rounded box of a clipped polygon within cell; 0 when empty. A bound
+ * is exact when every vertex reaching it is exact there (a vertex's own
+ * coordinate or a plane's), else it is rounded outwards. Without branches
+ * (which vertex bounds a polygon is not predictable): the first vertex
+ * reaching a bound gives its value (of -0 and +0, the first). */
 static int poly_box(const cpoly *a, const rt_aabb *cell, rt_aabb *out) {
     int n = a->n;
     if (!n) return 0;
     for (int k = 0; k < 3; k++) {
         double lo = a->p[0][k], hi = a->p[0][k];
-        int lo_exact = (a->exact[0] >> k) & 1, hi_exact = lo_exact;
         for (int i = 1; i < n; i++) {
             double x = a->p[i][k];
-            int e = (a->exact[i] >> k) & 1;
-            if (x < lo || (x == lo && !e)) {
-                lo = x;
-                lo_exact = e;
-            }
-            if (x > hi || (x == hi && !e)) {
-                hi = x;
-                hi_exact = e;
-            }
+            lo = x < lo ? x : lo;
+            hi = x > hi ? x : hi;
         }
-        float flo = round_down(lo, lo_exact), fhi = round_up(hi, hi_exact);
+        unsigned lo_exact = 1, hi_exact = 1;
+        for (int i = 0; i < n; i++) {
+            double x = a->p[i][k];
+            unsigned e = (a->exact[i] >> k) & 1u;
+            lo_exact &= (x != lo) | e;
+            hi_exact &= (x != hi) | e;
+        }
+        /* A zero bound: its sign as the vertex-by-vertex rule gives it (the
+         * last inexact vertex at the bound, else the first), which the
+         * rounding keeps. */
+        if (lo == 0.0) lo = zero_bound(a, k);
+        if (hi == 0.0) hi = zero_bound(a, k);
+        float flo = round_down(lo, (int)lo_exact), fhi = round_up(hi, (int)hi_exact);
         out->bmin[k] = flo > cell->bmin[k] ? flo : cell->bmin[k];
         out->bmax[k] = fhi < cell->bmax[k] ? fhi : cell->bmax[k];
         if (out->bmin[k] > out->bmax[k]) return 0;
