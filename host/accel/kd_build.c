@@ -209,7 +209,7 @@ static void run_tasks(void *ctx, int worker, int workers) {
     (void)worker;
     (void)workers;
     kd_sched *s = ctx;
-    kd_scratch w = {calloc(s->c->tri_total ? s->c->tri_total : 1, 1), NULL, 0};
+    kd_scratch w = {calloc(s->c->tri_total ? s->c->tri_total : 1, 1), NULL, 0, NULL, 0};
     pthread_mutex_lock(&s->lock);
     for (;;) {
         while (!s->waiting_count && s->busy) pthread_cond_wait(&s->wake, &s->lock);
@@ -228,8 +228,7 @@ static void run_tasks(void *ctx, int worker, int workers) {
         if (--s->busy == 0 && !s->waiting_count) pthread_cond_broadcast(&s->wake);
     }
     pthread_mutex_unlock(&s->lock);
-    free(w.flags);
-    free(w.list);
+    kd_scratch_free(&w);
 }
 
 /* Sets the nodes and entries of task id's subtree, placeholders expanded,
@@ -394,7 +393,7 @@ rt_status rt_kd_build(const float *positions, uint32_t vertex_count, const uint3
     kd_tri *tris = malloc(sizeof(kd_tri) * ((size_t)triangle_count + 1));
     uint32_t *ids = malloc(sizeof(uint32_t) * ((size_t)triangle_count + 1));
     rt_aabb *boxes = malloc(sizeof(rt_aabb) * ((size_t)triangle_count + 1));
-    kd_scratch w = {calloc((size_t)triangle_count + 1, 1), NULL, 0};
+    kd_scratch w = {calloc((size_t)triangle_count + 1, 1), NULL, 0, NULL, 0};
     rt_status st = RT_OK;
     if (!tris || !ids || !boxes || !w.flags) {
         st = rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory building a kd-tree");
@@ -475,7 +474,6 @@ done:
     free(tris);
     free(ids);
     free(boxes);
-    free(w.flags);
-    free(w.list);
+    kd_scratch_free(&w);
     return st;
 }

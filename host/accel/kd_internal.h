@@ -157,11 +157,14 @@ int kd_clip_pair(const kd_tri *t, const rt_aabb *cell, int axis, float pos, rt_a
 
 /* ---- the split finders ----------------------------------------------------------- */
 
-/* Per worker scratch: a flag per triangle (zero between uses) and a list. */
+/* Per worker scratch: a flag per triangle (zero between uses), a list and
+ * a buffer (kept between nodes, so that a split allocates less). */
 typedef struct kd_scratch {
     uint8_t *flags;
     uint32_t *list;
     uint32_t list_cap;
+    void *buf;
+    size_t buf_cap;
 } kd_scratch;
 
 /* A node's input: the cell, the depth, the triangle count and the finder's
@@ -193,8 +196,14 @@ typedef struct kd_finder {
 extern const kd_finder kd_finder_sweep;  /* kd_sweep.c */
 extern const kd_finder kd_finder_binned; /* kd_binned.c */
 
-/* Grows w->list to hold n entries; 0 when out of memory. */
+/* Grows w->list to hold n entries (and a spare one); 0 when out of memory. */
 int kd_scratch_list(kd_scratch *w, uint32_t n);
+
+/* Grows w->buf to hold bytes; 0 when out of memory. */
+int kd_scratch_buf(kd_scratch *w, size_t bytes);
+
+/* Frees what w holds. */
+void kd_scratch_free(kd_scratch *w);
 
 /* Sorts v[0..n) ascending (a leaf's entries: insertion sort while short). */
 void kd_sort_u32(uint32_t *v, uint32_t n);

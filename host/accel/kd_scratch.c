@@ -14,6 +14,28 @@ int kd_scratch_list(kd_scratch *w, uint32_t n) {
     return 1;
 }
 
+int kd_scratch_buf(kd_scratch *w, size_t bytes) {
+    if (bytes <= w->buf_cap) return 1;
+    size_t cap = w->buf_cap ? w->buf_cap : 4096;
+    while (cap < bytes) cap *= 2;
+    void *b = realloc(w->buf, cap);
+    if (!b) return 0;
+    w->buf = b;
+    w->buf_cap = cap;
+    return 1;
+}
+
+void kd_scratch_free(kd_scratch *w) {
+    free(w->flags);
+    free(w->list);
+    free(w->buf);
+    w->flags = NULL;
+    w->list = NULL;
+    w->buf = NULL;
+    w->list_cap = 0;
+    w->buf_cap = 0;
+}
+
 static int u32_cmp(const void *pa, const void *pb) {
     uint32_t a = *(const uint32_t *)pa, b = *(const uint32_t *)pb;
     return a < b ? -1 : a > b;

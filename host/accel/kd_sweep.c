@@ -225,9 +225,9 @@ static int sweep_split(const kd_ctx *c, kd_node_in *in, const kd_split *s, kd_sc
     uint32_t one_l = nl, one_r = nr;
     /* The straddling triangles, clipped to each child: at most 2 events per
      * axis and side each; cl[side][k] counts them. */
-    sw_ev *clip = malloc(sizeof(sw_ev) * (14 * (size_t)nb + 7));
+    int ok = kd_scratch_buf(w, sizeof(sw_ev) * (14 * (size_t)nb + 7));
+    sw_ev *clip = w->buf;
     sw_lists *le = NULL, *re = NULL;
-    int ok = clip != NULL;
     uint32_t cl[2][3] = {{0, 0, 0}, {0, 0, 0}};
     sw_ev *cb[2][3];
     if (ok) {
@@ -292,7 +292,6 @@ static int sweep_split(const kd_ctx *c, kd_node_in *in, const kd_split *s, kd_sc
         r->tris = nr;
     }
     for (uint32_t i = 0; i < ma; i++) side[ea[i].key & EV_TRI] = 0;
-    free(clip);
     free(in->data);
     in->data = NULL;
     if (!ok) {
