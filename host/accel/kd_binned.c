@@ -113,8 +113,9 @@ static uint32_t binned_leaf(const kd_ctx *c, const kd_node_in *in, kd_scratch *w
 }
 
 static int binned_root(const kd_ctx *c, const uint32_t *ids, const rt_aabb *boxes, uint32_t n,
-                       const rt_aabb *cell, kd_node_in *out) {
+                       const rt_aabb *cell, rt_pool *pool, kd_node_in *out) {
     (void)c;
+    (void)pool;
     memset(out, 0, sizeof *out);
     kd_item *it = malloc(sizeof(kd_item) * ((size_t)n + 1));
     if (!it) return 0;

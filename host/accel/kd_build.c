@@ -11,6 +11,7 @@
 
 #include <math.h>
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -85,6 +86,19 @@ void kd_out_leaf(kd_out *o, const uint32_t *tris, uint32_t n) {
 
 void kd_out_placeholder(kd_out *o, uint32_t task) {
     if (!grow_nodes(o)) return;
+    if (o->ph_count == o->ph_cap) {
+        uint32_t cap = o->ph_cap ? 2 * o->ph_cap : 8;
+        uint32_t *ph = realloc(o->ph, sizeof(uint32_t) * 2 * cap);
+        if (!ph) {
+            o->oom = 1;
+            return;
+        }
+        o->ph = ph;
+        o->ph_cap = cap;
+    }
+    o->ph[2 * o->ph_count] = o->node_count;
+    o->ph[2 * o->ph_count + 1] = o->prim_count;
+    o->ph_count++;
     o->nodes[o->node_count].a = task;
     o->nodes[o->node_count].b = KD_PLACEHOLDER;
     o->node_count++;
@@ -93,6 +107,7 @@ void kd_out_placeholder(kd_out *o, uint32_t task) {
 void kd_out_free(kd_out *o) {
     free(o->nodes);
     free(o->prims);
+    free(o->ph);
     memset(o, 0, sizeof *o);
 }
 
@@ -103,7 +118,9 @@ void kd_out_free(kd_out *o) {
 typedef struct kd_task {
     kd_node_in in;
     kd_out out;
-    uint64_t nodes, prims; /* the subtree's, placeholders expanded (assemble) */
+    /* assemble: the subtree's nodes and entries (placeholders expanded) and
+     * the index of its first node and first entry in the tree */
+    uint64_t nodes, prims, nbase, pbase;
 } kd_task;
 
 /* The parallel build: a stack of tasks waiting and every task made, shared
@@ -232,32 +249,46 @@ static void run_tasks(void *ctx, int worker, int workers) {
 }
 
 /* Sets the nodes and entries of task id's subtree, placeholders expanded,
- * and of the subtrees below it. */
+ * and of the subtrees below it (from the placeholders' records). */
 static void task_totals(const kd_sched *s, uint32_t id) {
     kd_task *t = s->all[id];
-    t->nodes = 0;
+    t->nodes = t->out.node_count - t->out.ph_count;
     t->prims = t->out.prim_count;
-    for (uint32_t i = 0; i < t->out.node_count; i++) {
-        const rt_kd_node *d = &t->out.nodes[i];
-        if (d->b == KD_PLACEHOLDER) {
-            task_totals(s, d->a);
-            t->nodes += s->all[d->a]->nodes;
-            t->prims += s->all[d->a]->prims;
-        } else {
-            t->nodes++;
-        }
+    for (uint32_t j = 0; j < t->out.ph_count; j++) {
+        uint32_t child = t->out.nodes[t->out.ph[2 * j]].a;
+        task_totals(s, child);
+        t->nodes += s->all[child]->nodes;
+        t->prims += s->all[child]->prims;
     }
 }
 
-/* Writes task id's subtree to out->nodes + base, depth-first, its leaves'
- * entries from out->prims + *pn on (task_totals done). Returns 0 when out
- * of memory. */
-static int place(const kd_sched *s, uint32_t id, uint32_t base, uint32_t *pn, rt_kd *out) {
-    const kd_out *o = &s->all[id]->out;
+/* Sets where task id's subtree and those below it begin in the tree: a
+ * child after the parent's nodes and entries made before its placeholder,
+ * and after the earlier children's subtrees. */
+static void task_bases(const kd_sched *s, uint32_t id, uint64_t nbase, uint64_t pbase) {
+    kd_task *t = s->all[id];
+    t->nbase = nbase;
+    t->pbase = pbase;
+    uint64_t more_nodes = 0, more_prims = 0;
+    for (uint32_t j = 0; j < t->out.ph_count; j++) {
+        uint32_t at = t->out.ph[2 * j], prims = t->out.ph[2 * j + 1];
+        const kd_task *c = s->all[t->out.nodes[at].a];
+        task_bases(s, t->out.nodes[at].a, nbase + at + more_nodes, pbase + prims + more_prims);
+        more_nodes += c->nodes - 1;
+        more_prims += c->prims;
+    }
+}
+
+/* Writes task id's own nodes and entries to their places in out (task_bases
+ * done); its placeholders' subtrees are other tasks'. Returns 0 when out of
+ * memory. */
+static int place(const kd_sched *s, uint32_t id, rt_kd *out) {
+    const kd_task *t = s->all[id];
+    const kd_out *o = &t->out;
     uint32_t n = o->node_count;
     uint32_t *at = malloc(sizeof(uint32_t) * ((size_t)n + 1)); /* new index of o's nodes */
     if (!at) return 0;
-    uint32_t next = base;
+    uint32_t next = (uint32_t)t->nbase, pn = (uint32_t)t->pbase;
     for (uint32_t i = 0; i < n; i++) {
         at[i] = next;
         if (o->nodes[i].b == KD_PLACEHOLDER)
@@ -265,40 +296,63 @@ static int place(const kd_sched *s, uint32_t id, uint32_t base, uint32_t *pn, rt
         else
             next++;
     }
-    int ok = 1;
-    for (uint32_t i = 0; i < n && ok; i++) {
+    for (uint32_t i = 0; i < n; i++) {
         const rt_kd_node *d = &o->nodes[i];
         rt_kd_node *dst = out->nodes + at[i];
         if (d->b == KD_PLACEHOLDER) {
-            ok = place(s, d->a, at[i], pn, out);
+            pn += (uint32_t)s->all[d->a]->prims;
         } else if ((d->b & 3u) == RT_KD_LEAF) {
             uint32_t cnt = d->b >> 2;
-            if (cnt) memcpy(out->prims + *pn, o->prims + d->a, sizeof(uint32_t) * cnt);
-            dst->a = *pn;
+            if (cnt) memcpy(out->prims + pn, o->prims + d->a, sizeof(uint32_t) * cnt);
+            dst->a = pn;
             dst->b = d->b;
-            *pn += cnt;
+            pn += cnt;
         } else {
             dst->a = d->a;
             dst->b = (at[d->b >> 2] << 2) | (d->b & 3u);
         }
     }
     free(at);
-    return ok;
+    return 1;
+}
+
+typedef struct kd_place_job {
+    const kd_sched *s;
+    rt_kd *out;
+    atomic_uint next;
+    atomic_int failed;
+} kd_place_job;
+
+static void place_tasks(void *ctx, int worker, int workers) {
+    (void)worker;
+    (void)workers;
+    kd_place_job *j = ctx;
+    for (;;) {
+        uint32_t i = atomic_fetch_add(&j->next, 1u);
+        if (i >= j->s->count) break;
+        if (!place(j->s, i, j->out)) atomic_store(&j->failed, 1);
+    }
 }
 
 /* Splices the tasks' subtrees into their placeholders from task 0 (the
- * root) on. */
-static int assemble(const kd_sched *s, rt_kd *out) {
+ * root) on, each task's part copied by a worker of pool. */
+static int assemble(const kd_sched *s, rt_pool *pool, rt_kd *out) {
     task_totals(s, 0);
     uint64_t nodes = s->all[0]->nodes, prims = s->all[0]->prims;
     if (nodes >= (1u << 30) || prims >= (1u << 30)) return 0;
+    task_bases(s, 0, 0, 0);
     out->nodes = malloc(sizeof(rt_kd_node) * (nodes + 1));
     out->prims = malloc(sizeof(uint32_t) * (prims + 1));
     if (!out->nodes || !out->prims) return 0;
-    uint32_t pn = 0;
-    if (!place(s, 0, 0, &pn, out)) return 0;
+    kd_place_job j;
+    j.s = s;
+    j.out = out;
+    atomic_init(&j.next, 0u);
+    atomic_init(&j.failed, 0);
+    rt_pool_run(pool, place_tasks, &j);
+    if (atomic_load(&j.failed)) return 0;
     out->node_count = (uint32_t)nodes;
-    out->prim_count = pn;
+    out->prim_count = (uint32_t)prims;
     return 1;
 }
 
@@ -328,7 +382,7 @@ static int build_tree(const kd_ctx *c, const kd_finder *f, kd_node_in *root, kd_
     pthread_cond_init(&s.wake, NULL);
     int ok = sched_push(&s, root) == 0;
     if (ok) rt_pool_run(pool, run_tasks, &s);
-    ok = ok && !s.oom && assemble(&s, out);
+    ok = ok && !s.oom && assemble(&s, pool, out);
     for (uint32_t i = 0; i < s.count; i++) {
         node_free(&s.all[i]->in);
         kd_out_free(&s.all[i]->out);
@@ -458,7 +512,7 @@ rt_status rt_kd_build(const float *positions, uint32_t vertex_count, const uint3
     }
     const kd_finder *f = opt.builder == RT_KD_BINNED ? &kd_finder_binned : &kd_finder_sweep;
     kd_node_in root;
-    if (!f->root(&c, ids, boxes, n, &cell, &root)) {
+    if (!f->root(&c, ids, boxes, n, &cell, pool, &root)) {
         st = rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory building a kd-tree");
         goto done;
     }

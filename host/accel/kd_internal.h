@@ -32,6 +32,9 @@ typedef struct kd_out {
     uint32_t node_count, node_cap;
     uint32_t *prims;
     uint32_t prim_count, prim_cap;
+    /* per placeholder, in order: its node index and prim_count when made */
+    uint32_t *ph;
+    uint32_t ph_count, ph_cap;
     int oom;
 } kd_out;
 
@@ -188,9 +191,10 @@ typedef struct kd_finder {
      * the count (or UINT32_MAX when out of memory). */
     uint32_t (*leaf)(const kd_ctx *c, const kd_node_in *in, kd_scratch *w);
     /* The root's input from the triangles with area (ids[0..n-1], their
-     * boxes); returns 0 when out of memory. */
+     * boxes), on pool's workers where there are (pool may be NULL); returns
+     * 0 when out of memory. */
     int (*root)(const kd_ctx *c, const uint32_t *ids, const rt_aabb *boxes, uint32_t n,
-                const rt_aabb *cell, kd_node_in *out);
+                const rt_aabb *cell, rt_pool *pool, kd_node_in *out);
 } kd_finder;
 
 extern const kd_finder kd_finder_sweep;  /* kd_sweep.c */

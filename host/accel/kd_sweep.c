@@ -15,6 +15,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/thread_pool.h"
+
 /* Event types in sweep order at one position: ends before planars before
  * starts, so a plane at p sees the triangles ending at p on its left. */
 enum { EV_END = 0, EV_PLANAR = 1, EV_START = 2 };
@@ -322,25 +324,34 @@ static inline uint32_t order_key(float f) {
     return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
 }
 
-/* Stable LSD radix sort of e[0..n) by position (8 bits a pass, passes where
- * every key has the same digit skipped), through tmp. */
-static void radix_by_pos(sw_ev *e, uint32_t n, sw_ev *tmp) {
-    sw_ev *src = e, *dst = tmp;
-    for (int shift = 0; shift < 32; shift += 8) {
-        uint32_t count[256];
-        memset(count, 0, sizeof count);
-        for (uint32_t i = 0; i < n; i++) count[(order_key(src[i].pos) >> shift) & 255u]++;
+/* Stable LSD radix sort of src[0..n) by position, 11 bits a pass (one
+ * pass counts all three digits; a pass where every key has the same digit
+ * is skipped), alternating between src and dst; the result is in e (which
+ * is src or dst). */
+static void radix_by_pos(sw_ev *src, sw_ev *dst, uint32_t n, sw_ev *e) {
+    enum { BITS = 11, BUCKETS = 1 << BITS };
+    static const int shift[3] = {0, BITS, 2 * BITS};
+    uint32_t count[3][BUCKETS];
+    memset(count, 0, sizeof count);
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t key = order_key(src[i].pos);
+        count[0][key & (BUCKETS - 1)]++;
+        count[1][(key >> BITS) & (BUCKETS - 1)]++;
+        count[2][key >> (2 * BITS)]++;
+    }
+    for (int d = 0; d < 3; d++) {
+        uint32_t *c = count[d];
         int trivial = 0;
-        for (int b = 0; b < 256; b++) trivial |= count[b] == n;
-        if (trivial) continue;
         uint32_t sum = 0;
-        for (int b = 0; b < 256; b++) {
-            uint32_t x = count[b];
-            count[b] = sum;
+        for (int b = 0; b < BUCKETS; b++) {
+            uint32_t x = c[b];
+            trivial |= x == n;
+            c[b] = sum;
             sum += x;
         }
+        if (trivial) continue;
         for (uint32_t i = 0; i < n; i++)
-            dst[count[(order_key(src[i].pos) >> shift) & 255u]++] = src[i];
+            dst[c[(order_key(src[i].pos) >> shift[d]) & (BUCKETS - 1)]++] = src[i];
         sw_ev *t = src;
         src = dst;
         dst = t;
@@ -348,35 +359,56 @@ static void radix_by_pos(sw_ev *e, uint32_t n, sw_ev *tmp) {
     if (src != e) memcpy(e, src, sizeof(sw_ev) * n);
 }
 
+/* The root's lists, an axis per worker. */
+typedef struct root_job {
+    const uint32_t *ids;
+    const rt_aabb *boxes;
+    uint32_t n;
+    sw_lists *L;
+    sw_ev *tmp; /* 2 n events per axis */
+} root_job;
+
+static void root_axis(const root_job *j, int k) {
+    /* In (type, triangle) order (ids ascending), in the scratch: the stable
+     * sort by position then gives the events' order. */
+    const rt_aabb *boxes = j->boxes;
+    const uint32_t *ids = j->ids;
+    uint32_t n = j->n, m = 0;
+    sw_ev *e = j->tmp + 2 * (size_t)n * (size_t)k;
+    for (uint32_t i = 0; i < n; i++)
+        if (boxes[i].bmin[k] != boxes[i].bmax[k])
+            e[m++] = (sw_ev){boxes[i].bmax[k], (uint32_t)EV_END << EV_SHIFT | ids[i]};
+    for (uint32_t i = 0; i < n; i++)
+        if (boxes[i].bmin[k] == boxes[i].bmax[k])
+            e[m++] = (sw_ev){boxes[i].bmin[k], (uint32_t)EV_PLANAR << EV_SHIFT | ids[i]};
+    for (uint32_t i = 0; i < n; i++)
+        if (boxes[i].bmin[k] != boxes[i].bmax[k])
+            e[m++] = (sw_ev){boxes[i].bmin[k], (uint32_t)EV_START << EV_SHIFT | ids[i]};
+    radix_by_pos(e, j->L->e[k], m, j->L->e[k]);
+    j->L->n[k] = m;
+}
+
+static void root_run(void *ctx, int worker, int workers) {
+    for (int k = worker; k < 3; k += workers) root_axis(ctx, k);
+}
+
 static int sweep_root(const kd_ctx *c, const uint32_t *ids, const rt_aabb *boxes, uint32_t n,
-                      const rt_aabb *cell, kd_node_in *out) {
+                      const rt_aabb *cell, rt_pool *pool, kd_node_in *out) {
     (void)c;
     memset(out, 0, sizeof *out);
     size_t cap[3] = {2 * (size_t)n, 2 * (size_t)n, 2 * (size_t)n};
     sw_lists *L = lists_alloc(cap);
-    sw_ev *tmp = malloc(sizeof(sw_ev) * (2 * (size_t)n + 1));
+    sw_ev *tmp = malloc(sizeof(sw_ev) * (6 * (size_t)n + 1));
     if (!L || !tmp) {
         free(L);
         free(tmp);
         return 0;
     }
-    for (int k = 0; k < 3; k++) {
-        /* In (type, triangle) order (ids ascending): the stable sort by
-         * position then gives the events' order. */
-        sw_ev *e = L->e[k];
-        uint32_t m = 0;
-        for (uint32_t i = 0; i < n; i++)
-            if (boxes[i].bmin[k] != boxes[i].bmax[k])
-                e[m++] = (sw_ev){boxes[i].bmax[k], (uint32_t)EV_END << EV_SHIFT | ids[i]};
-        for (uint32_t i = 0; i < n; i++)
-            if (boxes[i].bmin[k] == boxes[i].bmax[k])
-                e[m++] = (sw_ev){boxes[i].bmin[k], (uint32_t)EV_PLANAR << EV_SHIFT | ids[i]};
-        for (uint32_t i = 0; i < n; i++)
-            if (boxes[i].bmin[k] != boxes[i].bmax[k])
-                e[m++] = (sw_ev){boxes[i].bmin[k], (uint32_t)EV_START << EV_SHIFT | ids[i]};
-        radix_by_pos(e, m, tmp);
-        L->n[k] = m;
-    }
+    root_job j = {ids, boxes, n, L, tmp};
+    if (pool && rt_pool_size(pool) > 1)
+        rt_pool_run(pool, root_run, &j);
+    else
+        root_run(&j, 0, 1);
     free(tmp);
     out->cell = *cell;
     out->data = L;
