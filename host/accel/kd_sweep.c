@@ -108,29 +108,6 @@ static void ev_sort(sw_ev *e, uint32_t n, sw_ev *tmp) {
     if (src != e) memcpy(e, src, sizeof(sw_ev) * n);
 }
 
-/* Merges two sorted lists into out, where out + nb == a (in place: the
- * output index never passes a's read index). a[na] and b[nb] must be
- * writable: they hold sentinels, so that the loop takes the smaller of two
- * events without a branch (the lists interleave unpredictably). */
-static void merge(sw_ev *a, uint32_t na, sw_ev *b, uint32_t nb, sw_ev *out) {
-    if (!nb) return; /* out == a */
-    a[na] = b[nb] = ev_sentinel();
-    uint32_t i = 0, j = 0, total = na + nb;
-    uint64_t ka = ev_order(a[0]), kb = ev_order(b[0]);
-    for (uint32_t o = 0; o < total; o++) {
-        uint64_t va, vb;
-        memcpy(&va, &a[i], sizeof va);
-        memcpy(&vb, &b[j], sizeof vb);
-        uint64_t take_b = kb < ka;
-        uint64_t v = va ^ ((va ^ vb) & (0 - take_b));
-        memcpy(&out[o], &v, sizeof v);
-        i += (uint32_t)(take_b ^ 1u);
-        j += (uint32_t)take_b;
-        ka = ev_order(a[i]);
-        kb = ev_order(b[j]);
-    }
-}
-
 /* The offers of one axis, in the sweep's order (kd_offer keeps the earlier
  * of equal offers, so the order is part of the result): one per position,
  * with the events there counted by type (they are consecutive). */
@@ -265,26 +242,50 @@ static int sweep_split(const kd_ctx *c, kd_node_in *in, const kd_split *s, kd_sc
     }
     if (ok) {
         for (int k = 0; k < 3; k++) {
-            /* The one-sided events, in order, behind room for the clipped
-             * ones; then merged with those to the front. Both children's
-             * slots are written for every event and the index of the
-             * triangle's side advanced (a region has a spare slot). */
+            /* The one-sided events in order, with the clipped ones (sorted,
+             * ended by a sentinel) let in before the first event after
+             * them. Both children's slots are written for every event and
+             * the index of the triangle's side advanced (a region has a
+             * spare slot). */
             const sw_ev *e = L->e[k];
             uint32_t m = L->n[k];
-            sw_ev *lo = le->e[k] + cl[0][k], *ro = re->e[k] + cl[1][k];
-            uint32_t x = 0, y = 0;
-            for (uint32_t i = 0; i < m; i++) {
-                sw_ev v = e[i];
-                uint8_t sd = side[v.key & EV_TRI];
-                lo[x] = v;
-                ro[y] = v;
-                x += sd == KD_LEFT;
-                y += sd == KD_RIGHT;
+            sw_ev *lo = le->e[k], *ro = re->e[k];
+            sw_ev *cbl = cb[0][k], *cbr = cb[1][k];
+            uint32_t x = 0, y = 0, jl = 0, jr = 0;
+            if (cl[0][k] | cl[1][k]) {
+                cbl[cl[0][k]] = cbr[cl[1][k]] = ev_sentinel();
+                uint64_t kl = ev_order(cbl[0]), kr = ev_order(cbr[0]);
+                for (uint32_t i = 0; i < m; i++) {
+                    sw_ev v = e[i];
+                    uint64_t kv = ev_order(v);
+                    while (kl < kv) {
+                        lo[x++] = cbl[jl++];
+                        kl = ev_order(cbl[jl]);
+                    }
+                    while (kr < kv) {
+                        ro[y++] = cbr[jr++];
+                        kr = ev_order(cbr[jr]);
+                    }
+                    uint8_t sd = side[v.key & EV_TRI];
+                    lo[x] = v;
+                    ro[y] = v;
+                    x += sd == KD_LEFT;
+                    y += sd == KD_RIGHT;
+                }
+                while (jl < cl[0][k]) lo[x++] = cbl[jl++];
+                while (jr < cl[1][k]) ro[y++] = cbr[jr++];
+            } else {
+                for (uint32_t i = 0; i < m; i++) {
+                    sw_ev v = e[i];
+                    uint8_t sd = side[v.key & EV_TRI];
+                    lo[x] = v;
+                    ro[y] = v;
+                    x += sd == KD_LEFT;
+                    y += sd == KD_RIGHT;
+                }
             }
-            merge(lo, x, cb[0][k], cl[0][k], le->e[k]);
-            merge(ro, y, cb[1][k], cl[1][k], re->e[k]);
-            le->n[k] = x + cl[0][k];
-            re->n[k] = y + cl[1][k];
+            le->n[k] = x;
+            re->n[k] = y;
         }
         l->data = le;
         l->size = le->n[0] + le->n[1] + le->n[2];
