@@ -1,12 +1,13 @@
 /* kd_build.c - the kd-tree recursion shared by both split finders, its
- * parallel phase and the public rt_kd_build.
+ * parallel form and the public rt_kd_build.
  *
  * Determinism for any thread count: every node's decision is a function of
- * its own input only. The nodes above depth KD_TASK_DEPTH are built on the
- * calling thread; each node reaching that depth (with enough triangles)
- * becomes a task, built into its own buffer by whichever worker takes it;
- * the buffers are then spliced into the placeholders in depth-first order.
- * The result is byte-identical for any pool. */
+ * its own input only. With a pool, the root is a task, and a worker that
+ * splits a node with a large right child makes that child a task (a
+ * placeholder in its own output) and goes on with the left one; each task
+ * is built into its own buffer by whichever worker takes it, and the
+ * buffers are then spliced into the placeholders in depth-first order. The
+ * result is byte-identical for any pool and any timing. */
 #include "accel/kd_internal.h"
 
 #include <math.h>
@@ -123,9 +124,11 @@ typedef struct kd_task {
     uint64_t nodes, prims, nbase, pbase;
 } kd_task;
 
-/* The parallel build: a stack of tasks waiting and every task made, shared
- * by the pool's workers. The numbering of the tasks depends on timing; the
- * tree does not (assemble follows the placeholders). */
+/* The parallel build: every task made, in the order made, shared by the
+ * pool's workers, which take the oldest waiting (the largest subtrees come
+ * first: a worker goes on depth-first with the left children). The
+ * numbering of the tasks depends on timing; the tree does not (assemble
+ * follows the placeholders). */
 typedef struct kd_sched {
     const kd_ctx *c;
     const kd_finder *f;
@@ -133,9 +136,8 @@ typedef struct kd_sched {
     pthread_cond_t wake;
     kd_task **all; /* by task number */
     uint32_t count, cap;
-    uint32_t *waiting; /* task numbers not taken yet */
-    uint32_t waiting_count;
-    uint32_t busy; /* workers inside a task */
+    uint32_t taken; /* tasks taken by a worker: all[taken..count) wait */
+    uint32_t busy;  /* workers inside a task */
     int oom;
 } kd_sched;
 
@@ -153,10 +155,8 @@ static uint32_t sched_push(kd_sched *s, kd_node_in *in) {
     if (t && s->count == s->cap) {
         uint32_t cap = s->cap ? 2 * s->cap : 64;
         kd_task **a = realloc(s->all, sizeof(kd_task *) * cap);
-        uint32_t *q = a ? realloc(s->waiting, sizeof(uint32_t) * cap) : NULL;
-        if (a) s->all = a;
-        if (q) {
-            s->waiting = q;
+        if (a) {
+            s->all = a;
             s->cap = cap;
         }
     }
@@ -165,7 +165,6 @@ static uint32_t sched_push(kd_sched *s, kd_node_in *in) {
         in->data = NULL;
         id = s->count++;
         s->all[id] = t;
-        s->waiting[s->waiting_count++] = id;
         pthread_cond_signal(&s->wake);
     }
     pthread_mutex_unlock(&s->lock);
@@ -206,9 +205,10 @@ static void build_rec(const kd_ctx *c, const kd_finder *f, kd_node_in *in, kd_sc
         }
         uint32_t inner = kd_out_inner(o, sp.axis, sp.pos);
         if (s && r.tris >= KD_TASK_MIN) {
+            /* Offered before the left subtree is built, placed after it. */
+            uint32_t id = sched_push(s, &r);
             build_rec(c, f, &l, w, o, s);
             kd_out_set_right(o, inner, o->node_count);
-            uint32_t id = sched_push(s, &r);
             if (id == UINT32_MAX)
                 o->oom = 1;
             else
@@ -229,9 +229,9 @@ static void run_tasks(void *ctx, int worker, int workers) {
     kd_scratch w = {calloc(s->c->tri_total ? s->c->tri_total : 1, 1), NULL, 0, NULL, 0};
     pthread_mutex_lock(&s->lock);
     for (;;) {
-        while (!s->waiting_count && s->busy) pthread_cond_wait(&s->wake, &s->lock);
-        if (!s->waiting_count) break;
-        kd_task *t = s->all[s->waiting[--s->waiting_count]];
+        while (s->taken == s->count && s->busy) pthread_cond_wait(&s->wake, &s->lock);
+        if (s->taken == s->count) break;
+        kd_task *t = s->all[s->taken++];
         s->busy++;
         pthread_mutex_unlock(&s->lock);
         if (w.flags)
@@ -242,7 +242,7 @@ static void run_tasks(void *ctx, int worker, int workers) {
         pthread_mutex_lock(&s->lock);
         s->oom |= t->out.oom;
         /* The last busy worker with nothing waiting ends everyone's loop. */
-        if (--s->busy == 0 && !s->waiting_count) pthread_cond_broadcast(&s->wake);
+        if (--s->busy == 0 && s->taken == s->count) pthread_cond_broadcast(&s->wake);
     }
     pthread_mutex_unlock(&s->lock);
     kd_scratch_free(&w);
@@ -357,7 +357,7 @@ static int assemble(const kd_sched *s, rt_pool *pool, rt_kd *out) {
 }
 
 /* Builds the tree of root into out: on the calling thread, or on pool's
- * workers from one stack of subtree tasks. Returns 0 when out of memory. */
+ * workers from one queue of subtree tasks. Returns 0 when out of memory. */
 static int build_tree(const kd_ctx *c, const kd_finder *f, kd_node_in *root, kd_scratch *w,
                       rt_pool *pool, rt_kd *out) {
     if (!pool || rt_pool_size(pool) < 2) {
@@ -389,7 +389,6 @@ static int build_tree(const kd_ctx *c, const kd_finder *f, kd_node_in *root, kd_
         free(s.all[i]);
     }
     free(s.all);
-    free(s.waiting);
     pthread_mutex_destroy(&s.lock);
     pthread_cond_destroy(&s.wake);
     return ok;
