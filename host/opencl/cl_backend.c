@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "base/clock.h"
+#include "backend/upload_plan.h"
 #include "base/error.h"
 #include "opencl/cl_backend.h"
 #include "opencl/cl_device.h"
@@ -92,12 +93,7 @@ typedef struct cl_state {
     int lanes; /* the program's packet lanes (RT_PK_LANES); 0: no packet kernel */
     cl_mem buf[B_COUNT];
     size_t cap[B_COUNT];
-    /* What the device holds: the mesh part (signature) and the scene version. */
-    uint32_t *mesh_sig;
-    size_t mesh_sig_len;
-    int uploaded;
-    uint32_t uploaded_generation; /* the layout generation the device holds */
-    rt_scene_header uploaded_hdr; /* render options (direct_only) change it alone */
+    rt_upload_memo memo; /* what the device holds of the layout */
     uint32_t tile;
     /* The last program build's messages: the compiler's log, then what the
      * driver printed on stderr meanwhile (cl_stderr.h). NULL: none yet. */
@@ -125,7 +121,7 @@ static void cl_destroy(void *p) {
     if (s->program) clReleaseProgram(s->program);
     if (s->queue) clReleaseCommandQueue(s->queue);
     if (s->ctx) clReleaseContext(s->ctx);
-    free(s->mesh_sig);
+    rt_upload_memo_free(&s->memo);
     free(s->build_log);
     free(s);
 }
@@ -421,148 +417,44 @@ static rt_status write_buf(cl_state *s, int b, size_t offset, const void *data, 
     return RT_OK;
 }
 
-/* What identifies the mesh part of the layout (mesh BVH nodes and triangle
- * arrays): it is unchanged while no mesh was rebuilt and every instance
- * still points at the same place. */
-static uint32_t *mesh_signature(const rt_backend_layout *layout, size_t *len) {
-    const rt_flat *f = layout->flat;
-    size_t n = 5 + 3 * (size_t)f->hdr.instance_count;
-    uint32_t *sig = malloc(n * sizeof *sig);
-    if (!sig) return NULL;
-    uint32_t mesh_nodes = (f->hdr.flags & RT_SCENE_SINGLE) ? f->node_count : f->hdr.top_root;
-    sig[0] = layout->mesh_generation;
-    sig[1] = mesh_nodes;
-    sig[2] = f->tri_count;
-    sig[3] = f->hdr.flags & (RT_SCENE_NORMALS | RT_SCENE_TRI_MATS);
-    sig[4] = f->hdr.instance_count;
-    for (uint32_t i = 0; i < f->hdr.instance_count; i++) {
-        sig[5 + 3 * i] = f->instances[i].mesh;
-        sig[6 + 3 * i] = f->instances[i].root;
-        sig[7 + 3 * i] = f->instances[i].tri_first;
-    }
-    *len = n;
-    return sig;
+/* One copy of an upload plan (upload_plan.h): array i is buffer i here. */
+_Static_assert((int)B_HDR == (int)RT_UP_HDR && (int)B_LIGHTS == (int)RT_UP_LIGHTS &&
+                   (int)B_KD_NODES == (int)RT_UP_KD_NODES,
+               "the layout's buffers are the upload plan's arrays");
+typedef struct cl_upload {
+    cl_state *s;
+    uint64_t *bytes;
+    rt_error *err;
+} cl_upload;
+
+static rt_status cl_emit(void *user, const rt_upload_copy *c) {
+    cl_upload *u = user;
+    return write_buf(u->s, c->array, c->offset, c->src, c->bytes, u->bytes, u->err);
 }
 
-/* Uploads the mesh part when it changed, and the per-frame part (object BVH,
- * instances, header with the camera, materials, lights) when the scene
- * changed since the last upload. */
+/* Brings the device's copy of the layout up to date (upload_plan.h: only
+ * what changed) and waits for the writes. */
 static rt_status upload_scene(cl_state *s, const rt_backend_layout *layout, uint64_t *bytes,
                               double *ms, rt_error *err) {
-    const rt_flat *f = layout->flat;
     double t0 = rt_now_ms();
-    size_t sig_len;
-    uint32_t *sig = mesh_signature(layout, &sig_len);
-    if (!sig) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
-    int mesh_same = s->uploaded && s->mesh_sig && s->mesh_sig_len == sig_len &&
-                    memcmp(s->mesh_sig, sig, sig_len * sizeof *sig) == 0;
-    if (mesh_same && s->uploaded_generation == layout->layout_generation &&
-        memcmp(&s->uploaded_hdr, &f->hdr, sizeof f->hdr) == 0) {
-        free(sig);
-        return RT_OK;
-    }
-    if (mesh_same && s->uploaded_generation == layout->layout_generation) {
-        /* The same layout with another header (the camera moved, or another
-         * triangle test or feature set): the header alone. */
-        free(sig);
-        rt_status st = write_buf(s, B_HDR, 0, &f->hdr, sizeof f->hdr, bytes, err);
-        cl_int ce = st == RT_OK ? clFinish(s->queue) : CL_SUCCESS;
-        if (st == RT_OK && ce != CL_SUCCESS)
-            st = rt_fail(err, out_of_memory(ce) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
-                         "upload to '%s' failed (%s)", s->dev.name, rt_cl_error_name(ce));
-        if (st != RT_OK) {
-            s->uploaded = 0;
-            return st;
-        }
-        s->uploaded_hdr = f->hdr;
-        *ms += rt_now_ms() - t0;
-        return RT_OK;
-    }
-    uint32_t mesh_nodes = sig[1];
-    size_t tri_n = f->tri_count;
-    struct {
-        int b;
-        const void *data;
-        size_t bytes;
-        int mesh; /* part of the mesh data */
-    } arrays[] = {
-        {B_HDR, &f->hdr, sizeof f->hdr, 0},
-        {B_NODES, f->nodes, sizeof(rt_node) * f->node_count, 0},
-        {B_TRIS, f->tris, sizeof(rt_tri) * tri_n, 1},
-        {B_TRI_IDS, f->tri_ids, sizeof(uint32_t) * tri_n, 1},
-        {B_NORMALS, f->tri_normals, f->tri_normals ? 9 * sizeof(float) * tri_n : 0, 1},
-        {B_TRI_MATS, f->tri_mats, f->tri_mats ? sizeof(uint32_t) * tri_n : 0, 1},
-        {B_INST, f->instances, sizeof(rt_instance) * f->hdr.instance_count, 0},
-        {B_INST_IDS, f->inst_ids, sizeof(uint32_t) * f->inst_id_count, 0},
-        {B_MATS, f->materials, sizeof(rt_material_d) * f->hdr.material_count, 0},
-        {B_LIGHTS, f->lights, sizeof(rt_light_d) * f->hdr.light_count, 0},
-        {B_KD_NODES, f->kd_nodes, sizeof(rt_kd_node) * f->kd_node_count, 1},
-    };
+    rt_upload_plan plan;
+    if (rt_upload_plan_make(&s->memo, layout, s->cap, &plan) != RT_OK)
+        return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    int remade[RT_UP_COUNT] = {0};
     rt_status st = RT_OK;
-    /* The layout was rewritten in place from the generation the device holds:
-     * copy only the changed node and triangle ranges, and the per-frame
-     * arrays. Any buffer that must grow makes it a whole upload. */
-    int partial =
-        s->uploaded && layout->base_generation && s->uploaded_generation == layout->base_generation;
-    for (size_t i = 0; partial && i < sizeof arrays / sizeof arrays[0]; i++)
-        partial = arrays[i].bytes <= s->cap[arrays[i].b] || arrays[i].bytes < 16;
-    if (partial) {
-        for (uint32_t r = 0; r < layout->dirty_node_ranges && st == RT_OK; r++) {
-            const rt_flat_range *g = &layout->dirty_nodes[r];
-            st = write_buf(s, B_NODES, sizeof(rt_node) * g->first, f->nodes + g->first,
-                           sizeof(rt_node) * g->count, bytes, err);
-        }
-        for (uint32_t r = 0; r < layout->dirty_tri_ranges && st == RT_OK; r++) {
-            const rt_flat_range *g = &layout->dirty_tris[r];
-            st = write_buf(s, B_TRIS, sizeof(rt_tri) * g->first, f->tris + g->first,
-                           sizeof(rt_tri) * g->count, bytes, err);
-            if (st == RT_OK && !g->moved)
-                st = write_buf(s, B_TRI_IDS, sizeof(uint32_t) * g->first, f->tri_ids + g->first,
-                               sizeof(uint32_t) * g->count, bytes, err);
-            if (st == RT_OK && f->tri_normals)
-                st = write_buf(s, B_NORMALS, 9 * sizeof(float) * g->first,
-                               f->tri_normals + 9 * (size_t)g->first, 9 * sizeof(float) * g->count,
-                               bytes, err);
-            if (st == RT_OK && f->tri_mats && !g->moved)
-                st = write_buf(s, B_TRI_MATS, sizeof(uint32_t) * g->first, f->tri_mats + g->first,
-                               sizeof(uint32_t) * g->count, bytes, err);
-        }
-    }
-    for (size_t i = 0; i < sizeof arrays / sizeof arrays[0] && st == RT_OK; i++) {
-        if (partial && (arrays[i].mesh || arrays[i].b == B_NODES)) continue;
-        int remade;
-        st = ensure(s, arrays[i].b, arrays[i].bytes, &remade, err);
-        if (st != RT_OK) break;
-        int all = remade || !mesh_same;
-        if (arrays[i].b == B_NODES) {
-            /* Mesh BVH nodes first, then the object BVH: only the latter moves
-             * with the objects. */
-            size_t from = all ? 0 : sizeof(rt_node) * mesh_nodes;
-            st = write_buf(s, B_NODES, from, (const char *)f->nodes + from, arrays[i].bytes - from,
-                           bytes, err);
-        } else if (!arrays[i].mesh || all) {
-            st = write_buf(s, arrays[i].b, 0, arrays[i].data, arrays[i].bytes, bytes, err);
-        }
-    }
+    for (int i = 0; plan.buffers && i < RT_UP_COUNT && st == RT_OK; i++)
+        st = ensure(s, i, plan.bytes[i], &remade[i], err);
+    cl_upload u = {s, bytes, err};
+    if (st == RT_OK) st = rt_upload_plan_run(&plan, layout, remade, cl_emit, &u);
     if (st == RT_OK) {
         cl_int ce = clFinish(s->queue);
         if (ce != CL_SUCCESS)
             st = rt_fail(err, out_of_memory(ce) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
                          "upload to '%s' failed (%s)", s->dev.name, rt_cl_error_name(ce));
     }
-    if (st != RT_OK) {
-        free(sig);
-        s->uploaded = 0;
-        return st;
-    }
-    free(s->mesh_sig);
-    s->mesh_sig = sig;
-    s->mesh_sig_len = sig_len;
-    s->uploaded = 1;
-    s->uploaded_generation = layout->layout_generation;
-    s->uploaded_hdr = f->hdr;
+    rt_upload_plan_finish(&plan, &s->memo, layout, st == RT_OK);
     *ms += rt_now_ms() - t0;
-    return RT_OK;
+    return st;
 }
 
 /* ---- launches --------------------------------------------------------------- */

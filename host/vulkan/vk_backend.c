@@ -21,6 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "backend/upload_plan.h"
 #include "base/clock.h"
 #include "base/error.h"
 #include "rt_shade.h"
@@ -132,12 +133,7 @@ typedef struct vk_state {
     uint32_t spec[P_COUNT][SPEC_COUNT]; /* what each pipeline was specialised to */
     char spec_text[192];
     vk_buf buf[B_COUNT];
-    /* What the device holds (as the OpenCL backend). */
-    uint32_t *mesh_sig;
-    size_t mesh_sig_len;
-    int uploaded;
-    uint32_t uploaded_generation;
-    rt_scene_header uploaded_hdr;
+    rt_upload_memo memo; /* what the device holds of the layout */
     uint32_t tile;
     int lost; /* the device was lost: every later call fails with the reason */
 } vk_state;
@@ -293,7 +289,7 @@ static void vk_destroy(void *p) {
         vkDestroyDevice(s->device, NULL);
     }
     if (s->inst) vkDestroyInstance(s->inst, NULL);
-    free(s->mesh_sig);
+    rt_upload_memo_free(&s->memo);
     free(s);
 }
 
@@ -615,102 +611,43 @@ static rt_status bind_all(vk_state *s, rt_error *err) {
     return RT_OK;
 }
 
-/* What identifies the mesh part of the layout (cl_backend.c's
- * mesh_signature): unchanged while no mesh was rebuilt and every instance
- * still points at the same place. */
-static uint32_t *mesh_signature(const rt_backend_layout *layout, size_t *len) {
-    const rt_flat *f = layout->flat;
-    size_t n = 6 + 3 * (size_t)f->hdr.instance_count;
-    uint32_t *sig = malloc(n * sizeof *sig);
-    if (!sig) return NULL;
-    sig[0] = layout->mesh_generation;
-    sig[1] = (f->hdr.flags & RT_SCENE_SINGLE) ? f->node_count : f->hdr.top_root;
-    sig[2] = f->tri_count;
-    sig[3] = f->hdr.flags & (RT_SCENE_NORMALS | RT_SCENE_TRI_MATS);
-    sig[4] = f->hdr.instance_count;
-    sig[5] = f->kd_node_count;
-    for (uint32_t i = 0; i < f->hdr.instance_count; i++) {
-        sig[6 + 3 * i] = f->instances[i].mesh;
-        sig[7 + 3 * i] = f->instances[i].root;
-        sig[8 + 3 * i] = f->instances[i].tri_first;
-    }
-    *len = n;
-    return sig;
+/* The buffer of each array of an upload plan (upload_plan.h). */
+static const int upload_buffer[RT_UP_COUNT] = {B_HDR,     B_NODES,    B_TRIS,    B_TRI_IDS,
+                                               B_NORMALS, B_TRI_MATS, B_INST,    B_INST_IDS,
+                                               B_MATS,    B_LIGHTS,   B_KD_NODES};
+
+typedef struct vk_upload {
+    vk_state *s;
+    uint64_t *bytes;
+} vk_upload;
+
+static rt_status vk_emit(void *user, const rt_upload_copy *c) {
+    vk_upload *u = user;
+    memcpy((char *)u->s->buf[upload_buffer[c->array]].map + c->offset, c->src, c->bytes);
+    *u->bytes += c->bytes;
+    return RT_OK;
 }
 
-/* Copies the mesh part when it changed, and the per-frame part (object BVH,
- * instances, header, materials, lights) when the scene changed since the
- * last upload; *bytes counts what was copied. */
+/* Brings the device's copy of the layout up to date (upload_plan.h: only
+ * what changed), copying into the mapped buffers; *bytes counts the copies. */
 static rt_status upload_scene(vk_state *s, const rt_backend_layout *layout, uint64_t *bytes,
                               double *ms, rt_error *err) {
-    const rt_flat *f = layout->flat;
     double t0 = rt_now_ms();
-    size_t sig_len;
-    uint32_t *sig = mesh_signature(layout, &sig_len);
-    if (!sig) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
-    int mesh_same = s->uploaded && s->mesh_sig && s->mesh_sig_len == sig_len &&
-                    memcmp(s->mesh_sig, sig, sig_len * sizeof *sig) == 0;
-    if (mesh_same && s->uploaded_generation == layout->layout_generation &&
-        memcmp(&s->uploaded_hdr, &f->hdr, sizeof f->hdr) == 0) {
-        free(sig);
-        return RT_OK;
-    }
-    if (mesh_same && s->uploaded_generation == layout->layout_generation) {
-        /* The same layout with another header (the camera moved, or another
-         * triangle test or feature set): the header alone. */
-        free(sig);
-        memcpy(s->buf[B_HDR].map, &f->hdr, sizeof f->hdr);
-        *bytes += sizeof f->hdr;
-        s->uploaded_hdr = f->hdr;
-        *ms += rt_now_ms() - t0;
-        return RT_OK;
-    }
-    size_t tri_n = f->tri_count, mesh_nodes = sig[1];
-    struct {
-        int b;
-        const void *data;
-        size_t bytes;
-        int mesh;
-    } arrays[] = {
-        {B_HDR, &f->hdr, sizeof f->hdr, 0},
-        {B_NODES, f->nodes, sizeof(rt_node) * f->node_count, 0},
-        {B_TRIS, f->tris, sizeof(rt_tri) * tri_n, 1},
-        {B_TRI_IDS, f->tri_ids, sizeof(uint32_t) * tri_n, 1},
-        {B_NORMALS, f->tri_normals, f->tri_normals ? 9 * sizeof(float) * tri_n : 0, 1},
-        {B_TRI_MATS, f->tri_mats, f->tri_mats ? sizeof(uint32_t) * tri_n : 0, 1},
-        {B_INST, f->instances, sizeof(rt_instance) * f->hdr.instance_count, 0},
-        {B_INST_IDS, f->inst_ids, sizeof(uint32_t) * f->inst_id_count, 0},
-        {B_MATS, f->materials, sizeof(rt_material_d) * f->hdr.material_count, 0},
-        {B_LIGHTS, f->lights, sizeof(rt_light_d) * f->hdr.light_count, 0},
-        {B_KD_NODES, f->kd_nodes, sizeof(rt_kd_node) * f->kd_node_count, 1},
-    };
+    size_t cap[RT_UP_COUNT];
+    for (int i = 0; i < RT_UP_COUNT; i++)
+        cap[i] = s->buf[upload_buffer[i]].buf ? s->buf[upload_buffer[i]].cap : 0;
+    rt_upload_plan plan;
+    if (rt_upload_plan_make(&s->memo, layout, cap, &plan) != RT_OK)
+        return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    int remade[RT_UP_COUNT] = {0};
     rt_status st = RT_OK;
-    for (size_t i = 0; i < sizeof arrays / sizeof arrays[0] && st == RT_OK; i++) {
-        int remade, b = arrays[i].b;
-        st = ensure(s, b, arrays[i].bytes, &remade, err);
-        if (st != RT_OK || !arrays[i].bytes) continue;
-        int all = remade || !mesh_same;
-        size_t from = 0;
-        if (b == B_NODES && !all) from = sizeof(rt_node) * mesh_nodes; /* the object BVH only */
-        if (b == B_NODES || !arrays[i].mesh || all) {
-            memcpy((char *)s->buf[b].map + from, (const char *)arrays[i].data + from,
-                   arrays[i].bytes - from);
-            *bytes += arrays[i].bytes - from;
-        }
-    }
-    if (st != RT_OK) {
-        free(sig);
-        s->uploaded = 0;
-        return st;
-    }
-    free(s->mesh_sig);
-    s->mesh_sig = sig;
-    s->mesh_sig_len = sig_len;
-    s->uploaded = 1;
-    s->uploaded_generation = layout->layout_generation;
-    s->uploaded_hdr = f->hdr;
+    for (int i = 0; plan.buffers && i < RT_UP_COUNT && st == RT_OK; i++)
+        st = ensure(s, upload_buffer[i], plan.bytes[i], &remade[i], err);
+    vk_upload u = {s, bytes};
+    if (st == RT_OK) st = rt_upload_plan_run(&plan, layout, remade, vk_emit, &u);
+    rt_upload_plan_finish(&plan, &s->memo, layout, st == RT_OK);
     *ms += rt_now_ms() - t0;
-    return RT_OK;
+    return st;
 }
 
 /* ---- dispatches ---------------------------------------------------------------- */
