@@ -559,6 +559,104 @@ static void pk_mesh(const rt_scene_view *s, rt_u32 root, rt_u32 inst, const pk_r
     }
 }
 
+/* ---- kd-tree meshes (RT_INST_KD) -----------------------------------------
+ *
+ * Mirrors rt_kd_trace_mesh (rt_kd.h) per lane, as cpu_ref/packet_kd.h does
+ * for the CPU packet backend: a lane takes part in a cell exactly when its
+ * own traversal visits that cell, in its own front-to-back order. Forward
+ * lanes (1/dir >= 0 on the split axis, or parallel to the plane) take the
+ * left child first, backward lanes the right; a node schedules, bottom to
+ * top of the stack, the left child for backward lanes that go there second,
+ * the right child for every lane that goes there, and (at once) the left
+ * child for forward lanes that go there first. On a pop a lane stays when
+ * its entry is at most rt_box_hi(best t), unless it is one the oracle takes
+ * straight into that cell (its first or only child: 'keep'). So each lane's
+ * leaves, tests and hits are the oracle's for the same starting best hit. */
+
+/* Two cells per node on the path at most; flatten admits no tree deeper than
+ * RT_KD_STACK - 2. */
+#define PK_KD_STACK (2 * RT_KD_STACK)
+
+static void pk_kd_mesh(const rt_scene_view *s, rt_u32 root, rt_u32 inst, const pk_ray *p,
+                       pk_i active, pk_state *st) {
+    pk_i m = active & ~st->done;
+    if (!pk_any(m)) return;
+    RT_GLOBAL const rt_node *rn = &s->nodes[root];
+    /* rt_kd_root_interval over [rt_box_lo(tmin), rt_box_hi(best t)]. */
+    st->boxes -= m;
+    pk_f tn = p->box_lo, tf = (pk_f)RT_INF;
+    for (int i = 0; i < 3; i++) pk_slab((pk_f)rn->bmin[i], (pk_f)rn->bmax[i], p, i, &tn, &tf);
+    pk_f hi = st->t + RT_FABS(st->t) * RT_BOX_T_MARGIN;
+    tf = tf * select((pk_f)RT_BOX_FAR_SCALE, (pk_f)RT_BOX_FAR_SCALE_NEG, tf < 0.0f);
+    tf = select(tf, hi, hi < tf);
+    m &= tn <= tf;
+    if (!pk_any(m)) return;
+    pk_f c_tn[PK_KD_STACK], c_tf[PK_KD_STACK];
+    pk_i c_mask[PK_KD_STACK], c_keep[PK_KD_STACK];
+    rt_u32 c_node[PK_KD_STACK];
+    int sp = 0;
+    rt_u32 node = rn->a;
+    for (;;) {
+        RT_GLOBAL const rt_kd_node *n = &s->kd_nodes[node];
+        rt_u32 k = n->b & 3u;
+        if (k == RT_KD_LEAF) {
+            pk_leaf(s, n->a, n->b >> 2, inst, p, m, st);
+        } else {
+            st->boxes -= m;
+            pk_f split = (pk_f)RT_AS_FLOAT((rt_i32)n->a);
+            rt_u32 left = node + 1u, right = n->b >> 2;
+            pk_f o = p->org[k], inv = p->inv[k];
+            /* Parallel lanes: the origin's side, both in the plane; their
+             * plane distance (maybe 0 * inf) is never used. */
+            pk_i par = ~(RT_FABS(inv) < (pk_f)RT_INF);
+            pk_f ts = (split - o) * inv;
+            pk_f mg = select((pk_f)0.0f, RT_FABS(ts) * RT_BOX_T_MARGIN, RT_FABS(ts) < (pk_f)RT_INF);
+            pk_f ts_lo = ts - mg, ts_hi = ts + mg;
+            pk_f first_tf = select(select(tf, ts_hi, ts_hi < tf), tf, par);
+            pk_f second_tn = select(select(tn, ts_lo, ts_lo > tn), tn, par);
+            hi = st->t + RT_FABS(st->t) * RT_BOX_T_MARGIN;
+            pk_i go_first = select(tn <= ts_hi, o <= split, par);
+            pk_i go_second = select((ts_lo <= tf) & (second_tn <= hi), o >= split, par);
+            pk_i fwd = par | (inv >= 0.0f);
+            pk_i bf = go_first & m, bs = go_second & m;
+            pk_i left_fwd = bf & fwd, left_bwd = bs & ~fwd;
+            pk_i to_right = (bf & ~fwd) | (bs & fwd);
+            pk_i only = ~(bf & bs); /* straight into the cell, as the oracle goes */
+            if (pk_any(left_bwd)) {
+                c_tn[sp] = second_tn;
+                c_tf[sp] = tf;
+                c_mask[sp] = left_bwd;
+                c_keep[sp] = left_bwd & only;
+                c_node[sp++] = left;
+            }
+            if (pk_any(to_right)) {
+                c_tn[sp] = select(tn, second_tn, fwd);
+                c_tf[sp] = select(first_tf, tf, fwd);
+                c_mask[sp] = to_right;
+                c_keep[sp] = (bf & ~fwd) | (to_right & only);
+                c_node[sp++] = right;
+            }
+            if (pk_any(left_fwd)) {
+                node = left;
+                tf = first_tf;
+                m = left_fwd;
+                continue;
+            }
+        }
+        /* The next cell with a lane whose best hit may still lie in it. */
+        for (;;) {
+            if (sp == 0) return;
+            --sp;
+            hi = st->t + RT_FABS(st->t) * RT_BOX_T_MARGIN;
+            m = c_mask[sp] & ~st->done & (c_keep[sp] | (c_tn[sp] <= hi));
+            if (pk_any(m)) break;
+        }
+        node = c_node[sp];
+        tn = c_tn[sp];
+        tf = c_tf[sp];
+    }
+}
+
 /* Mirrors rt_trace_instance. */
 static void pk_instance(const rt_scene_view *s, rt_u32 inst, const pk_ray *p, pk_i active,
                         pk_state *st) {
@@ -573,7 +671,10 @@ static void pk_instance(const rt_scene_view *s, rt_u32 inst, const pk_ray *p, pk
         active &= o.inst_ok;
         if (!pk_any(active)) return;
     }
-    pk_mesh(s, in->root, inst, &o, active, st);
+    if (RT_INST_FLAGS(in) & RT_INST_KD)
+        pk_kd_mesh(s, in->root, inst, &o, active, st);
+    else
+        pk_mesh(s, in->root, inst, &o, active, st);
 }
 
 /* Mirrors the object-BVH loop of rt_trace: each reached leaf's instances
