@@ -8,7 +8,8 @@
  * whole packet decides each node with one interval test over its four
  * children (pk_bvh_ia); below such nodes, and for packets whose signs differ, each group goes on
  * with its lanes' own box tests (pk_bvh_group); at a leaf each group's lanes that pass its box test
- * test the triangles, a group's lanes in one vector test.
+ * test the triangles, a group's lanes in one vector test. Meshes with a
+ * kd-tree (RT_INST_KD) are walked by each group in turn (packet_kd.h).
  *
  * Every vector operation below is the scalar oracle's operation on each lane
  * (kernels/rt_shared.h, named at each function), in the same order, so each
