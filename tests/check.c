@@ -67,6 +67,74 @@ rt_scene *test_builtin_scene(const char *name, int width, int height) {
     return s;
 }
 
+rt_scene *test_mesh_scene(const float *pos, uint32_t verts, const uint32_t *idx, uint32_t tris) {
+    rt_scene *s = NULL;
+    uint32_t mesh, mat, obj;
+    rt_material m = rt_material_default();
+    CHECK(rt_scene_create(&s) == RT_OK);
+    if (!s) return NULL;
+    CHECK(rt_mesh_create(s, &mesh) == RT_OK);
+    CHECK(rt_mesh_add_triangles(s, mesh, pos, NULL, verts, idx, tris) == RT_OK);
+    CHECK(rt_material_add(s, &m, &mat) == RT_OK);
+    CHECK(rt_object_create(s, mat, &obj) == RT_OK);
+    CHECK(rt_object_add_mesh(s, obj, mesh) == RT_OK);
+    CHECK(rt_scene_commit(s) == RT_OK);
+    return s;
+}
+
+rt_scene *test_soup_scene(const float *pos, uint32_t tris) {
+    uint32_t *idx = malloc(sizeof(uint32_t) * 3 * (size_t)tris);
+    CHECK(idx != NULL);
+    if (!idx) return NULL;
+    for (uint32_t i = 0; i < 3 * tris; i++) idx[i] = i;
+    rt_scene *s = test_mesh_scene(pos, 3 * tris, idx, tris);
+    free(idx);
+    return s;
+}
+
+rt_scene *test_far_terrain(int cells, float **pos_out) {
+    const float base[3] = {1500.0f, 1200.0f, -1300.0f}, cell = 0.25f;
+    const uint32_t n = (uint32_t)(cells + 1);
+    float *pos = malloc(sizeof(float) * 3 * n * n);
+    uint32_t *idx = malloc(sizeof(uint32_t) * 6 * (size_t)cells * (size_t)cells);
+    *pos_out = NULL;
+    CHECK(pos && idx);
+    if (!pos || !idx) {
+        free(pos), free(idx);
+        return NULL;
+    }
+    uint32_t seed = 4242u;
+    for (uint32_t j = 0; j < n; j++)
+        for (uint32_t i = 0; i < n; i++) {
+            float *p = pos + 3 * (j * n + i);
+            seed = seed * 1664525u + 1013904223u;
+            p[0] = base[0] + cell * (float)i;
+            p[1] = base[1] + 0.1f * cell * ((float)(seed >> 8) / 16777216.0f - 0.5f);
+            p[2] = base[2] + cell * (float)j;
+        }
+    for (uint32_t j = 0, t = 0; j < (uint32_t)cells; j++)
+        for (uint32_t i = 0; i < (uint32_t)cells; i++, t += 6) {
+            uint32_t a = j * n + i, b = a + 1, c = a + n, d = c + 1;
+            const uint32_t q[6] = {a, b, d, a, d, c};
+            memcpy(idx + t, q, sizeof q);
+        }
+    rt_scene *s = test_mesh_scene(pos, n * n, idx, 2 * (uint32_t)cells * (uint32_t)cells);
+    free(idx);
+    rt_camera cam = {{base[0], base[1] + 5.0f, base[2] - 5.0f},
+                     {base[0] + 12.0f, base[1], base[2] + 12.0f},
+                     {0, 1, 0},
+                     60.0f,
+                     64,
+                     64};
+    if (s) CHECK(rt_camera_set(s, &cam) == RT_OK);
+    if (!s) {
+        free(pos);
+        return NULL;
+    }
+    *pos_out = pos;
+    return s;
+}
+
 enum { TEST_RENDERERS = 32 };
 static struct {
     char backend[64];

@@ -82,4 +82,20 @@ const char *test_write_temp(const char *name, const char *text);
  * a failed check) when it cannot be built. */
 struct rt_scene *test_builtin_scene(const char *name, int width, int height);
 
+/* A committed scene of one object with the default material and one mesh
+ * of verts vertices (pos[3i .. 3i + 2]) and tris triangles (idx[3t ..
+ * 3t + 2]); NULL after a failed CHECK. */
+struct rt_scene *test_mesh_scene(const float *pos, uint32_t verts, const uint32_t *idx,
+                                 uint32_t tris);
+
+/* test_mesh_scene of tris independent triangles, triangle i at pos[9i ..
+ * 9i + 8]. */
+struct rt_scene *test_soup_scene(const float *pos, uint32_t tris);
+
+/* A bumpy terrain of cells x cells square cells 0.25 across far from the
+ * origin (corner (1500, 1200, -1300), heights within 0.0125 of y = 1200),
+ * two triangles per cell, seen by a 64x64 camera just above it. *pos gets a
+ * malloc'ed copy of its (cells + 1)^2 vertices, row by row along z. */
+struct rt_scene *test_far_terrain(int cells, float **pos);
+
 #endif /* RT_CHECK_H */

@@ -447,6 +447,10 @@ static void test_degenerate_builds(void) {
         CHECK(rt_kd_build(bad, 3, tri, 1, &o, NULL, &kd, &lib_err) == RT_ERROR_INVALID_ARGUMENT);
         uint32_t far[] = {0, 1, 7};
         CHECK(rt_kd_build(pts, 4, far, 1, &o, NULL, &kd, &lib_err) == RT_ERROR_INVALID_ARGUMENT);
+        /* More triangles than the events' 30-bit index holds: refused before
+         * any is read. */
+        CHECK(rt_kd_build(pts, 4, far, 1u << 30, &o, NULL, &kd, &lib_err) ==
+              RT_ERROR_INVALID_ARGUMENT);
         /* 3000 copies of one triangle: the depth bound ends it. */
         uint32_t *many = malloc(sizeof(uint32_t) * 9000);
         float one[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};

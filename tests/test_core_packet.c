@@ -327,51 +327,16 @@ static void check_odd_lanes_scene(rt_scene *s, const char *name, rt_accel accel)
  * (the next triangle a fraction of a cell away). */
 static void check_far_surface(rt_accel accel) {
     enum { CELLS = 96 };
-    const float base[3] = {1500.0f, 1200.0f, -1300.0f}, cell = 0.25f;
-    float *pos = malloc(sizeof(float) * 3 * (CELLS + 1) * (CELLS + 1));
-    uint32_t *idx = malloc(sizeof(uint32_t) * 6 * CELLS * CELLS);
-    if (!pos || !idx) {
-        CHECK(0);
-        free(pos), free(idx);
-        return;
-    }
+    const float cell = 0.25f; /* test_far_terrain's */
+    float *pos;
+    rt_scene *s = test_far_terrain(CELLS, &pos);
+    if (!s) return;
     oracle_rng = 4242;
-    for (int j = 0; j <= CELLS; j++)
-        for (int i = 0; i <= CELLS; i++) {
-            float *p = pos + 3 * (j * (CELLS + 1) + i);
-            p[0] = base[0] + cell * (float)i;
-            p[1] = base[1] + 0.1f * cell * (oracle_rnd() - 0.5f);
-            p[2] = base[2] + cell * (float)j;
-        }
-    for (int j = 0, t = 0; j < CELLS; j++)
-        for (int i = 0; i < CELLS; i++, t += 6) {
-            uint32_t a = (uint32_t)(j * (CELLS + 1) + i), b = a + 1, c = a + CELLS + 1, d = c + 1;
-            const uint32_t q[6] = {a, b, d, a, d, c};
-            memcpy(idx + t, q, sizeof q);
-        }
-    rt_scene *s;
-    uint32_t mesh, mat, obj;
-    rt_material m = rt_material_default();
-    rt_camera cam = {{base[0], base[1] + 5.0f, base[2] - 5.0f},
-                     {base[0] + 12.0f, base[1], base[2] + 12.0f},
-                     {0, 1, 0},
-                     60.0f,
-                     64,
-                     64};
-    CHECK(rt_scene_create(&s) == RT_OK);
-    CHECK(rt_mesh_create(s, &mesh) == RT_OK);
-    CHECK(rt_mesh_add_triangles(s, mesh, pos, NULL, (CELLS + 1) * (CELLS + 1), idx,
-                                2 * CELLS * CELLS) == RT_OK);
-    CHECK(rt_material_add(s, &m, &mat) == RT_OK);
-    CHECK(rt_object_create(s, mat, &obj) == RT_OK);
-    CHECK(rt_object_add_mesh(s, obj, mesh) == RT_OK);
-    CHECK(rt_camera_set(s, &cam) == RT_OK);
     set_accel(s, accel);
     const rt_flat *flat = test_layout(s, 1);
     if (!flat) {
         rt_scene_destroy(s);
         free(pos);
-        free(idx);
         return;
     }
     rt_pk_wide w;
@@ -416,7 +381,6 @@ static void check_far_surface(rt_accel accel) {
     rt_pk_wide_free(&w);
     rt_scene_destroy(s);
     free(pos);
-    free(idx);
 }
 
 int main(void) {

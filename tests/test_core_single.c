@@ -241,46 +241,16 @@ static void check_special(const rt_flat *flat, const char *name) {
  * just above it: the next triangle a fraction of a cell away, tiny t. */
 static void check_far_surface(void) {
     enum { CELLS = 96 };
-    const float base[3] = {1500.0f, 1200.0f, -1300.0f}, cell = 0.25f;
-    float *pos = malloc(sizeof(float) * 3 * (CELLS + 1) * (CELLS + 1));
-    uint32_t *idx = malloc(sizeof(uint32_t) * 6 * CELLS * CELLS);
+    const float cell = 0.25f; /* test_far_terrain's */
+    float *pos;
     rt_ray_d *rays = malloc(sizeof(rt_ray_d) * 20000);
-    if (!pos || !idx || !rays) {
-        CHECK(0);
-        free(pos), free(idx), free(rays);
+    rt_scene *s = rays ? test_far_terrain(CELLS, &pos) : NULL;
+    CHECK(rays != NULL);
+    if (!s) {
+        free(rays);
         return;
     }
     oracle_rng = 4242;
-    for (int j = 0; j <= CELLS; j++)
-        for (int i = 0; i <= CELLS; i++) {
-            float *p = pos + 3 * (j * (CELLS + 1) + i);
-            p[0] = base[0] + cell * (float)i;
-            p[1] = base[1] + 0.1f * cell * (oracle_rnd() - 0.5f);
-            p[2] = base[2] + cell * (float)j;
-        }
-    for (int j = 0, t = 0; j < CELLS; j++)
-        for (int i = 0; i < CELLS; i++, t += 6) {
-            uint32_t a = (uint32_t)(j * (CELLS + 1) + i), b = a + 1, c = a + CELLS + 1, d = c + 1;
-            const uint32_t q[6] = {a, b, d, a, d, c};
-            memcpy(idx + t, q, sizeof q);
-        }
-    rt_scene *s;
-    uint32_t mesh, mat, obj;
-    rt_material m = rt_material_default();
-    rt_camera cam = {{base[0], base[1] + 5.0f, base[2] - 5.0f},
-                     {base[0] + 12.0f, base[1], base[2] + 12.0f},
-                     {0, 1, 0},
-                     60.0f,
-                     64,
-                     64};
-    CHECK(rt_scene_create(&s) == RT_OK);
-    CHECK(rt_mesh_create(s, &mesh) == RT_OK);
-    CHECK(rt_mesh_add_triangles(s, mesh, pos, NULL, (CELLS + 1) * (CELLS + 1), idx,
-                                2 * CELLS * CELLS) == RT_OK);
-    CHECK(rt_material_add(s, &m, &mat) == RT_OK);
-    CHECK(rt_object_create(s, mat, &obj) == RT_OK);
-    CHECK(rt_object_add_mesh(s, obj, mesh) == RT_OK);
-    CHECK(rt_camera_set(s, &cam) == RT_OK);
     const rt_flat *flat = test_layout(s, 1);
     if (flat) {
         for (int i = 0; i < 20000; i++) {
@@ -298,7 +268,7 @@ static void check_far_surface(void) {
         check_set(flat, rays, 20000, "far surface", 15000);
     }
     rt_scene_destroy(s);
-    free(pos), free(idx), free(rays);
+    free(pos), free(rays);
 }
 
 /* A shared OBJ scene as one object, with the given camera (or one that

@@ -579,27 +579,14 @@ static void check_uploads(void) {
  * and their products with z (t's numerator) near 1e-39, below the smallest
  * normal float, so the denormal policy decides many bits of t. */
 static rt_scene *denormal_scene(void) {
-    rt_scene *s = NULL;
-    uint32_t mesh, mat, obj;
-    rt_material m = rt_material_default();
-    CHECK(rt_scene_create(&s) == RT_OK);
-    if (!s) return NULL;
-    CHECK(rt_mesh_create(s, &mesh) == RT_OK);
     enum { TRIS = 200 };
     float pos[9 * TRIS];
-    uint32_t idx[3 * TRIS];
-    for (uint32_t i = 0; i < 3 * TRIS; i++) idx[i] = i;
     uint32_t seed = 12345u;
     for (int i = 0; i < 9 * TRIS; i++) {
         seed = seed * 1664525u + 1013904223u;
         pos[i] = (float)(seed >> 8) * (1e-13f / 16777216.0f);
     }
-    CHECK(rt_mesh_add_triangles(s, mesh, pos, NULL, 3 * TRIS, idx, TRIS) == RT_OK);
-    CHECK(rt_material_add(s, &m, &mat) == RT_OK);
-    CHECK(rt_object_create(s, mat, &obj) == RT_OK);
-    CHECK(rt_object_add_mesh(s, obj, mesh) == RT_OK);
-    CHECK(rt_scene_commit(s) == RT_OK);
-    return s;
+    return test_soup_scene(pos, TRIS);
 }
 
 /* Every AOV with the packet and the one-ray kernels, and ray queries. */

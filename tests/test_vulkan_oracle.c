@@ -23,6 +23,10 @@
  *   axis; the traversal stack's private overflow (the shaders keep 21 cells
  *   in shared memory, more than these trees need) run by keeping 0 and 2
  *   cells there instead, on random rays;
+ * - the driver's loop limit: 3000 diverging rays through 3000 thin slabs
+ *   give the oracle's hits; on lavapipe, with the loop budget spent by
+ *   fault injection, the canary's marked items are an error without
+ *   re-runs and the oracle's hits and image with them;
  * - a device that does not exist is an error with a reason.
  * Skips only when the build has no Vulkan backend or no Vulkan device
  * exists. */
@@ -317,27 +321,14 @@ static void check_uploads(void) {
  * below the smallest normal float, so the denormal policy decides many bits
  * of t. */
 static rt_scene *denormal_scene(void) {
-    rt_scene *s = NULL;
-    uint32_t mesh, mat, obj;
-    rt_material m = rt_material_default();
-    CHECK(rt_scene_create(&s) == RT_OK);
-    if (!s) return NULL;
-    CHECK(rt_mesh_create(s, &mesh) == RT_OK);
     enum { TRIS = 200 };
     float pos[9 * TRIS];
-    uint32_t idx[3 * TRIS];
-    for (uint32_t i = 0; i < 3 * TRIS; i++) idx[i] = i;
     uint32_t seed = 12345u;
     for (int i = 0; i < 9 * TRIS; i++) {
         seed = seed * 1664525u + 1013904223u;
         pos[i] = (float)(seed >> 8) * (1e-13f / 16777216.0f);
     }
-    CHECK(rt_mesh_add_triangles(s, mesh, pos, NULL, 3 * TRIS, idx, TRIS) == RT_OK);
-    CHECK(rt_material_add(s, &m, &mat) == RT_OK);
-    CHECK(rt_object_create(s, mat, &obj) == RT_OK);
-    CHECK(rt_object_add_mesh(s, obj, mesh) == RT_OK);
-    CHECK(rt_scene_commit(s) == RT_OK);
-    return s;
+    return test_soup_scene(pos, TRIS);
 }
 
 static rt_renderer *flushing(const char *backend) {
@@ -598,6 +589,111 @@ static void check_soft_math(void) {
     free(in);
     free(out);
 }
+/* The driver's loop limit (rt_vk_main.comp's canary). A stack of 3000 thin
+ * triangles, 0.01 across, in the planes x = 0.995^k, and 3000 rays from
+ * x = -1 at a slant: each ray opens hundreds of boxes and tests thousands
+ * of triangles, and the rays of a SIMD group diverge. Lavapipe lost 130 of
+ * 3000 closest hits on this input when every software division was a loop
+ * of 24 iterations: the group spent the driver's 65535 loop iterations and
+ * the traversal loops stopped early. The same triangles all in the plane
+ * x = 0 (hits tied at t = 1, the lowest triangle wins): 810 of 3000
+ * differed there. */
+static rt_scene *slab_scene(int tied) {
+    enum { TRIS = 3000 };
+    float *pos = malloc(sizeof(float) * 9 * TRIS);
+    CHECK(pos != NULL);
+    if (!pos) return NULL;
+    float x = 1.0f;
+    for (int i = 0; i < TRIS; i++, x *= 0.995f) {
+        /* tied: every triangle in the plane x = 0, sizes 0.01 .. 0.02, so
+         * that each ray has hundreds of hits at exactly one t. */
+        float px = tied ? 0.0f : x, w = tied ? 0.01f + 0.01f * (float)i / TRIS : 0.01f;
+        const float v[9] = {px, 0.0f, 0.0f, px, w, 0.0f, px, 0.0f, w};
+        memcpy(pos + 9 * i, v, sizeof v);
+    }
+    rt_scene *s = test_soup_scene(pos, TRIS);
+    free(pos);
+    return s;
+}
+
+static float slab_unit(uint32_t *seed) {
+    *seed = *seed * 1664525u + 1013904223u;
+    return (float)(*seed >> 8) * (1.0f / 16777216.0f);
+}
+
+/* Every ray's hit on the slabs equals the oracle's; then, on lavapipe, the
+ * canary's fault injection: with 65,000 loop iterations spent before each
+ * item, a trace that may not re-run the marked items must fail with the
+ * reason (the canary saw the cut), and one that may must give the oracle's
+ * hits and image. */
+static void check_loop_limit(const rt_vk_device_info *dev) {
+    enum { N = 3000 };
+    rt_scene *s = slab_scene(0), *tied = slab_scene(1);
+    rt_ray *rays = malloc(sizeof *rays * N);
+    CHECK(rays != NULL);
+    uint32_t seed = 777u;
+    for (int i = 0; s && rays && i < N; i++) {
+        rt_ray r = {{-1.0f, 0.01f * slab_unit(&seed), 0.01f * slab_unit(&seed)},
+                    {1.0f, 0.004f * slab_unit(&seed) - 0.002f, 0.004f * slab_unit(&seed) - 0.002f},
+                    0.0f,
+                    INFINITY};
+        rays[i] = r;
+    }
+    for (int any = 0; any <= 1 && s && rays; any++) {
+        char first[400] = "";
+        int hits;
+        int differ = differing_hits(cpu_r, vk_r, s, rays, N, any, &hits, first, sizeof first);
+        CHECK_MSG(differ == 0, "slabs %s: %d of %d hits differ; first: %s",
+                  any ? "any-hit" : "closest", differ, N, first);
+        CHECK_MSG(hits > N / 3, "slabs: only %d of %d rays hit: a weak test", hits, N);
+        if (!tied) continue;
+        differ = differing_hits(cpu_r, vk_r, tied, rays, N, any, &hits, first, sizeof first);
+        CHECK_MSG(differ == 0, "tied slabs %s: %d of %d hits differ; first: %s",
+                  any ? "any-hit" : "closest", differ, N, first);
+        CHECK_MSG(hits > N / 3, "tied slabs: only %d of %d rays hit: a weak test", hits, N);
+    }
+    int llvmpipe = strstr(dev->name, "llvmpipe") != NULL;
+    if (!llvmpipe)
+        printf("loop-limit fault injection: the cut and its error are lavapipe's (gallivm's); "
+               "device '%s' has no such limit, so only the re-run results are checked\n",
+               dev->name);
+    if (s && rays && llvmpipe) {
+        rt_vk_test_loop_limit(65000u, 0);
+        rt_hit *h = malloc(sizeof *h * N);
+        rt_trace_options q = {0, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
+        CHECK(h != NULL);
+        if (h) {
+            CHECK(rt_trace_rays(vk_r, s, rays, N, h, &q) == RT_ERROR_BACKEND);
+            CHECK_CONTAINS(rt_renderer_error(vk_r), "needs more loop iterations");
+        }
+        free(h);
+    }
+    rt_vk_test_loop_limit(65000u, 1);
+    for (int any = 0; any <= 1 && s && rays; any++) {
+        char first[400] = "";
+        int hits;
+        int differ = differing_hits(cpu_r, vk_r, s, rays, N, any, &hits, first, sizeof first);
+        CHECK_MSG(differ == 0, "slabs after re-runs %s: %d of %d hits differ; first: %s",
+                  any ? "any-hit" : "closest", differ, N, first);
+    }
+    rt_scene *c = test_builtin_scene("cornell", 96, 54);
+    if (c) {
+        rt_framebuffer a, b;
+        rt_render_stats st;
+        memset(&st, 0, sizeof st);
+        CHECK(render_with(cpu_r, c, RT_AOV_NONE, 0, RT_TRI_TEST_WATERTIGHT, &a, NULL) == RT_OK);
+        CHECK(render_with(vk_r, c, RT_AOV_NONE, 0, RT_TRI_TEST_WATERTIGHT, &b, &st) == RT_OK);
+        CHECK(same_pixels("cornell", "image after re-runs", &a, &b));
+        if (llvmpipe) CHECK_CONTAINS(st.kernels, "re-run alone");
+        rt_framebuffer_free(&a);
+        rt_framebuffer_free(&b);
+        rt_scene_destroy(c);
+    }
+    rt_vk_test_loop_limit(0u, 1);
+    free(rays);
+    if (s) rt_scene_destroy(s);
+    if (tied) rt_scene_destroy(tied);
+}
 #endif
 
 int main(void) {
@@ -626,6 +722,7 @@ int main(void) {
         check_kd_scene(shipped[i], RT_ACCEL_KD_BINNED, 0);
     }
     check_kd_stack();
+    check_loop_limit(&dev);
     /* A device that does not exist is an error with a reason. */
     rt_scene *s = test_builtin_scene("cornell", 32, 18);
     rt_renderer *bad = test_renderer("vulkan:99", 0);

@@ -10,9 +10,9 @@
  *   from two histograms per axis (the scanning approximation of Hunt et al.
  *   and Shevtsov et al.).
  * Both end a node when the best split costs at least as much as the leaf
- * (SAH termination) or at the depth bound. Subtrees below a fixed depth are
- * built in parallel on a thread pool and assembled in depth-first order, so
- * the tree is byte-identical for any thread count.
+ * (SAH termination) or at the depth bound. Subtrees (from the root's
+ * children down) are built in parallel on a thread pool and assembled in
+ * depth-first order, so the tree is byte-identical for any thread count.
  *
  * Zero-area triangles (edge cross product exactly zero, the layout's
  * "degenerate": no triangle test can hit them) are left out of the tree; a
@@ -64,8 +64,8 @@ typedef struct rt_kd {
 } rt_kd;
 
 /* Builds a kd-tree over triangle_count triangles (vertex indices into
- * positions, 3 floats per vertex). pool may be NULL (one thread). On failure
- * *out is empty and err holds the reason. */
+ * positions, 3 floats per vertex; at most 2^30 - 1 triangles). pool may be
+ * NULL (one thread). On failure *out is empty and err holds the reason. */
 rt_status rt_kd_build(const float *positions, uint32_t vertex_count, const uint32_t *indices,
                       uint32_t triangle_count, const rt_kd_options *options, rt_pool *pool,
                       rt_kd *out, rt_error *err);

@@ -78,10 +78,10 @@ static int binned_split(const kd_ctx *c, kd_node_in *in, const kd_split *s, kd_s
         } else if (side == KD_RIGHT) {
             ri[nr++] = it[i];
         } else {
-            kd_item x = it[i];
-            if (kd_clip_box(&c->tris[x.tri], &l->cell, &x.box)) li[nl++] = x;
-            x = it[i];
-            if (kd_clip_box(&c->tris[x.tri], &r->cell, &x.box)) ri[nr++] = x;
+            kd_item x = it[i], y = it[i];
+            int got = kd_clip_pair(&c->tris[x.tri], &in->cell, s->axis, s->pos, &x.box, &y.box);
+            if (got & KD_LEFT) li[nl++] = x;
+            if (got & KD_RIGHT) ri[nr++] = y;
         }
     }
     free(in->data);
@@ -113,8 +113,9 @@ static uint32_t binned_leaf(const kd_ctx *c, const kd_node_in *in, kd_scratch *w
 }
 
 static int binned_root(const kd_ctx *c, const uint32_t *ids, const rt_aabb *boxes, uint32_t n,
-                       const rt_aabb *cell, kd_node_in *out) {
+                       const rt_aabb *cell, rt_pool *pool, kd_node_in *out) {
     (void)c;
+    (void)pool;
     memset(out, 0, sizeof *out);
     kd_item *it = malloc(sizeof(kd_item) * ((size_t)n + 1));
     if (!it) return 0;

@@ -1,15 +1,17 @@
 /* kd_build.c - the kd-tree recursion shared by both split finders, its
- * parallel phase and the public rt_kd_build.
+ * parallel form and the public rt_kd_build.
  *
  * Determinism for any thread count: every node's decision is a function of
- * its own input only. The nodes above depth KD_TASK_DEPTH are built on the
- * calling thread; each node reaching that depth (with enough triangles)
- * becomes a task, built into its own buffer by whichever worker takes it;
- * the buffers are then spliced into the placeholders in depth-first order.
- * The result is byte-identical for any pool. */
+ * its own input only. With a pool, the root is a task, and a worker that
+ * splits a node with a large right child makes that child a task (a
+ * placeholder in its own output) and goes on with the left one; each task
+ * is built into its own buffer by whichever worker takes it, and the
+ * buffers are then spliced into the placeholders in depth-first order. The
+ * result is byte-identical for any pool and any timing. */
 #include "accel/kd_internal.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,8 +19,7 @@
 #include "base/error.h"
 #include "base/thread_pool.h"
 
-#define KD_TASK_DEPTH 5    /* at most 32 tasks */
-#define KD_TASK_MIN   1024 /* smaller subtrees are not worth a task */
+#define KD_TASK_MIN 1024 /* smaller subtrees are not worth a task */
 
 rt_kd_options rt_kd_options_default(void) {
     rt_kd_options o;
@@ -86,6 +87,19 @@ void kd_out_leaf(kd_out *o, const uint32_t *tris, uint32_t n) {
 
 void kd_out_placeholder(kd_out *o, uint32_t task) {
     if (!grow_nodes(o)) return;
+    if (o->ph_count == o->ph_cap) {
+        uint32_t cap = o->ph_cap ? 2 * o->ph_cap : 8;
+        uint32_t *ph = realloc(o->ph, sizeof(uint32_t) * 2 * cap);
+        if (!ph) {
+            o->oom = 1;
+            return;
+        }
+        o->ph = ph;
+        o->ph_cap = cap;
+    }
+    o->ph[2 * o->ph_count] = o->node_count;
+    o->ph[2 * o->ph_count + 1] = o->prim_count;
+    o->ph_count++;
     o->nodes[o->node_count].a = task;
     o->nodes[o->node_count].b = KD_PLACEHOLDER;
     o->node_count++;
@@ -94,152 +108,202 @@ void kd_out_placeholder(kd_out *o, uint32_t task) {
 void kd_out_free(kd_out *o) {
     free(o->nodes);
     free(o->prims);
+    free(o->ph);
     memset(o, 0, sizeof *o);
 }
 
 /* ---- the recursion ------------------------------------------------------------ */
 
+/* A subtree built by one worker into its own buffer; its placeholders name
+ * the tasks of subtrees split off from it. */
 typedef struct kd_task {
     kd_node_in in;
     kd_out out;
-    int oom;
+    /* assemble: the subtree's nodes and entries (placeholders expanded) and
+     * the index of its first node and first entry in the tree */
+    uint64_t nodes, prims, nbase, pbase;
 } kd_task;
 
-typedef struct kd_tasks {
-    kd_task *t;
+/* The parallel build: every task made, in the order made, shared by the
+ * pool's workers, which take the oldest waiting (the largest subtrees come
+ * first: a worker goes on depth-first with the left children). The
+ * numbering of the tasks depends on timing; the tree does not (assemble
+ * follows the placeholders). */
+typedef struct kd_sched {
+    const kd_ctx *c;
+    const kd_finder *f;
+    pthread_mutex_t lock;
+    pthread_cond_t wake;
+    kd_task **all; /* by task number */
     uint32_t count, cap;
+    uint32_t taken; /* tasks taken by a worker: all[taken..count) wait */
+    uint32_t busy;  /* workers inside a task */
     int oom;
-} kd_tasks;
+} kd_sched;
 
 static void node_free(kd_node_in *in) {
     free(in->data);
     in->data = NULL;
 }
 
-/* Builds the subtree of in into o; with tasks, nodes at KD_TASK_DEPTH
- * become tasks. Frees in's data. */
-static void build_rec(const kd_ctx *c, const kd_finder *f, kd_node_in *in, kd_scratch *w, kd_out *o,
-                      kd_tasks *tasks) {
-    if (o->oom) {
-        node_free(in);
-        return;
-    }
-    if (tasks && in->depth == KD_TASK_DEPTH && in->tris >= KD_TASK_MIN) {
-        if (tasks->count == tasks->cap) {
-            uint32_t cap = tasks->cap ? 2 * tasks->cap : 32;
-            kd_task *t = realloc(tasks->t, sizeof(kd_task) * cap);
-            if (!t) {
-                o->oom = 1;
-                node_free(in);
-                return;
-            }
-            tasks->t = t;
-            tasks->cap = cap;
+/* Makes in a task (taking its data) and returns its number; UINT32_MAX when
+ * out of memory (in's data freed). */
+static uint32_t sched_push(kd_sched *s, kd_node_in *in) {
+    kd_task *t = calloc(1, sizeof *t);
+    uint32_t id = UINT32_MAX;
+    pthread_mutex_lock(&s->lock);
+    if (t && s->count == s->cap) {
+        uint32_t cap = s->cap ? 2 * s->cap : 64;
+        kd_task **a = realloc(s->all, sizeof(kd_task *) * cap);
+        if (a) {
+            s->all = a;
+            s->cap = cap;
         }
-        kd_task *t = &tasks->t[tasks->count];
-        memset(t, 0, sizeof *t);
+    }
+    if (t && s->count < s->cap) {
         t->in = *in;
         in->data = NULL;
-        kd_out_placeholder(o, tasks->count++);
-        return;
+        id = s->count++;
+        s->all[id] = t;
+        pthread_cond_signal(&s->wake);
     }
-    kd_split s;
-    s.cost = INFINITY;
-    if (in->tris && in->depth < c->max_depth) f->find(c, in, &s);
-    /* SAH termination: split only when it is cheaper than the leaf. */
-    if (!(s.cost < (double)c->opt.cost_intersect * (double)in->tris)) {
-        uint32_t n = f->leaf(c, in, w);
-        if (n == UINT32_MAX)
-            o->oom = 1;
-        else
-            kd_out_leaf(o, w->list, n);
+    pthread_mutex_unlock(&s->lock);
+    if (id == UINT32_MAX) {
+        free(t);
         node_free(in);
-        return;
     }
-    kd_node_in l, r;
-    if (!f->split(c, in, &s, w, &l, &r)) {
-        o->oom = 1;
-        return;
-    }
-    uint32_t inner = kd_out_inner(o, s.axis, s.pos);
-    build_rec(c, f, &l, w, o, tasks);
-    kd_out_set_right(o, inner, o->node_count);
-    build_rec(c, f, &r, w, o, tasks);
+    return id;
 }
 
-typedef struct kd_job {
-    const kd_ctx *c;
-    const kd_finder *f;
-    kd_tasks *tasks;
-    atomic_uint next;
-} kd_job;
+/* Builds the subtree of in into o and frees in's data. With s, a right
+ * child of at least KD_TASK_MIN triangles becomes a task (a placeholder
+ * here) for an idle worker to take. */
+static void build_rec(const kd_ctx *c, const kd_finder *f, kd_node_in *in, kd_scratch *w, kd_out *o,
+                      kd_sched *s) {
+    for (;;) {
+        if (o->oom) {
+            node_free(in);
+            return;
+        }
+        kd_split sp;
+        sp.cost = INFINITY;
+        if (in->tris && in->depth < c->max_depth) f->find(c, in, &sp);
+        /* SAH termination: split only when it is cheaper than the leaf. */
+        if (!(sp.cost < (double)c->opt.cost_intersect * (double)in->tris)) {
+            uint32_t n = f->leaf(c, in, w);
+            if (n == UINT32_MAX)
+                o->oom = 1;
+            else
+                kd_out_leaf(o, w->list, n);
+            node_free(in);
+            return;
+        }
+        kd_node_in l, r;
+        if (!f->split(c, in, &sp, w, &l, &r)) {
+            o->oom = 1;
+            return;
+        }
+        uint32_t inner = kd_out_inner(o, sp.axis, sp.pos);
+        if (s && r.tris >= KD_TASK_MIN) {
+            /* Offered before the left subtree is built, placed after it. */
+            uint32_t id = sched_push(s, &r);
+            build_rec(c, f, &l, w, o, s);
+            kd_out_set_right(o, inner, o->node_count);
+            if (id == UINT32_MAX)
+                o->oom = 1;
+            else
+                kd_out_placeholder(o, id);
+            return;
+        }
+        build_rec(c, f, &l, w, o, s);
+        kd_out_set_right(o, inner, o->node_count);
+        /* The right child in this frame: no recursion on the longer side. */
+        *in = r;
+    }
+}
 
 static void run_tasks(void *ctx, int worker, int workers) {
     (void)worker;
     (void)workers;
-    kd_job *j = ctx;
-    kd_scratch w = {calloc(j->c->tri_total ? j->c->tri_total : 1, 1), NULL, 0};
+    kd_sched *s = ctx;
+    kd_scratch w = {calloc(s->c->tri_total ? s->c->tri_total : 1, 1), NULL, 0, NULL, 0};
+    pthread_mutex_lock(&s->lock);
     for (;;) {
-        uint32_t i = atomic_fetch_add(&j->next, 1u);
-        if (i >= j->tasks->count) break;
-        kd_task *t = &j->tasks->t[i];
-        if (!w.flags) {
-            t->oom = 1;
-            node_free(&t->in);
-            continue;
-        }
-        build_rec(j->c, j->f, &t->in, &w, &t->out, NULL);
-        t->oom = t->out.oom;
+        while (s->taken == s->count && s->busy) pthread_cond_wait(&s->wake, &s->lock);
+        if (s->taken == s->count) break;
+        kd_task *t = s->all[s->taken++];
+        s->busy++;
+        pthread_mutex_unlock(&s->lock);
+        if (w.flags)
+            build_rec(s->c, s->f, &t->in, &w, &t->out, s);
+        else
+            t->out.oom = 1;
+        node_free(&t->in);
+        pthread_mutex_lock(&s->lock);
+        s->oom |= t->out.oom;
+        /* The last busy worker with nothing waiting ends everyone's loop. */
+        if (--s->busy == 0 && s->taken == s->count) pthread_cond_broadcast(&s->wake);
     }
-    free(w.flags);
-    free(w.list);
+    pthread_mutex_unlock(&s->lock);
+    kd_scratch_free(&w);
 }
 
-/* Splices the tasks' subtrees into the placeholders of top, depth-first. */
-static int assemble(const kd_out *top, const kd_tasks *tasks, rt_kd *out) {
-    uint32_t n = top->node_count;
-    uint64_t nodes = 0, prims = top->prim_count;
-    uint32_t *at = malloc(sizeof(uint32_t) * ((size_t)n + 1)); /* new index of top's nodes */
+/* Sets the nodes and entries of task id's subtree, placeholders expanded,
+ * and of the subtrees below it (from the placeholders' records). */
+static void task_totals(const kd_sched *s, uint32_t id) {
+    kd_task *t = s->all[id];
+    t->nodes = t->out.node_count - t->out.ph_count;
+    t->prims = t->out.prim_count;
+    for (uint32_t j = 0; j < t->out.ph_count; j++) {
+        uint32_t child = t->out.nodes[t->out.ph[2 * j]].a;
+        task_totals(s, child);
+        t->nodes += s->all[child]->nodes;
+        t->prims += s->all[child]->prims;
+    }
+}
+
+/* Sets where task id's subtree and those below it begin in the tree: a
+ * child after the parent's nodes and entries made before its placeholder,
+ * and after the earlier children's subtrees. */
+static void task_bases(const kd_sched *s, uint32_t id, uint64_t nbase, uint64_t pbase) {
+    kd_task *t = s->all[id];
+    t->nbase = nbase;
+    t->pbase = pbase;
+    uint64_t more_nodes = 0, more_prims = 0;
+    for (uint32_t j = 0; j < t->out.ph_count; j++) {
+        uint32_t at = t->out.ph[2 * j], prims = t->out.ph[2 * j + 1];
+        const kd_task *c = s->all[t->out.nodes[at].a];
+        task_bases(s, t->out.nodes[at].a, nbase + at + more_nodes, pbase + prims + more_prims);
+        more_nodes += c->nodes - 1;
+        more_prims += c->prims;
+    }
+}
+
+/* Writes task id's own nodes and entries to their places in out (task_bases
+ * done); its placeholders' subtrees are other tasks'. Returns 0 when out of
+ * memory. */
+static int place(const kd_sched *s, uint32_t id, rt_kd *out) {
+    const kd_task *t = s->all[id];
+    const kd_out *o = &t->out;
+    uint32_t n = o->node_count;
+    uint32_t *at = malloc(sizeof(uint32_t) * ((size_t)n + 1)); /* new index of o's nodes */
     if (!at) return 0;
+    uint32_t next = (uint32_t)t->nbase, pn = (uint32_t)t->pbase;
     for (uint32_t i = 0; i < n; i++) {
-        at[i] = (uint32_t)nodes;
-        const rt_kd_node *d = &top->nodes[i];
-        if (d->b == KD_PLACEHOLDER) {
-            nodes += tasks->t[d->a].out.node_count;
-            prims += tasks->t[d->a].out.prim_count;
-        } else {
-            nodes++;
-        }
+        at[i] = next;
+        if (o->nodes[i].b == KD_PLACEHOLDER)
+            next += (uint32_t)s->all[o->nodes[i].a]->nodes;
+        else
+            next++;
     }
-    if (nodes >= (1u << 30) || prims >= (1u << 30)) {
-        free(at);
-        return 0;
-    }
-    out->nodes = malloc(sizeof(rt_kd_node) * (nodes + 1));
-    out->prims = malloc(sizeof(uint32_t) * (prims + 1));
-    if (!out->nodes || !out->prims) {
-        free(at);
-        return 0;
-    }
-    uint32_t pn = 0;
     for (uint32_t i = 0; i < n; i++) {
-        const rt_kd_node *d = &top->nodes[i];
+        const rt_kd_node *d = &o->nodes[i];
         rt_kd_node *dst = out->nodes + at[i];
         if (d->b == KD_PLACEHOLDER) {
-            const kd_out *s = &tasks->t[d->a].out;
-            for (uint32_t k = 0; k < s->node_count; k++) {
-                rt_kd_node x = s->nodes[k];
-                if ((x.b & 3u) == RT_KD_LEAF)
-                    x.a += pn;
-                else
-                    x.b = (((x.b >> 2) + at[i]) << 2) | (x.b & 3u);
-                dst[k] = x;
-            }
-            if (s->prim_count) memcpy(out->prims + pn, s->prims, sizeof(uint32_t) * s->prim_count);
-            pn += s->prim_count;
+            pn += (uint32_t)s->all[d->a]->prims;
         } else if ((d->b & 3u) == RT_KD_LEAF) {
             uint32_t cnt = d->b >> 2;
-            if (cnt) memcpy(out->prims + pn, top->prims + d->a, sizeof(uint32_t) * cnt);
+            if (cnt) memcpy(out->prims + pn, o->prims + d->a, sizeof(uint32_t) * cnt);
             dst->a = pn;
             dst->b = d->b;
             pn += cnt;
@@ -248,10 +312,86 @@ static int assemble(const kd_out *top, const kd_tasks *tasks, rt_kd *out) {
             dst->b = (at[d->b >> 2] << 2) | (d->b & 3u);
         }
     }
-    out->node_count = (uint32_t)nodes;
-    out->prim_count = pn;
     free(at);
     return 1;
+}
+
+typedef struct kd_place_job {
+    const kd_sched *s;
+    rt_kd *out;
+    atomic_uint next;
+    atomic_int failed;
+} kd_place_job;
+
+static void place_tasks(void *ctx, int worker, int workers) {
+    (void)worker;
+    (void)workers;
+    kd_place_job *j = ctx;
+    for (;;) {
+        uint32_t i = atomic_fetch_add(&j->next, 1u);
+        if (i >= j->s->count) break;
+        if (!place(j->s, i, j->out)) atomic_store(&j->failed, 1);
+    }
+}
+
+/* Splices the tasks' subtrees into their placeholders from task 0 (the
+ * root) on, each task's part copied by a worker of pool. */
+static int assemble(const kd_sched *s, rt_pool *pool, rt_kd *out) {
+    task_totals(s, 0);
+    uint64_t nodes = s->all[0]->nodes, prims = s->all[0]->prims;
+    if (nodes >= (1u << 30) || prims >= (1u << 30)) return 0;
+    task_bases(s, 0, 0, 0);
+    out->nodes = malloc(sizeof(rt_kd_node) * (nodes + 1));
+    out->prims = malloc(sizeof(uint32_t) * (prims + 1));
+    if (!out->nodes || !out->prims) return 0;
+    kd_place_job j;
+    j.s = s;
+    j.out = out;
+    atomic_init(&j.next, 0u);
+    atomic_init(&j.failed, 0);
+    rt_pool_run(pool, place_tasks, &j);
+    if (atomic_load(&j.failed)) return 0;
+    out->node_count = (uint32_t)nodes;
+    out->prim_count = (uint32_t)prims;
+    return 1;
+}
+
+/* Builds the tree of root into out: on the calling thread, or on pool's
+ * workers from one queue of subtree tasks. Returns 0 when out of memory. */
+static int build_tree(const kd_ctx *c, const kd_finder *f, kd_node_in *root, kd_scratch *w,
+                      rt_pool *pool, rt_kd *out) {
+    if (!pool || rt_pool_size(pool) < 2) {
+        kd_out o;
+        memset(&o, 0, sizeof o);
+        build_rec(c, f, root, w, &o, NULL);
+        if (o.oom || o.node_count >= (1u << 30) || o.prim_count >= (1u << 30)) {
+            kd_out_free(&o);
+            return 0;
+        }
+        out->nodes = o.nodes;
+        out->node_count = o.node_count;
+        out->prims = o.prims ? o.prims : malloc(sizeof(uint32_t));
+        out->prim_count = o.prim_count;
+        return out->prims != NULL;
+    }
+    kd_sched s;
+    memset(&s, 0, sizeof s);
+    s.c = c;
+    s.f = f;
+    pthread_mutex_init(&s.lock, NULL);
+    pthread_cond_init(&s.wake, NULL);
+    int ok = sched_push(&s, root) == 0;
+    if (ok) rt_pool_run(pool, run_tasks, &s);
+    ok = ok && !s.oom && assemble(&s, pool, out);
+    for (uint32_t i = 0; i < s.count; i++) {
+        node_free(&s.all[i]->in);
+        kd_out_free(&s.all[i]->out);
+        free(s.all[i]);
+    }
+    free(s.all);
+    pthread_mutex_destroy(&s.lock);
+    pthread_cond_destroy(&s.wake);
+    return ok;
 }
 
 static int finite_tri(const kd_tri *t) {
@@ -294,6 +434,11 @@ rt_status rt_kd_build(const float *positions, uint32_t vertex_count, const uint3
         return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "kd-tree options out of range");
     if (triangle_count && (!positions || !indices))
         return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "kd-tree: no triangles given");
+    /* The exact builder's events keep a triangle index in 30 bits; a tree
+     * of more entries could not be assembled anyway (below 2^30). */
+    if (triangle_count >= (1u << 30))
+        return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "kd-tree: %u triangles, at most %u",
+                       triangle_count, (1u << 30) - 1u);
     kd_ctx c;
     memset(&c, 0, sizeof c);
     c.opt = opt;
@@ -301,11 +446,7 @@ rt_status rt_kd_build(const float *positions, uint32_t vertex_count, const uint3
     kd_tri *tris = malloc(sizeof(kd_tri) * ((size_t)triangle_count + 1));
     uint32_t *ids = malloc(sizeof(uint32_t) * ((size_t)triangle_count + 1));
     rt_aabb *boxes = malloc(sizeof(rt_aabb) * ((size_t)triangle_count + 1));
-    kd_scratch w = {calloc((size_t)triangle_count + 1, 1), NULL, 0};
-    kd_out top;
-    kd_tasks tasks;
-    memset(&top, 0, sizeof top);
-    memset(&tasks, 0, sizeof tasks);
+    kd_scratch w = {calloc((size_t)triangle_count + 1, 1), NULL, 0, NULL, 0};
     rt_status st = RT_OK;
     if (!tris || !ids || !boxes || !w.flags) {
         st = rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory building a kd-tree");
@@ -370,39 +511,22 @@ rt_status rt_kd_build(const float *positions, uint32_t vertex_count, const uint3
     }
     const kd_finder *f = opt.builder == RT_KD_BINNED ? &kd_finder_binned : &kd_finder_sweep;
     kd_node_in root;
-    if (!f->root(&c, ids, boxes, n, &cell, &root)) {
+    if (!f->root(&c, ids, boxes, n, &cell, pool, &root)) {
         st = rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory building a kd-tree");
         goto done;
     }
     free(boxes);
     boxes = NULL;
-    build_rec(&c, f, &root, &w, &top, &tasks);
-    int oom = top.oom;
-    if (!oom && tasks.count) {
-        kd_job job = {&c, f, &tasks, 0};
-        if (pool)
-            rt_pool_run(pool, run_tasks, &job);
-        else
-            run_tasks(&job, 0, 1);
-        for (uint32_t i = 0; i < tasks.count; i++) oom |= tasks.t[i].oom;
-    }
-    if (oom || !assemble(&top, &tasks, out)) {
+    if (!build_tree(&c, f, &root, &w, pool, out)) {
         rt_kd_free(out);
         st = rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory building a kd-tree");
         goto done;
     }
     out->bounds = cell;
 done:
-    for (uint32_t i = 0; i < tasks.count; i++) {
-        node_free(&tasks.t[i].in);
-        kd_out_free(&tasks.t[i].out);
-    }
-    free(tasks.t);
-    kd_out_free(&top);
     free(tris);
     free(ids);
     free(boxes);
-    free(w.flags);
-    free(w.list);
+    kd_scratch_free(&w);
     return st;
 }

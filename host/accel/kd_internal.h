@@ -32,6 +32,9 @@ typedef struct kd_out {
     uint32_t node_count, node_cap;
     uint32_t *prims;
     uint32_t prim_count, prim_cap;
+    /* per placeholder, in order: its node index and prim_count when made */
+    uint32_t *ph;
+    uint32_t ph_count, ph_cap;
     int oom;
 } kd_out;
 
@@ -76,38 +79,69 @@ typedef struct kd_cell {
 /* Fills c for box; returns 0 when the box has no area (a leaf). */
 int kd_cell_init(kd_cell *c, const rt_aabb *box);
 
-/* Offers the plane pos on axis k of the cell to best: nl triangles
+/* What kd_offer needs of one axis of a cell and of the cost model, set once
+ * per axis (kd_axis_init) for a sweep over many planes. */
+typedef struct kd_axis {
+    double s, p;       /* the sum and product of the other two extents */
+    double lo, hi;     /* the cell's bounds on the axis */
+    double inv_area;   /* 1 / the cell's area */
+    double kt, ki, eb; /* cost_traverse, cost_intersect, empty_bonus */
+    float flo, fhi;    /* the bounds as floats (a plane on a face) */
+    int k;
+} kd_axis;
+
+static inline void kd_axis_init(kd_axis *x, const kd_ctx *c, const kd_cell *v, int k) {
+    x->s = v->other_sum[k];
+    x->p = v->other_prod[k];
+    x->lo = (double)v->box->bmin[k];
+    x->hi = (double)v->box->bmax[k];
+    x->flo = v->box->bmin[k];
+    x->fhi = v->box->bmax[k];
+    x->inv_area = v->inv_area;
+    x->kt = (double)c->opt.cost_traverse;
+    x->ki = (double)c->opt.cost_intersect;
+    x->eb = (double)c->opt.empty_bonus;
+    x->k = k;
+}
+
+/* Offers the plane pos on axis x->k of the cell to best: nl triangles
  * entirely left, nr entirely right, np lying in the plane, n in all. Both
  * places for the planar ones are priced, with the empty-space bonus when a
  * side is empty; a split that leaves one child equal to the cell with every
  * triangle (a plane on the cell's face) is refused, so recursion always
  * progresses. Ties keep the earlier offer. */
-static inline void kd_offer(const kd_ctx *c, const kd_cell *v, int k, float pos, uint32_t nl,
-                            uint32_t nr, uint32_t np, uint32_t n, kd_split *best) {
+static inline void kd_offer_axis(const kd_axis *x, float pos, uint32_t nl, uint32_t nr, uint32_t np,
+                                 uint32_t n, kd_split *best) {
     /* The children's areas: the cell's with the extent on k cut at pos.
      * Inline: the sweep offers every event position (a quarter of the
      * exact build's time went to the calls). */
-    double s = v->other_sum[k], p = v->other_prod[k];
-    double l = (double)pos - (double)v->box->bmin[k], r = (double)v->box->bmax[k] - (double)pos;
-    double pl = 2.0 * (l * s + p) * v->inv_area;
-    double pr = 2.0 * (r * s + p) * v->inv_area;
+    double l = (double)pos - x->lo, r = x->hi - (double)pos;
+    double pl = 2.0 * (l * x->s + x->p) * x->inv_area;
+    double pr = 2.0 * (r * x->s + x->p) * x->inv_area;
     /* A plane on a face of the cell leaves one child equal to the cell. */
-    int left_is_cell = pos == v->box->bmax[k], right_is_cell = pos == v->box->bmin[k];
-    double kt = (double)c->opt.cost_traverse, ki = (double)c->opt.cost_intersect;
+    int left_is_cell = pos == x->fhi, right_is_cell = pos == x->flo;
     for (int side = 0; side < 2; side++) {
         int planar_left = side == 0;
         uint32_t na = nl + (planar_left ? np : 0u), nb = nr + (planar_left ? 0u : np);
         if ((left_is_cell && na == n) || (right_is_cell && nb == n)) continue;
-        double bonus = (na == 0 || nb == 0) ? (double)c->opt.empty_bonus : 1.0;
-        double cost = bonus * (kt + ki * (pl * (double)na + pr * (double)nb));
+        double bonus = (na == 0 || nb == 0) ? x->eb : 1.0;
+        double cost = bonus * (x->kt + x->ki * (pl * (double)na + pr * (double)nb));
         if (cost < best->cost) {
             best->cost = cost;
-            best->axis = k;
+            best->axis = x->k;
             best->pos = pos;
             best->planar_left = planar_left;
         }
         if (!np) break; /* the same price both ways */
     }
+}
+
+/* kd_offer_axis for axis k of cell v. */
+static inline void kd_offer(const kd_ctx *c, const kd_cell *v, int k, float pos, uint32_t nl,
+                            uint32_t nr, uint32_t np, uint32_t n, kd_split *best) {
+    kd_axis x;
+    kd_axis_init(&x, c, v, k);
+    kd_offer_axis(&x, pos, nl, nr, np, n, best);
 }
 
 /* ---- perfect splits (kd_clip.c) --------------------------------------------- */
@@ -117,13 +151,23 @@ static inline void kd_offer(const kd_ctx *c, const kd_cell *v, int k, float pos,
  * Returns 0 when the triangle does not reach the cell. */
 int kd_clip_box(const kd_tri *t, const rt_aabb *cell, rt_aabb *out);
 
+/* kd_clip_box of t for both children of cell split at pos on axis (the left
+ * cell ending at pos, the right one starting there), sharing the work of
+ * the planes before axis. Returns KD_LEFT | KD_RIGHT for the children t
+ * reaches (their boxes set). */
+int kd_clip_pair(const kd_tri *t, const rt_aabb *cell, int axis, float pos, rt_aabb *left,
+                 rt_aabb *right);
+
 /* ---- the split finders ----------------------------------------------------------- */
 
-/* Per worker scratch: a flag per triangle (zero between uses) and a list. */
+/* Per worker scratch: a flag per triangle (zero between uses), a list and
+ * a buffer (kept between nodes, so that a split allocates less). */
 typedef struct kd_scratch {
     uint8_t *flags;
     uint32_t *list;
     uint32_t list_cap;
+    void *buf;
+    size_t buf_cap;
 } kd_scratch;
 
 /* A node's input: the cell, the depth, the triangle count and the finder's
@@ -147,15 +191,25 @@ typedef struct kd_finder {
      * the count (or UINT32_MAX when out of memory). */
     uint32_t (*leaf)(const kd_ctx *c, const kd_node_in *in, kd_scratch *w);
     /* The root's input from the triangles with area (ids[0..n-1], their
-     * boxes); returns 0 when out of memory. */
+     * boxes), on pool's workers where there are (pool may be NULL); returns
+     * 0 when out of memory. */
     int (*root)(const kd_ctx *c, const uint32_t *ids, const rt_aabb *boxes, uint32_t n,
-                const rt_aabb *cell, kd_node_in *out);
+                const rt_aabb *cell, rt_pool *pool, kd_node_in *out);
 } kd_finder;
 
 extern const kd_finder kd_finder_sweep;  /* kd_sweep.c */
 extern const kd_finder kd_finder_binned; /* kd_binned.c */
 
-/* Grows w->list to hold n entries; 0 when out of memory. */
+/* Grows w->list to hold n entries (and a spare one); 0 when out of memory. */
 int kd_scratch_list(kd_scratch *w, uint32_t n);
+
+/* Grows w->buf to hold bytes; 0 when out of memory. */
+int kd_scratch_buf(kd_scratch *w, size_t bytes);
+
+/* Frees what w holds. */
+void kd_scratch_free(kd_scratch *w);
+
+/* Sorts v[0..n) ascending (a leaf's entries: insertion sort while short). */
+void kd_sort_u32(uint32_t *v, uint32_t n);
 
 #endif /* RT_KD_INTERNAL_H */

@@ -58,17 +58,31 @@ enum {
     B_COUNTERS, /* 12: per pixel or ray of a tile */
     B_FB,       /* 13: the tile's pixels */
     B_KD_NODES, /* 14: kd-tree nodes (kernels/vulkan/rt_vk_kd.glsl) */
+    B_ITEMS,    /* 15: per item of a tile, 1 if the driver's loop limit cut it; re-run lists */
     B_COUNT
 };
 static const char *const buffer_names[B_COUNT] = {
     "header",    "nodes",  "tris", "tri_ids", "tri_normals", "tri_mats",    "instances", "inst_ids",
-    "materials", "lights", "rays", "hits",    "counters",    "framebuffer", "kd_nodes"};
+    "materials", "lights", "rays", "hits",    "counters",    "framebuffer", "kd_nodes",  "items"};
 
 /* The push constants of every shader (Push in kernels/vulkan/rt_vk_io.glsl). */
 typedef struct vk_push {
     uint32_t first, count;
     int32_t aov, channels, any_hit, query;
+    uint32_t canary, stride, ballast, list_at;
 } vk_push;
+
+/* The loop-limit canary's iterations (rt_vk_main.comp). */
+#define RT_VK_CANARY 2u
+
+/* Fault injection for the tests (rt_vk_test_loop_limit). */
+static uint32_t vk_test_ballast;
+static int vk_test_no_rerun;
+
+void rt_vk_test_loop_limit(uint32_t ballast, int rerun) {
+    vk_test_ballast = ballast;
+    vk_test_no_rerun = !rerun;
+}
 
 /* The specialization constants (constant_id 0..4 in rt_vk_shared.glsl, 5
  * in rt_vk_kd.glsl). */
@@ -718,7 +732,8 @@ static rt_status dispatch(vk_state *s, int p, const vk_push *push, double *ms, r
                             NULL);
     vkCmdPushConstants(s->cmd, s->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
     if (s->qpool) vkCmdWriteTimestamp(s->cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s->qpool, 0);
-    uint32_t groups = (push->count + RT_VK_LOCAL - 1) / RT_VK_LOCAL;
+    uint64_t invocations = (uint64_t)push->count * (push->stride > 1 ? push->stride : 1);
+    uint32_t groups = (uint32_t)((invocations + RT_VK_LOCAL - 1) / RT_VK_LOCAL);
     vkCmdDispatch(s->cmd, groups ? groups : 1, 1, 1);
     if (s->qpool) vkCmdWriteTimestamp(s->cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, s->qpool, 1);
     /* The shader's writes are made visible to the host's reads. */
@@ -760,6 +775,46 @@ static uint32_t next_tile(uint32_t tile, double ms) {
     return tile;
 }
 
+/* The items of the last dispatch (push: its first pass) that the driver's
+ * loop limit may have cut short (items[i] = 1: rt_vk_main.comp's canary)
+ * are traced again, each alone in its work group, so that the limit is one
+ * item's to spend. An item cut even then is an error that names it, never
+ * a wrong result. width > 0: the items are pixels of a frame that wide,
+ * else rays numbered from base. *reruns counts the items traced again. */
+static rt_status rerun_cut(vk_state *s, const vk_push *push, size_t base, int width,
+                           uint32_t *reruns, rt_error *err) {
+    uint32_t *items = s->buf[B_ITEMS].map;
+    uint32_t m = 0;
+    for (uint32_t i = 0; i < push->count; i++)
+        if (items[i]) items[push->list_at + m++] = i;
+    if (m == 0) return RT_OK;
+    if (!vk_test_no_rerun) {
+        vk_push again = *push;
+        again.count = m;
+        again.stride = RT_VK_LOCAL;
+        again.ballast = 0;
+        double ms;
+        rt_status st = dispatch(s, P_MAIN, &again, &ms, err);
+        if (st != RT_OK) return st;
+        *reruns += m;
+    }
+    for (uint32_t k = 0; k < m; k++) {
+        uint32_t i = items[push->list_at + k];
+        if (!items[i]) continue;
+        const char *why = "needs more loop iterations than the driver runs in one shader "
+                          "invocation (llvmpipe and lavapipe stop every loop after 65535 in all), "
+                          "so its result would be wrong";
+        if (width > 0) {
+            size_t p = (size_t)push->first + i;
+            return rt_fail(err, RT_ERROR_BACKEND, "vulkan on '%s': pixel (%zu, %zu) %s",
+                           s->dev.name, p % (size_t)width, p / (size_t)width, why);
+        }
+        return rt_fail(err, RT_ERROR_BACKEND, "vulkan on '%s': ray %zu %s", s->dev.name, base + i,
+                       why);
+    }
+    return RT_OK;
+}
+
 /* ---- the backend --------------------------------------------------------------- */
 
 static rt_status vk_prepare(void *state, const rt_backend_layout *layout, rt_render_stats *stats,
@@ -797,18 +852,23 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
     int remade;
     rt_status st = ensure(s, B_FB, px_bytes * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK) st = ensure(s, B_COUNTERS, sizeof(rt_counters) * RT_VK_TILE_MAX, &remade, err);
+    if (st == RT_OK) st = ensure(s, B_ITEMS, 2 * sizeof(uint32_t) * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK) st = bind_all(s, err);
     if (st != RT_OK) return named(err, st);
-    snprintf(stats->kernels, sizeof stats->kernels, "vulkan rt_vk_main, portable maths");
+    uint32_t reruns = 0;
     double t_render = rt_now_ms();
     const rt_counters *counts = s->buf[B_COUNTERS].map;
     for (uint32_t first = 0; first < pixels && st == RT_OK;) {
         uint32_t per = s->tile;
         uint32_t n = pixels - first < per ? pixels - first : per;
-        vk_push push = {first, n, (int32_t)frame->aov, frame->channels, 0, 0};
+        vk_push push = {first,        n, (int32_t)frame->aov, frame->channels, 0, 0,
+                        RT_VK_CANARY, 1, vk_test_ballast,     RT_VK_TILE_MAX};
         double ms = 0.0;
         st = dispatch(s, P_MAIN, &push, &ms, err);
+        uint32_t before = reruns;
+        if (st == RT_OK) st = rerun_cut(s, &push, 0, h->width, &reruns, err);
         if (st != RT_OK) break;
+        if (reruns != before) stats->launches++;
         stats->kernel_ms[1] += ms;
         stats->launches++;
         if (n > stats->tile_pixels) stats->tile_pixels = n;
@@ -827,6 +887,11 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
         if (frame->progress) frame->progress(frame->progress_user, (double)first / pixels);
     }
     if (st != RT_OK) return named(err, st);
+    if (reruns)
+        snprintf(stats->kernels, sizeof stats->kernels, "vulkan rt_vk_main, %u px re-run alone",
+                 reruns);
+    else
+        snprintf(stats->kernels, sizeof stats->kernels, "vulkan rt_vk_main, portable maths");
     stats->render_ms = rt_now_ms() - t_render;
     stats->primary_rays = pixels;
     stats->threads = 0;
@@ -844,13 +909,17 @@ static rt_status vk_trace(void *state, const rt_backend_layout *layout, const rt
     rt_status st = ensure(s, B_RAYS, sizeof(rt_ray_d) * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK) st = ensure(s, B_HITS, sizeof(rt_hit_d) * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK) st = ensure(s, B_COUNTERS, sizeof(rt_counters) * RT_VK_TILE_MAX, &remade, err);
+    if (st == RT_OK) st = ensure(s, B_ITEMS, 2 * sizeof(uint32_t) * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK) st = bind_all(s, err);
+    uint32_t reruns = 0;
     for (size_t first = 0; first < count && st == RT_OK;) {
         uint32_t n = (uint32_t)(count - first < s->tile ? count - first : s->tile);
         memcpy(s->buf[B_RAYS].map, rays + first, sizeof(rt_ray_d) * n);
-        vk_push push = {0, n, 0, 0, any_hit ? 1 : 0, 1};
+        vk_push push = {
+            0, n, 0, 0, any_hit ? 1 : 0, 1, RT_VK_CANARY, 1, vk_test_ballast, RT_VK_TILE_MAX};
         double ms = 0.0;
         st = dispatch(s, P_MAIN, &push, &ms, err);
+        if (st == RT_OK) st = rerun_cut(s, &push, first, 0, &reruns, err);
         if (st != RT_OK) break;
         memcpy(hits + first, s->buf[B_HITS].map, sizeof(rt_hit_d) * n);
         first += n;
@@ -888,7 +957,7 @@ rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size
     for (size_t first = 0; first < count && st == RT_OK;) {
         uint32_t n = (uint32_t)(count - first < tile ? count - first : tile);
         memcpy(s->buf[B_RAYS].map, operands + 4 * first, 16 * (size_t)n);
-        vk_push push = {0, n, 0, 0, 0, 0};
+        vk_push push = {0, n, 0, 0, 0, 0, 0, 1, 0, 0};
         st = dispatch(s, P_SOFT, &push, &ms, err);
         if (st == RT_OK) memcpy(results + 3 * first, s->buf[B_HITS].map, 12 * (size_t)n);
         first += n;

@@ -43,4 +43,10 @@ rt_status rt_vk_trace_kd_stack(const char *device, const struct rt_flat *flat, c
                                size_t count, int any_hit, uint32_t kd_shared_cells, rt_hit_d *hits,
                                rt_error *err);
 
+/* Fault injection for the test of the loop-limit canary (rt_vk_main.comp):
+ * every first-pass dispatch of this process first spends ballast loop
+ * iterations (0: none, the default), and items the canary marks are traced
+ * again alone only when rerun (1, the default). Not thread-safe; tests only. */
+void rt_vk_test_loop_limit(uint32_t ballast, int rerun);
+
 #endif /* RT_VK_BACKEND_H */

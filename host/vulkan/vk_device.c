@@ -1,10 +1,10 @@
 /* vk_device.c - Vulkan devices through the loader: listing, float controls,
  * selection (vk_device.h). */
-#include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "backend/device_select.h"
 #include "base/error.h"
 #include "vulkan/vk_internal.h"
 
@@ -188,38 +188,15 @@ rt_status rt_vk_devices(rt_vk_device_info **out, int *count, rt_error *err) {
     return st;
 }
 
-static int contains_nocase(const char *hay, const char *needle) {
-    size_t n = strlen(needle);
-    for (; *hay; hay++) {
-        size_t i = 0;
-        while (i < n && hay[i] &&
-               tolower((unsigned char)hay[i]) == tolower((unsigned char)needle[i]))
-            i++;
-        if (i == n) return 1;
-    }
-    return n == 0;
+static const char *device_name(const void *devs, int i) {
+    return ((const rt_vk_device_info *)devs)[i].name;
+}
+static int device_exact(const void *devs, int i) {
+    return ((const rt_vk_device_info *)devs)[i].exact;
 }
 
 int rt_vk_select(const rt_vk_device_info *devs, int count, const char *sel, rt_error *err) {
-    if (!sel || !*sel) {
-        for (int i = 0; i < count; i++)
-            if (devs[i].exact) return i;
-        return count > 0 ? 0 : -1;
-    }
-    char *end;
-    long idx = strtol(sel, &end, 10);
-    if (end != sel && *end == 0) {
-        if (idx >= 0 && idx < count) return (int)idx;
-        rt_fail(err, RT_ERROR_INVALID_ARGUMENT,
-                "no Vulkan device %ld (there %s %d: 0..%d, see 'rtcl devices')", idx,
-                count == 1 ? "is" : "are", count, count - 1);
-        return -1;
-    }
-    for (int i = 0; i < count; i++)
-        if (contains_nocase(devs[i].name, sel)) return i;
-    rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "no Vulkan device named like '%s' (see 'rtcl devices')",
-            sel);
-    return -1;
+    return rt_device_select("Vulkan", devs, count, device_name, device_exact, sel, err);
 }
 
 const char *rt_vk_exactness_note(const rt_vk_device_info *d, int flush) {

@@ -14,7 +14,18 @@
  *
  * Ray queries: rays[i] -> hits[i] (closest or any hit), counters[i].
  * Frames: pixels pc.first .. pc.first + pc.count - 1 (row-major), pixel
- * first + i at fb[i * channels], counters[i] its ray and test counts. */
+ * first + i at fb[i * channels], counters[i] its ray and test counts.
+ *
+ * The loop-limit canary. llvmpipe and lavapipe (gallivm) give a shader one
+ * iteration budget, 65535, shared by every loop of the whole shader and by
+ * the invocations of a SIMD group: once it is spent, each loop stops after
+ * its current iteration, silently, and a traversal returns a wrong hit. A
+ * group of rays that diverge can spend it where each ray alone would not.
+ * The budget never grows back, so a loop of pc.canary = 2 iterations at the
+ * end runs both only when no loop before it was cut: items[i] = 1 marks an
+ * item whose result cannot be trusted, and the host traces it again alone
+ * in its work group (pc.stride), or reports it. Other drivers have no such
+ * limit; there the canary costs two loop iterations. */
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
@@ -29,7 +40,15 @@ layout(local_size_x = 64) in;
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
-    if (i >= pc.count) return;
+    if (pc.stride > 1u) {
+        if (i % pc.stride != 0u || i / pc.stride >= pc.count) return;
+        i = items[pc.list_at + i / pc.stride];
+    } else if (i >= pc.count) {
+        return;
+    }
+    /* A test's fault injection: iterations spent from the loop budget. */
+    uint spent = 0u;
+    for (uint k = 0u; k < pc.ballast; k++) spent++;
     rt_counters c;
     c.box_tests = 0u;
     c.tri_tests = 0u;
@@ -132,4 +151,7 @@ void main() {
             fb[o] = float(pc.aov == AOV_BOX_TESTS ? c.box_tests : c.tri_tests);
     }
     counters[i] = c;
+    uint runs = 0u;
+    for (uint k = 0u; k < pc.canary; k++) runs++;
+    items[i] = (runs == pc.canary && spent == pc.ballast) ? 0u : 1u;
 }

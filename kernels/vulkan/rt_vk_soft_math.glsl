@@ -1,15 +1,21 @@
 /* rt_vk_soft_math.glsl - the GLSL mirror of kernels/rt_soft_math.h: binary32
  * division, square root and difference of products, correctly rounded, from
- * 32-bit integer operations alone (no float arithmetic, so neither
- * contraction nor the device's denormal mode can change a result).
+ * 32-bit integer operations and a float first guess that integer
+ * arithmetic checks and corrects (so neither contraction nor the device's
+ * denormal mode can change a result: a guess that misses its window sends
+ * the operands to the bit-serial loop).
  *
  * A hand-written mirror, line by line (docs/ARCHITECTURE.md says why): each
  * function has the C function's name and steps. test_vulkan_oracle holds it
  * to the C header bit for bit on the special classes and on random operands
- * (rt_vk_soft_test.comp). Differences from C: no pointers (out parameters),
- * bool where C tests an int, findMSB for the leading-zero count. The
- * digit loops are not unrolled ([[dont_unroll]]): unrolled, every inlined
- * division made the driver's compile of the shaders minutes long. */
+ * (rt_vk_soft_test.comp). Differences from C: no pointers (out and inout
+ * parameters), bool where C tests an int, findMSB for the leading-zero
+ * count, the C constants written by their bits. The bit-serial loops, the
+ * guards' path that no operand takes, are not unrolled ([[dont_unroll]]):
+ * unrolled, every inlined division made the driver's compile minutes long.
+ * Why the common path has no loop at all: llvmpipe and lavapipe give a
+ * shader 65535 loop iterations in all (rt_vk_main.comp), and a division of
+ * 24 iterations per triangle test spent them. */
 #ifndef RT_VK_SOFT_MATH_GLSL
 #define RT_VK_SOFT_MATH_GLSL
 
@@ -68,6 +74,63 @@ uint rt_sm_round_pack_(uint sign, int e, uint sig, uint sticky, bool ftz) {
     return sign | bits;
 }
 
+/* ---- division ---- */
+
+uint rt_sm_div_serial_(uint ma, uint mb, out uint rem) {
+    uint r = ma - mb, q = 1u;
+    [[dont_unroll]] for (int i = 0; i < 24; i++) {
+        r <<= 1;
+        uint t = r - mb;
+        uint bit = (t >> 31) ^ 1u;
+        q = (q << 1) | bit;
+        r = bit != 0u ? t : r;
+    }
+    rem = r;
+    return q;
+}
+
+/* The C constants by their bits (24/17 and 8/17 rounded to float), so that
+ * no decimal-to-float conversion of the GLSL compiler can differ. */
+float rt_sm_recip_(float fb) {
+    float y = uintBitsToFloat(0x3fb4b4b5u) - uintBitsToFloat(0x3ef0f0f1u) * fb;
+    float e = 1.0 - fb * y;
+    float e2 = e * e;
+    y = y + y * e;
+    y = y + y * e2;
+    e = 1.0 - fb * y;
+    y = y + y * e;
+    return y;
+}
+
+uint rt_sm_fix24_(float q, inout uint bad) {
+    uint qb = floatBitsToUint(q), sh = (qb >> 23) - 126u;
+    bad |= sh > 2u ? 1u : 0u;
+    return ((qb & RT_SM_FRAC) | 0x00800000u) << (sh & 3u);
+}
+
+uint rt_sm_div_guess_(uint ma, uint mb, uint dbl, inout uint bad) {
+    float fa = uintBitsToFloat(((127u + dbl) << 23) | (ma & RT_SM_FRAC));
+    float fb = uintBitsToFloat(0x3f800000u | (mb & RT_SM_FRAC));
+    return rt_sm_fix24_(fa * rt_sm_recip_(fb), bad);
+}
+
+uint rt_sm_div_sig_(uint ma, uint mb, uint dbl, out uint rem) {
+    uint bad = 0u;
+    uint q = rt_sm_div_guess_(ma, mb, dbl, bad) - 4u;
+    ma <<= dbl;
+    uint r = (ma << 24) - q * mb;
+    bad |= r >= (mb << 3) ? 1u : 0u;
+    [[unroll]] for (int k = 2; k >= 0; k--) {
+        uint t = r - (mb << uint(k));
+        uint bit = (t >> 31) ^ 1u;
+        q += bit << uint(k);
+        r = bit != 0u ? t : r;
+    }
+    if (bad != 0u) q = rt_sm_div_serial_(ma, mb, r);
+    rem = r;
+    return q;
+}
+
 uint rt_sm_div_bits_(uint a, uint b, bool ftz) {
     if (ftz) {
         a = rt_sm_daz_(a);
@@ -85,33 +148,15 @@ uint rt_sm_div_bits_(uint a, uint b, bool ftz) {
     int ea, eb;
     rt_sm_unpack_(aa, ma, ea);
     rt_sm_unpack_(ab, mb, eb);
-    int e = ea - eb + 127;
-    if (ma < mb) {
-        ma <<= 1;
-        e -= 1;
-    }
-    uint r = ma - mb, q = 1u;
-    [[dont_unroll]] for (int i = 0; i < 24; i++) {
-        r <<= 1;
-        uint t = r - mb;
-        uint bit = (t >> 31) ^ 1u;
-        q = (q << 1) | bit;
-        r = bit != 0u ? t : r;
-    }
+    uint dbl = ma < mb ? 1u : 0u;
+    int e = ea - eb + 127 - int(dbl);
+    uint r, q = rt_sm_div_sig_(ma, mb, dbl, r);
     return rt_sm_round_pack_(sign, e, q, r, ftz);
 }
 
-uint rt_sm_sqrt_bits_(uint x, bool ftz) {
-    if (ftz) x = rt_sm_daz_(x);
-    if (rt_sm_is_nan_(x)) return x | RT_SM_QUIET;
-    if ((x & ~RT_SM_SIGN) == 0u) return x;
-    if ((x & RT_SM_SIGN) != 0u) return RT_SM_QNAN;
-    if (x == RT_SM_INF) return x;
-    uint m;
-    int e;
-    rt_sm_unpack_(x, m, e);
-    uint odd = uint(e + 1) & 1u;
-    uint t = m << (1u + odd);
+/* ---- square root ---- */
+
+uint rt_sm_sqrt_serial_(uint t, out uint rem_out) {
     uint root = 0u, rem = 0u;
     [[dont_unroll]] for (int i = 0; i < 25; i++) {
         uint pair = 0u;
@@ -124,9 +169,54 @@ uint rt_sm_sqrt_bits_(uint x, bool ftz) {
         root |= bit;
         rem = bit != 0u ? d : rem;
     }
+    rem_out = rem;
+    return root;
+}
+
+uint rt_sm_sqrt_guess_(uint m, uint odd, inout uint bad) {
+    float fx = uintBitsToFloat(((127u + odd) << 23) | (m & RT_SM_FRAC));
+    float hx = 0.5 * fx;
+    float y = uintBitsToFloat(0x5f3759dfu - (floatBitsToUint(fx) >> 1));
+    y = y * (1.5 - hx * y * y);
+    y = y * (1.5 - hx * y * y);
+    float s = fx * y;
+    s = s + (0.5 * y) * (fx - s * s);
+    return rt_sm_fix24_(s, bad);
+}
+
+uint rt_sm_sqrt_sig_(uint m, uint odd, out uint rem_out) {
+    uint t = m << (1u + odd);
+    uint bad = 0u;
+    uint root = rt_sm_sqrt_guess_(m, odd, bad) - 2u;
+    uint rem = (t << 24) - root * root;
+    bad |= rem >= (root << 3) + 16u ? 1u : 0u;
+    [[unroll]] for (int k = 1; k >= 0; k--) {
+        uint d = rem - ((root << uint(k + 1)) + (1u << uint(2 * k)));
+        uint bit = (d >> 31) ^ 1u;
+        root += bit << uint(k);
+        rem = bit != 0u ? d : rem;
+    }
+    if (bad != 0u) root = rt_sm_sqrt_serial_(t, rem);
+    rem_out = rem;
+    return root;
+}
+
+uint rt_sm_sqrt_bits_(uint x, bool ftz) {
+    if (ftz) x = rt_sm_daz_(x);
+    if (rt_sm_is_nan_(x)) return x | RT_SM_QUIET;
+    if ((x & ~RT_SM_SIGN) == 0u) return x;
+    if ((x & RT_SM_SIGN) != 0u) return RT_SM_QNAN;
+    if (x == RT_SM_INF) return x;
+    uint m;
+    int e;
+    rt_sm_unpack_(x, m, e);
+    uint odd = uint(e + 1) & 1u;
+    uint rem, root = rt_sm_sqrt_sig_(m, odd, rem);
     int er = int(uint(e + 149) >> 1) - 11;
     return rt_sm_round_pack_(0u, er, root, rem, ftz);
 }
+
+/* ---- difference of products ---- */
 
 void rt_sm_mul_exact_(uint a, uint b, out uint hi, out uint lo, out int e) {
     uint ma, mb;
