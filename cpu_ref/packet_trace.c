@@ -8,7 +8,8 @@
  * whole packet decides each node with one interval test over its four
  * children (pk_bvh_ia); below such nodes, and for packets whose signs differ, each group goes on
  * with its lanes' own box tests (pk_bvh_group); at a leaf each group's lanes that pass its box test
- * test the triangles, a group's lanes in one vector test.
+ * test the triangles, a group's lanes in one vector test. Meshes with a
+ * kd-tree (RT_INST_KD) are walked by each group in turn (packet_kd.h).
  *
  * Every vector operation below is the scalar oracle's operation on each lane
  * (kernels/rt_shared.h, named at each function), in the same order, so each
@@ -535,14 +536,21 @@ static void pk_tri(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u32 e, 
     st->hi_stale = 1;
 }
 
-/* The triangles of leaf child c of n for the lanes of m in group g. */
-static void pk_leaf(pk_state *st, const pk_geom *p, const rt_pk_node *n, int c, rt_u32 inst, int g,
-                    uint32_t m) {
-    const rt_u32 begin = n->ref[c], end = begin + (n->count[c] & RT_NODE_COUNT_MASK);
+/* The layout's entries [begin, end) for the lanes of m in group g, in
+ * order (rt_leaf_test's loop): a BVH leaf or a kd-tree leaf. */
+static void pk_leaf_range(pk_state *st, const pk_geom *p, rt_u32 begin, rt_u32 end, rt_u32 inst,
+                          int g, uint32_t m) {
     for (rt_u32 e = begin; e < end && m; e++) {
         pk_tri(st, p, g, m, e, inst);
         m &= st->alive[g];
     }
+}
+
+/* The triangles of leaf child c of n for the lanes of m in group g. */
+static void pk_leaf(pk_state *st, const pk_geom *p, const rt_pk_node *n, int c, rt_u32 inst, int g,
+                    uint32_t m) {
+    const rt_u32 begin = n->ref[c];
+    pk_leaf_range(st, p, begin, begin + (n->count[c] & RT_NODE_COUNT_MASK), inst, g, m);
 }
 
 /* ---- traversal -------------------------------------------------------------- */
@@ -772,46 +780,7 @@ static void pk_bvh(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, pk
         pk_bvh_group(st, p, entry, 0, inst, lowest_bit(todo));
 }
 
-/* One instance for the groups of gm: the same rays when it is the identity,
- * else each lane's ray moved into object space as rt_trace_instance moves
- * it. */
-/* A kd-tree mesh (RT_INST_KD): the packet has no kd traversal, so each live
- * lane goes through the oracle's (rt_kd_trace_mesh, kernels/rt_kd.h) from
- * the lane's best hit so far, and keeps what it finds; the hit is then the
- * oracle's by construction. */
-static void pk_kd_lanes(pk_state *st, const pk_geom *p, rt_u32 root, rt_u32 inst, pk_groups gm) {
-    for (pk_groups todo = gm & st->alive_groups; todo; todo &= todo - 1) {
-        const int g = lowest_bit(todo);
-        for (uint32_t m = st->alive[g] & st->inst_ok[g]; m; m &= m - 1) {
-            const int i = lowest_bit(m);
-            rt_ray_d r;
-            rt_ray_pre pre;
-            lane_ray(p, g, i, &r);
-            rt_ray_prepare(&r, &pre);
-            pre.inst_lo = st->inst_lo[g][i];
-            rt_hit_d best;
-            best.t = st->t[g][i];
-            best.u = best.v = 0.0f;
-            best.prim = (rt_u32)st->prim[g][i];
-            best.inst = (rt_u32)st->inst[g][i];
-            best.entry = (rt_u32)st->entry[g][i];
-            rt_counters c = {0, 0, 0};
-            int occluded = rt_kd_trace_mesh(st->s, root, inst, &r, &pre, st->any_hit, &best, &c);
-            st->counts->box_tests += c.box_tests;
-            st->counts->tri_tests += c.tri_tests;
-            if (st->per_lane) {
-                st->box[g][i] += (int32_t)c.box_tests;
-                st->tri[g][i] += (int32_t)c.tri_tests;
-            }
-            if (occluded) {
-                retire(st, g, 1u << i, best.prim);
-            } else if (best.entry != (rt_u32)st->entry[g][i] || best.t != st->t[g][i]) {
-                /* u / 1 and v / 1 are u and v */
-                accept_lane(st, g, i, best.entry, inst, best.t, best.u, best.v, 1.0f);
-            }
-        }
-    }
-}
+#include "packet_kd.h" /* pk_kd: kd-tree meshes, a group of lanes at a time */
 
 /* rt_inst_enter on the lanes of the groups of gm (the world rays), into
  * st->inst_ok and st->inst_lo; returns the groups with a lane in the box. */
@@ -835,6 +804,9 @@ static pk_groups pk_inst_enter(pk_state *st, const pk_geom *p, const rt_instance
     return out;
 }
 
+/* One instance for the groups of gm: the same rays when it is the identity,
+ * else each lane's ray moved into object space as rt_trace_instance moves
+ * it. */
 static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, pk_groups gm) {
     const rt_instance *in = &st->s->instances[inst];
     const rt_u32 entry = st->w->inst_root[inst];
@@ -843,7 +815,7 @@ static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, pk_grou
     if (!gm) return;
     if (in->flags & RT_INST_IDENTITY) {
         if (kd)
-            pk_kd_lanes(st, world, in->root, inst, gm);
+            pk_kd(st, world, in->root, inst, gm);
         else
             pk_bvh(st, world, entry, inst, gm);
         return;
@@ -851,7 +823,7 @@ static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, pk_grou
     pk_geom obj;
     pk_geom_to_object(&obj, world, in);
     if (kd)
-        pk_kd_lanes(st, &obj, in->root, inst, gm);
+        pk_kd(st, &obj, in->root, inst, gm);
     else
         pk_bvh(st, &obj, entry, inst, gm);
 }

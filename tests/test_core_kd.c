@@ -2,7 +2,9 @@
  *
  * - Exactness: the kd traversal gives the brute-force hit over every
  *   triangle (t, u, v bits, prim, inst) and the BVH's, for both builders and
- *   every triangle test, on the built-in scenes and on hard synthetic meshes:
+ *   every triangle test, and the packet tracer's kd traversal (every
+ *   instruction-set build the CPU runs, the same rays in packets) the
+ *   oracle's, on the built-in scenes and on hard synthetic meshes:
  *   axis-aligned grids and boxes whose triangles lie in split planes, rays
  *   lying in those planes or starting on them, rays with zero direction
  *   components (parallel to the planes), flat meshes (flat cells), stacks of
@@ -22,6 +24,7 @@
 #include "check.h"
 #include "layout/flatten.h"
 #include "oracle_util.h"
+#include "packet_trace.h"
 #include "rt_shared.h"
 #include "scene/scene.h"
 #include "scene/scene_builtin.h"
@@ -101,8 +104,85 @@ static void hard_ray(const float lo[3], const float hi[3], rt_ray_d *r) {
     r->tmax = oracle_rnd() < 0.2f ? 1.5f : INFINITY;
 }
 
+/* The packet tracer's kd traversal (cpu_ref/packet_kd.h) on the layout f
+ * against the oracle's on the same layout, for every instruction-set build
+ * the CPU runs: the n rays in packets of RT_PK_LANES in their order (the
+ * hard rays point every way, so a vector's lanes disagree on the side they
+ * take first), closest hit (t, u, v bits, prim, inst) and any hit; the last
+ * packet is partial. Then the same with instance 0 alone, as a one-mesh
+ * layout (RT_SCENE_SINGLE: no object BVH, each lane starts at its tmax as
+ * the oracle does), where each lane's traversal must be the oracle's step
+ * for step: the same box (node) and triangle test counts. Returns the lanes
+ * that differ. */
+static long pk_step_lanes;
+static int compare_packets(const char *name, const rt_flat *f, const rt_ray_d *rays, int n) {
+    rt_pk_wide w;
+    if (rt_pk_wide_build(f, &w) != RT_OK) {
+        CHECK_MSG(0, "%s: wide BVH", name);
+        return 1;
+    }
+    rt_flat one = *f;
+    one.hdr.instance_count = 1;
+    one.hdr.flags |= RT_SCENE_SINGLE;
+    const int single = f->hdr.instance_count > 0 && (f->instances[0].flags & RT_INST_IDENTITY);
+    int bad = 0, builds = 0;
+    for (int k = 0; rt_pk_isa_name(k); k++) {
+        const rt_pk_variant *isa = rt_pk_variant_find(rt_pk_isa_name(k));
+        if (!isa) continue;
+        builds++;
+        for (int steps = 0; steps < 1 + single; steps++) {
+            rt_scene_view v = rt_flat_view(steps ? &one : f);
+            for (int first = 0; first < n; first += RT_PK_LANES) {
+                rt_pk_rays pr;
+                memset(&pr, 0, sizeof pr);
+                for (int l = 0; l < RT_PK_LANES && first + l < n; l++) {
+                    rt_pk_set_ray(&pr, l, &rays[first + l]);
+                    pr.valid |= (rt_pk_mask)1 << l;
+                }
+                for (int any = 0; any < 2; any++) {
+                    rt_pk_hits ph;
+                    rt_pk_counts pc;
+                    memset(&pc, 0, sizeof pc);
+                    pc.per_lane = 1;
+                    rt_pk_trace(isa, &v, &w, &pr, any, &ph, &pc);
+                    for (int l = 0; l < RT_PK_LANES && first + l < n; l++) {
+                        rt_hit_d want, got;
+                        rt_counters c = {0, 0, 0};
+                        rt_trace(&v, &rays[first + l], any, &want, &c);
+                        rt_pk_get_hit(&ph, l, &got);
+                        int ok = any ? (got.prim == RT_NO_HIT) == (want.prim == RT_NO_HIT)
+                                     : oracle_same_hit(&got, &want);
+                        if (steps) {
+                            ok &= pc.c[l].box_tests == c.box_tests &&
+                                  pc.c[l].tri_tests == c.tri_tests;
+                            pk_step_lanes++;
+                        }
+                        if (!ok && bad < 5) {
+                            const rt_ray_d *r = &rays[first + l];
+                            fprintf(stderr,
+                                    "%s packet %s%s ray %d any %d org (%a %a %a) dir (%a %a %a): "
+                                    "packet t %a prim %u (tests %u %u), cpu t %a prim %u (%u %u)\n",
+                                    name, rt_pk_variant_name(isa), steps ? " one mesh" : "",
+                                    first + l, any, (double)r->org[0], (double)r->org[1],
+                                    (double)r->org[2], (double)r->dir[0], (double)r->dir[1],
+                                    (double)r->dir[2], (double)got.t, got.prim, pc.c[l].box_tests,
+                                    pc.c[l].tri_tests, (double)want.t, want.prim, c.box_tests,
+                                    c.tri_tests);
+                        }
+                        bad += !ok;
+                    }
+                }
+            }
+        }
+    }
+    CHECK_MSG(builds > 0, "%s: no packet build runs on this CPU", name);
+    rt_pk_wide_free(&w);
+    return bad;
+}
+
 /* Traces rays through the kd layouts and the BVH layout of scene and against
- * brute force; returns the mismatches. */
+ * brute force, and the kd layouts through the packet tracer; returns the
+ * mismatches. */
 static int compare(const char *name, const rt_scene *scene, uint32_t method, int rays, int hard) {
     rt_flat fb, fk, fkb;
     if (!build_flat(scene, 0, method, &fb)) return 1;
@@ -112,12 +192,17 @@ static int compare(const char *name, const rt_scene *scene, uint32_t method, int
     float lo[3], hi[3];
     rt_scene_bounds(scene, lo, hi);
     int bad = 0, hits = 0;
+    rt_ray_d *all = malloc(sizeof(rt_ray_d) * (size_t)rays);
     for (int i = 0; i < rays; i++) {
         rt_ray_d r;
         if (hard && i % 3 != 0)
             hard_ray(lo, hi, &r);
         else
             oracle_ray(&fb.hdr, lo, hi, i, &r);
+        all[i] = r;
+        /* A few lanes whose range limits nothing (rt_box_hi(tmax) NaN) for
+         * the packets: they never hit but still walk the tree. */
+        if (i % 50 == 7) all[i].tmax = i % 100 == 7 ? NAN : -INFINITY;
         for (int any = 0; any < 2; any++) {
             rt_hit_d brute, hb, hk, hkb;
             rt_counters c = {0, 0, 0};
@@ -145,8 +230,17 @@ static int compare(const char *name, const rt_scene *scene, uint32_t method, int
             bad += !ok;
         }
     }
-    printf("%-28s method %u: %d rays, %d closest hits, %d mismatches\n", name, method, rays, hits,
-           bad);
+    /* The packets with the watertight test (their vector test) and with
+     * Moller-Trumbore (lane by lane through the shared test, as the other
+     * two): CI's qemu and sanitizer runs are slow. */
+    const int pk_bad = method <= RT_TRI_MOLLER ? compare_packets(name, &fk, all, rays) +
+                                                     compare_packets(name, &fkb, all, rays)
+                                               : 0;
+    free(all);
+    printf("%-28s method %u: %d rays, %d closest hits, %d mismatches, %d packet lanes differ%s\n",
+           name, method, rays, hits, bad, pk_bad,
+           method <= RT_TRI_MOLLER ? "" : " (packets not run)");
+    bad += pk_bad;
     CHECK_MSG(hits > rays / 20, "%s: too few hits (%d) for the test to mean much", name, hits);
     rt_flat_free(&fb);
     rt_flat_free(&fk);
@@ -435,5 +529,7 @@ int main(void) {
     bad += compare("soup", s, RT_TRI_MOLLER, 1500, 0);
     rt_scene_destroy(s);
     CHECK_MSG(bad == 0, "%d rays differ", bad);
+    printf("packet lanes with the oracle's box and triangle tests: %ld\n", pk_step_lanes);
+    CHECK(pk_step_lanes > 10000);
     return TEST_END();
 }

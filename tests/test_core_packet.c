@@ -10,7 +10,12 @@
  * directions and range ends, zero directions, empty and inverted ranges,
  * tmax = -inf, in every lane position (check_odd_lanes); on the built-in
  * scenes and on a finely tessellated surface far from the origin hit at tiny
- * t (check_far_surface). */
+ * t (check_far_surface).
+ *
+ * All of it runs twice: with BVH meshes and with every mesh a kd-tree
+ * (--accel kd: the packets' kd traversal, cpu_ref/packet_kd.h, against the
+ * oracle's rt_kd_trace_mesh), and packets of random rays that point every
+ * way (check_random_packets) join the odd and the nasty ones. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -61,22 +66,29 @@ static int same(const rt_framebuffer *a, const rt_framebuffer *b) {
                   sizeof(float) * (size_t)a->width * a->height * a->channels) == 0;
 }
 
+/* Every mesh of s as a kd-tree (accel RT_ACCEL_KD) or as it is. */
+static void set_accel(rt_scene *s, rt_accel accel) {
+    if (accel != RT_ACCEL_BVH) CHECK(rt_scene_set_static_accel(s, accel) == RT_OK);
+}
+
 /* Every image and AOV of every built-in scene, Whitted and direct-only, on
- * the packet path's current instruction-set build. */
-static void check_scenes(const char *isa) {
+ * the packet path's current instruction-set build, with the meshes' structure
+ * accel. */
+static void check_scenes(const char *isa, rt_accel accel) {
     const rt_aov aovs[] = {RT_AOV_NONE, RT_AOV_DEPTH, RT_AOV_PRIMID, RT_AOV_INSTID, RT_AOV_NORMAL};
     for (int i = 0; rt_builtin_scene_names[i]; i++) {
         const char *name = rt_builtin_scene_names[i];
         rt_scene *s = test_builtin_scene(
             name, 193, 109); /* odd sizes: packets at the right and bottom edges */
         if (!s) continue;
+        set_accel(s, accel);
         for (size_t a = 0; a < sizeof aovs / sizeof aovs[0]; a++) {
             rt_framebuffer c, p;
             rt_render_stats sc, sp;
             if (!render(s, "cpu", aovs[a], 2, &c, &sc)) continue;
             if (render(s, "packet", aovs[a], 3, &p, &sp)) {
-                CHECK_MSG(same(&c, &p), "%s: packet (%s) differs from cpu (aov %d)", name, isa,
-                          (int)aovs[a]);
+                CHECK_MSG(same(&c, &p), "%s: packet (%s, %s) differs from cpu (aov %d)", name, isa,
+                          rt_accel_name(accel), (int)aovs[a]);
                 if (aovs[a] == RT_AOV_NONE) {
                     CHECK(sp.packets ==
                           (uint64_t)((193 + RT_PACKET_TILE_W - 1) / RT_PACKET_TILE_W) *
@@ -96,7 +108,8 @@ static void check_scenes(const char *isa) {
         rt_framebuffer c, p;
         if (render_direct(s, "cpu", &c)) {
             if (render_direct(s, "packet", &p)) {
-                CHECK_MSG(same(&c, &p), "%s: direct-only packet (%s) differs from cpu", name, isa);
+                CHECK_MSG(same(&c, &p), "%s: direct-only packet (%s, %s) differs from cpu", name,
+                          isa, rt_accel_name(accel));
                 rt_framebuffer_free(&p);
             }
             rt_framebuffer_free(&c);
@@ -261,15 +274,50 @@ static void check_vertex_rays(const rt_flat *flat, const rt_pk_wide *w, const fl
     }
 }
 
-static void check_odd_lanes_scene(rt_scene *s, const char *name) {
+/* Packets of random rays (oracle_ray): camera rays through random pixels in
+ * some packets, rays between random points of the grown bounds in the
+ * others (every lane its own origin and direction signs), some with short
+ * ranges or tmin > 0. */
+static void check_random_packets(const rt_scene_view *v, const rt_pk_wide *w, const float lo[3],
+                                 const float hi[3], const char *name) {
+    int bad = 0;
+    oracle_rng = 9001;
+    for (int pkt = 0; pkt < 32; pkt++) {
+        rt_pk_rays rays;
+        for (int l = 0; l < RT_PK_LANES; l++) {
+            rt_ray_d r;
+            oracle_ray(v->hdr, lo, hi, pkt % 4 == 0 ? 2 * l : pkt % 4 == 1 ? l : 2 * l + 1, &r);
+            rt_pk_set_ray(&rays, l, &r);
+        }
+        rays.valid = pkt % 3 == 2 ? RT_PK_ALL & ~(rt_pk_mask)0x90 : RT_PK_ALL;
+        bad += compare_packet(v, w, &rays, name);
+    }
+    CHECK_MSG(bad == 0, "%s: %d lanes of random rays differ from cpu (%s)", name, bad,
+              rt_pk_variant_name(cur_isa));
+}
+
+/* Instances of the layout with a kd-tree mesh. */
+static int kd_instances(const rt_scene_view *v) {
+    int n = 0;
+    for (rt_u32 i = 0; i < v->hdr->instance_count; i++)
+        n += (v->instances[i].flags & RT_INST_KD) != 0;
+    return n;
+}
+
+static void check_odd_lanes_scene(rt_scene *s, const char *name, rt_accel accel) {
+    set_accel(s, accel);
     const rt_flat *flat = test_layout(s, 1);
     if (!flat) return;
     rt_pk_wide w;
     CHECK(rt_pk_wide_build(flat, &w) == RT_OK);
     rt_scene_view v = rt_flat_view(flat);
+    /* The kd pass must trace kd meshes (and the BVH pass none). */
+    CHECK_MSG((kd_instances(&v) > 0) == (accel != RT_ACCEL_BVH), "%s: %d kd instances with %s",
+              name, kd_instances(&v), rt_accel_name(accel));
     check_odd_lanes(&v, &w, name);
     float lo[3], hi[3];
     rt_scene_bounds(s, lo, hi);
+    check_random_packets(&v, &w, lo, hi, name);
     check_vertex_rays(flat, &w, lo, hi, name);
     rt_pk_wide_free(&w);
 }
@@ -277,13 +325,14 @@ static void check_odd_lanes_scene(rt_scene *s, const char *name) {
 /* A finely tessellated bumpy surface about 1500 units from the origin, and
  * packets of bounce-like rays that leave it from nearby points at tiny t
  * (the next triangle a fraction of a cell away). */
-static void check_far_surface(void) {
+static void check_far_surface(rt_accel accel) {
     enum { CELLS = 96 };
     const float cell = 0.25f; /* test_far_terrain's */
     float *pos;
     rt_scene *s = test_far_terrain(CELLS, &pos);
     if (!s) return;
     oracle_rng = 4242;
+    set_accel(s, accel);
     const rt_flat *flat = test_layout(s, 1);
     if (!flat) {
         rt_scene_destroy(s);
@@ -293,6 +342,7 @@ static void check_far_surface(void) {
     rt_pk_wide w;
     CHECK(rt_pk_wide_build(flat, &w) == RT_OK);
     rt_scene_view v = rt_flat_view(flat);
+    CHECK((kd_instances(&v) > 0) == (accel != RT_ACCEL_BVH));
     int bad = 0, tiny = 0;
     for (int pkt = 0; pkt < 400; pkt++) {
         rt_pk_rays rays;
@@ -352,15 +402,18 @@ int main(void) {
             CHECK_MSG(packet_renderer[t] != NULL, "packet %s: %s", ro.packet_isa, err.message);
         }
         if (!packet_renderer[0] || !packet_renderer[1]) continue;
-        printf("packet build %s\n", rt_pk_isa_name(k));
-        check_scenes(rt_pk_isa_name(k));
-        for (int i = 0; rt_builtin_scene_names[i]; i++) {
-            rt_scene *s = test_builtin_scene(rt_builtin_scene_names[i], 64, 48);
-            if (!s) continue;
-            check_odd_lanes_scene(s, rt_builtin_scene_names[i]);
-            rt_scene_destroy(s);
+        const rt_accel accels[] = {RT_ACCEL_BVH, RT_ACCEL_KD};
+        for (int a = 0; a < 2; a++) {
+            printf("packet build %s, %s meshes\n", rt_pk_isa_name(k), rt_accel_name(accels[a]));
+            check_scenes(rt_pk_isa_name(k), accels[a]);
+            for (int i = 0; rt_builtin_scene_names[i]; i++) {
+                rt_scene *s = test_builtin_scene(rt_builtin_scene_names[i], 64, 48);
+                if (!s) continue;
+                check_odd_lanes_scene(s, rt_builtin_scene_names[i], accels[a]);
+                rt_scene_destroy(s);
+            }
+            check_far_surface(accels[a]);
         }
-        check_far_surface();
         tested++;
     }
     CHECK(tested > 0);

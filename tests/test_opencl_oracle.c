@@ -17,7 +17,10 @@
  * (partial blocks), with every triangle test and every block size; its test
  * counters count per lane (they differ from the oracle's), so they are
  * checked for consistency instead, and exactly with the one-ray kernels (rt_opencl_tuning)
- * (the one-ray kernels, which must stay exact too).
+ * (the one-ray kernels, which must stay exact too). All of it runs again with
+ * every static mesh a kd-tree (the packet kernel's pk_kd_mesh), but for the
+ * other triangle tests, plus 20,000 rays from the half-unit grid along -1, 0
+ * and 1 (in, along and from split planes: grid_ray).
  *
  * Maths profiles (docs/PORTABLE_MATH.md): RT_TEST_DEVICE_MATH=portable runs
  * the OpenCL side in the portable profile (software divide and sqrt) and
@@ -25,9 +28,10 @@
  * FTZ/DAZ); ctest runs those as test_opencl_oracle_portable and
  * test_opencl_oracle_portable_flush: every AOV of every built-in and shipped
  * scene with the packet and the one-ray kernels, and 20,000 ray queries per
- * scene. Then a scene 1e-13 across traced with rays of unit directions (t's
- * numerator in the denormal range), on which the flushing and the IEEE oracle disagree (so the
- * denormal policy is seen to matter), must still match in both policies. */
+ * scene; the built-in scenes again with kd meshes, and grid-aligned rays. Then a scene 1e-13 across
+ * traced with rays of unit directions (t's numerator in the denormal range), on which the flushing
+ * and the IEEE oracle disagree (so the denormal policy is seen to matter), must still match in both
+ * policies. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -307,13 +311,15 @@ static void oblique_turn(rt_scene *s, uint32_t obj, const float c[3]) {
     CHECK(rt_object_transform(s, obj, m) == RT_OK);
 }
 
-static void check_packet(const char *name, rt_scene *s) {
+/* all_tests: also every triangle test (skipped for kd meshes: the leaves'
+ * triangle tests are the BVH path's). */
+static void check_packet(const char *name, rt_scene *s, int all_tests) {
     /* An object turned about an oblique axis (cornell: the mirror sphere,
      * which has vertex normals), and a second, coloured light: two lights
      * per pixel, light colours other than 1 (so a product in another order
      * shows). Kept for the later checks of this scene, which compare with the
      * oracle too. */
-    int cornell = strcmp(name, "cornell") == 0;
+    int cornell = strncmp(name, "cornell", 7) == 0; /* also "cornell (kd)" */
     const float centre_cornell[3] = {-0.8f, 0.4f, -0.2f}, centre_keyframes[3] = {0.5f, 1.0f, 0.0f};
     oblique_turn(s, cornell ? 4 : 1, cornell ? centre_cornell : centre_keyframes);
     float lo[3], hi[3], pos[3];
@@ -331,7 +337,7 @@ static void check_packet(const char *name, rt_scene *s) {
     mode direct = {1, RT_TRI_TEST_WATERTIGHT};
     check_images_mode(name, s, direct);
     check_images_mode(name, s, whitted);
-    for (int t = RT_TRI_TEST_MOLLER; t <= RT_TRI_TEST_BADOUEL; t++)
+    for (int t = RT_TRI_TEST_MOLLER; t <= RT_TRI_TEST_BADOUEL && all_tests; t++)
         for (int d = 0; d < 2; d++) check_image_mode(name, s, (mode){d, (rt_triangle_test)t});
     static const int lanes[] = {4, 8};
     for (int i = 0; i < 2; i++) {
@@ -396,6 +402,25 @@ static void unit_ray(const rt_scene_header *h, const float lo[3], const float hi
         r->org[k] = lo[k] + (hi[k] - lo[k]) * oracle_rnd();
         r->dir[k] = oracle_rnd() - 0.5f;
     }
+    r->tmin = 0.0f;
+    r->tmax = INFINITY;
+}
+
+/* Even i: a ray from a point of the half-unit grid (on the built-in scenes'
+ * walls and on many kd split planes) along directions of -1, 0 and 1 (in
+ * split planes, parallel to them, starting on them); odd i: oracle_ray. */
+static void grid_ray(const rt_scene_header *h, const float lo[3], const float hi[3], int i,
+                     rt_ray_d *r) {
+    if (i % 2) {
+        oracle_ray(h, lo, hi, i, r);
+        return;
+    }
+    static const float org[6] = {-1.0f, -0.5f, 0.0f, 0.5f, 1.0f, 1.5f}, dir[4] = {-1, 0, 0, 1};
+    for (int k = 0; k < 3; k++) {
+        r->org[k] = org[(int)(oracle_rnd() * 6.0f) % 6];
+        r->dir[k] = dir[(int)(oracle_rnd() * 4.0f) % 4];
+    }
+    if (r->dir[0] == 0.0f && r->dir[1] == 0.0f && r->dir[2] == 0.0f) r->dir[2] = -1.0f;
     r->tmin = 0.0f;
     r->tmax = INFINITY;
 }
@@ -611,11 +636,17 @@ static void check_policy_matters(rt_scene *s) {
 
 /* The profile run (RT_TEST_DEVICE_MATH / RT_TEST_DENORMALS). */
 static void check_profile(void) {
-    for (int i = 0; rt_builtin_scene_names[i]; i++) {
-        rt_scene *s = test_builtin_scene(rt_builtin_scene_names[i], 96, 54);
-        if (s) check_scene_profile(rt_builtin_scene_names[i], s);
-        rt_scene_destroy(s);
-    }
+    for (int kd = 0; kd < 2; kd++) /* BVH meshes, then kd-trees */
+        for (int i = 0; rt_builtin_scene_names[i]; i++) {
+            rt_scene *s = test_builtin_scene(rt_builtin_scene_names[i], 96, 54);
+            if (!s) continue;
+            char label[64];
+            snprintf(label, sizeof label, "%s%s", rt_builtin_scene_names[i], kd ? " (kd)" : "");
+            if (kd) CHECK(rt_scene_set_static_accel(s, RT_ACCEL_KD) == RT_OK);
+            check_scene_profile(label, s);
+            if (kd) check_hits_with(label, s, grid_ray);
+            rt_scene_destroy(s);
+        }
     static const char *const shipped[] = {"scenes/cornell.json", "scenes/keyframes.json"};
     for (int i = 0; i < 2; i++) {
         rt_scene *s = NULL;
@@ -665,22 +696,29 @@ int main(void) {
         check_profile();
         return TEST_END();
     }
-    for (int i = 0; rt_builtin_scene_names[i]; i++) {
-        const char *name = rt_builtin_scene_names[i];
-        rt_scene *s;
-        rt_error err;
-        CHECK(rt_scene_builtin(name, &s, &err) == RT_OK);
-        rt_camera cam;
-        rt_camera_get(s, &cam);
-        cam.width = 192; /* small: PoCL on a shared CPU */
-        cam.height = 108;
-        CHECK(rt_camera_set(s, &cam) == RT_OK);
-        check_images(name, s);
-        check_packet(name, s);
-        if (strcmp(name, "cornell") == 0) check_wavefront(s);
-        check_hits(name, s);
-        rt_scene_destroy(s);
-    }
+    /* BVH meshes, then every static mesh a kd-tree (the packet kernel's
+     * pk_kd_mesh on a CPU device, the one-ray kernels' rt_kd_trace_mesh). */
+    for (int kd = 0; kd < 2; kd++)
+        for (int i = 0; rt_builtin_scene_names[i]; i++) {
+            const char *name = rt_builtin_scene_names[i];
+            char label[64];
+            snprintf(label, sizeof label, "%s%s", name, kd ? " (kd)" : "");
+            rt_scene *s;
+            rt_error err;
+            CHECK(rt_scene_builtin(name, &s, &err) == RT_OK);
+            if (kd) CHECK(rt_scene_set_static_accel(s, RT_ACCEL_KD) == RT_OK);
+            rt_camera cam;
+            rt_camera_get(s, &cam);
+            cam.width = 192; /* small: PoCL on a shared CPU */
+            cam.height = 108;
+            CHECK(rt_camera_set(s, &cam) == RT_OK);
+            check_images(label, s);
+            check_packet(label, s, !kd);
+            if (strcmp(name, "cornell") == 0 && !kd) check_wavefront(s);
+            check_hits(label, s);
+            if (kd) check_hits_with(label, s, grid_ray);
+            rt_scene_destroy(s);
+        }
     check_uploads();
     check_device_options();
     /* A device that does not exist is an error with a reason. */

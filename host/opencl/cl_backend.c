@@ -245,12 +245,11 @@ static void keep_build_log(cl_state *s, const char *log, const char *printed);
 static void append_log(rt_error *err, const char *log);
 
 /* The packet kernel's lanes for this device: 16 (4x4 blocks) on CPU devices,
- * 0 (one ray per work-item) elsewhere and for layouts with kd-tree meshes
- * (the packet kernel traverses BVHs only; the one-ray kernels trace both). The renderer's tuning
+ * 0 (one ray per work-item) elsewhere (both trace BVH and kd-tree meshes). The renderer's tuning
  * (for tests and comparisons) runs the one-ray kernels on a CPU device too, or picks another block
  * (4: 2x2, 8: 4x2). */
-static int packet_lanes(const cl_state *s, const rt_flat *f) {
-    if (!s->dev.cpu || s->tune.one_ray_kernels || f->kd_node_count) return 0;
+static int packet_lanes(const cl_state *s) {
+    if (!s->dev.cpu || s->tune.one_ray_kernels) return 0;
     int n = s->tune.packet_lanes;
     return n == 4 || n == 8 ? n : 16;
 }
@@ -259,7 +258,7 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
     char defines[192], options[768];
     scene_defines(f, defines, sizeof defines);
     const char *extra = s->device_options;
-    int lanes = packet_lanes(s, f);
+    int lanes = packet_lanes(s);
     char packet[32] = "";
     if (lanes) snprintf(packet, sizeof packet, " -DRT_PK_LANES=%d", lanes);
     /* The exact build: no mad or fast-relaxed maths (they change results);
