@@ -6,7 +6,22 @@
  * calling thread; each node reaching that depth (with enough triangles)
  * becomes a task, built into its own buffer by whichever worker takes it;
  * the buffers are then spliced into the placeholders in depth-first order.
- * The result is byte-identical for any pool. */
+ * The result is byte-identical for any pool.
+ *
+ * The reference guard: every split lowers the SAH of heavily overlapping
+ * triangles (a fan of coplanar triangles sharing a vertex: the clipped ones
+ * thin out away from it), so neither SAH termination nor the depth bound
+ * keeps their tree small (millions of entries for a few thousand
+ * triangles). The first pass counts the triangle entries of every node it
+ * makes (the build's work and, at most, its memory); past
+ * RT_KD_GUARD_WORK x N x the depth bound it stops, and the tree is built
+ * again with a budget of RT_KD_GUARD_DUPS x N duplicates: the root gets it,
+ * a split whose straddling triangles exceed its node's budget makes a leaf,
+ * and what a split leaves is shared between the children in proportion to
+ * their triangle counts. Both rules are functions of the input only (the
+ * count's total does not depend on the order the workers add to it), so
+ * the tree stays the same for any thread count; a tree under the cap is the
+ * unguarded tree. */
 #include "accel/kd_internal.h"
 
 #include <math.h>
@@ -28,6 +43,7 @@ rt_kd_options rt_kd_options_default(void) {
     o.empty_bonus = 0.8f;
     o.max_depth = 0;
     o.bins = 32;
+    o.ref_guard = 1;
     return o;
 }
 
@@ -118,9 +134,15 @@ static void node_free(kd_node_in *in) {
 
 /* Builds the subtree of in into o; with tasks, nodes at KD_TASK_DEPTH
  * become tasks. Frees in's data. */
+/* Whether the first pass has made more entries than the guard allows
+ * (then the rest of it is skipped). */
+static int over_cap(const kd_ctx *c) {
+    return c->work && atomic_load_explicit(c->work, memory_order_relaxed) > c->work_cap;
+}
+
 static void build_rec(const kd_ctx *c, const kd_finder *f, kd_node_in *in, kd_scratch *w, kd_out *o,
                       kd_tasks *tasks) {
-    if (o->oom) {
+    if (o->oom || over_cap(c)) {
         node_free(in);
         return;
     }
@@ -146,8 +168,10 @@ static void build_rec(const kd_ctx *c, const kd_finder *f, kd_node_in *in, kd_sc
     kd_split s;
     s.cost = INFINITY;
     if (in->tris && in->depth < c->max_depth) f->find(c, in, &s);
-    /* SAH termination: split only when it is cheaper than the leaf. */
-    if (!(s.cost < (double)c->opt.cost_intersect * (double)in->tris)) {
+    /* SAH termination: split only when it is cheaper than the leaf; in the
+     * budget pass, also only when the node's budget pays its duplicates. */
+    if (!(s.cost < (double)c->opt.cost_intersect * (double)in->tris) ||
+        (c->budget && s.both > in->allow)) {
         uint32_t n = f->leaf(c, in, w);
         if (n == UINT32_MAX)
             o->oom = 1;
@@ -157,10 +181,15 @@ static void build_rec(const kd_ctx *c, const kd_finder *f, kd_node_in *in, kd_sc
         return;
     }
     kd_node_in l, r;
+    uint64_t left_over = c->budget ? in->allow - s.both : 0;
     if (!f->split(c, in, &s, w, &l, &r)) {
         o->oom = 1;
         return;
     }
+    uint64_t made = (uint64_t)l.tris + r.tris;
+    if (c->work) atomic_fetch_add_explicit(c->work, made, memory_order_relaxed);
+    l.allow = made ? left_over * l.tris / made : 0;
+    r.allow = left_over - l.allow;
     uint32_t inner = kd_out_inner(o, s.axis, s.pos);
     build_rec(c, f, &l, w, o, tasks);
     kd_out_set_right(o, inner, o->node_count);
@@ -193,6 +222,17 @@ static void run_tasks(void *ctx, int worker, int workers) {
     }
     free(w.flags);
     free(w.list);
+}
+
+/* Frees what a pass made (tasks' inputs, buffers) and empties top and tasks. */
+static void release(kd_out *top, kd_tasks *tasks) {
+    for (uint32_t i = 0; i < tasks->count; i++) {
+        node_free(&tasks->t[i].in);
+        kd_out_free(&tasks->t[i].out);
+    }
+    free(tasks->t);
+    memset(tasks, 0, sizeof *tasks);
+    kd_out_free(top);
 }
 
 /* Splices the tasks' subtrees into the placeholders of top, depth-first. */
@@ -369,36 +409,49 @@ rt_status rt_kd_build(const float *positions, uint32_t vertex_count, const uint3
         goto done;
     }
     const kd_finder *f = opt.builder == RT_KD_BINNED ? &kd_finder_binned : &kd_finder_sweep;
-    kd_node_in root;
-    if (!f->root(&c, ids, boxes, n, &cell, &root)) {
-        st = rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory building a kd-tree");
-        goto done;
+    _Atomic uint64_t work;
+    atomic_init(&work, 0);
+    if (opt.ref_guard) {
+        c.work = &work;
+        c.work_cap = (uint64_t)(RT_KD_GUARD_WORK * (double)n * (double)c.max_depth);
     }
-    free(boxes);
-    boxes = NULL;
-    build_rec(&c, f, &root, &w, &top, &tasks);
-    int oom = top.oom;
-    if (!oom && tasks.count) {
-        kd_job job = {&c, f, &tasks, 0};
-        if (pool)
-            rt_pool_run(pool, run_tasks, &job);
-        else
-            run_tasks(&job, 0, 1);
-        for (uint32_t i = 0; i < tasks.count; i++) oom |= tasks.t[i].oom;
-    }
-    if (oom || !assemble(&top, &tasks, out)) {
-        rt_kd_free(out);
-        st = rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory building a kd-tree");
-        goto done;
+    for (;;) {
+        kd_node_in root;
+        if (!f->root(&c, ids, boxes, n, &cell, &root)) {
+            st = rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory building a kd-tree");
+            goto done;
+        }
+        /* At most 2^30 entries fit a tree (assemble), which also keeps the
+         * children's shares (allow * tris) within 64 bits. */
+        double allow = RT_KD_GUARD_DUPS * (double)n;
+        root.allow = c.budget ? (allow < 0x1p30 ? (uint64_t)allow : (1ull << 30)) : 0;
+        build_rec(&c, f, &root, &w, &top, &tasks);
+        int oom = top.oom;
+        if (!oom && tasks.count) {
+            kd_job job = {&c, f, &tasks, 0};
+            if (pool)
+                rt_pool_run(pool, run_tasks, &job);
+            else
+                run_tasks(&job, 0, 1);
+            for (uint32_t i = 0; i < tasks.count; i++) oom |= tasks.t[i].oom;
+        }
+        if (!oom && over_cap(&c)) {
+            /* Too much work for the triangle count: the budget pass. */
+            release(&top, &tasks);
+            c.work = NULL;
+            c.budget = 1;
+            continue;
+        }
+        if (oom || !assemble(&top, &tasks, out)) {
+            rt_kd_free(out);
+            st = rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory building a kd-tree");
+            goto done;
+        }
+        break;
     }
     out->bounds = cell;
 done:
-    for (uint32_t i = 0; i < tasks.count; i++) {
-        node_free(&tasks.t[i].in);
-        kd_out_free(&tasks.t[i].out);
-    }
-    free(tasks.t);
-    kd_out_free(&top);
+    release(&top, &tasks);
     free(tris);
     free(ids);
     free(boxes);
