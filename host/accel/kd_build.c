@@ -132,14 +132,14 @@ static void node_free(kd_node_in *in) {
     in->data = NULL;
 }
 
-/* Builds the subtree of in into o; with tasks, nodes at KD_TASK_DEPTH
- * become tasks. Frees in's data. */
 /* Whether the first pass has made more entries than the guard allows
  * (then the rest of it is skipped). */
 static int over_cap(const kd_ctx *c) {
     return c->work && atomic_load_explicit(c->work, memory_order_relaxed) > c->work_cap;
 }
 
+/* Builds the subtree of in into o; with tasks, nodes at KD_TASK_DEPTH
+ * become tasks. Frees in's data. */
 static void build_rec(const kd_ctx *c, const kd_finder *f, kd_node_in *in, kd_scratch *w, kd_out *o,
                       kd_tasks *tasks) {
     if (o->oom || over_cap(c)) {
