@@ -13,7 +13,11 @@
  * - Structure: every triangle with area is in the leaf of each of its
  *   vertices; no tree is deeper than RT_KD_MAX_DEPTH.
  * - Determinism: the same bytes for any thread count.
- * - Degenerate input never crashes a build; non-finite input is refused. */
+ * - Degenerate input never crashes a build; non-finite input is refused.
+ * - The reference guard: 4000 coplanar triangles sharing a vertex (every
+ *   split lowers their SAH; unguarded, the build ran out of memory after
+ *   minutes) build quickly into at most (1 + RT_KD_GUARD_DUPS) x N entries,
+ *   the same tree for any thread count, and trace as the BVH does. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -180,9 +184,28 @@ static int compare_packets(const char *name, const rt_flat *f, const rt_ray_d *r
     return bad;
 }
 
+/* A ray at the fan (x = 0, test_guard): from either side or from within its
+ * plane, to a point of its box or its shared vertex (the origin). */
+static void fan_ray(const float lo[3], const float hi[3], rt_ray_d *r) {
+    float to[3] = {0.0f, 0.0f, 0.0f},
+          ext = hi[1] - lo[1] > hi[2] - lo[2] ? hi[1] - lo[1] : hi[2] - lo[2];
+    if (oracle_rnd() < 0.8f)
+        for (int k = 1; k < 3; k++) to[k] = lo[k] + (hi[k] - lo[k]) * oracle_rnd();
+    float side = oracle_rnd();
+    r->org[0] = ext * (side < 0.1f    ? 0.0f
+                       : side < 0.55f ? -0.5f - oracle_rnd()
+                                      : 0.5f + oracle_rnd());
+    for (int k = 1; k < 3; k++)
+        r->org[k] = lo[k] - ext + (hi[k] - lo[k] + 2.0f * ext) * oracle_rnd();
+    for (int k = 0; k < 3; k++) r->dir[k] = to[k] - r->org[k];
+    if (r->dir[0] == 0.0f && r->dir[1] == 0.0f && r->dir[2] == 0.0f) r->dir[0] = 1.0f;
+    r->tmin = oracle_rnd() < 0.2f ? 0.5f : 0.0f; /* the point aimed at is at t = 1 */
+    r->tmax = oracle_rnd() < 0.2f ? 1.5f : INFINITY;
+}
+
 /* Traces rays through the kd layouts and the BVH layout of scene and against
- * brute force, and the kd layouts through the packet tracer; returns the
- * mismatches. */
+ * brute force (hard: 1 adds hard rays, 2 fan rays), and the kd layouts
+ * through the packet tracer; returns the mismatches. */
 static int compare(const char *name, const rt_scene *scene, uint32_t method, int rays, int hard) {
     rt_flat fb, fk, fkb;
     if (!build_flat(scene, 0, method, &fb)) return 1;
@@ -195,7 +218,9 @@ static int compare(const char *name, const rt_scene *scene, uint32_t method, int
     rt_ray_d *all = malloc(sizeof(rt_ray_d) * (size_t)rays);
     for (int i = 0; i < rays; i++) {
         rt_ray_d r;
-        if (hard && i % 3 != 0)
+        if (hard == 2 && i % 4 != 0)
+            fan_ray(lo, hi, &r);
+        else if (hard && i % 3 != 0)
             hard_ray(lo, hi, &r);
         else
             oracle_ray(&fb.hdr, lo, hi, i, &r);
@@ -357,6 +382,22 @@ static void soup(rt_scene *s, uint32_t n, float size) {
     free(idx);
 }
 
+/* n triangles in the plane x = 0 sharing the vertex (0, 0, 0), legs of
+ * scale x [1, 2] along y and z: they all overlap near the shared vertex. */
+static void fan(rt_scene *s, uint32_t n, float scale) {
+    float *pos = malloc(sizeof(float) * 9 * n);
+    uint32_t *idx = malloc(sizeof(uint32_t) * 3 * n);
+    for (uint32_t t = 0; t < n; t++) {
+        float leg = scale * (1.0f + oracle_rnd());
+        float v[9] = {0, 0, 0, 0, leg, 0, 0, 0, leg};
+        memcpy(pos + 9 * t, v, sizeof v);
+        for (int k = 0; k < 3; k++) idx[3 * t + k] = 3 * t + (uint32_t)k;
+    }
+    add_mesh(s, pos, 3 * n, idx, n);
+    free(pos);
+    free(idx);
+}
+
 /* ---- structure ---------------------------------------------------------------- */
 
 /* Is triangle t in the leaf (or, on a split plane, a leaf) holding point p? */
@@ -463,6 +504,58 @@ static void test_degenerate_builds(void) {
     }
 }
 
+/* The reference guard on the fan: bounded entries, the same tree for 1
+ * and 2 threads, every triangle in the leaves of its vertices; and the
+ * guard leaves ordinary meshes alone (a soup builds the same tree with it
+ * off). */
+static void test_guard(void) {
+    const uint32_t n = 4000;
+    rt_pool *pool = rt_pool_create(2);
+    for (int b = 0; b < 2; b++) {
+        rt_scene *s = new_scene();
+        fan(s, n, 0.01f);
+        const rt_mesh_data *md = &s->meshes[0];
+        rt_kd_options o = rt_kd_options_default();
+        o.builder = b ? RT_KD_BINNED : RT_KD_EXACT;
+        rt_kd one, two;
+        CHECK(rt_kd_build(md->positions, md->vertex_count, md->indices, md->triangle_count, &o,
+                          NULL, &one, &lib_err) == RT_OK);
+        CHECK(rt_kd_build(md->positions, md->vertex_count, md->indices, md->triangle_count, &o,
+                          pool, &two, &lib_err) == RT_OK);
+        rt_kd_quality q = rt_kd_measure(&one, 1.0f, 1.0f);
+        printf("fan of %u, %s: %u nodes, %u entries (bound %.0f), depth %u\n", n,
+               rt_kd_builder_name(o.builder), one.node_count, one.prim_count,
+               (1.0 + RT_KD_GUARD_DUPS) * n, q.depth);
+        CHECK_MSG(one.prim_count >= n && one.prim_count <= (uint32_t)((1.0 + RT_KD_GUARD_DUPS) * n),
+                  "fan %s: %u entries", rt_kd_builder_name(o.builder), one.prim_count);
+        CHECK_MSG(same_tree(&one, &two), "fan %s: 2 threads give another tree",
+                  rt_kd_builder_name(o.builder));
+        check_structure(b ? "fan binned" : "fan exact", md, &one);
+        rt_kd_free(&one);
+        rt_kd_free(&two);
+        rt_scene_destroy(s);
+    }
+    rt_pool_destroy(pool);
+    rt_scene *s = new_scene();
+    soup(s, 1500, 1.0f);
+    const rt_mesh_data *md = &s->meshes[0];
+    for (int b = 0; b < 2; b++) {
+        rt_kd_options o = rt_kd_options_default();
+        o.builder = b ? RT_KD_BINNED : RT_KD_EXACT;
+        rt_kd on, off;
+        CHECK(rt_kd_build(md->positions, md->vertex_count, md->indices, md->triangle_count, &o,
+                          NULL, &on, &lib_err) == RT_OK);
+        o.ref_guard = 0;
+        CHECK(rt_kd_build(md->positions, md->vertex_count, md->indices, md->triangle_count, &o,
+                          NULL, &off, &lib_err) == RT_OK);
+        CHECK_MSG(same_tree(&on, &off), "soup %s: the guard changed the tree",
+                  rt_kd_builder_name(o.builder));
+        rt_kd_free(&on);
+        rt_kd_free(&off);
+    }
+    rt_scene_destroy(s);
+}
+
 /* The per-mesh choice (rt.h): set, read, refused values, names, and the
  * static-mesh rule (keyframes of an animated object keep theirs). */
 static void test_api(void) {
@@ -495,6 +588,7 @@ int main(void) {
     test_api();
     test_degenerate_builds();
     test_determinism();
+    test_guard();
     int bad = 0;
     rt_scene *s;
     for (int i = 0; rt_builtin_scene_names[i]; i++) {
@@ -527,6 +621,13 @@ int main(void) {
     soup(s, 500, 0.05f);
     bad += compare("soup", s, RT_TRI_WATERTIGHT, 6000, 0);
     bad += compare("soup", s, RT_TRI_MOLLER, 1500, 0);
+    rt_scene_destroy(s);
+    /* The guarded fan of test_guard: equal-t ties between its overlapping
+     * triangles go to the lowest index, as in the BVH. */
+    s = new_scene();
+    fan(s, 4000, 0.01f);
+    bad += compare("coplanar fan (guarded)", s, RT_TRI_WATERTIGHT, 2000, 2);
+    bad += compare("coplanar fan (guarded)", s, RT_TRI_MOLLER, 600, 2);
     rt_scene_destroy(s);
     CHECK_MSG(bad == 0, "%d rays differ", bad);
     printf("packet lanes with the oracle's box and triangle tests: %ld\n", pk_step_lanes);

@@ -44,7 +44,20 @@ typedef struct rt_kd_options {
     float empty_bonus;    /* the cost factor of a split with an empty side [0.8] */
     int max_depth;        /* <= 0: 8 + 1.3 log2 N, at most RT_KD_MAX_DEPTH */
     int bins;             /* binned builder: bins per axis [32], 2..256 */
+    int ref_guard;        /* the reference guard (below) [1]; 0: off, for measurements
+                             only (overlapping coplanar input may then take minutes
+                             and gigabytes) */
 } rt_kd_options;
+
+/* The reference guard, for input whose every split lowers the SAH (many
+ * overlapping coplanar triangles): a build whose nodes hold more than
+ * RT_KD_GUARD_WORK x N x the depth bound triangle entries in all (N: the
+ * triangles with area) stops and builds again with a budget: the tree may
+ * then hold at most RT_KD_GUARD_DUPS x N duplicate entries (at most
+ * (1 + RT_KD_GUARD_DUPS) x N entries). A tree under the first limit is the
+ * tree without the guard. docs/KD_TREES.md has the rule. */
+#define RT_KD_GUARD_WORK 8.0
+#define RT_KD_GUARD_DUPS 4.0
 
 /* The traversal stack (kernels/rt_kd.h) holds this many entries; no tree
  * is deeper. */

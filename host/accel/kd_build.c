@@ -7,7 +7,22 @@
  * placeholder in its own output) and goes on with the left one; each task
  * is built into its own buffer by whichever worker takes it, and the
  * buffers are then spliced into the placeholders in depth-first order. The
- * result is byte-identical for any pool and any timing. */
+ * result is byte-identical for any pool and any timing.
+ *
+ * The reference guard: every split lowers the SAH of heavily overlapping
+ * triangles (a fan of coplanar triangles sharing a vertex: the clipped ones
+ * thin out away from it), so neither SAH termination nor the depth bound
+ * keeps their tree small (millions of entries for a few thousand
+ * triangles). The first pass counts the triangle entries of every node it
+ * makes (the build's work and, at most, its memory); past
+ * RT_KD_GUARD_WORK x N x the depth bound it stops, and the tree is built
+ * again with a budget of RT_KD_GUARD_DUPS x N duplicates: the root gets it,
+ * a split whose straddling triangles exceed its node's budget makes a leaf,
+ * and what a split leaves is shared between the children in proportion to
+ * their triangle counts. Both rules are functions of the input only (the
+ * count's total does not depend on the order the workers add to it), so
+ * the tree stays the same for any thread count; a tree under the cap is the
+ * unguarded tree. */
 #include "accel/kd_internal.h"
 
 #include <math.h>
@@ -146,6 +161,12 @@ static void node_free(kd_node_in *in) {
     in->data = NULL;
 }
 
+/* Whether the first pass has made more entries than the guard allows
+ * (then the rest of it is skipped). */
+static int over_cap(const kd_ctx *c) {
+    return c->work && atomic_load_explicit(c->work, memory_order_relaxed) > c->work_cap;
+}
+
 /* Makes in a task (taking its data) and returns its number; UINT32_MAX when
  * out of memory (in's data freed). */
 static uint32_t sched_push(kd_sched *s, kd_node_in *in) {
@@ -181,15 +202,18 @@ static uint32_t sched_push(kd_sched *s, kd_node_in *in) {
 static void build_rec(const kd_ctx *c, const kd_finder *f, kd_node_in *in, kd_scratch *w, kd_out *o,
                       kd_sched *s) {
     for (;;) {
-        if (o->oom) {
+        if (o->oom || over_cap(c)) {
             node_free(in);
             return;
         }
         kd_split sp;
         sp.cost = INFINITY;
         if (in->tris && in->depth < c->max_depth) f->find(c, in, &sp);
-        /* SAH termination: split only when it is cheaper than the leaf. */
-        if (!(sp.cost < (double)c->opt.cost_intersect * (double)in->tris)) {
+        /* SAH termination: split only when it is cheaper than the leaf; in
+         * the budget pass, also only when the node's budget pays its
+         * duplicates. */
+        if (!(sp.cost < (double)c->opt.cost_intersect * (double)in->tris) ||
+            (c->budget && sp.both > in->allow)) {
             uint32_t n = f->leaf(c, in, w);
             if (n == UINT32_MAX)
                 o->oom = 1;
@@ -199,10 +223,15 @@ static void build_rec(const kd_ctx *c, const kd_finder *f, kd_node_in *in, kd_sc
             return;
         }
         kd_node_in l, r;
+        uint64_t left_over = c->budget ? in->allow - sp.both : 0;
         if (!f->split(c, in, &sp, w, &l, &r)) {
             o->oom = 1;
             return;
         }
+        uint64_t made = (uint64_t)l.tris + r.tris;
+        if (c->work) atomic_fetch_add_explicit(c->work, made, memory_order_relaxed);
+        l.allow = made ? left_over * l.tris / made : 0;
+        r.allow = left_over - l.allow;
         uint32_t inner = kd_out_inner(o, sp.axis, sp.pos);
         if (s && r.tris >= KD_TASK_MIN) {
             /* Offered before the left subtree is built, placed after it. */
@@ -357,13 +386,18 @@ static int assemble(const kd_sched *s, rt_pool *pool, rt_kd *out) {
 }
 
 /* Builds the tree of root into out: on the calling thread, or on pool's
- * workers from one queue of subtree tasks. Returns 0 when out of memory. */
+ * workers from one queue of subtree tasks. Returns 1, 0 when out of memory,
+ * or -1 when the first pass went over the guard's cap (out untouched). */
 static int build_tree(const kd_ctx *c, const kd_finder *f, kd_node_in *root, kd_scratch *w,
                       rt_pool *pool, rt_kd *out) {
     if (!pool || rt_pool_size(pool) < 2) {
         kd_out o;
         memset(&o, 0, sizeof o);
         build_rec(c, f, root, w, &o, NULL);
+        if (!o.oom && over_cap(c)) {
+            kd_out_free(&o);
+            return -1;
+        }
         if (o.oom || o.node_count >= (1u << 30) || o.prim_count >= (1u << 30)) {
             kd_out_free(&o);
             return 0;
@@ -382,7 +416,10 @@ static int build_tree(const kd_ctx *c, const kd_finder *f, kd_node_in *root, kd_
     pthread_cond_init(&s.wake, NULL);
     int ok = sched_push(&s, root) == 0;
     if (ok) rt_pool_run(pool, run_tasks, &s);
-    ok = ok && !s.oom && assemble(&s, pool, out);
+    if (ok && !s.oom && over_cap(c))
+        ok = -1;
+    else
+        ok = ok && !s.oom && assemble(&s, pool, out);
     for (uint32_t i = 0; i < s.count; i++) {
         node_free(&s.all[i]->in);
         kd_out_free(&s.all[i]->out);
@@ -510,17 +547,36 @@ rt_status rt_kd_build(const float *positions, uint32_t vertex_count, const uint3
         goto done;
     }
     const kd_finder *f = opt.builder == RT_KD_BINNED ? &kd_finder_binned : &kd_finder_sweep;
-    kd_node_in root;
-    if (!f->root(&c, ids, boxes, n, &cell, pool, &root)) {
-        st = rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory building a kd-tree");
-        goto done;
+    _Atomic uint64_t work;
+    atomic_init(&work, 0);
+    if (opt.ref_guard) {
+        c.work = &work;
+        c.work_cap = (uint64_t)(RT_KD_GUARD_WORK * (double)n * (double)c.max_depth);
     }
-    free(boxes);
-    boxes = NULL;
-    if (!build_tree(&c, f, &root, &w, pool, out)) {
-        rt_kd_free(out);
-        st = rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory building a kd-tree");
-        goto done;
+    /* The boxes stay until the end: a budget pass makes the root again. */
+    for (;;) {
+        kd_node_in root;
+        if (!f->root(&c, ids, boxes, n, &cell, pool, &root)) {
+            st = rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory building a kd-tree");
+            goto done;
+        }
+        /* At most 2^30 entries fit a tree (assemble), which also keeps the
+         * children's shares (allow * tris) within 64 bits. */
+        double allow = RT_KD_GUARD_DUPS * (double)n;
+        root.allow = c.budget ? (allow < 0x1p30 ? (uint64_t)allow : (1ull << 30)) : 0;
+        int built = build_tree(&c, f, &root, &w, pool, out);
+        if (built < 0) {
+            /* Too much work for the triangle count: the budget pass. */
+            c.work = NULL;
+            c.budget = 1;
+            continue;
+        }
+        if (!built) {
+            rt_kd_free(out);
+            st = rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory building a kd-tree");
+            goto done;
+        }
+        break;
     }
     out->bounds = cell;
 done:

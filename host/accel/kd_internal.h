@@ -5,6 +5,7 @@
 #ifndef RT_KD_INTERNAL_H
 #define RT_KD_INTERNAL_H
 
+#include <stdatomic.h>
 #include <stdint.h>
 
 #include "accel/kd.h"
@@ -19,6 +20,12 @@ typedef struct kd_ctx {
     uint32_t tri_total; /* size of tris (and of every worker's flag array) */
     rt_kd_options opt;
     int max_depth;
+    /* The reference guard (kd_build.c): the first pass counts the triangle
+     * entries of the nodes it makes into *work and gives up past work_cap;
+     * the second (budget) spends kd_node_in.allow on duplicates. */
+    _Atomic uint64_t *work; /* NULL: no count */
+    uint64_t work_cap;
+    int budget;
 } kd_ctx;
 
 /* ---- output: nodes in depth-first order, indices relative to the buffer --- */
@@ -54,6 +61,7 @@ typedef struct kd_split {
     int axis;
     float pos;
     int planar_left; /* triangles lying in the plane go left */
+    uint32_t both;   /* triangles on both sides: the entries the split adds */
 } kd_split;
 
 /* Which child a triangle whose clipped box spans [lo, hi] on the split axis
@@ -105,7 +113,8 @@ static inline void kd_axis_init(kd_axis *x, const kd_ctx *c, const kd_cell *v, i
 }
 
 /* Offers the plane pos on axis x->k of the cell to best: nl triangles
- * entirely left, nr entirely right, np lying in the plane, n in all. Both
+ * reaching left of it, nr right (straddling ones in both), np lying in the
+ * plane, n in all. Both
  * places for the planar ones are priced, with the empty-space bonus when a
  * side is empty; a split that leaves one child equal to the cell with every
  * triangle (a plane on the cell's face) is refused, so recursion always
@@ -131,6 +140,7 @@ static inline void kd_offer_axis(const kd_axis *x, float pos, uint32_t nl, uint3
             best->axis = x->k;
             best->pos = pos;
             best->planar_left = planar_left;
+            best->both = na + nb - n;
         }
         if (!np) break; /* the same price both ways */
     }
@@ -170,12 +180,14 @@ typedef struct kd_scratch {
     size_t buf_cap;
 } kd_scratch;
 
-/* A node's input: the cell, the depth, the triangle count and the finder's
- * own data (events or boxes), which the node owns. */
+/* A node's input: the cell, the depth, the triangle count, the duplicates
+ * its subtree may still add (budget pass only) and the finder's own data
+ * (events or boxes), which the node owns. */
 typedef struct kd_node_in {
     rt_aabb cell;
     int depth;
     uint32_t tris;
+    uint64_t allow;
     void *data;
     uint32_t size;
 } kd_node_in;
