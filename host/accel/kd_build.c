@@ -44,6 +44,7 @@ rt_kd_options rt_kd_options_default(void) {
     o.empty_bonus = 0.8f;
     o.max_depth = 0;
     o.bins = 32;
+    o.ref_guard = 1;
     return o;
 }
 
