@@ -135,6 +135,31 @@ rt_scene *test_far_terrain(int cells, float **pos_out) {
     return s;
 }
 
+const char *test_shared_anim(const char *prefix, const char *k0_update, const char *file) {
+    char rel[256];
+    snprintf(rel, sizeof rel, "%s_00.obj", prefix);
+    const char *first = test_shared_scene(rel);
+    if (!first) return NULL;
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s", first);
+    *strrchr(dir, '/') = '\0';
+    const char *base = strrchr(prefix, '/') + 1;
+    char update[64] = "";
+    if (k0_update) snprintf(update, sizeof update, ", \"update\": \"%s\"", k0_update);
+    char json[16384];
+    size_t n = (size_t)snprintf(json, sizeof json, "{\"meshes\": {");
+    for (int i = 0; i < 10; i++)
+        n += (size_t)snprintf(json + n, sizeof json - n,
+                              "%s\"k%d\": {\"file\": \"%s/%s_%02d.obj\"%s}", i ? ", " : "", i, dir,
+                              base, i, i ? "" : update);
+    snprintf(json + n, sizeof json - n,
+             "}, \"objects\": [{\"keyframes\": [\"k0\", \"k1\", \"k2\", \"k3\", "
+             "\"k4\", \"k5\", \"k6\", \"k7\", \"k8\", \"k9\"], \"animation\": "
+             "{\"keyframe_rate\": 5, \"interpolate\": true}}, {\"mesh\": \"k0\", "
+             "\"transform\": {\"translate\": [1.5, 0, 0]}}]}\n");
+    return test_write_temp(file, json);
+}
+
 enum { TEST_RENDERERS = 32 };
 static struct {
     char backend[64];

@@ -98,4 +98,12 @@ struct rt_scene *test_soup_scene(const float *pos, uint32_t tris);
  * malloc'ed copy of its (cells + 1)^2 vertices, row by row along z. */
 struct rt_scene *test_far_terrain(int cells, float **pos);
 
+/* A JSON scene of the ten keyframes of a shared animation (prefix: the
+ * path below the shared scenes without "_NN.obj", e.g.
+ * "brainstem_anim/brainstem"), blended at 5 keyframes a second, beside a
+ * still copy of keyframe 0; keyframe 0 gets "update": k0_update unless that
+ * is NULL. Written to the temporary file named file; returns its path, or
+ * NULL when the shared scenes are not here. */
+const char *test_shared_anim(const char *prefix, const char *k0_update, const char *file);
+
 #endif /* RT_CHECK_H */

@@ -103,28 +103,9 @@ static void check_round_trip(const char *name, const char *path) {
 
 /* A scene of the ten keyframes of a shared animation, blended. */
 static const char *shared_anim(const char *name, const char *prefix) {
-    char rel[256];
-    snprintf(rel, sizeof rel, "%s_00.obj", prefix);
-    const char *first = test_shared_scene(rel);
-    if (!first) return NULL;
-    char dir[4096];
-    snprintf(dir, sizeof dir, "%s", first);
-    *strrchr(dir, '/') = '\0';
-    const char *base = strrchr(prefix, '/') + 1;
-    char json[16384];
-    size_t n = (size_t)snprintf(json, sizeof json, "{\"meshes\": {");
-    for (int i = 0; i < 10; i++)
-        n += (size_t)snprintf(json + n, sizeof json - n,
-                              "%s\"k%d\": {\"file\": \"%s/%s_%02d.obj\"%s}", i ? ", " : "", i, dir,
-                              base, i, i ? "" : ", \"update\": \"refit\"");
-    n += (size_t)snprintf(json + n, sizeof json - n,
-                          "}, \"objects\": [{\"keyframes\": [\"k0\", \"k1\", \"k2\", \"k3\", "
-                          "\"k4\", \"k5\", \"k6\", \"k7\", \"k8\", \"k9\"], \"animation\": "
-                          "{\"keyframe_rate\": 5, \"interpolate\": true}}, {\"mesh\": \"k0\", "
-                          "\"transform\": {\"translate\": [1.5, 0, 0]}}]}\n");
     char file[64];
     snprintf(file, sizeof file, "%s_src.json", name);
-    return test_write_temp(file, json);
+    return test_shared_anim(prefix, "refit", file);
 }
 
 int main(void) {
