@@ -35,22 +35,6 @@ static const char *const set_names[SETS] = {"diffuse", "random"};
 static const char *const query_names[QUERIES] = {"closest", "any"};
 static const char *const backend_names[BACKENDS] = {"cpu", "packet"};
 
-static void to_api(const rt_ray_d *in, size_t n, rt_ray *out) {
-    for (size_t i = 0; i < n; i++) {
-        memcpy(out[i].org, in[i].org, sizeof out[i].org);
-        memcpy(out[i].dir, in[i].dir, sizeof out[i].dir);
-        out[i].tmin = in[i].tmin;
-        out[i].tmax = in[i].tmax;
-    }
-}
-
-static int same_hit(const rt_hit *a, const rt_hit *b, int any) {
-    if (a->hit != b->hit) return 0;
-    if (any || !a->hit) return 1;
-    return memcmp(&a->t, &b->t, sizeof a->t) == 0 && memcmp(&a->u, &b->u, sizeof a->u) == 0 &&
-           memcmp(&a->v, &b->v, sizeof a->v) == 0 && a->prim == b->prim && a->inst == b->inst;
-}
-
 /* Box (or kd node) and triangle tests per ray of the oracle's traversal. */
 static void count_tests(const rt_flat *flat, const rt_ray_d *rays, size_t n, int any, double *steps,
                         double *tris) {
@@ -124,7 +108,7 @@ static int bench_scene(const char *path, size_t n, int reps, int threads, rt_acc
                     rt_rays_diffuse(flat, 7, n, rd[s]);
                 else
                     rt_rays_random(flat, 7, n, rd[s]);
-                to_api(rd[s], n, rays[s]);
+                rt_rays_to_api(rd[s], n, rays[s]);
             }
             for (int q = 0; q < QUERIES; q++)
                 count_tests(flat, rd[s], n, q, &steps[s][q][a], &tris[s][q][a]);
@@ -152,7 +136,7 @@ static int bench_scene(const char *path, size_t n, int reps, int threads, rt_acc
                         }
                         if (round == 0 && a == 1)
                             for (size_t i = 0; i < n; i++)
-                                bad[s][q] += !same_hit(&got[i], &ref[i], q);
+                                bad[s][q] += !rt_api_hits_same(&got[i], &ref[i], q);
                         if (round > 0) ms[s][q][b][a][round - 1] = dt;
                     }
     const char *name = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;

@@ -2,6 +2,7 @@
 #include "ray_sets.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "rt_shade.h"
 
@@ -85,4 +86,20 @@ void rt_rays_diffuse(const rt_flat *flat, uint32_t seed, size_t n, rt_ray_d *out
         out[i].tmin = 0.0f;
         out[i].tmax = INFINITY;
     }
+}
+
+void rt_rays_to_api(const rt_ray_d *in, size_t n, rt_ray *out) {
+    for (size_t i = 0; i < n; i++) {
+        memcpy(out[i].org, in[i].org, sizeof out[i].org);
+        memcpy(out[i].dir, in[i].dir, sizeof out[i].dir);
+        out[i].tmin = in[i].tmin;
+        out[i].tmax = in[i].tmax;
+    }
+}
+
+int rt_api_hits_same(const rt_hit *a, const rt_hit *b, int any) {
+    if (a->hit != b->hit) return 0;
+    if (any || !a->hit) return 1;
+    return memcmp(&a->t, &b->t, sizeof a->t) == 0 && memcmp(&a->u, &b->u, sizeof a->u) == 0 &&
+           memcmp(&a->v, &b->v, sizeof a->v) == 0 && a->prim == b->prim && a->inst == b->inst;
 }

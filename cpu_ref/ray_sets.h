@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include "layout/flat.h"
+#include "rt.h"
 
 /* n rays with origins uniform in the scene's bounding box and directions
  * uniform on the sphere, t in [0, inf]; the same seed gives the same rays.
@@ -23,5 +24,13 @@ void rt_rays_random(const rt_flat *flat, uint32_t seed, size_t n, rt_ray_d *out)
  * again (up to 64 times, then a random ray of rt_rays_random takes the
  * place). */
 void rt_rays_diffuse(const rt_flat *flat, uint32_t seed, size_t n, rt_ray_d *out);
+
+/* The n rays as the API's rt_ray, for rt_trace_rays. */
+void rt_rays_to_api(const rt_ray_d *in, size_t n, rt_ray *out);
+
+/* Whether two answers of rt_trace_rays are the same bit for bit: the hit
+ * flag, and for a closest hit t, u, v (bits), prim and inst (any: the flag
+ * alone, as any-hit queries promise no particular hit). */
+int rt_api_hits_same(const rt_hit *a, const rt_hit *b, int any);
 
 #endif /* RT_RAY_SETS_H */

@@ -46,23 +46,6 @@ static void min_median(double *v, int n, double *min, double *median) {
     *median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-static void to_api(const rt_ray_d *in, size_t n, rt_ray *out) {
-    for (size_t i = 0; i < n; i++) {
-        memcpy(out[i].org, in[i].org, sizeof out[i].org);
-        memcpy(out[i].dir, in[i].dir, sizeof out[i].dir);
-        out[i].tmin = in[i].tmin;
-        out[i].tmax = in[i].tmax;
-    }
-}
-
-/* Bit for bit the same answer (any hit: the same flag). */
-static int same_hit(const rt_hit *a, const rt_hit *b, int any) {
-    if (a->hit != b->hit) return 0;
-    if (any || !a->hit) return 1;
-    return memcmp(&a->t, &b->t, sizeof a->t) == 0 && memcmp(&a->u, &b->u, sizeof a->u) == 0 &&
-           memcmp(&a->v, &b->v, sizeof a->v) == 0 && a->prim == b->prim && a->inst == b->inst;
-}
-
 const incoh_row *incoh_find(const incoh_result *res, const incoh_row *r, const char *path) {
     for (int i = 0; i < res->n_rows; i++) {
         const incoh_row *x = &res->rows[i];
@@ -227,7 +210,7 @@ int incoh_bench_scene(const char *path, const incoh_setup *su, incoh_result *out
             rt_rays_diffuse(flat, su->seed, n, b.rd[s]);
         else
             rt_rays_random(flat, su->seed, n, b.rd[s]);
-        to_api(b.rd[s], n, b.rays[s]);
+        rt_rays_to_api(b.rd[s], n, b.rays[s]);
     }
     int tracers = 2;
 #ifdef RT_HAVE_EMBREE
@@ -263,7 +246,7 @@ int incoh_bench_scene(const char *path, const incoh_setup *su, incoh_result *out
                         }
                         if (t == T_PACKET && round == 0)
                             for (size_t i = 0; i < n; i++)
-                                differ[s][q] += !same_hit(&b.got[i], &b.ref[i], q);
+                                differ[s][q] += !rt_api_hits_same(&b.got[i], &b.ref[i], q);
                     }
 #ifdef RT_HAVE_EMBREE
                     else {
