@@ -160,6 +160,12 @@ const char *test_shared_anim(const char *prefix, const char *k0_update, const ch
     return test_write_temp(file, json);
 }
 
+int test_same_fb(const rt_framebuffer *a, const rt_framebuffer *b) {
+    return a->width == b->width && a->height == b->height && a->channels == b->channels &&
+           memcmp(a->pixels, b->pixels,
+                  sizeof(float) * (size_t)a->width * a->height * a->channels) == 0;
+}
+
 enum { TEST_RENDERERS = 32 };
 static struct {
     char backend[64];

@@ -65,6 +65,9 @@ rt_renderer *test_renderer_with(const rt_renderer_options *options, rt_error *er
 struct rt_flat;
 const struct rt_flat *test_layout(rt_scene *s, int threads);
 
+/* Whether two framebuffers have the same size, channels and float bits. */
+int test_same_fb(const rt_framebuffer *a, const rt_framebuffer *b);
+
 /* Prints "skipped: reason" and exits 77. */
 void test_skip(const char *reason);
 

@@ -80,12 +80,6 @@ static rt_renderer *new_renderer(const char *backend) {
     return r;
 }
 
-static int same_fb(const rt_framebuffer *a, const rt_framebuffer *b) {
-    return a->width == b->width && a->height == b->height && a->channels == b->channels &&
-           memcmp(a->pixels, b->pixels,
-                  sizeof(float) * (size_t)a->width * a->height * a->channels) == 0;
-}
-
 /* The image a fresh renderer gives of a fresh scene at time t, the camera
  * then moved by (right, up, forward) and the third object moved by dx. */
 static rt_framebuffer fresh(const char *backend, int kd, double t, const float move[3], float dx) {
@@ -142,7 +136,7 @@ static void check_backend(const char *backend, int kd) {
         CHECK(rt_render(r, s, &opt, &fb) == RT_OK);
         check_camera_only(r, generation, what);
         rt_framebuffer want = fresh(backend, kd, times[i], NULL, 0.0f);
-        CHECK_MSG(same_fb(&fb, &want), "%s: differs from a fresh render", what);
+        CHECK_MSG(test_same_fb(&fb, &want), "%s: differs from a fresh render", what);
         rt_framebuffer_free(&want);
     }
     /* rt_camera_set (through rt_camera_move) between frames. */
@@ -153,7 +147,7 @@ static void check_backend(const char *backend, int kd) {
     snprintf(what, sizeof what, "%s%s: rt_camera_move", backend, kd ? " (kd floor)" : "");
     check_camera_only(r, generation, what);
     rt_framebuffer want = fresh(backend, kd, 2.5, move, 0.0f);
-    CHECK_MSG(same_fb(&fb, &want), "%s: differs from a fresh render", what);
+    CHECK_MSG(test_same_fb(&fb, &want), "%s: differs from a fresh render", what);
     rt_framebuffer_free(&want);
     /* Geometry and camera at once: the layout is brought up to date, with
      * the new camera; then camera-only frames hold again. */
@@ -167,8 +161,9 @@ static void check_backend(const char *backend, int kd) {
     CHECK_MSG(!u.camera_only && r->accel.layout_generation != generation,
               "%s: a moved object did not update the layout", backend);
     want = fresh(backend, kd, 0.5, NULL, 0.25f);
-    CHECK_MSG(same_fb(&fb, &want), "%s%s: object and camera moved: differs from a fresh render",
-              backend, kd ? " (kd floor)" : "");
+    CHECK_MSG(test_same_fb(&fb, &want),
+              "%s%s: object and camera moved: differs from a fresh render", backend,
+              kd ? " (kd floor)" : "");
     rt_framebuffer_free(&want);
     generation = r->accel.layout_generation;
     CHECK(rt_scene_set_time(s, 1.5) == RT_OK);
@@ -177,7 +172,7 @@ static void check_backend(const char *backend, int kd) {
     snprintf(what, sizeof what, "%s%s: after the object moved", backend, kd ? " (kd floor)" : "");
     check_camera_only(r, generation, what);
     want = fresh(backend, kd, 1.5, NULL, 0.25f);
-    CHECK_MSG(same_fb(&fb, &want), "%s: differs from a fresh render", what);
+    CHECK_MSG(test_same_fb(&fb, &want), "%s: differs from a fresh render", what);
     rt_framebuffer_free(&want);
     /* The same time again changes nothing at all. */
     CHECK(rt_scene_set_time(s, 1.5) == RT_OK);

@@ -124,12 +124,6 @@ static rt_renderer *new_renderer(const char *backend, int threads) {
     return r;
 }
 
-static int same_fb(const rt_framebuffer *a, const rt_framebuffer *b) {
-    return a->width == b->width && a->height == b->height && a->channels == b->channels &&
-           memcmp(a->pixels, b->pixels,
-                  sizeof(float) * (size_t)a->width * a->height * a->channels) == 0;
-}
-
 /* The layout the renderer holds equals rt_flatten of its own BVHs. */
 static void check_layout_fresh(rt_renderer *r, rt_scene *s, const char *what) {
     rt_flat f;
@@ -217,7 +211,7 @@ static void check_policy(rt_update_policy policy, const char *backend) {
             CHECK_MSG(memcmp(a, b, sizeof(rt_hit) * RAYS) == 0, "%s: hits differ from a rebuild",
                       what);
             CHECK(rt_render(ref, s, NULL, &fb) == RT_OK);
-            CHECK_MSG(same_fb(&fa, &fb), "%s: image differs from a rebuild", what);
+            CHECK_MSG(test_same_fb(&fa, &fb), "%s: image differs from a rebuild", what);
             rt_renderer_destroy(ref);
         }
         rt_framebuffer_free(&fa);

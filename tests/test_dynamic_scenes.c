@@ -24,12 +24,6 @@ static rt_renderer *make(const char *backend, rt_error *err) {
     return r;
 }
 
-static int same_fb(const rt_framebuffer *a, const rt_framebuffer *b) {
-    return a->width == b->width && a->height == b->height && a->channels == b->channels &&
-           memcmp(a->pixels, b->pixels,
-                  sizeof(float) * (size_t)a->width * a->height * a->channels) == 0;
-}
-
 static void set_policy(rt_scene *s, rt_update_policy p) {
     for (uint32_t m = 0; m < s->mesh_count; m++) rt_mesh_set_update(s, m, p);
 }
@@ -67,7 +61,7 @@ static void check_scene(const char *name, const char *path, double fps) {
         rt_renderer_destroy(r);
     }
     /* Two frames apart must differ, or the test would prove nothing. */
-    CHECK_MSG(ref[0].pixels && ref[2].pixels && !same_fb(&ref[0], &ref[2]),
+    CHECK_MSG(ref[0].pixels && ref[2].pixels && !test_same_fb(&ref[0], &ref[2]),
               "%s: the animation does not move", name);
     /* Device backends (b >= 2) may be missing here: said, not hidden. */
     const char *backends[] = {"cpu", "packet", "opencl", "vulkan"};
@@ -132,7 +126,7 @@ static void check_scene(const char *name, const char *path, double fps) {
                     in_place += us.layout_in_place;
                 }
                 if (k == 0 && p == 0) full_upload = st.upload_bytes;
-                CHECK_MSG(status != RT_OK || same_fb(&fb, &ref[k]),
+                CHECK_MSG(status != RT_OK || test_same_fb(&fb, &ref[k]),
                           "%s on %s, policy %s, frame %d: differs from a fresh build", name,
                           backends[b], rt_update_policy_name(policies[p]), k);
                 rt_framebuffer_free(&fb);
