@@ -26,28 +26,6 @@ struct rt_embree_anim {
     geom_slot *slots;
 };
 
-/* The instance's triangles in world space, three vertices each, as
- * embree_trace.c's scene holds them (so that primID + tri_first is the
- * layout's entry). out holds 9 floats per triangle. */
-static void stage_instance(const rt_flat *flat, uint32_t inst, float *out) {
-    const rt_instance *in = &flat->instances[inst];
-    const float *m = in->object_to_world;
-    int identity = (in->flags & RT_INST_IDENTITY) != 0;
-    for (uint32_t t = 0; t < in->tri_count; t++) {
-        const rt_tri *tri = &flat->tris[in->tri_first + t];
-        const float *p[3] = {tri->v0, tri->v1, tri->v2};
-        for (int j = 0; j < 3; j++) {
-            float *o = out + 9 * (size_t)t + 3 * j;
-            for (int k = 0; k < 3; k++)
-                o[k] =
-                    identity
-                        ? p[j][k]
-                        : ((m[4 * k] * p[j][0] + m[4 * k + 1] * p[j][1]) + m[4 * k + 2] * p[j][2]) +
-                              m[4 * k + 3];
-        }
-    }
-}
-
 static enum RTCBuildQuality geometry_quality(int quality) {
     return quality == RT_EMBREE_REFIT ? RTC_BUILD_QUALITY_REFIT
            : quality == RT_EMBREE_LOW ? RTC_BUILD_QUALITY_LOW
@@ -113,7 +91,7 @@ rt_status rt_embree_anim_create(rt_embree *em, const rt_flat *flat, int quality,
             rt_embree_anim_destroy(a);
             return rt_embree_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory", NULL);
         }
-        stage_instance(flat, i, s->stage);
+        rt_embree_stage_instance(flat, i, s->stage);
         if (!slot_geometry(a, s, i)) {
             rt_embree_anim_destroy(a);
             return rt_embree_fail(err, RT_ERROR_BACKEND, "cannot add a geometry", dev);
@@ -146,7 +124,7 @@ rt_status rt_embree_anim_update(rt_embree_anim *a, const rt_flat *flat, double *
         free(s->next);
         s->next = malloc(sizeof(float) * 9 * (size_t)(n ? n : 1));
         if (!s->next) return rt_embree_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory", NULL);
-        stage_instance(flat, i, s->next);
+        rt_embree_stage_instance(flat, i, s->next);
         s->changed =
             n != s->tris ? 2 : memcmp(s->next, s->stage, sizeof(float) * 9 * (size_t)n) != 0;
         if (s->changed) {

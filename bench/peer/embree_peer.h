@@ -79,6 +79,11 @@ rt_status rt_embree_trace_rays(const rt_embree_scene *es, const rt_ray_d *rays, 
 /* Does the device trace packets of this width natively (1 always)? */
 int rt_embree_native_lanes(rt_embree *em, int lanes);
 
+/* Instance inst of flat's triangles in world space, three vertices (9
+ * floats) each, to out: the vertex data of the peer's per-instance
+ * geometries (embree_trace.c, embree_anim.c). */
+void rt_embree_stage_instance(const rt_flat *flat, uint32_t inst, float *out);
+
 /* ---- deforming geometry: the peer of the update policies (embree_dynamic.c) -- */
 
 typedef struct rt_embree_dynamic rt_embree_dynamic;

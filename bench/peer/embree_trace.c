@@ -26,6 +26,28 @@ typedef struct RTCRayHit4 RTCRayHit4;
 typedef struct RTCRayHit8 RTCRayHit8;
 typedef struct RTCRayHit16 RTCRayHit16;
 
+/* The instance's triangles in world space, three vertices each, as
+ * the peer's scenes hold them (so that primID + tri_first is the layout's
+ * entry). out holds 9 floats per triangle. */
+void rt_embree_stage_instance(const rt_flat *flat, uint32_t inst, float *out) {
+    const rt_instance *in = &flat->instances[inst];
+    const float *m = in->object_to_world;
+    int identity = (in->flags & RT_INST_IDENTITY) != 0;
+    for (uint32_t t = 0; t < in->tri_count; t++) {
+        const rt_tri *tri = &flat->tris[in->tri_first + t];
+        const float *p[3] = {tri->v0, tri->v1, tri->v2};
+        for (int j = 0; j < 3; j++) {
+            float *o = out + 9 * (size_t)t + 3 * j;
+            for (int k = 0; k < 3; k++)
+                o[k] =
+                    identity
+                        ? p[j][k]
+                        : ((m[4 * k] * p[j][0] + m[4 * k + 1] * p[j][1]) + m[4 * k + 2] * p[j][2]) +
+                              m[4 * k + 3];
+        }
+    }
+}
+
 /* One triangle geometry per instance, in world space, so that geomID is the
  * instance and primID + tri_first the layout's entry. Instances flattened
  * into world space (no Embree instancing) are the peer's fastest case. */
@@ -42,22 +64,8 @@ static int add_instance(RTCDevice dev, RTCScene scene, const rt_flat *flat, uint
         rtcReleaseGeometry(g);
         return 0;
     }
-    const float *m = in->object_to_world;
-    int identity = (in->flags & RT_INST_IDENTITY) != 0;
-    for (uint32_t t = 0; t < n; t++) {
-        const rt_tri *tri = &flat->tris[in->tri_first + t];
-        const float *p[3] = {tri->v0, tri->v1, tri->v2};
-        for (int j = 0; j < 3; j++) {
-            float *o = v + 9 * (size_t)t + 3 * j;
-            for (int k = 0; k < 3; k++)
-                o[k] =
-                    identity
-                        ? p[j][k]
-                        : ((m[4 * k] * p[j][0] + m[4 * k + 1] * p[j][1]) + m[4 * k + 2] * p[j][2]) +
-                              m[4 * k + 3];
-            idx[3 * (size_t)t + j] = 3 * t + (uint32_t)j;
-        }
-    }
+    rt_embree_stage_instance(flat, inst, v);
+    for (uint32_t i = 0; i < 3 * n; i++) idx[i] = i;
     rtcCommitGeometry(g);
     unsigned id = rtcAttachGeometry(scene, g);
     rtcReleaseGeometry(g);
