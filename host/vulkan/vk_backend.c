@@ -873,15 +873,22 @@ static int vk_available(rt_error *why) {
     return 1;
 }
 
-rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size_t count, int ftz,
-                              uint32_t *results, rt_error *err) {
+/* A backend state on device (NULL: the default), for the test hooks below. */
+static rt_status create_on(const char *device, vk_state **out, rt_error *err) {
     rt_backend_config config;
     memset(&config, 0, sizeof config);
     config.device = device;
     void *state = NULL;
     rt_status st = vk_create(&config, &state, err);
+    *out = state;
+    return st;
+}
+
+rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size_t count, int ftz,
+                              uint32_t *results, rt_error *err) {
+    vk_state *s;
+    rt_status st = create_on(device, &s, err);
     if (st != RT_OK) return st;
-    vk_state *s = state;
     uint32_t spec[SPEC_COUNT] = {0, 0, 3, 0, ftz ? 1u : 0u, RT_VK_KD_SHARED_CELLS};
     double ms = 0.0;
     int remade;
@@ -909,13 +916,9 @@ rt_status rt_vk_trace_kd_stack(const char *device, const rt_flat *flat, const rt
     if (kd_shared_cells > RT_VK_KD_SHARED_CELLS)
         return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "vulkan: at most %u shared kd stack cells",
                        RT_VK_KD_SHARED_CELLS);
-    rt_backend_config config;
-    memset(&config, 0, sizeof config);
-    config.device = device;
-    void *state = NULL;
-    rt_status st = vk_create(&config, &state, err);
+    vk_state *s;
+    rt_status st = create_on(device, &s, err);
     if (st != RT_OK) return st;
-    vk_state *s = state;
     s->kd_shared = kd_shared_cells;
     rt_backend_layout layout;
     memset(&layout, 0, sizeof layout);
