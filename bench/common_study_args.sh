@@ -4,12 +4,8 @@
 # thread count in RT_STUDY_THREADS). NAME is the sourcing script's study.
 study_name=$(basename "$0" .sh)
 study_name=${study_name#study_}
-root=$(cd "$(dirname "$0")/.." && pwd)
-quick=0
-args=()
-for a in "$@"; do
-    if [ "$a" = --quick ]; then quick=1; else args+=("$a"); fi
-done
+# shellcheck source=bench/common_args.sh
+. "$(dirname "$0")/common_args.sh"
 [ ${#args[@]} = 3 ] || { echo "usage: $(basename "$0") BUILD_DIR SHARED_SCENES OUT_DIR [--quick]" >&2; exit 2; }
 build=$(cd "${args[0]}" && pwd)
 shared=$(cd "${args[1]}" && pwd)

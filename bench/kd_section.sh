@@ -16,12 +16,8 @@
 # - the thesis's quoted Bunny figures (bench/thesis_kd_numbers.tsv) beside
 #   this run's kd builds of the Bunny.
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
-quick=0
-args=()
-for a in "$@"; do
-    if [ "$a" = --quick ]; then quick=1; else args+=("$a"); fi
-done
+# shellcheck source=bench/common_args.sh
+. "$(dirname "$0")/common_args.sh"
 build=$(cd "${args[0]:-$root/build}" && pwd)
 shared=$(cd "${args[1]:-$root/../shared/scenes}" && pwd)
 rtcl=$build/rtcl

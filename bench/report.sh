@@ -13,12 +13,8 @@
 # Run it on a quiet machine: it measures wall time. It writes to a temporary
 # file and replaces docs/BENCHMARKS.md only when every step succeeded.
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
-quick=0
-args=()
-for a in "$@"; do
-    if [ "$a" = --quick ]; then quick=1; else args+=("$a"); fi
-done
+# shellcheck source=bench/common_args.sh
+. "$(dirname "$0")/common_args.sh"
 build=$(cd "${args[0]:-$root/build}" && pwd)
 shared=$(cd "${args[1]:-$root/../shared/scenes}" && pwd)
 rtcl=$build/rtcl
