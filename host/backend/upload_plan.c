@@ -27,10 +27,12 @@ static uint32_t *mesh_signature(const rt_backend_layout *layout, size_t *len) {
     return sig;
 }
 
-/* The arrays of the layout: where, how long, and whether part of the mesh
- * data (uploaded only when the meshes changed). */
-static void arrays(const rt_flat *f, const void *data[RT_UP_COUNT], size_t bytes[RT_UP_COUNT],
-                   int mesh[RT_UP_COUNT]) {
+/* Which arrays are part of the mesh data (uploaded only when the meshes
+ * changed). */
+static const int is_mesh[RT_UP_COUNT] = {0, 0, 1, 1, 1, 1, 0, 0, 0, 0, 1};
+
+/* The arrays of the layout: where and how long. */
+static void arrays(const rt_flat *f, const void *data[RT_UP_COUNT], size_t bytes[RT_UP_COUNT]) {
     size_t tri_n = f->tri_count;
     const void *d[RT_UP_COUNT] = {&f->hdr,        f->nodes,    f->tris,      f->tri_ids,
                                   f->tri_normals, f->tri_mats, f->instances, f->inst_ids,
@@ -46,11 +48,9 @@ static void arrays(const rt_flat *f, const void *data[RT_UP_COUNT], size_t bytes
                                    sizeof(rt_material_d) * f->hdr.material_count,
                                    sizeof(rt_light_d) * f->hdr.light_count,
                                    sizeof(rt_kd_node) * f->kd_node_count};
-    static const int m[RT_UP_COUNT] = {0, 0, 1, 1, 1, 1, 0, 0, 0, 0, 1};
     for (int i = 0; i < RT_UP_COUNT; i++) {
-        if (data) data[i] = d[i];
+        data[i] = d[i];
         bytes[i] = b[i];
-        if (mesh) mesh[i] = m[i];
     }
 }
 
@@ -60,7 +60,7 @@ rt_status rt_upload_plan_make(const rt_upload_memo *memo, const rt_backend_layou
     memset(p, 0, sizeof *p);
     p->sig = mesh_signature(layout, &p->sig_len);
     if (!p->sig) return RT_ERROR_OUT_OF_MEMORY;
-    arrays(f, NULL, p->bytes, NULL);
+    arrays(f, p->data, p->bytes);
     p->mesh_node_bytes = sizeof(rt_node) * p->sig[1];
     p->mesh_same = memo->valid && memo->mesh_sig && memo->mesh_sig_len == p->sig_len &&
                    memcmp(memo->mesh_sig, p->sig, p->sig_len * sizeof *p->sig) == 0;
@@ -88,10 +88,8 @@ rt_status rt_upload_plan_run(const rt_upload_plan *p, const rt_backend_layout *l
                              const int remade[RT_UP_COUNT],
                              rt_status (*emit)(void *user, const rt_upload_copy *c), void *user) {
     const rt_flat *f = layout->flat;
-    const void *data[RT_UP_COUNT];
-    size_t bytes[RT_UP_COUNT];
-    int mesh[RT_UP_COUNT];
-    arrays(f, data, bytes, mesh);
+    const void *const *data = p->data;
+    const size_t *bytes = p->bytes;
     rt_status st = RT_OK;
     rt_upload_copy c;
     if (p->nothing) return RT_OK;
@@ -126,7 +124,7 @@ rt_status rt_upload_plan_run(const rt_upload_plan *p, const rt_backend_layout *l
     }
     for (int i = 0; i < RT_UP_COUNT && st == RT_OK; i++) {
         if (!bytes[i]) continue;
-        if (p->partial && (mesh[i] || i == RT_UP_NODES)) continue;
+        if (p->partial && (is_mesh[i] || i == RT_UP_NODES)) continue;
         int all = (p->buffers && remade[i]) || !p->mesh_same;
         if (i == RT_UP_NODES) {
             /* Mesh BVH nodes first, then the object BVH: only the latter
@@ -134,7 +132,7 @@ rt_status rt_upload_plan_run(const rt_upload_plan *p, const rt_backend_layout *l
             size_t from = all ? 0 : p->mesh_node_bytes;
             c = (rt_upload_copy){i, from, (const char *)data[i] + from, bytes[i] - from};
             if (c.bytes) st = emit(user, &c);
-        } else if (!mesh[i] || all) {
+        } else if (!is_mesh[i] || all) {
             c = (rt_upload_copy){i, 0, data[i], bytes[i]};
             st = emit(user, &c);
         }

@@ -52,6 +52,7 @@ typedef struct rt_upload_plan {
     size_t bytes[RT_UP_COUNT]; /* what each buffer must hold */
     int buffers;               /* 1: make every buffer hold bytes[i] before the copies */
     /* private */
+    const void *data[RT_UP_COUNT]; /* where each array is */
     int nothing, header_only, partial, mesh_same;
     size_t mesh_node_bytes; /* the object BVH's nodes start here */
     uint32_t *sig;
