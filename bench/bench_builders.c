@@ -45,7 +45,7 @@
 #include "rt.h"
 #include "scene/scene.h"
 #include "base/thread_pool.h"
-#include "accel/tlas.h"
+#include "accel/object_bvh.h"
 #ifdef RT_HAVE_EMBREE
 #include "peer/embree_peer.h"
 #endif
@@ -155,7 +155,7 @@ static int build_all(bench *b, setup *s, double *ms, rt_error *msg) {
 /* The frame through the current trees: *ms is the render time. */
 static int trace_frame(bench *b, double *ms, uint64_t *rays, rt_error *msg) {
     rt_bvh top;
-    if (rt_tlas_build(b->scene, b->bvhs, NULL, b->pool, &top, msg) != RT_OK) return 0;
+    if (rt_object_bvh_build(b->scene, b->bvhs, NULL, b->pool, &top, msg) != RT_OK) return 0;
     rt_flat flat;
     rt_status st = rt_flatten(b->scene, b->bvhs, &top, NULL, &flat, msg);
     rt_bvh_free(&top);

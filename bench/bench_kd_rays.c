@@ -36,7 +36,7 @@ static const char *const query_names[QUERIES] = {"closest", "any"};
 static const char *const backend_names[BACKENDS] = {"cpu", "packet"};
 
 /* Box (or kd node) and triangle tests per ray of the oracle's traversal. */
-static void count_tests(const rt_flat *flat, const rt_ray_d *rays, size_t n, int any, double *steps,
+static void count_tests(const rt_flat *flat, const rt_ray *rays, size_t n, int any, double *steps,
                         double *tris) {
     rt_scene_view view = rt_flat_view(flat);
     rt_counters c;
@@ -88,7 +88,6 @@ static int bench_scene(const char *path, size_t n, int reps, int threads, rt_acc
     rt_renderer *lr = bench_renderer("cpu", threads);
     rt_backend_layout layout;
     double build_ms, sah;
-    rt_ray_d *rd[SETS];
     rt_ray *rays[SETS];
     double steps[SETS][QUERIES][ACCELS], tris[SETS][QUERIES][ACCELS];
     uint32_t tri_count = 0;
@@ -102,16 +101,14 @@ static int bench_scene(const char *path, size_t n, int reps, int threads, rt_acc
             if (a == 0) {
                 tri_count = flat->tri_count;
                 rays[s] = malloc(sizeof(rt_ray) * n);
-                rd[s] = malloc(sizeof(rt_ray_d) * n);
-                if (!rays[s] || !rd[s]) return 1;
+                if (!rays[s]) return 1;
                 if (s == 0)
-                    rt_rays_diffuse(flat, 7, n, rd[s]);
+                    rt_rays_diffuse(flat, 7, n, rays[s]);
                 else
-                    rt_rays_random(flat, 7, n, rd[s]);
-                rt_rays_to_api(rd[s], n, rays[s]);
+                    rt_rays_random(flat, 7, n, rays[s]);
             }
             for (int q = 0; q < QUERIES; q++)
-                count_tests(flat, rd[s], n, q, &steps[s][q][a], &tris[s][q][a]);
+                count_tests(flat, rays[s], n, q, &steps[s][q][a], &tris[s][q][a]);
         }
     }
     rt_renderer_destroy(lr);
@@ -168,7 +165,6 @@ static int bench_scene(const char *path, size_t n, int reps, int threads, rt_acc
     fflush(stdout);
     for (int s = 0; s < SETS; s++) {
         free(rays[s]);
-        free(rd[s]);
     }
     free(ref);
     free(got);

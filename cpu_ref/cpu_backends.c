@@ -17,7 +17,7 @@
 typedef struct trace_job {
     const rt_cpu_frame *tracers; /* flat, and for packets the wide BVHs and builds */
     int packets;                 /* 0: the scalar oracle */
-    const rt_ray_d *rays;
+    const rt_ray *rays;
     rt_hit_d *hits;
     size_t count;
     int any_hit;
@@ -93,7 +93,7 @@ static rt_status render_frame(const rt_backend_layout *layout, const rt_backend_
  * packets and single rays as rt_packet_trace_rays chooses. Returns the
  * number of rays that went in packets. */
 static uint64_t trace_all(const rt_backend_layout *layout, const rt_cpu_frame *tracers, int flush,
-                          const rt_ray_d *rays, size_t count, rt_hit_d *hits, int any_hit,
+                          const rt_ray *rays, size_t count, rt_hit_d *hits, int any_hit,
                           rt_trace_path path) {
     trace_job job;
     memset(&job, 0, sizeof job);
@@ -152,7 +152,7 @@ static rt_status cpu_render(void *state, const rt_backend_layout *layout,
     return render_frame(layout, frame, NULL, NULL, NULL, NULL, state != NULL, stats, err);
 }
 
-static rt_status cpu_trace(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
+static rt_status cpu_trace(void *state, const rt_backend_layout *layout, const rt_ray *rays,
                            size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
                            rt_trace_stats *stats, rt_error *err) {
     (void)err;
@@ -281,7 +281,7 @@ static rt_status packet_render(void *state, const rt_backend_layout *layout,
     return RT_OK;
 }
 
-static rt_status packet_trace(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
+static rt_status packet_trace(void *state, const rt_backend_layout *layout, const rt_ray *rays,
                               size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
                               rt_trace_stats *stats, rt_error *err) {
     packet_state *s = state;

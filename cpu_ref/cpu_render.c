@@ -8,7 +8,7 @@
 #include <string.h>
 
 void rt_cpu_finish_pixel(const rt_cpu_frame *f, const rt_scene_view *v, int x, int y,
-                         const rt_ray_d *ray, const rt_hit_d *hit, rt_counters *c) {
+                         const rt_ray *ray, const rt_hit_d *hit, rt_counters *c) {
     size_t i = ((size_t)y * (size_t)v->hdr->width + (size_t)x) * (size_t)f->channels;
     float *out = f->pixels + i;
     int hit_any = hit->prim != RT_NO_HIT;
@@ -58,7 +58,7 @@ static void cpu_rows(void *ctx, int worker, int workers) {
     for (int y = worker; y < h; y += workers) {
         for (int x = 0; x < w; x++) {
             rt_counters c = {0, 0, 0};
-            rt_ray_d ray;
+            rt_ray ray;
             rt_hit_d hit;
             rt_camera_ray(v.hdr, x, y, &ray);
             rt_trace(&v, &ray, 0, &hit, &c);
@@ -90,7 +90,7 @@ rt_status rt_cpu_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts 
     return RT_OK;
 }
 
-void rt_cpu_trace_rays(const rt_flat *flat, const rt_ray_d *rays, size_t n, rt_hit_d *hits,
+void rt_cpu_trace_rays(const rt_flat *flat, const rt_ray *rays, size_t n, rt_hit_d *hits,
                        int any_hit, rt_counters *c) {
     rt_scene_view v = rt_flat_view(flat);
     for (size_t i = 0; i < n; i++) rt_trace(&v, &rays[i], any_hit, &hits[i], c);

@@ -47,7 +47,7 @@ rt_status rt_packet_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_coun
 /* Finishes one pixel whose primary ray and hit are known: shading (or the
  * AOV) into the frame. Both backends call it. */
 void rt_cpu_finish_pixel(const rt_cpu_frame *frame, const rt_scene_view *view, int x, int y,
-                         const rt_ray_d *ray, const rt_hit_d *hit, rt_counters *c);
+                         const rt_ray *ray, const rt_hit_d *hit, rt_counters *c);
 
 /* Traces n rays (closest or any hit) with the scalar code, or (the packet
  * backend) each group of RT_PK_LANES consecutive rays that is coherent
@@ -55,9 +55,9 @@ void rt_cpu_finish_pixel(const rt_cpu_frame *frame, const rt_scene_view *view, i
  * the single-ray tracer (path RT_TRACE_PATH_PACKETS or _SINGLE forces one;
  * without tracers->single every group is a packet); misses get prim =
  * RT_NO_HIT. *packet_rays counts the rays that went in packets. */
-void rt_cpu_trace_rays(const rt_flat *flat, const rt_ray_d *rays, size_t n, rt_hit_d *hits,
+void rt_cpu_trace_rays(const rt_flat *flat, const rt_ray *rays, size_t n, rt_hit_d *hits,
                        int any_hit, rt_counters *c);
-void rt_packet_trace_rays(const rt_cpu_frame *tracers, const rt_ray_d *rays, size_t n,
+void rt_packet_trace_rays(const rt_cpu_frame *tracers, const rt_ray *rays, size_t n,
                           rt_hit_d *hits, int any_hit, rt_trace_path path, rt_counters *c,
                           uint64_t *packet_rays);
 

@@ -67,7 +67,7 @@ static void shade_tile(const rt_cpu_frame *f, const rt_scene_view *v, const rt_p
         shadow.valid = 0;
         for (rt_pk_mask m = lit; m; m &= m - 1) {
             int l = __builtin_ctzll(m);
-            rt_ray_d sr;
+            rt_ray sr;
             if (rt_phong_light(v, &nd[l].sf, li, &sr, Ln[l], &ndl[l])) {
                 rt_pk_set_ray(&shadow, l, &sr);
                 shadow.valid |= (rt_pk_mask)1 << l;
@@ -125,7 +125,7 @@ static void render_tile(const rt_cpu_frame *f, const rt_scene_view *v, int x0, i
         lane_pixel(x0, y0, l, &px[l], &py[l]);
         if (px[l] >= h->width || py[l] >= h->height) continue;
         primary.valid |= (rt_pk_mask)1 << l;
-        rt_ray_d r;
+        rt_ray r;
         rt_camera_ray_at(h, sx[px[l] - x0], sy[py[l] - y0], &r);
         rt_pk_set_ray(&primary, l, &r);
     }
@@ -135,7 +135,7 @@ static void render_tile(const rt_cpu_frame *f, const rt_scene_view *v, int x0, i
     } else {
         for (rt_pk_mask m = primary.valid; m; m &= m - 1) {
             int l = __builtin_ctzll(m);
-            rt_ray_d r;
+            rt_ray r;
             rt_hit_d hl;
             rt_pk_get_ray(&primary, l, &r);
             rt_pk_get_hit(&hit, l, &hl);
@@ -217,7 +217,7 @@ static float coherent_org_span(const rt_flat *flat) {
     return 0.02f * e;
 }
 
-void rt_packet_trace_rays(const rt_cpu_frame *tr, const rt_ray_d *rays, size_t n, rt_hit_d *hits,
+void rt_packet_trace_rays(const rt_cpu_frame *tr, const rt_ray *rays, size_t n, rt_hit_d *hits,
                           int any_hit, rt_trace_path path, rt_counters *c, uint64_t *packet_rays) {
     rt_scene_view v = rt_flat_view(tr->flat);
     const float span = coherent_org_span(tr->flat);
@@ -260,7 +260,7 @@ void rt_single_shade_children(const rt_cpu_frame *f, const rt_scene_view *v,
         rt_shade_node nd;
         if (rt_shade_begin(v, &e, &h, &nd)) {
             for (rt_u32 li = 0; li < v->hdr->light_count; li++) {
-                rt_ray_d sr;
+                rt_ray sr;
                 rt_hit_d sh;
                 float Ln[3], ndl;
                 if (!rt_phong_light(v, &nd.sf, li, &sr, Ln, &ndl)) continue;

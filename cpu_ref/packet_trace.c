@@ -243,7 +243,7 @@ static void pk_geom_to_object(pk_geom *o, const pk_geom *w, const rt_instance *i
 }
 
 /* Lane i of group g as a ray (for the shared scalar tests; tmax unused). */
-static void lane_ray(const pk_geom *p, int g, int i, rt_ray_d *r) {
+static void lane_ray(const pk_geom *p, int g, int i, rt_ray *r) {
     for (int k = 0; k < 3; k++) {
         r->org[k] = p->org[k][g][i];
         r->dir[k] = p->dir[k][g][i];
@@ -429,9 +429,9 @@ static void pk_tri_lanes(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u
     const rt_u32 prim = st->s->tri_ids[e];
     for (m &= st->inst_ok[g]; m; m &= m - 1) {
         const int i = lowest_bit(m);
-        rt_ray_d lr;
+        rt_ray lr;
         lane_ray(p, g, i, &lr);
-        const rt_ray_d *r = &lr;
+        const rt_ray *r = &lr;
         rt_ray_pre pre;
         float t, u, v;
         rt_ray_prepare(r, &pre);

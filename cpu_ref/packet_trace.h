@@ -39,7 +39,7 @@ typedef struct rt_pk_rays {
     rt_pk_mask valid;
 } rt_pk_rays;
 
-static inline void rt_pk_set_ray(rt_pk_rays *p, int l, const rt_ray_d *r) {
+static inline void rt_pk_set_ray(rt_pk_rays *p, int l, const rt_ray *r) {
     for (int k = 0; k < 3; k++) {
         p->org[k][l] = r->org[k];
         p->dir[k][l] = r->dir[k];
@@ -48,7 +48,7 @@ static inline void rt_pk_set_ray(rt_pk_rays *p, int l, const rt_ray_d *r) {
     p->tmax[l] = r->tmax;
 }
 
-static inline void rt_pk_get_ray(const rt_pk_rays *p, int l, rt_ray_d *r) {
+static inline void rt_pk_get_ray(const rt_pk_rays *p, int l, rt_ray *r) {
     for (int k = 0; k < 3; k++) {
         r->org[k] = p->org[k][l];
         r->dir[k] = p->dir[k][l];

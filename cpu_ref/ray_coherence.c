@@ -4,7 +4,7 @@
 
 #include <math.h>
 
-int rt_rays_coherent(const rt_ray_d *rays, size_t n, float org_span) {
+int rt_rays_coherent(const rt_ray *rays, size_t n, float org_span) {
     if (n == 0) return 1;
     float dmin[3], dmax[3], omin[3], omax[3];
     int neg[3];
@@ -14,7 +14,7 @@ int rt_rays_coherent(const rt_ray_d *rays, size_t n, float org_span) {
         neg[k] = signbit(rays[0].dir[k]) != 0;
     }
     for (size_t i = 0; i < n; i++) {
-        const rt_ray_d *r = &rays[i];
+        const rt_ray *r = &rays[i];
         const float len =
             sqrtf((r->dir[0] * r->dir[0] + r->dir[1] * r->dir[1]) + r->dir[2] * r->dir[2]);
         if (!(len > 0.0f) || !isfinite(len)) return 0;

@@ -19,6 +19,6 @@
  * and do the origins lie within 'org_span' of each other on every axis?
  * A few operations per ray. Rays with NaN or infinite components make a
  * group incoherent. */
-int rt_rays_coherent(const rt_ray_d *rays, size_t n, float org_span);
+int rt_rays_coherent(const rt_ray *rays, size_t n, float org_span);
 
 #endif /* RT_RAY_COHERENCE_H */

@@ -35,28 +35,28 @@ static void sphere_dir(uint32_t *s, float d[3]) {
     d[0] = r * cosf(phi), d[1] = r * sinf(phi), d[2] = z;
 }
 
-static void random_ray(uint32_t *s, const float lo[3], const float hi[3], rt_ray_d *r) {
+static void random_ray(uint32_t *s, const float lo[3], const float hi[3], rt_ray *r) {
     for (int k = 0; k < 3; k++) r->org[k] = lo[k] + (hi[k] - lo[k]) * rnd(s);
     sphere_dir(s, r->dir);
     r->tmin = 0.0f;
     r->tmax = INFINITY;
 }
 
-void rt_rays_random(const rt_flat *flat, uint32_t seed, size_t n, rt_ray_d *out) {
+void rt_rays_random(const rt_flat *flat, uint32_t seed, size_t n, rt_ray *out) {
     uint32_t s = seed_of(seed);
     float lo[3], hi[3];
     bounds(flat, lo, hi);
     for (size_t i = 0; i < n; i++) random_ray(&s, lo, hi, &out[i]);
 }
 
-void rt_rays_diffuse(const rt_flat *flat, uint32_t seed, size_t n, rt_ray_d *out) {
+void rt_rays_diffuse(const rt_flat *flat, uint32_t seed, size_t n, rt_ray *out) {
     uint32_t s = seed_of(seed);
     float lo[3], hi[3];
     bounds(flat, lo, hi);
     rt_scene_view v = rt_flat_view(flat);
     rt_counters c = {0, 0, 0};
     for (size_t i = 0; i < n; i++) {
-        rt_ray_d cam;
+        rt_ray cam;
         rt_hit_d h;
         h.prim = RT_NO_HIT;
         for (int tries = 0; tries < 64 && h.prim == RT_NO_HIT; tries++) {
@@ -85,15 +85,6 @@ void rt_rays_diffuse(const rt_flat *flat, uint32_t seed, size_t n, rt_ray_d *out
         rt_offset_point(sf.p, sf.ng, 1.0f, out[i].org);
         out[i].tmin = 0.0f;
         out[i].tmax = INFINITY;
-    }
-}
-
-void rt_rays_to_api(const rt_ray_d *in, size_t n, rt_ray *out) {
-    for (size_t i = 0; i < n; i++) {
-        memcpy(out[i].org, in[i].org, sizeof out[i].org);
-        memcpy(out[i].dir, in[i].dir, sizeof out[i].dir);
-        out[i].tmin = in[i].tmin;
-        out[i].tmax = in[i].tmax;
     }
 }
 

@@ -14,7 +14,7 @@
 /* n rays with origins uniform in the scene's bounding box and directions
  * uniform on the sphere, t in [0, inf]; the same seed gives the same rays.
  * A scene without triangles gets rays from the unit cube. */
-void rt_rays_random(const rt_flat *flat, uint32_t seed, size_t n, rt_ray_d *out);
+void rt_rays_random(const rt_flat *flat, uint32_t seed, size_t n, rt_ray *out);
 
 /* n diffuse bounces: the camera ray through a random pixel, its closest hit
  * (the scalar oracle), and from there a cosine-distributed direction about
@@ -23,10 +23,8 @@ void rt_rays_random(const rt_flat *flat, uint32_t seed, size_t n, rt_ray_d *out)
  * (rt_offset_point), t in [0, inf]. Pixels whose camera ray misses are drawn
  * again (up to 64 times, then a random ray of rt_rays_random takes the
  * place). */
-void rt_rays_diffuse(const rt_flat *flat, uint32_t seed, size_t n, rt_ray_d *out);
+void rt_rays_diffuse(const rt_flat *flat, uint32_t seed, size_t n, rt_ray *out);
 
-/* The n rays as the API's rt_ray, for rt_trace_rays. */
-void rt_rays_to_api(const rt_ray_d *in, size_t n, rt_ray *out);
 
 /* Whether two answers of rt_trace_rays are the same bit for bit: the hit
  * flag, and for a closest hit t, u, v (bits), prim and inst (any: the flag

@@ -9,11 +9,11 @@
 
 #include "single_trace.h"
 
-typedef void (*sw_trace_fn)(const rt_scene_view *, const rt_sw_bvh *, const rt_ray_d *, size_t, int,
+typedef void (*sw_trace_fn)(const rt_scene_view *, const rt_sw_bvh *, const rt_ray *, size_t, int,
                             rt_hit_d *, rt_counters *);
 
 #define RT_SW_DECLARE(isa)                                                                         \
-    void rt_sw_trace_##isa(const rt_scene_view *s, const rt_sw_bvh *b, const rt_ray_d *rays,       \
+    void rt_sw_trace_##isa(const rt_scene_view *s, const rt_sw_bvh *b, const rt_ray *rays,       \
                            size_t n, int any_hit, rt_hit_d *hits, rt_counters *c);                 \
     int rt_sw_width_##isa(void);
 RT_SW_DECLARE(generic)
@@ -68,6 +68,6 @@ int rt_sw_variant_width(const rt_sw_variant *v) {
 }
 
 void rt_sw_trace(const rt_sw_variant *v, const rt_scene_view *s, const rt_sw_bvh *b,
-                 const rt_ray_d *rays, size_t n, int any_hit, rt_hit_d *hits, rt_counters *c) {
+                 const rt_ray *rays, size_t n, int any_hit, rt_hit_d *hits, rt_counters *c) {
     v->fn(s, b, rays, n, any_hit, hits, c);
 }

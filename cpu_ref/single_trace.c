@@ -155,7 +155,7 @@ typedef struct sw_ray {
     float lo;
 } sw_ray;
 
-static inline void sw_ray_setup(const rt_ray_d *r, const rt_ray_pre *p, sw_ray *rv) {
+static inline void sw_ray_setup(const rt_ray *r, const rt_ray_pre *p, sw_ray *rv) {
     for (int k = 0; k < 3; k++) {
         rv->org[k] = splat(r->org[k]);
         rv->inv[k] = splat(p->inv[k]);
@@ -239,7 +239,7 @@ static inline int take_hit(sw_ctx *x, rt_hit_d *best, float t, float u, float v,
  * triangle tests other than the watertight one, and the watertight test's
  * lanes with an edge function of exactly zero, which need its exact
  * re-check (whatever rt_tri_watertight does there, this follows). */
-static int tri_scalar(sw_ctx *x, rt_u32 e, rt_u32 inst, const rt_ray_d *r, const rt_ray_pre *p,
+static int tri_scalar(sw_ctx *x, rt_u32 e, rt_u32 inst, const rt_ray *r, const rt_ray_pre *p,
                       rt_hit_d *best) {
     float t, u, v;
     if (!rt_tri_test(x->method, &x->s->tris[e], r, p, r->tmin, best->t, &t, &u, &v)) return 0;
@@ -249,7 +249,7 @@ static int tri_scalar(sw_ctx *x, rt_u32 e, rt_u32 inst, const rt_ray_d *r, const
 
 /* The blocks first .. first + count - 1 of a leaf: rt_tri_watertight on
  * each lane's triangle. Returns 1 when an any-hit ray found a hit. */
-static int leaf_test(sw_ctx *x, rt_u32 first, rt_u32 count, rt_u32 inst, const rt_ray_d *r,
+static int leaf_test(sw_ctx *x, rt_u32 first, rt_u32 count, rt_u32 inst, const rt_ray *r,
                      const rt_ray_pre *p, rt_hit_d *best) {
     if (x->method != RT_TRI_WATERTIGHT) {
         for (rt_u32 j = first; j < first + count; j++) {
@@ -335,7 +335,7 @@ static inline void prefetch(const sw_ctx *x, const uint32_t *child, const uint32
     for (int off = 0; off < bytes; off += 64) __builtin_prefetch(p + off);
 }
 
-static int trace_instance(sw_ctx *x, rt_u32 inst, const rt_ray_d *r, const rt_ray_pre *p,
+static int trace_instance(sw_ctx *x, rt_u32 inst, const rt_ray *r, const rt_ray_pre *p,
                           rt_hit_d *best);
 
 /* rt_trace_mesh (top == 0: the tree of instance inst) and rt_trace's object
@@ -349,7 +349,7 @@ static int trace_instance(sw_ctx *x, rt_u32 inst, const rt_ray_d *r, const rt_ra
  * node (which has one child), and host/layout/flatten.c rejects binary
  * trees deeper than RT_STACK_SIZE. */
 static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entry, rt_u32 inst,
-                                                          const rt_ray_d *r, const rt_ray_pre *p,
+                                                          const rt_ray *r, const rt_ray_pre *p,
                                                           rt_hit_d *best, const int top) {
     sw_ray rv;
     sw_ray_setup(r, p, &rv);
@@ -470,7 +470,7 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
 
 /* rt_trace_instance: the ray moved into the instance's space unless it is
  * the identity. */
-static int trace_instance(sw_ctx *x, rt_u32 inst, const rt_ray_d *r, const rt_ray_pre *p,
+static int trace_instance(sw_ctx *x, rt_u32 inst, const rt_ray *r, const rt_ray_pre *p,
                           rt_hit_d *best) {
     const rt_instance *in = &x->s->instances[inst];
     if (RT_INST_FLAGS(in) & RT_INST_KD) {
@@ -493,7 +493,7 @@ static int trace_instance(sw_ctx *x, rt_u32 inst, const rt_ray_d *r, const rt_ra
     /* rt_trace_instance's instance box, for rt_hit_accepted. */
     float inst_lo = -RT_INF;
     if (!(RT_SCENE_FLAGS(x->s) & RT_SCENE_SINGLE) && !rt_inst_enter(in, r, p, &inst_lo)) return 0;
-    rt_ray_d o;
+    rt_ray o;
     rt_ray_pre op;
     if (identity) {
         op = *p;
@@ -510,7 +510,7 @@ static int trace_instance(sw_ctx *x, rt_u32 inst, const rt_ray_d *r, const rt_ra
 }
 
 /* rt_trace. */
-static void trace_one(sw_ctx *x, const rt_sw_bvh *b, const rt_ray_d *r, rt_hit_d *best) {
+static void trace_one(sw_ctx *x, const rt_sw_bvh *b, const rt_ray *r, rt_hit_d *best) {
     rt_ray_pre p;
     rt_ray_prepare(r, &p);
     rt_hit_init(best, r);
@@ -527,9 +527,9 @@ int RT_SW_WIDTH(void) {
     return W;
 }
 
-void RT_SW_TRACE(const rt_scene_view *s, const rt_sw_bvh *b, const rt_ray_d *rays, size_t n,
+void RT_SW_TRACE(const rt_scene_view *s, const rt_sw_bvh *b, const rt_ray *rays, size_t n,
                  int any_hit, rt_hit_d *hits, rt_counters *c);
-void RT_SW_TRACE(const rt_scene_view *s, const rt_sw_bvh *b, const rt_ray_d *rays, size_t n,
+void RT_SW_TRACE(const rt_scene_view *s, const rt_sw_bvh *b, const rt_ray *rays, size_t n,
                  int any_hit, rt_hit_d *hits, rt_counters *c) {
     assert(b->width == W);
     sw_ctx x = {s, b->nodes, b->blocks, b->inst_root, s->hdr->tri_method, any_hit, 0, 0};

@@ -43,6 +43,6 @@ int rt_sw_variant_width(const rt_sw_variant *v);
  * hit only whether prim != RT_NO_HIT is defined). Adds rays and tests to *c
  * (box tests: one per child tested; triangle tests: one per triangle). */
 void rt_sw_trace(const rt_sw_variant *v, const rt_scene_view *s, const rt_sw_bvh *b,
-                 const rt_ray_d *rays, size_t n, int any_hit, rt_hit_d *hits, rt_counters *c);
+                 const rt_ray *rays, size_t n, int any_hit, rt_hit_d *hits, rt_counters *c);
 
 #endif /* RT_SINGLE_TRACE_H */

@@ -341,12 +341,15 @@ void rt_framebuffer_free(rt_framebuffer *fb);
 
 /* A ray o + t d for t in [tmin, tmax] (inclusive). d need not be normalised;
  * t is in units of its length. */
+#ifndef RT_RAY_DEFINED /* kernels/rt_shared.h defines the same type */
+#define RT_RAY_DEFINED
 typedef struct rt_ray {
     float org[3];
     float dir[3];
     float tmin;
     float tmax;
 } rt_ray;
+#endif
 
 /* The closest hit (smaller t wins; equal t: lower inst, then lower prim) or,
  * for any-hit queries, some hit in range. p = (1 - u - v) v0 + u v1 + v v2.

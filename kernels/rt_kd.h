@@ -31,7 +31,7 @@
 /* The ray's interval [*tn, *tf] in the root cell (the box of the mesh's
  * rt_node), intersected with [lo, hi]: the slab test of rt_box_test, which
  * also returns the far end. 0 when the ray misses. */
-RT_FN int rt_kd_root_interval(RT_GLOBAL const rt_node *n, const rt_ray_d *r, const rt_ray_pre *p,
+RT_FN int rt_kd_root_interval(RT_GLOBAL const rt_node *n, const rt_ray *r, const rt_ray_pre *p,
                               float lo, float hi, float *tn, float *tf) {
     float near = lo, far = RT_INF;
     for (int i = 0; i < 3; i++) {
@@ -53,7 +53,7 @@ RT_FN int rt_kd_root_interval(RT_GLOBAL const rt_node *n, const rt_ray_d *r, con
  * ray already in the mesh's space; like rt_trace_mesh, best->t is the upper
  * end of the range and the return value is 1 when any_hit found an
  * occluder. c->box_tests counts the root box and every inner node visited. */
-RT_FN int rt_kd_trace_mesh(const rt_scene_view *s, rt_u32 root, rt_u32 inst, const rt_ray_d *r,
+RT_FN int rt_kd_trace_mesh(const rt_scene_view *s, rt_u32 root, rt_u32 inst, const rt_ray *r,
                            const rt_ray_pre *p, int any_hit, rt_hit_d *best, rt_counters *c) {
     RT_GLOBAL const rt_node *rn = &s->nodes[root];
     float tn, tf;

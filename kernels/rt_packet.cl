@@ -120,7 +120,7 @@ static pk_f pk_sqrt_lanes(pk_f a) {
 #define PK_SQRT(x)   RT_SQRT(x)
 #endif
 
-/* A packet of rays: rt_ray_d and rt_ray_pre per lane, as vectors. Masks are
+/* A packet of rays: rt_ray and rt_ray_pre per lane, as vectors. Masks are
  * integer vectors, -1 in a lane where true (OpenCL's vector comparisons). */
 typedef struct pk_ray {
     pk_f org[3], dir[3];
@@ -194,8 +194,8 @@ static void pk_prepare(pk_ray *p) {
 }
 
 /* The packet of the lanes' rays r[0 .. RT_PK_LANES - 1] (each lane's own
- * rt_ray_d, e.g. from rt_camera_ray or rt_phong_light). */
-static void pk_load(const rt_ray_d *r, pk_ray *p) {
+ * rt_ray, e.g. from rt_camera_ray or rt_phong_light). */
+static void pk_load(const rt_ray *r, pk_ray *p) {
     float a[8][RT_PK_LANES];
     for (int l = 0; l < RT_PK_LANES; l++) {
         for (int k = 0; k < 3; k++) {
@@ -1000,7 +1000,7 @@ __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int cha
     float sx[PK_W], sy[PK_H];
     for (int i = 0; i < PK_W; i++) sx[i] = rt_camera_sx(hdr, x0 + i < w ? x0 + i : w - 1);
     for (int j = 0; j < PK_H; j++) sy[j] = rt_camera_sy(hdr, y0 + j < h ? y0 + j : h - 1);
-    rt_ray_d ray[RT_PK_LANES];
+    rt_ray ray[RT_PK_LANES];
     int in_image[RT_PK_LANES];
     for (int l = 0; l < RT_PK_LANES; l++) {
         in_image[l] = x0 + l % PK_W < w && y0 + l / PK_W < h;
@@ -1124,13 +1124,13 @@ __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int cha
 /* Ray queries, closest hit: rays RT_PK_LANES * i .. + RT_PK_LANES - 1 of
  * count as one packet (the last one partial), as rt_k_trace would answer
  * each; counters[j] gets ray j's tests (counted per lane). */
-__kernel void rt_k_packet_trace(RT_VIEW_ARGS, uint count, __global const rt_ray_d *rays,
+__kernel void rt_k_packet_trace(RT_VIEW_ARGS, uint count, __global const rt_ray *rays,
                                 __global rt_hit_d *hits, __global rt_counters *counters) {
     uint i = (uint)get_global_id(0);
     uint first = i * RT_PK_LANES;
     if (first >= count) return;
     rt_scene_view s = RT_VIEW_INIT;
-    rt_ray_d r[RT_PK_LANES];
+    rt_ray r[RT_PK_LANES];
     int inside[RT_PK_LANES];
     for (int l = 0; l < RT_PK_LANES; l++) {
         inside[l] = first + (uint)l < count;

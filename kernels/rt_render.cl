@@ -28,22 +28,22 @@
 #include "rt_kernel_args.h" /* rt_shade.h, the view arguments, the AOV codes */
 
 __kernel void rt_k_camera(__global const rt_scene_header *hdr, uint first, uint count,
-                          __global rt_ray_d *rays) {
+                          __global rt_ray *rays) {
     uint i = (uint)get_global_id(0);
     if (i >= count) return;
     uint pixel = first + i;
-    rt_ray_d r;
+    rt_ray r;
     rt_camera_ray(hdr, (rt_i32)(pixel % (uint)hdr->width), (rt_i32)(pixel / (uint)hdr->width), &r);
     rays[i] = r;
 }
 
 /* Closest (or any) hits of count rays; counters[i] gets the ray's tests. */
-__kernel void rt_k_trace(RT_VIEW_ARGS, uint count, int any_hit, __global const rt_ray_d *rays,
+__kernel void rt_k_trace(RT_VIEW_ARGS, uint count, int any_hit, __global const rt_ray *rays,
                          __global rt_hit_d *hits, __global rt_counters *counters) {
     uint i = (uint)get_global_id(0);
     if (i >= count) return;
     rt_scene_view s = RT_VIEW_INIT;
-    rt_ray_d r = rays[i];
+    rt_ray r = rays[i];
     rt_hit_d h;
     rt_counters c = {0, 0, 0};
     rt_trace(&s, &r, any_hit, &h, &c);
@@ -54,12 +54,12 @@ __kernel void rt_k_trace(RT_VIEW_ARGS, uint count, int any_hit, __global const r
 /* Shades the tile's hits into fb (channels floats per pixel, the whole frame),
  * as rt_cpu_finish_pixel does; counters[i] gains the shading rays' tests. */
 __kernel void rt_k_shade(RT_VIEW_ARGS, uint first, uint count, int aov, int channels,
-                         __global const rt_ray_d *rays, __global const rt_hit_d *hits,
+                         __global const rt_ray *rays, __global const rt_hit_d *hits,
                          __global rt_counters *counters, __global float *fb) {
     uint i = (uint)get_global_id(0);
     if (i >= count) return;
     rt_scene_view s = RT_VIEW_INIT;
-    rt_ray_d r = rays[i];
+    rt_ray r = rays[i];
     rt_hit_d h = hits[i];
     rt_counters c = counters[i];
     __global float *out = fb + (size_t)(first + i) * (size_t)channels;
@@ -133,7 +133,7 @@ __kernel void rt_k_wave_trace(RT_VIEW_ARGS, uint count, __global const rt_wave_e
     uint i = (uint)get_global_id(0);
     if (i >= count) return;
     rt_scene_view s = RT_VIEW_INIT;
-    rt_ray_d r = queue[i].e.ray;
+    rt_ray r = queue[i].e.ray;
     rt_hit_d h;
     rt_counters c = {0, 0, 0};
     rt_trace(&s, &r, 0, &h, &c);

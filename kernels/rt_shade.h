@@ -41,7 +41,7 @@ RT_FN void rt_point_to_world(RT_GLOBAL const rt_instance *in, const float *p, fl
  * while rt_offset_point moves the point off the surface by an amount sized
  * for the point's own magnitude, so a ray from afar left points below the
  * surface and their shadow rays hit it (tests/test_surface_points.c). */
-RT_FN void rt_surface_at(const rt_scene_view *s, const rt_ray_d *r, const rt_hit_d *h,
+RT_FN void rt_surface_at(const rt_scene_view *s, const rt_ray *r, const rt_hit_d *h,
                          rt_surface *sf) {
     RT_GLOBAL const rt_tri *tri = &s->tris[h->entry];
     RT_GLOBAL const rt_instance *in = &s->instances[h->inst];
@@ -105,7 +105,7 @@ RT_FN void rt_phong_ambient(const rt_scene_view *s, const rt_surface *sf, float 
  * point or behind the shading normal); else 1 with the unit direction Ln to
  * it, ndl = ns . Ln and the shadow ray from the offset point to the light
  * (t = 1 at the light, excluded). */
-RT_FN int rt_phong_light(const rt_scene_view *s, const rt_surface *sf, rt_u32 li, rt_ray_d *sr,
+RT_FN int rt_phong_light(const rt_scene_view *s, const rt_surface *sf, rt_u32 li, rt_ray *sr,
                          float *Ln, float *ndl) {
     RT_GLOBAL const rt_light_d *light = &s->lights[li];
     float L[3];
@@ -143,7 +143,7 @@ RT_FN void rt_phong_add(const rt_scene_view *s, const rt_surface *sf, rt_u32 li,
 }
 
 typedef struct rt_shade_entry {
-    rt_ray_d ray;
+    rt_ray ray;
     float w[3];
     rt_u32 depth;
 } rt_shade_entry;
@@ -251,7 +251,7 @@ RT_FN void rt_shade_step(const rt_scene_view *s, const rt_shade_entry *e, const 
     rt_shade_node nd;
     if (rt_shade_begin(s, e, h, &nd)) {
         for (rt_u32 li = 0; li < s->hdr->light_count; li++) {
-            rt_ray_d sr;
+            rt_ray sr;
             rt_hit_d sh;
             float Ln[3], ndl;
             if (!rt_phong_light(s, &nd.sf, li, &sr, Ln, &ndl)) continue;
@@ -292,7 +292,7 @@ RT_FN void rt_shade_children(const rt_scene_view *s, const rt_shade_entry *child
 
 /* The colour seen along a primary ray whose closest hit is already known
  * (the root node, then rt_shade_children). */
-RT_FN void rt_shade_hit(const rt_scene_view *s, const rt_ray_d *primary,
+RT_FN void rt_shade_hit(const rt_scene_view *s, const rt_ray *primary,
                         const rt_hit_d *primary_hit, rt_counters *c, float *rgb) {
     rt_shade_entry root;
     root.ray = *primary;

@@ -154,12 +154,19 @@ static inline float rt_as_float_(rt_i32 i) {
 #define RT_SHADE_STACK 12
 #define RT_MAX_DEPTH   8
 
-typedef struct rt_ray_d {
+/* A ray o + t d, t in [tmin, tmax]: the public rt_ray of host/rt.h, defined
+ * in both headers under one guard so that C code including both sees one
+ * type (and the library passes the caller's rays to the backends as they
+ * are); the layouts must stay equal. */
+#ifndef RT_RAY_DEFINED
+#define RT_RAY_DEFINED
+typedef struct rt_ray {
     float org[3];
     float dir[3];
     float tmin;
     float tmax;
-} rt_ray_d;
+} rt_ray;
+#endif
 
 /* Per-ray values both tests reuse. */
 typedef struct rt_ray_pre {
@@ -224,7 +231,7 @@ RT_FN void rt_normalize3(float *v) {
 
 /* ---- rays ----------------------------------------------------------------- */
 
-RT_FN void rt_ray_prepare(const rt_ray_d *r, rt_ray_pre *p) {
+RT_FN void rt_ray_prepare(const rt_ray *r, rt_ray_pre *p) {
     for (int i = 0; i < 3; i++) {
         p->inv[i] = RT_DIV(1.0f, r->dir[i]);
         p->sign[i] = p->inv[i] < 0.0f;
@@ -259,7 +266,7 @@ RT_FN float rt_camera_sx(RT_GLOBAL const rt_scene_header *h, rt_i32 px) {
 RT_FN float rt_camera_sy(RT_GLOBAL const rt_scene_header *h, rt_i32 py) {
     return 1.0f - RT_DIV(2.0f * ((float)py + 0.5f), (float)h->height);
 }
-RT_FN void rt_camera_ray_at(RT_GLOBAL const rt_scene_header *h, float sx, float sy, rt_ray_d *r) {
+RT_FN void rt_camera_ray_at(RT_GLOBAL const rt_scene_header *h, float sx, float sy, rt_ray *r) {
     for (int i = 0; i < 3; i++) {
         r->org[i] = h->cam_pos[i];
         r->dir[i] = (h->cam_forward[i] + sx * h->cam_right[i]) + sy * h->cam_up[i];
@@ -267,7 +274,7 @@ RT_FN void rt_camera_ray_at(RT_GLOBAL const rt_scene_header *h, float sx, float 
     r->tmin = 0.0f;
     r->tmax = RT_INF;
 }
-RT_FN void rt_camera_ray(RT_GLOBAL const rt_scene_header *h, rt_i32 px, rt_i32 py, rt_ray_d *r) {
+RT_FN void rt_camera_ray(RT_GLOBAL const rt_scene_header *h, rt_i32 px, rt_i32 py, rt_ray *r) {
     rt_camera_ray_at(h, rt_camera_sx(h, px), rt_camera_sy(h, py), r);
 }
 
@@ -320,7 +327,7 @@ RT_FN int rt_slab_end(float lo, float hi, float tmax, float *tnear) {
  * distance. A 0 * inf (origin on a slab plane, direction parallel to it)
  * gives NaN, which the comparisons skip, keeping the test conservative. */
 RT_FN int rt_box_test_bounds(RT_GLOBAL const float *bmin, RT_GLOBAL const float *bmax,
-                             const rt_ray_d *r, const rt_ray_pre *p, float tmin, float tmax,
+                             const rt_ray *r, const rt_ray_pre *p, float tmin, float tmax,
                              float *tnear) {
     float lo = tmin, hi = RT_INF;
     for (int i = 0; i < 3; i++)
@@ -330,7 +337,7 @@ RT_FN int rt_box_test_bounds(RT_GLOBAL const float *bmin, RT_GLOBAL const float 
 }
 
 /* rt_box_test_bounds on a node's box. */
-RT_FN int rt_box_test(RT_GLOBAL const rt_node *n, const rt_ray_d *r, const rt_ray_pre *p,
+RT_FN int rt_box_test(RT_GLOBAL const rt_node *n, const rt_ray *r, const rt_ray_pre *p,
                       float tmin, float tmax, float *tnear) {
     return rt_box_test_bounds(n->bmin, n->bmax, r, p, tmin, tmax, tnear);
 }
@@ -357,7 +364,7 @@ RT_FN void rt_edge_recheck(float Ax, float Ay, float Bx, float By, float Cx, flo
     *W = RT_DOP(Bx, Ay, By, Ax);
 }
 
-RT_FN int rt_tri_watertight(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, const rt_ray_pre *p,
+RT_FN int rt_tri_watertight(RT_GLOBAL const rt_tri *tri, const rt_ray *r, const rt_ray_pre *p,
                             float tmin, float tmax, float *t, float *u, float *v) {
     float A[3], B[3], C[3];
     for (int i = 0; i < 3; i++) {
@@ -387,7 +394,7 @@ RT_FN int rt_tri_watertight(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, cons
 }
 
 /* Moller and Trumbore 1997. */
-RT_FN int rt_tri_moller(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, float tmin, float tmax,
+RT_FN int rt_tri_moller(RT_GLOBAL const rt_tri *tri, const rt_ray *r, float tmin, float tmax,
                         float *t, float *u, float *v) {
     float e1[3], e2[3], s[3], pv[3], q[3];
     for (int i = 0; i < 3; i++) {
@@ -414,7 +421,7 @@ RT_FN int rt_tri_moller(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, float tm
 
 /* Signed volumes of the ray with each edge (the Pluecker inner products,
  * written as triple products of the vertices relative to the origin). */
-RT_FN int rt_tri_pluecker(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, float tmin, float tmax,
+RT_FN int rt_tri_pluecker(RT_GLOBAL const rt_tri *tri, const rt_ray *r, float tmin, float tmax,
                           float *t, float *u, float *v) {
     float a[3], b[3], c[3], bc[3], ca[3], ab[3];
     for (int i = 0; i < 3; i++) {
@@ -439,7 +446,7 @@ RT_FN int rt_tri_pluecker(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, float 
 
 /* Badouel 1990 (Wald's projection variant): hit the plane, then a 2D
  * barycentric test in the projection that drops the normal's largest axis. */
-RT_FN int rt_tri_badouel(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, float tmin, float tmax,
+RT_FN int rt_tri_badouel(RT_GLOBAL const rt_tri *tri, const rt_ray *r, float tmin, float tmax,
                          float *t, float *u, float *v) {
     float e1[3], e2[3], n[3], a[3];
     for (int i = 0; i < 3; i++) {
@@ -471,7 +478,7 @@ RT_FN int rt_tri_badouel(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, float t
 
 /* The triangle test selected by method (RT_TRI_*). OpenCL kernels pass a
  * compile-time constant, so the switch folds away. */
-RT_FN int rt_tri_test(rt_u32 method, RT_GLOBAL const rt_tri *tri, const rt_ray_d *r,
+RT_FN int rt_tri_test(rt_u32 method, RT_GLOBAL const rt_tri *tri, const rt_ray *r,
                       const rt_ray_pre *p, float tmin, float tmax, float *t, float *u, float *v) {
     if (method == RT_TRI_MOLLER) return rt_tri_moller(tri, r, tmin, tmax, t, u, v);
     if (method == RT_TRI_PLUECKER) return rt_tri_pluecker(tri, r, tmin, tmax, t, u, v);
@@ -488,7 +495,7 @@ RT_FN int rt_hit_before(float t, rt_u32 inst, rt_u32 prim, const rt_hit_d *best)
     return prim < best->prim;
 }
 
-RT_FN void rt_hit_init(rt_hit_d *h, const rt_ray_d *r) {
+RT_FN void rt_hit_init(rt_hit_d *h, const rt_ray *r) {
     h->t = r->tmax;
     h->u = 0.0f;
     h->v = 0.0f;
@@ -524,7 +531,7 @@ RT_FN float rt_box_hi(float tmax) {
 /* The instance box's entry distance for the ray r in world space, into
  * p_obj->inst_lo; returns 0 when the ray misses the box at every t (the
  * instance then has no acceptable hit). */
-RT_FN int rt_inst_enter(RT_GLOBAL const rt_instance *in, const rt_ray_d *r, const rt_ray_pre *p,
+RT_FN int rt_inst_enter(RT_GLOBAL const rt_instance *in, const rt_ray *r, const rt_ray_pre *p,
                         float *inst_lo) {
     return rt_box_test_bounds(in->bmin, in->bmax, r, p, rt_box_lo(r->tmin), RT_INF, inst_lo);
 }
@@ -540,7 +547,7 @@ RT_FN float rt_max3(float a, float b, float c) {
 
 /* rt_hit_accepted for a triangle whose box is [mn, mx] (each the exact
  * min and max of its vertices' coordinates). */
-RT_FN int rt_hit_accepted_box(const float *mn, const float *mx, const rt_ray_d *r,
+RT_FN int rt_hit_accepted_box(const float *mn, const float *mx, const rt_ray *r,
                               const rt_ray_pre *p, float t) {
     /* The instance box passed for [lo, inf] (rt_inst_enter); cut at hi_t it
      * passes unless hi_t falls before its entry (a NaN hi_t cuts nothing, as
@@ -556,7 +563,7 @@ RT_FN int rt_hit_accepted_box(const float *mn, const float *mx, const rt_ray_d *
 
 /* Whether a hit at t on tri (the ray r in the triangle's space, prepared as
  * p) is accepted: see above. */
-RT_FN int rt_hit_accepted(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, const rt_ray_pre *p,
+RT_FN int rt_hit_accepted(RT_GLOBAL const rt_tri *tri, const rt_ray *r, const rt_ray_pre *p,
                           float t) {
     float mn[3], mx[3];
     for (int i = 0; i < 3; i++) {
@@ -568,7 +575,7 @@ RT_FN int rt_hit_accepted(RT_GLOBAL const rt_tri *tri, const rt_ray_d *r, const 
 
 /* Tests the triangles of one leaf; returns 1 when any_hit found one. */
 RT_FN int rt_leaf_test(const rt_scene_view *s, rt_u32 first, rt_u32 count, rt_u32 inst,
-                       const rt_ray_d *r, const rt_ray_pre *p, int any_hit, rt_hit_d *best,
+                       const rt_ray *r, const rt_ray_pre *p, int any_hit, rt_hit_d *best,
                        rt_counters *c) {
     rt_u32 method = RT_TRI_METHOD(s);
     for (rt_u32 e = first; e < first + count; e++) {
@@ -593,7 +600,7 @@ RT_FN int rt_leaf_test(const rt_scene_view *s, rt_u32 first, rt_u32 count, rt_u3
 /* One inner-node step of a traversal, shared by both levels: tests the two
  * children, goes on with the nearer one that the ray hits and pushes the
  * other, or pops the stack. Returns 0 when the stack is empty. */
-RT_FN int rt_descend(const rt_scene_view *s, RT_GLOBAL const rt_node *n, const rt_ray_d *r,
+RT_FN int rt_descend(const rt_scene_view *s, RT_GLOBAL const rt_node *n, const rt_ray *r,
                      const rt_ray_pre *p, const rt_hit_d *best, rt_counters *c, rt_u32 *stack,
                      int *sp, rt_u32 *node) {
     float t0, t1, lo = rt_box_lo(r->tmin), hi = rt_box_hi(best->t);
@@ -620,7 +627,7 @@ RT_FN int rt_descend(const rt_scene_view *s, RT_GLOBAL const rt_node *n, const r
 /* Traverses one mesh BVH from node 'root' with a ray already in the mesh's
  * space. best->t is the current upper end of the range. Returns 1 when any_hit
  * found an occluder. */
-RT_FN int rt_trace_mesh(const rt_scene_view *s, rt_u32 root, rt_u32 inst, const rt_ray_d *r,
+RT_FN int rt_trace_mesh(const rt_scene_view *s, rt_u32 root, rt_u32 inst, const rt_ray *r,
                         const rt_ray_pre *p, int any_hit, rt_hit_d *best, rt_counters *c) {
     rt_u32 stack[RT_STACK_SIZE];
     int sp = 0;
@@ -643,7 +650,7 @@ RT_FN int rt_trace_mesh(const rt_scene_view *s, rt_u32 root, rt_u32 inst, const 
 
 /* The ray in an instance's object space: o' = M o + m, d' = M d, with M the
  * inverse transform. t keeps its meaning because d' is not normalised. */
-RT_FN void rt_ray_to_object(RT_GLOBAL const rt_instance *in, const rt_ray_d *r, rt_ray_d *o) {
+RT_FN void rt_ray_to_object(RT_GLOBAL const rt_instance *in, const rt_ray *r, rt_ray *o) {
     RT_GLOBAL const float *m = in->world_to_object;
     for (int i = 0; i < 3; i++) {
         o->org[i] = ((m[4 * i] * r->org[0] + m[4 * i + 1] * r->org[1]) + m[4 * i + 2] * r->org[2]) +
@@ -656,13 +663,13 @@ RT_FN void rt_ray_to_object(RT_GLOBAL const rt_instance *in, const rt_ray_d *r, 
 
 /* Traces one instance: transforms the ray unless the instance is the
  * identity. */
-RT_FN int rt_trace_instance(const rt_scene_view *s, rt_u32 inst, const rt_ray_d *r,
+RT_FN int rt_trace_instance(const rt_scene_view *s, rt_u32 inst, const rt_ray *r,
                             const rt_ray_pre *p, int any_hit, rt_hit_d *best, rt_counters *c) {
     RT_GLOBAL const rt_instance *in = &s->instances[inst];
     int kd = (RT_INST_FLAGS(in) & RT_INST_KD) != 0;
     float inst_lo = -RT_INF;
     if (!(RT_SCENE_FLAGS(s) & RT_SCENE_SINGLE) && !rt_inst_enter(in, r, p, &inst_lo)) return 0;
-    rt_ray_d o;
+    rt_ray o;
     rt_ray_pre op;
     if (RT_INST_FLAGS(in) & RT_INST_IDENTITY) {
         op = *p;
@@ -680,7 +687,7 @@ RT_FN int rt_trace_instance(const rt_scene_view *s, rt_u32 inst, const rt_ray_d 
 /* The two-level traversal (Langr 2016, section 3.2.1): the object BVH, then
  * each reached instance's mesh BVH. With one identity instance the object BVH
  * is skipped. Returns 1 on a hit (for any_hit: some hit in range). */
-RT_FN int rt_trace(const rt_scene_view *s, const rt_ray_d *r, int any_hit, rt_hit_d *best,
+RT_FN int rt_trace(const rt_scene_view *s, const rt_ray *r, int any_hit, rt_hit_d *best,
                    rt_counters *c) {
     rt_ray_pre p;
     rt_ray_prepare(r, &p);

@@ -14,7 +14,7 @@ __kernel void render(__global const rt_scene_header *h, __global const rt_node *
                      __global float *out) {
     rt_scene_view s = {h, nodes, tris, tri_ids, tri_normals, tri_mats, inst, inst_ids, mats, lights};
     int x = get_global_id(0), y = get_global_id(1);
-    rt_ray_d r;
+    rt_ray r;
     rt_hit_d hit;
     rt_counters c = {0, 0, 0};
     float rgb[3];

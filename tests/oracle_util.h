@@ -19,7 +19,7 @@ static inline float oracle_rnd(void) { /* xorshift, uniform in [0, 1) */
 /* The closest (or any) hit over every triangle of every instance, with the
  * same ray transform, triangle test and acceptance (rt_hit_accepted, with
  * the instance's box under an object BVH) as the traversal. */
-static inline void oracle_brute_force(const rt_scene_view *s, const rt_ray_d *r, int any_hit,
+static inline void oracle_brute_force(const rt_scene_view *s, const rt_ray *r, int any_hit,
                                       rt_hit_d *best) {
     rt_counters c = {0, 0, 0};
     rt_hit_init(best, r);
@@ -29,7 +29,7 @@ static inline void oracle_brute_force(const rt_scene_view *s, const rt_ray_d *r,
         const rt_instance *in = &s->instances[i];
         float inst_lo = -INFINITY;
         if (!(s->hdr->flags & RT_SCENE_SINGLE) && !rt_inst_enter(in, r, &world, &inst_lo)) continue;
-        rt_ray_d o = *r;
+        rt_ray o = *r;
         rt_ray_pre p;
         if (!(in->flags & RT_INST_IDENTITY)) rt_ray_to_object(in, r, &o);
         rt_ray_prepare(&o, &p);
@@ -48,7 +48,7 @@ static inline int oracle_same_hit(const rt_hit_d *a, const rt_hit_d *b) {
 /* Even i: a camera ray through a random pixel; odd i: from a random point of
  * the (grown) bounds towards another, sometimes with a short t range. */
 static inline void oracle_ray(const rt_scene_header *h, const float lo[3], const float hi[3], int i,
-                              rt_ray_d *r) {
+                              rt_ray *r) {
     if (i % 2 == 0) {
         int px = (int)(oracle_rnd() * (float)h->width), py = (int)(oracle_rnd() * (float)h->height);
         rt_camera_ray(h, px, py, r);
@@ -68,7 +68,7 @@ static inline void oracle_ray(const rt_scene_header *h, const float lo[3], const
  * {0, 40, 70, 100, 130} (tiny and denormal directions: t's rounding then
  * dwarfs the boxes' slabs), sometimes with a range reaching below zero. */
 static inline void oracle_vertex_ray(const rt_scene_view *s, const float lo[3], const float hi[3],
-                                     rt_ray_d *r) {
+                                     rt_ray *r) {
     const rt_u32 n = s->hdr->instance_count;
     const rt_instance *in = &s->instances[(rt_u32)(oracle_rnd() * (float)n) % (n ? n : 1)];
     float v[3] = {0, 0, 0};

@@ -355,7 +355,7 @@ static void test_ranges_traverse(void) {
         rt_scene_bounds(s, lo, hi);
         int bad = 0, hits = 0;
         for (int i = 0; i < 2000; i++) {
-            rt_ray_d r;
+            rt_ray r;
             oracle_ray(&flat.hdr, lo, hi, i, &r);
             rt_hit_d a, b;
             rt_counters c = {0, 0, 0};

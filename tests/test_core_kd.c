@@ -92,7 +92,7 @@ static float grid_coord(float lo, float hi) {
     return lo - 1.0f + 0.5f * (float)(int)(oracle_rnd() * (float)steps);
 }
 
-static void hard_ray(const float lo[3], const float hi[3], rt_ray_d *r) {
+static void hard_ray(const float lo[3], const float hi[3], rt_ray *r) {
     float pick = oracle_rnd();
     for (int k = 0; k < 3; k++) {
         r->org[k] = grid_coord(lo[k], hi[k]);
@@ -119,7 +119,7 @@ static void hard_ray(const float lo[3], const float hi[3], rt_ray_d *r) {
  * for step: the same box (node) and triangle test counts. Returns the lanes
  * that differ. */
 static long pk_step_lanes;
-static int compare_packets(const char *name, const rt_flat *f, const rt_ray_d *rays, int n) {
+static int compare_packets(const char *name, const rt_flat *f, const rt_ray *rays, int n) {
     rt_pk_wide w;
     if (rt_pk_wide_build(f, &w) != RT_OK) {
         CHECK_MSG(0, "%s: wide BVH", name);
@@ -162,7 +162,7 @@ static int compare_packets(const char *name, const rt_flat *f, const rt_ray_d *r
                             pk_step_lanes++;
                         }
                         if (!ok && bad < 5) {
-                            const rt_ray_d *r = &rays[first + l];
+                            const rt_ray *r = &rays[first + l];
                             fprintf(stderr,
                                     "%s packet %s%s ray %d any %d org (%a %a %a) dir (%a %a %a): "
                                     "packet t %a prim %u (tests %u %u), cpu t %a prim %u (%u %u)\n",
@@ -186,7 +186,7 @@ static int compare_packets(const char *name, const rt_flat *f, const rt_ray_d *r
 
 /* A ray at the fan (x = 0, test_guard): from either side or from within its
  * plane, to a point of its box or its shared vertex (the origin). */
-static void fan_ray(const float lo[3], const float hi[3], rt_ray_d *r) {
+static void fan_ray(const float lo[3], const float hi[3], rt_ray *r) {
     float to[3] = {0.0f, 0.0f, 0.0f},
           ext = hi[1] - lo[1] > hi[2] - lo[2] ? hi[1] - lo[1] : hi[2] - lo[2];
     if (oracle_rnd() < 0.8f)
@@ -215,9 +215,9 @@ static int compare(const char *name, const rt_scene *scene, uint32_t method, int
     float lo[3], hi[3];
     rt_scene_bounds(scene, lo, hi);
     int bad = 0, hits = 0;
-    rt_ray_d *all = malloc(sizeof(rt_ray_d) * (size_t)rays);
+    rt_ray *all = malloc(sizeof(rt_ray) * (size_t)rays);
     for (int i = 0; i < rays; i++) {
-        rt_ray_d r;
+        rt_ray r;
         if (hard == 2 && i % 4 != 0)
             fan_ray(lo, hi, &r);
         else if (hard && i % 3 != 0)

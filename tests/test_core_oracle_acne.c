@@ -102,7 +102,7 @@ static void self_hits(const char *name, float offset) {
     int tested = 0, acne = 0;
     for (int y = 0; y < cam.height; y++)
         for (int x = 0; x < cam.width; x++) {
-            rt_ray_d r;
+            rt_ray r;
             rt_hit_d h;
             rt_counters c = {0, 0, 0};
             rt_camera_ray(v.hdr, x, y, &r);
@@ -112,7 +112,7 @@ static void self_hits(const char *name, float offset) {
             for (rt_u32 l = 0; l < v.hdr->light_count; l++) {
                 float L[3];
                 for (int k = 0; k < 3; k++) L[k] = v.lights[l].position[k] - sf.p[k];
-                rt_ray_d sr;
+                rt_ray sr;
                 rt_hit_d sh;
                 rt_offset_point(sf.p, sf.ng, rt_dot3(sf.ng, L) >= 0.0f ? 1.0f : -1.0f, sr.org);
                 for (int k = 0; k < 3; k++) sr.dir[k] = v.lights[l].position[k] - sr.org[k];

@@ -130,7 +130,7 @@ static int compare_packet(const rt_scene_view *v, const rt_pk_wide *w, const rt_
         rt_pk_trace(cur_isa, v, w, rays, any, &ph, &pc);
         for (int l = 0; l < RT_PK_LANES; l++) {
             if (!((rays->valid >> l) & 1u)) continue;
-            rt_ray_d r;
+            rt_ray r;
             rt_hit_d want, got;
             rt_counters c = {0, 0, 0};
             rt_pk_get_ray(rays, l, &r);
@@ -152,7 +152,7 @@ static int compare_packet(const rt_scene_view *v, const rt_pk_wide *w, const rt_
 }
 
 /* Ray k of the odd kinds: each breaks some packet-wide bound. */
-static void odd_ray(int k, const rt_ray_d *valid, rt_ray_d *r) {
+static void odd_ray(int k, const rt_ray *valid, rt_ray *r) {
     const float nan = NAN, inf = INFINITY;
     *r = *valid;
     switch (k % 14) {
@@ -209,11 +209,11 @@ static void check_odd_lanes(const rt_scene_view *v, const rt_pk_wide *w, const c
     oracle_rng = 777;
     for (int pkt = 0; pkt < 48 && !bad; pkt++) {
         rt_pk_rays rays;
-        rt_ray_d base;
+        rt_ray base;
         rt_camera_ray(v->hdr, (int)(oracle_rnd() * (float)v->hdr->width),
                       (int)(oracle_rnd() * (float)v->hdr->height), &base);
         for (int l = 0; l < RT_PK_LANES; l++) {
-            rt_ray_d r = base;
+            rt_ray r = base;
             for (int k = 0; k < 3; k++) r.dir[k] += 0.01f * (oracle_rnd() - 0.5f);
             if (pkt % 3 == 1) /* secondary-like: different origins */
                 for (int k = 0; k < 3; k++) r.org[k] += 0.2f * oracle_rnd();
@@ -224,7 +224,7 @@ static void check_odd_lanes(const rt_scene_view *v, const rt_pk_wide *w, const c
         for (int i = 0; i < odd; i++) {
             int l = (pkt * 7 + i * 13) % RT_PK_LANES;
             if (i == 0) l = (pkt / 2) % 8 * 8 % RT_PK_LANES; /* lane 0 and each vector's first */
-            rt_ray_d r, o;
+            rt_ray r, o;
             rt_pk_get_ray(&rays, l, &r);
             odd_ray(pkt + i, &r, &o);
             rt_pk_set_ray(&rays, l, &o);
@@ -260,7 +260,7 @@ static void check_vertex_rays(const rt_flat *flat, const rt_pk_wide *w, const fl
             for (int pkt = 0; pkt < 24; pkt++) {
                 rt_pk_rays rays;
                 for (int l = 0; l < RT_PK_LANES; l++) {
-                    rt_ray_d r;
+                    rt_ray r;
                     oracle_vertex_ray(&v, lo, hi, &r);
                     rt_pk_set_ray(&rays, l, &r);
                 }
@@ -285,7 +285,7 @@ static void check_random_packets(const rt_scene_view *v, const rt_pk_wide *w, co
     for (int pkt = 0; pkt < 32; pkt++) {
         rt_pk_rays rays;
         for (int l = 0; l < RT_PK_LANES; l++) {
-            rt_ray_d r;
+            rt_ray r;
             oracle_ray(v->hdr, lo, hi, pkt % 4 == 0 ? 2 * l : pkt % 4 == 1 ? l : 2 * l + 1, &r);
             rt_pk_set_ray(&rays, l, &r);
         }
@@ -355,7 +355,7 @@ static void check_far_surface(rt_accel accel) {
             const float fu = oracle_rnd(), fv = oracle_rnd();
             const float *p00 = pos + 3 * (cj * (CELLS + 1) + ci);
             const float *p11 = pos + 3 * ((cj + 1) * (CELLS + 1) + ci + 1);
-            rt_ray_d r;
+            rt_ray r;
             for (int k = 0; k < 3; k++) {
                 r.org[k] = p00[k] + (fu > fv ? fu : fv) * 0.5f * (p11[k] - p00[k]);
                 r.dir[k] = d0[k] * (1.0f + 0.02f * (oracle_rnd() - 0.5f));

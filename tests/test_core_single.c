@@ -34,7 +34,7 @@ typedef struct expected {
     rt_hit_d *closest, *any;
 } expected;
 
-static int oracle_hits(const rt_flat *flat, const rt_ray_d *rays, size_t n, expected *x) {
+static int oracle_hits(const rt_flat *flat, const rt_ray *rays, size_t n, expected *x) {
     x->closest = malloc(sizeof(rt_hit_d) * (n ? n : 1));
     x->any = malloc(sizeof(rt_hit_d) * (n ? n : 1));
     if (!x->closest || !x->any) {
@@ -57,7 +57,7 @@ static void expected_free(expected *x) {
 
 /* Every variant the CPU runs against the oracle's hits; returns the
  * mismatches (the first few printed). */
-static int compare_all(const rt_flat *flat, const rt_ray_d *rays, size_t n, const expected *x,
+static int compare_all(const rt_flat *flat, const rt_ray *rays, size_t n, const expected *x,
                        const char *what) {
     int bad = 0;
     rt_hit_d *got = malloc(sizeof(rt_hit_d) * (n ? n : 1));
@@ -84,7 +84,7 @@ static int compare_all(const rt_flat *flat, const rt_ray_d *rays, size_t n, cons
                                    (want->prim == RT_NO_HIT || got[i].entry == want->entry);
                 if (ok) continue;
                 if (bad++ < 5) {
-                    const rt_ray_d *r = &rays[i];
+                    const rt_ray *r = &rays[i];
                     fprintf(stderr,
                             "%s (%s, %s) ray %zu org %.9g %.9g %.9g dir %.9g %.9g %.9g t [%g, %g]: "
                             "single t %.9g prim %d inst %d, cpu t %.9g prim %d inst %d\n",
@@ -104,7 +104,7 @@ static int compare_all(const rt_flat *flat, const rt_ray_d *rays, size_t n, cons
 
 /* A ray set against the oracle, with a count of hits so that a set that
  * misses everything cannot pass unnoticed. */
-static void check_set(const rt_flat *flat, const rt_ray_d *rays, size_t n, const char *what,
+static void check_set(const rt_flat *flat, const rt_ray *rays, size_t n, const char *what,
                       size_t min_hits) {
     expected x;
     if (!oracle_hits(flat, rays, n, &x)) return;
@@ -119,7 +119,7 @@ static void check_set(const rt_flat *flat, const rt_ray_d *rays, size_t n, const
 
 /* n random and n diffuse-bounce rays. */
 static void check_incoherent(const rt_flat *flat, const char *name, uint32_t seed, size_t n) {
-    rt_ray_d *rays = malloc(sizeof(rt_ray_d) * n);
+    rt_ray *rays = malloc(sizeof(rt_ray) * n);
     if (!rays) {
         CHECK(0);
         return;
@@ -135,7 +135,7 @@ static void check_incoherent(const rt_flat *flat, const char *name, uint32_t see
 }
 
 /* Ray k of the odd kinds (as tests/test_core_packet.c's). */
-static void odd_ray(int k, rt_ray_d *r) {
+static void odd_ray(int k, rt_ray *r) {
     const float nan = NAN, inf = INFINITY;
     switch (k % 15) {
     case 0:
@@ -190,18 +190,18 @@ static void odd_ray(int k, rt_ray_d *r) {
 /* Camera rays, axis-parallel rays, odd rays, every triangle test. */
 static void check_special(const rt_flat *flat, const char *name) {
     enum { N = 6000 };
-    rt_ray_d *rays = malloc(sizeof(rt_ray_d) * N);
+    rt_ray *rays = malloc(sizeof(rt_ray) * N);
     if (!rays) {
         CHECK(0);
         return;
     }
     float lo[3], hi[3];
-    rt_ray_d b[1];
+    rt_ray b[1];
     rt_rays_random(flat, 5, 1, b);
     for (int k = 0; k < 3; k++) lo[k] = b->org[k] - 2.0f, hi[k] = b->org[k] + 2.0f;
     oracle_rng = 99;
     for (int i = 0; i < N; i++) {
-        rt_ray_d *r = &rays[i];
+        rt_ray *r = &rays[i];
         oracle_ray(&flat->hdr, lo, hi, i, r);
         if (i % 3 == 1) { /* axis-parallel: on slab planes, zero components */
             const int axis = i % 9 / 3;
@@ -243,7 +243,7 @@ static void check_far_surface(void) {
     enum { CELLS = 96 };
     const float cell = 0.25f; /* test_far_terrain's */
     float *pos;
-    rt_ray_d *rays = malloc(sizeof(rt_ray_d) * 20000);
+    rt_ray *rays = malloc(sizeof(rt_ray) * 20000);
     rt_scene *s = rays ? test_far_terrain(CELLS, &pos) : NULL;
     CHECK(rays != NULL);
     if (!s) {
@@ -257,7 +257,7 @@ static void check_far_surface(void) {
             const int ci = 2 + (int)(oracle_rnd() * (CELLS - 4)),
                       cj = 2 + (int)(oracle_rnd() * (CELLS - 4));
             const float *p00 = pos + 3 * (cj * (CELLS + 1) + ci);
-            rt_ray_d *r = &rays[i];
+            rt_ray *r = &rays[i];
             r->org[0] = p00[0] + oracle_rnd() * cell, r->org[2] = p00[2] + oracle_rnd() * cell;
             r->org[1] = p00[1] + 0.002f + 0.01f * oracle_rnd();
             r->dir[0] = oracle_rnd() - 0.5f, r->dir[2] = oracle_rnd() - 0.5f;

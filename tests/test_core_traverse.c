@@ -55,7 +55,7 @@ static int build_flat(const rt_scene *scene, int leaf_size, uint32_t method, rt_
 
 /* A random ray: from inside the scene's (grown) bounds towards a random point
  * of them, sometimes with a limited t range. */
-static void random_ray(const float lo[3], const float hi[3], rt_ray_d *r) {
+static void random_ray(const float lo[3], const float hi[3], rt_ray *r) {
     for (int k = 0; k < 3; k++) {
         float ext = hi[k] - lo[k];
         r->org[k] = lo[k] - 0.25f * ext + 1.5f * ext * oracle_rnd();
@@ -77,7 +77,7 @@ static int compare_scene(const char *name, const rt_scene *scene, int leaf_size,
     rt_scene_bounds(scene, lo, hi);
     int bad = 0, hits = 0;
     for (int i = 0; i < rays; i++) {
-        rt_ray_d r;
+        rt_ray r;
         if (i % 4 == 3) {
             oracle_vertex_ray(&v, lo, hi, &r);
         } else if (i % 2) {
@@ -140,7 +140,7 @@ static void tie_cases(void) {
         rt_flat flat;
         if (!build_flat(s, leaf, RT_TRI_WATERTIGHT, &flat)) break;
         rt_scene_view v = rt_flat_view(&flat);
-        rt_ray_d r = {{0.2f, 0.2f, 1}, {0, 0, -1}, 0, INFINITY};
+        rt_ray r = {{0.2f, 0.2f, 1}, {0, 0, -1}, 0, INFINITY};
         rt_hit_d h;
         rt_counters c = {0, 0, 0};
         CHECK(rt_trace(&v, &r, 0, &h, &c));

@@ -16,13 +16,13 @@ static rt_tri make_tri(float ax, float ay, float az, float bx, float by, float b
     return t;
 }
 
-static rt_ray_d make_ray(float ox, float oy, float oz, float dx, float dy, float dz, float tmin,
+static rt_ray make_ray(float ox, float oy, float oz, float dx, float dy, float dz, float tmin,
                          float tmax) {
-    rt_ray_d r = {{ox, oy, oz}, {dx, dy, dz}, tmin, tmax};
+    rt_ray r = {{ox, oy, oz}, {dx, dy, dz}, tmin, tmax};
     return r;
 }
 
-static int hit(int method, const rt_tri *tri, const rt_ray_d *r, float *t, float *u, float *v) {
+static int hit(int method, const rt_tri *tri, const rt_ray *r, float *t, float *u, float *v) {
     rt_ray_pre p;
     rt_ray_prepare(r, &p);
     return rt_tri_test((rt_u32)method, tri, r, &p, r->tmin, r->tmax, t, u, v);
@@ -33,7 +33,7 @@ static void triangle_cases(int m) {
     rt_tri tri = make_tri(0, 0, 0, 1, 0, 0, 0, 1, 0);
     float t = -1, u = -1, v = -1;
 
-    rt_ray_d r = make_ray(0.25f, 0.5f, 1, 0, 0, -1, 0, INFINITY);
+    rt_ray r = make_ray(0.25f, 0.5f, 1, 0, 0, -1, 0, INFINITY);
     CHECK_MSG(hit(m, &tri, &r, &t, &u, &v), "%s: plain hit", name);
     CHECK_MSG(t == 1.0f && u == 0.25f && v == 0.5f, "%s: t %g u %g v %g", name, t, u, v);
 
@@ -111,7 +111,7 @@ static void watertight_shared_edge(void) {
         float s = (float)rand() / (float)RAND_MAX;
         float o[3] = {(float)rand() / RAND_MAX * 4 - 2, (float)rand() / RAND_MAX * 4 - 2,
                       0.1f + (float)rand() / RAND_MAX * 3};
-        rt_ray_d r = make_ray(o[0], o[1], o[2], s - o[0], s - o[1], -o[2], 0, INFINITY);
+        rt_ray r = make_ray(o[0], o[1], o[2], s - o[0], s - o[1], -o[2], 0, INFINITY);
         float t, u, v;
         int ha = hit(RT_TRI_WATERTIGHT, &a, &r, &t, &u, &v);
         int hb = hit(RT_TRI_WATERTIGHT, &b, &r, &t, &u, &v);
@@ -120,7 +120,7 @@ static void watertight_shared_edge(void) {
     CHECK_MSG(misses == 0, "watertight: %d rays slipped through a shared edge", misses);
 }
 
-static int box_hit(const rt_node *n, const rt_ray_d *r) {
+static int box_hit(const rt_node *n, const rt_ray *r) {
     rt_ray_pre p;
     float tn;
     rt_ray_prepare(r, &p);
@@ -129,7 +129,7 @@ static int box_hit(const rt_node *n, const rt_ray_d *r) {
 
 static void box_cases(void) {
     rt_node n = {{0, 0, 0}, {1, 1, 1}, 0, 0};
-    rt_ray_d r = make_ray(-1, 0.5f, 0.5f, 1, 0, 0, 0, INFINITY);
+    rt_ray r = make_ray(-1, 0.5f, 0.5f, 1, 0, 0, 0, INFINITY);
     CHECK(box_hit(&n, &r));
     r = make_ray(-1, 2, 0.5f, 1, 0, 0, 0, INFINITY);
     CHECK(!box_hit(&n, &r));

@@ -389,13 +389,13 @@ static void check_wavefront(rt_scene *s) {
 
 /* Makes ray i of a test over a scene of bounds lo..hi. */
 typedef void (*ray_maker)(const rt_scene_header *h, const float lo[3], const float hi[3], int i,
-                          rt_ray_d *r);
+                          rt_ray *r);
 
 /* Rays from inside the bounds in directions of unit size, whatever the
  * scene's size (the denormal scene's edge functions times z then fall below
  * the smallest normal float). */
 static void unit_ray(const rt_scene_header *h, const float lo[3], const float hi[3], int i,
-                     rt_ray_d *r) {
+                     rt_ray *r) {
     (void)h;
     (void)i;
     for (int k = 0; k < 3; k++) {
@@ -410,7 +410,7 @@ static void unit_ray(const rt_scene_header *h, const float lo[3], const float hi
  * walls and on many kd split planes) along directions of -1, 0 and 1 (in
  * split planes, parallel to them, starting on them); odd i: oracle_ray. */
 static void grid_ray(const rt_scene_header *h, const float lo[3], const float hi[3], int i,
-                     rt_ray_d *r) {
+                     rt_ray *r) {
     if (i % 2) {
         oracle_ray(h, lo, hi, i, r);
         return;
@@ -435,7 +435,7 @@ static void check_hits_with(const char *name, rt_scene *s, ray_maker make) {
     rt_ray *rays = malloc(sizeof *rays * N);
     rt_hit *a = malloc(sizeof *a * N), *b = malloc(sizeof *b * N);
     for (int i = 0; i < N; i++) {
-        rt_ray_d r;
+        rt_ray r;
         make(h, lo, hi, i, &r);
         memcpy(rays[i].org, r.org, sizeof r.org);
         memcpy(rays[i].dir, r.dir, sizeof r.dir);
@@ -610,7 +610,7 @@ static void check_policy_matters(rt_scene *s) {
     rt_ray *rays = malloc(sizeof *rays * N);
     rt_hit *a = malloc(sizeof *a * N), *b = malloc(sizeof *b * N);
     for (int i = 0; i < N; i++) {
-        rt_ray_d r;
+        rt_ray r;
         unit_ray(&flat->hdr, lo, hi, i, &r);
         memcpy(rays[i].org, r.org, sizeof r.org);
         memcpy(rays[i].dir, r.dir, sizeof r.dir);

@@ -33,7 +33,7 @@ static void check_scene(const char *name, rt_scene *scene) {
     if (rays < 16) rays = 16;
     float lo[3], hi[3];
     rt_scene_bounds(scene, lo, hi);
-    rt_ray_d *r = malloc(sizeof(rt_ray_d) * (size_t)rays);
+    rt_ray *r = malloc(sizeof(rt_ray) * (size_t)rays);
     rt_hit_d *scalar = malloc(sizeof(rt_hit_d) * (size_t)rays);
     rt_hit_d *packet = malloc(sizeof(rt_hit_d) * (size_t)rays);
     rt_hit_d *any = malloc(sizeof(rt_hit_d) * (size_t)rays);

@@ -137,12 +137,12 @@ static void check_images(const char *name, rt_scene *s, int direct, rt_triangle_
 }
 
 typedef void (*ray_maker)(const rt_scene_header *h, const float lo[3], const float hi[3], int i,
-                          rt_ray_d *r);
+                          rt_ray *r);
 
 /* Rays from random points of the bounds in random directions of length
  * about 1 (for the denormal scene, whose camera rays would be huge). */
 static void unit_ray(const rt_scene_header *h, const float lo[3], const float hi[3], int i,
-                     rt_ray_d *r) {
+                     rt_ray *r) {
     (void)h;
     (void)i;
     for (int k = 0; k < 3; k++) {
@@ -161,7 +161,7 @@ static rt_ray *make_rays(rt_scene *s, ray_maker make, int n) {
     float lo[3], hi[3];
     CHECK(rt_scene_bounds(s, lo, hi));
     for (int i = 0; i < n; i++) {
-        rt_ray_d r;
+        rt_ray r;
         make(&flat->hdr, lo, hi, i, &r);
         memcpy(rays[i].org, r.org, sizeof r.org);
         memcpy(rays[i].dir, r.dir, sizeof r.dir);
@@ -483,7 +483,7 @@ static void check_kd_stack(void) {
     enum { N = 20000 };
     rt_ray *rays = make_rays(s, oracle_ray, N);
     rt_hit *want = malloc(sizeof *want * N);
-    rt_ray_d *rd = malloc(sizeof *rd * N);
+    rt_ray *rd = malloc(sizeof *rd * N);
     rt_hit_d *got = malloc(sizeof *got * N);
     CHECK(rays && want && rd && got);
     for (int any = 0; any <= 1 && rays && want && rd && got; any++) {

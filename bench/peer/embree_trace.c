@@ -109,14 +109,14 @@ enum { MAX_LANES = 16 };
 
 typedef struct block {
     int lanes, count;
-    rt_ray_d ray[MAX_LANES];
+    rt_ray ray[MAX_LANES];
     rt_hit_d hit[MAX_LANES];
     int occluded[MAX_LANES];
     _Alignas(64) int valid[MAX_LANES]; /* Embree's masks (-1 active, 0 not), aligned as
                                           rtcIntersect16 loads them */
 } block;
 
-static void to_rtc_ray(const rt_ray_d *r, RTCRay *out) {
+static void to_rtc_ray(const rt_ray *r, RTCRay *out) {
     out->org_x = r->org[0];
     out->org_y = r->org[1];
     out->org_z = r->org[2];
@@ -377,7 +377,7 @@ int rt_embree_native_lanes(rt_embree *em, int lanes) {
 
 typedef struct rays_job {
     const rt_embree_scene *es;
-    const rt_ray_d *rays;
+    const rt_ray *rays;
     rt_hit_d *hits;
     size_t n;
     int lanes, any_hit;
@@ -436,7 +436,7 @@ static void rays_worker(void *ctx, int worker, int workers) {
     }
 }
 
-rt_status rt_embree_trace_rays(const rt_embree_scene *es, const rt_ray_d *rays, size_t n,
+rt_status rt_embree_trace_rays(const rt_embree_scene *es, const rt_ray *rays, size_t n,
                                int any_hit, int lanes, rt_pool *pool, rt_hit_d *hits, double *ms) {
     if (lanes != 1 && lanes != 4 && lanes != 8 && lanes != 16) return RT_ERROR_INVALID_ARGUMENT;
     rays_job job;

@@ -96,7 +96,7 @@ typedef struct rt_backend_ops {
      * backend's; others ignore it). Adds to stats (zeroed by the caller)
      * build_ms for host builds it did, and the packet backend packet_rays,
      * single_rays and isa. */
-    rt_status (*trace)(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
+    rt_status (*trace)(void *state, const rt_backend_layout *layout, const rt_ray *rays,
                        size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
                        rt_trace_stats *stats, rt_error *err);
     void (*destroy)(void *state);

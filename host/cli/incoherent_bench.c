@@ -122,7 +122,6 @@ done:
 
 /* The buffers of one scene's run. */
 typedef struct bufs {
-    rt_ray_d *rd[SETS];
     rt_ray *rays[SETS];
     rt_hit *ref, *got;
     rt_hit_d *eh;
@@ -131,7 +130,6 @@ typedef struct bufs {
 
 static void free_bufs(bufs *b) {
     for (int s = 0; s < SETS; s++) {
-        free(b->rd[s]);
         free(b->rays[s]);
     }
     free(b->ref);
@@ -197,9 +195,8 @@ int incoh_bench_scene(const char *path, const incoh_setup *su, incoh_result *out
     b.ms = malloc(sizeof(double) * SETS * QUERIES * TRACERS * per);
     int have_mem = b.ref && b.got && b.eh && b.ms;
     for (int s = 0; s < SETS; s++) {
-        b.rd[s] = malloc(sizeof(rt_ray_d) * n);
         b.rays[s] = malloc(sizeof(rt_ray) * n);
-        have_mem = have_mem && b.rd[s] && b.rays[s];
+        have_mem = have_mem && b.rays[s];
     }
     if (!have_mem) {
         snprintf(err, err_size, "%s: out of memory for %zu rays", path, n);
@@ -207,10 +204,9 @@ int incoh_bench_scene(const char *path, const incoh_setup *su, incoh_result *out
     }
     for (int s = 0; s < SETS; s++) {
         if (s == 0)
-            rt_rays_diffuse(flat, su->seed, n, b.rd[s]);
+            rt_rays_diffuse(flat, su->seed, n, b.rays[s]);
         else
-            rt_rays_random(flat, su->seed, n, b.rd[s]);
-        rt_rays_to_api(b.rd[s], n, b.rays[s]);
+            rt_rays_random(flat, su->seed, n, b.rays[s]);
     }
     int tracers = 2;
 #ifdef RT_HAVE_EMBREE
@@ -250,7 +246,7 @@ int incoh_bench_scene(const char *path, const incoh_setup *su, incoh_result *out
                     }
 #ifdef RT_HAVE_EMBREE
                     else {
-                        rt_embree_trace_rays(es, b.rd[s], n, q, t == T_EMBREE1 ? 1 : 16,
+                        rt_embree_trace_rays(es, b.rays[s], n, q, t == T_EMBREE1 ? 1 : 16,
                                              layout.pool, b.eh, &dt);
                     }
 #endif

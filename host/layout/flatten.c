@@ -407,7 +407,7 @@ static rt_status write_frame(const rt_scene *scene, const rt_bvh *top, const rt_
         copy_nodes(top, out->nodes + top_root, top_root, 0);
         memcpy(out->inst_ids, top->prim_indices, sizeof(uint32_t) * top->prim_count);
         /* Each instance's acceptance box (rt_hit_accepted): the box of the
-         * leaf holding it, which contains its own box (tlas.c widened it)
+         * leaf holding it, which contains its own box (object_bvh.c widened it)
          * and lies inside every box above it, in this tree and in the wide
          * copies the CPU backends make of it. */
         for (uint32_t i = 0; i < top->node_count; i++) {

@@ -615,7 +615,7 @@ static rt_status read_buf(cl_state *s, int b, size_t bytes, void *dst, rt_error 
 /* Per-ray buffers for tiles of up to 'tile' rays. */
 static rt_status ensure_ray_buffers(cl_state *s, uint32_t tile, rt_error *err) {
     int remade;
-    rt_status st = ensure(s, B_RAYS, sizeof(rt_ray_d) * tile, &remade, err);
+    rt_status st = ensure(s, B_RAYS, sizeof(rt_ray) * tile, &remade, err);
     if (st == RT_OK) st = ensure(s, B_HITS, sizeof(rt_hit_d) * tile, &remade, err);
     if (st == RT_OK) st = ensure(s, B_COUNTERS, sizeof(rt_counters) * tile, &remade, err);
     return st;
@@ -962,7 +962,7 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
     return RT_OK;
 }
 
-static rt_status cl_trace(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
+static rt_status cl_trace(void *state, const rt_backend_layout *layout, const rt_ray *rays,
                           size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
                           rt_trace_stats *stats, rt_error *err) {
     cl_state *s = state;
@@ -992,7 +992,7 @@ static rt_status cl_trace(void *state, const rt_backend_layout *layout, const rt
         cl_uint n = (cl_uint)(count - first < s->tile ? count - first : s->tile);
         uint64_t ignored = 0;
         double ms = 0.0;
-        st = write_buf(s, B_RAYS, 0, rays + first, sizeof(rt_ray_d) * n, &ignored, err);
+        st = write_buf(s, B_RAYS, 0, rays + first, sizeof(rt_ray) * n, &ignored, err);
         if (st == RT_OK) st = set_arg(k, RT_K_TRACE_COUNT, sizeof n, &n, err);
         if (st == RT_OK)
             st = launch(s, k, packet ? (n + (cl_uint)s->lanes - 1) / (cl_uint)s->lanes : n,

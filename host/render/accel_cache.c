@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "accel/scene_boxes.h"
-#include "accel/tlas.h"
+#include "accel/object_bvh.h"
 #include "base/clock.h"
 #include "base/error.h"
 
@@ -270,7 +270,7 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
         rt_error why;
         rt_error_clear(&why);
         if (scene->object_count) {
-            rt_status st = rt_tlas_build(scene, c->bvhs, NULL, pool, &c->top, &why);
+            rt_status st = rt_object_bvh_build(scene, c->bvhs, NULL, pool, &c->top, &why);
             if (st != RT_OK) return rt_fail(err, st, "object BVH: %s", why.message);
         }
         double t2 = rt_now_ms();

@@ -32,25 +32,28 @@ rt_status rt_trace_rays(rt_renderer *r, rt_scene *scene, const rt_ray *rays, siz
     rt_frame_state fs;
     rt_status st = rt_frame_layout(r, scene, opt.tri_test, 0, &fs);
     if (st != RT_OK) return st;
-    rt_ray_d *in = malloc(sizeof(rt_ray_d) * (count ? count : 1));
-    rt_hit_d *out = malloc(sizeof(rt_hit_d) * (count ? count : 1));
-    if (!in || !out) {
-        free(in);
-        free(out);
-        return rt_fail(&r->error, RT_ERROR_OUT_OF_MEMORY, "out of memory for %zu rays", count);
+    /* The backends read the caller's rays as they are (rt_ray is the
+     * kernels' ray type); only a call with invalid rays pays for a copy, in
+     * which each invalid ray becomes an empty range: a miss, whatever the
+     * scene. */
+    size_t first_invalid = count;
+    for (size_t i = 0; i < count && first_invalid == count; i++)
+        if (!ray_valid(&rays[i])) first_invalid = i;
+    rt_ray *copy = NULL;
+    if (first_invalid < count) {
+        copy = malloc(sizeof(rt_ray) * count);
+        if (!copy)
+            return rt_fail(&r->error, RT_ERROR_OUT_OF_MEMORY, "out of memory for %zu rays", count);
+        memcpy(copy, rays, sizeof(rt_ray) * count);
+        for (size_t i = first_invalid; i < count; i++)
+            if (!ray_valid(&copy[i]))
+                copy[i] = (rt_ray){{0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, 1.0f, 0.0f};
     }
-    for (size_t i = 0; i < count; i++) {
-        memcpy(in[i].org, rays[i].org, sizeof in[i].org);
-        memcpy(in[i].dir, rays[i].dir, sizeof in[i].dir);
-        in[i].tmin = rays[i].tmin;
-        in[i].tmax = rays[i].tmax;
-        if (!ray_valid(&rays[i])) { /* an empty range: a miss, whatever the scene */
-            in[i].tmin = 1.0f;
-            in[i].tmax = 0.0f;
-            in[i].dir[0] = 1.0f;
-            in[i].dir[1] = in[i].dir[2] = 0.0f;
-            for (int k = 0; k < 3; k++) in[i].org[k] = 0.0f;
-        }
+    const rt_ray *in = copy ? copy : rays;
+    rt_hit_d *out = malloc(sizeof(rt_hit_d) * (count ? count : 1));
+    if (!out) {
+        free(copy);
+        return rt_fail(&r->error, RT_ERROR_OUT_OF_MEMORY, "out of memory for %zu hits", count);
     }
     rt_render_stats prep;
     memset(&prep, 0, sizeof prep);
@@ -78,7 +81,7 @@ rt_status rt_trace_rays(rt_renderer *r, rt_scene *scene, const rt_ray *rays, siz
             h->prim = h->hit ? out[i].prim : UINT32_MAX;
             h->inst = h->hit ? out[i].inst : UINT32_MAX;
         }
-    free(in);
+    free(copy);
     free(out);
     return st;
 }

@@ -835,7 +835,7 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
     return RT_OK;
 }
 
-static rt_status vk_trace(void *state, const rt_backend_layout *layout, const rt_ray_d *rays,
+static rt_status vk_trace(void *state, const rt_backend_layout *layout, const rt_ray *rays,
                           size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
                           rt_trace_stats *stats, rt_error *err) {
     vk_state *s = state;
@@ -843,7 +843,7 @@ static rt_status vk_trace(void *state, const rt_backend_layout *layout, const rt
     (void)stats;  /* the renderer times the call */
     (void)layout; /* vk_prepare uploaded it */
     int remade;
-    rt_status st = ensure(s, B_RAYS, sizeof(rt_ray_d) * RT_VK_TILE_MAX, &remade, err);
+    rt_status st = ensure(s, B_RAYS, sizeof(rt_ray) * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK) st = ensure(s, B_HITS, sizeof(rt_hit_d) * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK) st = ensure(s, B_COUNTERS, sizeof(rt_counters) * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK) st = ensure(s, B_ITEMS, 2 * sizeof(uint32_t) * RT_VK_TILE_MAX, &remade, err);
@@ -851,7 +851,7 @@ static rt_status vk_trace(void *state, const rt_backend_layout *layout, const rt
     uint32_t reruns = 0;
     for (size_t first = 0; first < count && st == RT_OK;) {
         uint32_t n = (uint32_t)(count - first < s->tile ? count - first : s->tile);
-        memcpy(s->buf[B_RAYS].map, rays + first, sizeof(rt_ray_d) * n);
+        memcpy(s->buf[B_RAYS].map, rays + first, sizeof(rt_ray) * n);
         vk_push push = {
             0, n, 0, 0, any_hit ? 1 : 0, 1, RT_VK_CANARY, 1, vk_test_ballast, RT_VK_TILE_MAX};
         double ms = 0.0;
@@ -910,7 +910,7 @@ rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size
     return named(err, st);
 }
 
-rt_status rt_vk_trace_kd_stack(const char *device, const rt_flat *flat, const rt_ray_d *rays,
+rt_status rt_vk_trace_kd_stack(const char *device, const rt_flat *flat, const rt_ray *rays,
                                size_t count, int any_hit, uint32_t kd_shared_cells, rt_hit_d *hits,
                                rt_error *err) {
     if (kd_shared_cells > RT_VK_KD_SHARED_CELLS)

@@ -39,7 +39,7 @@ rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size
  * shared memory and the rest in its private overflow array (the backend
  * keeps 21 there, which only trees deeper than any test scene's outgrow).
  * For the test that runs that overflow path. */
-rt_status rt_vk_trace_kd_stack(const char *device, const struct rt_flat *flat, const rt_ray_d *rays,
+rt_status rt_vk_trace_kd_stack(const char *device, const struct rt_flat *flat, const rt_ray *rays,
                                size_t count, int any_hit, uint32_t kd_shared_cells, rt_hit_d *hits,
                                rt_error *err);
 

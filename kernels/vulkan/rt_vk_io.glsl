@@ -7,7 +7,7 @@
 
 #include "rt_vk_shared.glsl"
 
-layout(std430, set = 0, binding = 10) readonly buffer B_rays { rt_ray_d rays[]; };
+layout(std430, set = 0, binding = 10) readonly buffer B_rays { rt_ray rays[]; };
 layout(std430, set = 0, binding = 11) writeonly buffer B_hits { rt_hit_d hits[]; };
 layout(std430, set = 0, binding = 12) writeonly buffer B_counters { rt_counters counters[]; };
 layout(std430, set = 0, binding = 13) writeonly buffer B_fb { float fb[]; };

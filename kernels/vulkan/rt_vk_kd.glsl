@@ -37,7 +37,7 @@ layout(std430, set = 0, binding = 14) readonly buffer B_kd_nodes { rt_kd_node kd
 
 /* rt_kd_root_interval: the slab test of rt_box_test, also returning the far
  * end. */
-bool rt_kd_root_interval(uint node, rt_ray_d r, rt_ray_pre p, float lo, float hi, out float tn,
+bool rt_kd_root_interval(uint node, rt_ray r, rt_ray_pre p, float lo, float hi, out float tn,
                          out float tf) {
     float near = lo, far = RT_INF;
     for (int i = 0; i < 3; i++) {
@@ -83,7 +83,7 @@ bool rt_kd_root_interval(uint node, rt_ray_d r, rt_ray_pre p, float lo, float hi
 /* rt_kd_trace_mesh: the kd-tree of the mesh whose bounding rt_node is root,
  * with a ray already in the mesh's space; best.t is the upper end of the
  * range; true when any_hit found an occluder. */
-bool rt_kd_trace_mesh(uint root, uint inst, rt_ray_d r, rt_ray_pre p, bool any_hit,
+bool rt_kd_trace_mesh(uint root, uint inst, rt_ray r, rt_ray_pre p, bool any_hit,
                       inout rt_hit_d best, inout rt_counters c) {
     float tn, tf;
     c.box_tests++;

@@ -64,7 +64,7 @@ void main() {
     rt_shade_node nd;
     bool begun = false;
     uint li = 0u;
-    rt_ray_d sr;
+    rt_ray sr;
     float Ln[3], ndl;
     float rgb[3] = float[3](0.0, 0.0, 0.0);
     rt_shade_entry stack[RT_SHADE_STACK];

@@ -108,7 +108,7 @@ struct rt_scene_header {
     float cam_right[3];
     float cam_up[3];
 };
-struct rt_ray_d {
+struct rt_ray {
     float org[3];
     float dir[3];
     float tmin;
@@ -203,7 +203,7 @@ void rt_normalize3(inout float v[3]) {
 
 /* ---- rays ----------------------------------------------------------------- */
 
-void rt_ray_prepare(rt_ray_d r, out rt_ray_pre p) {
+void rt_ray_prepare(rt_ray r, out rt_ray_pre p) {
     float ax = RT_FABS(r.dir[0]), ay = RT_FABS(r.dir[1]), az = RT_FABS(r.dir[2]);
     int kz = 0;
     if (ay > ax) kz = 1;
@@ -241,7 +241,7 @@ float rt_camera_sx(int px) {
 float rt_camera_sy(int py) {
     return 1.0 - RT_DIV(2.0 * (float(py) + 0.5), float(hdr.height));
 }
-void rt_camera_ray(int px, int py, out rt_ray_d r) {
+void rt_camera_ray(int px, int py, out rt_ray r) {
     float sx = rt_camera_sx(px), sy = rt_camera_sy(py);
     for (int i = 0; i < 3; i++) {
         r.org[i] = hdr.cam_pos[i];
@@ -262,7 +262,7 @@ void rt_offset_point(float p[3], float n[3], float sign, out float o[3]) {
 
 /* ---- ray/box -------------------------------------------------------------- */
 
-bool rt_box_test(uint node, rt_ray_d r, rt_ray_pre p, float tmin, float tmax, out float tnear) {
+bool rt_box_test(uint node, rt_ray r, rt_ray_pre p, float tmin, float tmax, out float tnear) {
     float lo = tmin, hi = RT_INF;
     for (int i = 0; i < 3; i++) {
         float a = p.sign[i] != 0 ? nodes[node].bmax[i] : nodes[node].bmin[i];
@@ -287,7 +287,7 @@ void rt_edge_recheck(float Ax, float Ay, float Bx, float By, float Cx, float Cy,
     W = RT_DOP(Bx, Ay, By, Ax);
 }
 
-bool rt_tri_watertight(uint e, rt_ray_d r, rt_ray_pre p, float tmin, float tmax, out float t,
+bool rt_tri_watertight(uint e, rt_ray r, rt_ray_pre p, float tmin, float tmax, out float t,
                        out float u, out float v) {
     float A[3], B[3], C[3];
     for (int i = 0; i < 3; i++) {
@@ -322,7 +322,7 @@ bool rt_tri_watertight(uint e, rt_ray_d r, rt_ray_pre p, float tmin, float tmax,
     return true;
 }
 
-bool rt_tri_moller(uint e, rt_ray_d r, float tmin, float tmax, out float t, out float u,
+bool rt_tri_moller(uint e, rt_ray r, float tmin, float tmax, out float t, out float u,
                    out float v) {
     float e1[3], e2[3], s[3], pv[3], q[3];
     for (int i = 0; i < 3; i++) {
@@ -350,7 +350,7 @@ bool rt_tri_moller(uint e, rt_ray_d r, float tmin, float tmax, out float t, out 
     return true;
 }
 
-bool rt_tri_pluecker(uint e, rt_ray_d r, float tmin, float tmax, out float t, out float u,
+bool rt_tri_pluecker(uint e, rt_ray r, float tmin, float tmax, out float t, out float u,
                      out float v) {
     float a[3], b[3], c[3], bc[3], ca[3], ab[3];
     for (int i = 0; i < 3; i++) {
@@ -376,7 +376,7 @@ bool rt_tri_pluecker(uint e, rt_ray_d r, float tmin, float tmax, out float t, ou
     return true;
 }
 
-bool rt_tri_badouel(uint e, rt_ray_d r, float tmin, float tmax, out float t, out float u,
+bool rt_tri_badouel(uint e, rt_ray r, float tmin, float tmax, out float t, out float u,
                     out float v) {
     float e1[3], e2[3], n[3], a[3];
     for (int i = 0; i < 3; i++) {
@@ -411,7 +411,7 @@ bool rt_tri_badouel(uint e, rt_ray_d r, float tmin, float tmax, out float t, out
     return true;
 }
 
-bool rt_tri_test(uint method, uint e, rt_ray_d r, rt_ray_pre p, float tmin, float tmax,
+bool rt_tri_test(uint method, uint e, rt_ray r, rt_ray_pre p, float tmin, float tmax,
                  out float t, out float u, out float v) {
     if (method == RT_TRI_MOLLER) return rt_tri_moller(e, r, tmin, tmax, t, u, v);
     if (method == RT_TRI_PLUECKER) return rt_tri_pluecker(e, r, tmin, tmax, t, u, v);
@@ -427,7 +427,7 @@ bool rt_hit_before(float t, uint inst, uint prim, rt_hit_d best) {
     return prim < best.prim;
 }
 
-void rt_hit_init(out rt_hit_d h, rt_ray_d r) {
+void rt_hit_init(out rt_hit_d h, rt_ray r) {
     h.t = r.tmax;
     h.u = 0.0;
     h.v = 0.0;
@@ -459,7 +459,7 @@ bool rt_slab_end(float lo, float hi, float tmax, out float tnear) {
     return lo <= hi;
 }
 
-bool rt_inst_enter(uint inst, rt_ray_d r, rt_ray_pre p, out float inst_lo) {
+bool rt_inst_enter(uint inst, rt_ray r, rt_ray_pre p, out float inst_lo) {
     float lo = rt_box_lo(r.tmin), hi = RT_INF;
     for (int i = 0; i < 3; i++) {
         float mn = instances[inst].bmin[i], mx = instances[inst].bmax[i];
@@ -477,7 +477,7 @@ float rt_max3(float a, float b, float c) {
     return c > m ? c : m;
 }
 
-bool rt_hit_accepted(uint e, rt_ray_d r, rt_ray_pre p, float t) {
+bool rt_hit_accepted(uint e, rt_ray r, rt_ray_pre p, float t) {
     float hi_t = rt_box_hi(t);
     if (hi_t < p.inst_lo) return false;
     float lo = rt_box_lo(r.tmin), hi = RT_INF, tn;
@@ -489,7 +489,7 @@ bool rt_hit_accepted(uint e, rt_ray_d r, rt_ray_pre p, float t) {
     return rt_slab_end(lo, hi, hi_t, tn);
 }
 
-bool rt_leaf_test(uint first, uint count, uint inst, rt_ray_d r, rt_ray_pre p, bool any_hit,
+bool rt_leaf_test(uint first, uint count, uint inst, rt_ray r, rt_ray_pre p, bool any_hit,
                   inout rt_hit_d best, inout rt_counters c) {
     uint method = RT_TRI_METHOD();
     for (uint e = first; e < first + count; e++) {
@@ -514,7 +514,7 @@ bool rt_leaf_test(uint first, uint count, uint inst, rt_ray_d r, rt_ray_pre p, b
 /* rt_descend without the stack (GLSL has no pointer to it): returns 0 when
  * the caller must pop, 1 to go on at *next, 2 to go on at *next after
  * pushing *push. The same tests and choices as the C function. */
-int rt_descend(uint node, rt_ray_d r, rt_ray_pre p, rt_hit_d best, inout rt_counters c,
+int rt_descend(uint node, rt_ray r, rt_ray_pre p, rt_hit_d best, inout rt_counters c,
                out uint next, out uint push) {
     float t0, t1, lo = rt_box_lo(r.tmin), hi = rt_box_hi(best.t);
     uint na = nodes[node].a, nb = nodes[node].b;
@@ -538,7 +538,7 @@ int rt_descend(uint node, rt_ray_d r, rt_ray_pre p, rt_hit_d best, inout rt_coun
     return 0;
 }
 
-bool rt_trace_mesh(uint root, uint inst, rt_ray_d r, rt_ray_pre p, bool any_hit,
+bool rt_trace_mesh(uint root, uint inst, rt_ray r, rt_ray_pre p, bool any_hit,
                    inout rt_hit_d best, inout rt_counters c) {
     int sp = 0;
     float tn;
@@ -569,7 +569,7 @@ bool rt_trace_mesh(uint root, uint inst, rt_ray_d r, rt_ray_pre p, bool any_hit,
 
 #include "rt_vk_kd.glsl" /* kd-tree meshes: rt_kd_trace_mesh */
 
-void rt_ray_to_object(uint inst, rt_ray_d r, out rt_ray_d o) {
+void rt_ray_to_object(uint inst, rt_ray r, out rt_ray o) {
     for (int i = 0; i < 3; i++) {
         float m0 = instances[inst].world_to_object[4 * i];
         float m1 = instances[inst].world_to_object[4 * i + 1];
@@ -585,13 +585,13 @@ void rt_ray_to_object(uint inst, rt_ray_d r, out rt_ray_d o) {
 /* One call of rt_trace_mesh (and of rt_kd_trace_mesh) for both cases of the
  * C function (the ray transformed or not): one inlined copy of each
  * traversal. */
-bool rt_trace_instance(uint inst, rt_ray_d r, rt_ray_pre p, bool any_hit, inout rt_hit_d best,
+bool rt_trace_instance(uint inst, rt_ray r, rt_ray_pre p, bool any_hit, inout rt_hit_d best,
                        inout rt_counters c) {
     uint root = instances[inst].root;
     float inst_lo = -RT_INF;
     if ((RT_SCENE_FLAGS() & RT_SCENE_SINGLE) == 0u && !rt_inst_enter(inst, r, p, inst_lo))
         return false;
-    rt_ray_d o = r;
+    rt_ray o = r;
     rt_ray_pre op = p;
     if ((RT_INST_FLAGS(instances[inst].flags) & RT_INST_IDENTITY) == 0u) {
         rt_ray_to_object(inst, r, o);
@@ -603,7 +603,7 @@ bool rt_trace_instance(uint inst, rt_ray_d r, rt_ray_pre p, bool any_hit, inout 
     return rt_trace_mesh(root, inst, o, op, any_hit, best, c);
 }
 
-bool rt_trace(rt_ray_d r, bool any_hit, out rt_hit_d best, inout rt_counters c) {
+bool rt_trace(rt_ray r, bool any_hit, out rt_hit_d best, inout rt_counters c) {
     rt_ray_pre p;
     rt_ray_prepare(r, p);
     rt_hit_init(best, r);
@@ -668,7 +668,7 @@ void rt_point_to_world(uint inst, float p[3], out float o[3]) {
 
 /* The hit point from the barycentrics in object space, then transformed
  * (Waechter and Binder 2019), as the C function. */
-void rt_surface_at(rt_ray_d r, rt_hit_d h, out rt_surface sf) {
+void rt_surface_at(rt_ray r, rt_hit_d h, out rt_surface sf) {
     uint e = h.entry, inst = h.inst;
     bool identity = (RT_INST_FLAGS(instances[inst].flags) & RT_INST_IDENTITY) != 0u;
     float e1[3], e2[3], n[3], ns[3], po[3];
@@ -722,7 +722,7 @@ void rt_phong_ambient(rt_surface sf, out float o[3]) {
         o[k] = (materials[m].ambient * materials[m].color[k]) * hdr.ambient[k];
 }
 
-bool rt_phong_light(rt_surface sf, uint li, out rt_ray_d sr, out float Ln[3], out float ndl) {
+bool rt_phong_light(rt_surface sf, uint li, out rt_ray sr, out float Ln[3], out float ndl) {
     float L[3];
     for (int k = 0; k < 3; k++) L[k] = lights[li].position[k] - sf.p[k];
     float dist = RT_SQRT(rt_dot3(L, L));
@@ -756,7 +756,7 @@ void rt_phong_add(rt_surface sf, uint li, float Ln[3], float ndl, float dn[3], i
 }
 
 struct rt_shade_entry {
-    rt_ray_d ray;
+    rt_ray ray;
     float w[3];
     uint depth;
 };

@@ -198,7 +198,7 @@ static void check_kernel(const rt_ray *rays, int n, int any_hit, rt_triangle_tes
         memset(&pr, 0, sizeof pr);
         const int lanes = n - base < RT_PK_LANES ? n - base : RT_PK_LANES;
         for (int l = 0; l < lanes; l++) {
-            rt_ray_d r;
+            rt_ray r;
             memcpy(r.org, rays[base + l].org, sizeof r.org);
             memcpy(r.dir, rays[base + l].dir, sizeof r.dir);
             r.tmin = rays[base + l].tmin;
@@ -209,7 +209,7 @@ static void check_kernel(const rt_ray *rays, int n, int any_hit, rt_triangle_tes
                    (valid_bits ? valid_bits : RT_PK_ALL);
         rt_hit_d want[RT_PK_LANES];
         for (int l = 0; l < lanes; l++) {
-            rt_ray_d r;
+            rt_ray r;
             rt_counters c = {0, 0, 0};
             rt_pk_get_ray(&pr, l, &r);
             if ((pr.valid >> l) & 1u) rt_trace(&v, &r, any_hit, &want[l], &c);

@@ -1,4 +1,4 @@
-/* test_core_tlas.c - the object BVH over transformed objects: a valid tree
+/* test_core_object_bvh.c - the object BVH over transformed objects: a valid tree
  * whose leaf boxes contain every transformed vertex of their object, rebuilt
  * after objects move. */
 #include <math.h>
@@ -8,7 +8,7 @@
 #include "bvh_validate.h"
 #include "check.h"
 #include "scene/scene.h"
-#include "accel/tlas.h"
+#include "accel/object_bvh.h"
 
 /* The library's error of the last call a check prints. */
 static rt_error lib_err;
@@ -51,13 +51,13 @@ static int build_mesh_bvhs(const rt_scene *scene, rt_bvh *bvhs) {
 }
 
 /* Every vertex of every object, transformed, lies in its leaf's box. */
-static void check_tlas(const rt_scene *scene, const rt_bvh *bvhs, const char *what) {
-    rt_bvh tlas;
+static void check_object_bvh(const rt_scene *scene, const rt_bvh *bvhs, const char *what) {
+    rt_bvh obvh;
     char msg[256] = "";
-    rt_status st = rt_tlas_build(scene, bvhs, NULL, NULL, &tlas, &lib_err);
+    rt_status st = rt_object_bvh_build(scene, bvhs, NULL, NULL, &obvh, &lib_err);
     CHECK_MSG(st == RT_OK, "%s: %s", what, lib_err.message);
     if (st != RT_OK) return;
-    CHECK_EQ_INT(tlas.prim_count, scene->object_count);
+    CHECK_EQ_INT(obvh.prim_count, scene->object_count);
     rt_aabb world[OBJECTS];
     for (uint32_t o = 0; o < scene->object_count; o++) {
         const rt_object_data *obj = &scene->objects[o];
@@ -66,13 +66,13 @@ static void check_tlas(const rt_scene *scene, const rt_bvh *bvhs, const char *wh
         memcpy(local.bmax, bvhs[rt_object_shown_mesh(obj)].nodes[0].bmax, sizeof local.bmax);
         world[o] = rt_aabb_transform(&local, obj->transform);
     }
-    CHECK_MSG(bvh_validate(&tlas, world, scene->object_count, 1, 0, msg, sizeof msg), "%s: %s",
+    CHECK_MSG(bvh_validate(&obvh, world, scene->object_count, 1, 0, msg, sizeof msg), "%s: %s",
               what, msg);
-    for (uint32_t i = 0; i < tlas.node_count; i++) {
-        const rt_node *n = &tlas.nodes[i];
+    for (uint32_t i = 0; i < obvh.node_count; i++) {
+        const rt_node *n = &obvh.nodes[i];
         if (!(n->b & RT_NODE_LEAF_FLAG)) continue;
         for (uint32_t e = n->a; e < n->a + (n->b & RT_NODE_COUNT_MASK); e++) {
-            const rt_object_data *obj = &scene->objects[tlas.prim_indices[e]];
+            const rt_object_data *obj = &scene->objects[obvh.prim_indices[e]];
             const rt_mesh_data *mesh = &scene->meshes[rt_object_shown_mesh(obj)];
             const float *m = obj->transform;
             for (uint32_t v = 0; v < mesh->vertex_count; v++) {
@@ -86,12 +86,12 @@ static void check_tlas(const rt_scene *scene, const rt_bvh *bvhs, const char *wh
                     float slack = 1e-5f * (1.0f + fabsf(q));
                     CHECK_MSG(q >= n->bmin[r] - slack && q <= n->bmax[r] + slack,
                               "%s: object %u vertex %u outside its leaf box", what,
-                              tlas.prim_indices[e], v);
+                              obvh.prim_indices[e], v);
                 }
             }
         }
     }
-    rt_bvh_free(&tlas);
+    rt_bvh_free(&obvh);
 }
 
 int main(void) {
@@ -114,7 +114,7 @@ int main(void) {
     CHECK(rt_scene_commit(scene) == RT_OK);
     rt_bvh bvhs[2];
     CHECK(build_mesh_bvhs(scene, bvhs));
-    check_tlas(scene, bvhs, "initial placement");
+    check_object_bvh(scene, bvhs, "initial placement");
 
     /* The rotated box is larger than the mesh box: the 8 corners are used. */
     {
@@ -134,13 +134,13 @@ int main(void) {
     }
     CHECK(rt_object_select_mesh(scene, 4, 1) == RT_OK);
     CHECK(rt_scene_commit(scene) == RT_OK);
-    check_tlas(scene, bvhs, "after moving");
+    check_object_bvh(scene, bvhs, "after moving");
 
     /* A scene without objects gives the empty tree. */
     rt_scene *empty;
     CHECK(rt_scene_create(&empty) == RT_OK);
     rt_bvh t;
-    CHECK(rt_tlas_build(empty, NULL, NULL, NULL, &t, NULL) == RT_OK);
+    CHECK(rt_object_bvh_build(empty, NULL, NULL, NULL, &t, NULL) == RT_OK);
     CHECK(t.node_count == 0 && t.prim_count == 0);
     rt_scene_destroy(empty);
 

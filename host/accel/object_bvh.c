@@ -1,5 +1,5 @@
-/* tlas.c - the object BVH over the objects' world-space boxes (tlas.h). */
-#include "accel/tlas.h"
+/* object_bvh.c - the object BVH over the objects' world-space boxes (object_bvh.h). */
+#include "accel/object_bvh.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -27,7 +27,7 @@ rt_aabb rt_aabb_transform(const rt_aabb *box, const float m[16]) {
     return out;
 }
 
-rt_status rt_tlas_build(const rt_scene *scene, const rt_bvh *mesh_bvhs,
+rt_status rt_object_bvh_build(const rt_scene *scene, const rt_bvh *mesh_bvhs,
                         const rt_build_options *options, rt_pool *pool, rt_bvh *out,
                         rt_error *err) {
     if (!out) return RT_ERROR_INVALID_ARGUMENT;
