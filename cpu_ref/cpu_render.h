@@ -57,9 +57,8 @@ void rt_cpu_finish_pixel(const rt_cpu_frame *frame, const rt_scene_view *view, i
  * RT_NO_HIT. *packet_rays counts the rays that went in packets. */
 void rt_cpu_trace_rays(const rt_flat *flat, const rt_ray *rays, size_t n, rt_hit_d *hits,
                        int any_hit, rt_counters *c);
-void rt_packet_trace_rays(const rt_cpu_frame *tracers, const rt_ray *rays, size_t n,
-                          rt_hit_d *hits, int any_hit, rt_trace_path path, rt_counters *c,
-                          uint64_t *packet_rays);
+void rt_packet_trace_rays(const rt_cpu_frame *tracers, const rt_ray *rays, size_t n, rt_hit_d *hits,
+                          int any_hit, rt_trace_path path, rt_counters *c, uint64_t *packet_rays);
 
 /* The rest of a pixel's shading tree, as rt_shade_children (rt_shade.h)
  * computes it, every ray (and shadow ray) traced by the single-ray tracer

@@ -25,7 +25,6 @@ void rt_rays_random(const rt_flat *flat, uint32_t seed, size_t n, rt_ray *out);
  * place). */
 void rt_rays_diffuse(const rt_flat *flat, uint32_t seed, size_t n, rt_ray *out);
 
-
 /* Whether two answers of rt_trace_rays are the same bit for bit: the hit
  * flag, and for a closest hit t, u, v (bits), prim and inst (any: the flag
  * alone, as any-hit queries promise no particular hit). */

@@ -13,7 +13,7 @@ typedef void (*sw_trace_fn)(const rt_scene_view *, const rt_sw_bvh *, const rt_r
                             rt_hit_d *, rt_counters *);
 
 #define RT_SW_DECLARE(isa)                                                                         \
-    void rt_sw_trace_##isa(const rt_scene_view *s, const rt_sw_bvh *b, const rt_ray *rays,       \
+    void rt_sw_trace_##isa(const rt_scene_view *s, const rt_sw_bvh *b, const rt_ray *rays,         \
                            size_t n, int any_hit, rt_hit_d *hits, rt_counters *c);                 \
     int rt_sw_width_##isa(void);
 RT_SW_DECLARE(generic)

@@ -292,8 +292,8 @@ RT_FN void rt_shade_children(const rt_scene_view *s, const rt_shade_entry *child
 
 /* The colour seen along a primary ray whose closest hit is already known
  * (the root node, then rt_shade_children). */
-RT_FN void rt_shade_hit(const rt_scene_view *s, const rt_ray *primary,
-                        const rt_hit_d *primary_hit, rt_counters *c, float *rgb) {
+RT_FN void rt_shade_hit(const rt_scene_view *s, const rt_ray *primary, const rt_hit_d *primary_hit,
+                        rt_counters *c, float *rgb) {
     rt_shade_entry root;
     root.ray = *primary;
     root.w[0] = root.w[1] = root.w[2] = 1.0f;

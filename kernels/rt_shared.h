@@ -337,8 +337,8 @@ RT_FN int rt_box_test_bounds(RT_GLOBAL const float *bmin, RT_GLOBAL const float 
 }
 
 /* rt_box_test_bounds on a node's box. */
-RT_FN int rt_box_test(RT_GLOBAL const rt_node *n, const rt_ray *r, const rt_ray_pre *p,
-                      float tmin, float tmax, float *tnear) {
+RT_FN int rt_box_test(RT_GLOBAL const rt_node *n, const rt_ray *r, const rt_ray_pre *p, float tmin,
+                      float tmax, float *tnear) {
     return rt_box_test_bounds(n->bmin, n->bmax, r, p, tmin, tmax, tnear);
 }
 

@@ -17,7 +17,7 @@ static rt_tri make_tri(float ax, float ay, float az, float bx, float by, float b
 }
 
 static rt_ray make_ray(float ox, float oy, float oz, float dx, float dy, float dz, float tmin,
-                         float tmax) {
+                       float tmax) {
     rt_ray r = {{ox, oy, oz}, {dx, dy, dz}, tmin, tmax};
     return r;
 }

@@ -73,8 +73,8 @@ rt_status rt_embree_render(const rt_embree_scene *es, int lanes, rt_pool *pool, 
  * rtcOccluded1/4/8/16 (then only whether hits[i].prim != RT_NO_HIT is
  * set), with Embree's incoherent-ray hint, chunks of rays shared among the
  * pool's workers. *ms is the wall time of the whole. */
-rt_status rt_embree_trace_rays(const rt_embree_scene *es, const rt_ray *rays, size_t n,
-                               int any_hit, int lanes, rt_pool *pool, rt_hit_d *hits, double *ms);
+rt_status rt_embree_trace_rays(const rt_embree_scene *es, const rt_ray *rays, size_t n, int any_hit,
+                               int lanes, rt_pool *pool, rt_hit_d *hits, double *ms);
 
 /* Does the device trace packets of this width natively (1 always)? */
 int rt_embree_native_lanes(rt_embree *em, int lanes);

@@ -436,8 +436,8 @@ static void rays_worker(void *ctx, int worker, int workers) {
     }
 }
 
-rt_status rt_embree_trace_rays(const rt_embree_scene *es, const rt_ray *rays, size_t n,
-                               int any_hit, int lanes, rt_pool *pool, rt_hit_d *hits, double *ms) {
+rt_status rt_embree_trace_rays(const rt_embree_scene *es, const rt_ray *rays, size_t n, int any_hit,
+                               int lanes, rt_pool *pool, rt_hit_d *hits, double *ms) {
     if (lanes != 1 && lanes != 4 && lanes != 8 && lanes != 16) return RT_ERROR_INVALID_ARGUMENT;
     rays_job job;
     memset(&job, 0, sizeof job);

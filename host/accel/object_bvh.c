@@ -28,8 +28,8 @@ rt_aabb rt_aabb_transform(const rt_aabb *box, const float m[16]) {
 }
 
 rt_status rt_object_bvh_build(const rt_scene *scene, const rt_bvh *mesh_bvhs,
-                        const rt_build_options *options, rt_pool *pool, rt_bvh *out,
-                        rt_error *err) {
+                              const rt_build_options *options, rt_pool *pool, rt_bvh *out,
+                              rt_error *err) {
     if (!out) return RT_ERROR_INVALID_ARGUMENT;
     memset(out, 0, sizeof *out);
     if (!scene || (!mesh_bvhs && scene->mesh_count)) return RT_ERROR_INVALID_ARGUMENT;

@@ -21,6 +21,7 @@ rt_aabb rt_aabb_transform(const rt_aabb *box, const float m[16]);
  * holds object ids. options NULL: the default builder with one object per
  * leaf. Queued transforms are not applied here (rt_scene_commit does that). */
 rt_status rt_object_bvh_build(const rt_scene *scene, const rt_bvh *mesh_bvhs,
-                        const rt_build_options *options, rt_pool *pool, rt_bvh *out, rt_error *err);
+                              const rt_build_options *options, rt_pool *pool, rt_bvh *out,
+                              rt_error *err);
 
 #endif /* RT_OBJECT_BVH_H */
