@@ -97,6 +97,20 @@ int main(int argc, char **argv) {
                         "[--frames N] [--threads T] [--device D] OPTIONS...\n");
         return 2;
     }
+    /* The output folder is checked before anything is rendered. */
+    for (int k = 0; k < count; k++) {
+        char file[1024];
+        rt_error err;
+        int len = snprintf(file, sizeof file, "%s/%s.exr", out, vs[k].name);
+        if (len < 0 || (size_t)len >= sizeof file) {
+            fprintf(stderr, "bench_cl_options: output path too long\n");
+            return 2;
+        }
+        if (rt_image_check_output(file, &err) != RT_OK) {
+            fprintf(stderr, "bench_cl_options: %s\n", err.message);
+            return 2;
+        }
+    }
     char backend[160];
     snprintf(backend, sizeof backend, "opencl%s%s", device ? ":" : "", device ? device : "");
     for (int k = 0; k < count; k++) {

@@ -19,10 +19,10 @@ static const char *kind_of(mode_t mode) {
     return "not a regular file";
 }
 
-rt_status rt_read_file(const char *path, const char *what, uint64_t max_bytes, char **text,
-                       size_t *len, rt_error *err) {
-    *text = NULL;
-    *len = 0;
+rt_status rt_open_input(const char *path, const char *what, uint64_t max_bytes, int *fd_out,
+                        uint64_t *size_out, rt_error *err) {
+    *fd_out = -1;
+    *size_out = 0;
     /* O_NONBLOCK: opening a FIFO for reading would wait for a writer. */
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0)
@@ -48,6 +48,19 @@ rt_status rt_read_file(const char *path, const char *what, uint64_t max_bytes, c
                             "the %s is %llu bytes, more than the limit of %llu bytes", what,
                             (unsigned long long)size, (unsigned long long)max_bytes);
     }
+    *fd_out = fd;
+    *size_out = size;
+    return RT_OK;
+}
+
+rt_status rt_read_file(const char *path, const char *what, uint64_t max_bytes, char **text,
+                       size_t *len, rt_error *err) {
+    *text = NULL;
+    *len = 0;
+    int fd;
+    uint64_t size;
+    rt_status st = rt_open_input(path, what, max_bytes, &fd, &size, err);
+    if (st != RT_OK) return st;
     char *buf = malloc((size_t)size + 1);
     if (!buf) {
         close(fd);

@@ -14,6 +14,13 @@
 #define RT_MAX_SCENE_FILE_BYTES ((uint64_t)64 << 20) /* a .json scene: 64 MiB */
 #define RT_MAX_OBJ_FILE_BYTES   ((uint64_t)4 << 30)  /* an .obj or .mtl file: 4 GiB */
 #define RT_MAX_RAY_FILE_BYTES   ((uint64_t)4 << 30)  /* a ray file of rtcl trace: 4 GiB */
+#define RT_MAX_RAY_LINE_BYTES   ((size_t)1 << 20)    /* one line of a ray file: 1 MiB */
+
+/* Opens path for reading as rt_read_file does (only a regular file of at
+ * most max_bytes, never blocking on a FIFO; the same errors) and gives its
+ * descriptor (to close) and size, for readers that read a file in parts. */
+rt_status rt_open_input(const char *path, const char *what, uint64_t max_bytes, int *fd,
+                        uint64_t *size, rt_error *err);
 
 /* Reads the file at path into a new NUL-terminated buffer (*text, to free;
  * *len bytes without the terminator). what names the file's kind in

@@ -15,7 +15,7 @@
 static const char usage_head[] =
     "usage: rtcl animate SCENE --fps F (--duration S | --frames N) [--frame-range A:B]\n"
     "                    -o DIR/frame_%04d.png|VIDEO.mp4 [--update P] [--backend B] [--width W]\n"
-    "                    [--height H] [--direct] [--stats] [--help]\n"
+    "                    [--height H] [--direct] [--stats] [--metadata] [--help]\n"
     "\n"
     "Renders the frames of an animated scene (docs/SCENE_FORMAT.md, \"Time\"): frame k\n"
     "shows time k / F seconds. One renderer renders them in order, so each frame only\n"
@@ -49,6 +49,10 @@ static const char usage_head[] =
     "                 camera moved: no BVH touched, the layout's header alone rewritten\n"
     "                 and uploaded), upload bytes (device backends), build ms (all host\n"
     "                 work of the frame), render ms\n"
+    "  --metadata     record the time of writing and the software in PNG and EXR\n"
+    "                 frames (without it equal frames are equal files)\n"
+    "Each frame (and the video) is written whole or not at all: a failed or\n"
+    "interrupted write leaves an existing file of that name as it was.\n"
     "A progress bar appears on stderr when it is a terminal; nothing else is printed\n"
     "unless something fails.\n";
 
@@ -118,6 +122,7 @@ int cmd_animate(int argc, char **argv) {
     cli_renderer_args ra;
     cli_renderer_args_init(&ra);
     int width = 0, height = 0, stats = 0, frames = -1, first = 0, last = -1, has_update = 0;
+    int metadata = 0;
     double fps = 0.0, duration = -1.0;
     rt_update_policy update = RT_UPDATE_SAH;
     for (int i = 1; i < argc; i++) {
@@ -172,6 +177,8 @@ int cmd_animate(int argc, char **argv) {
             opt.direct_only = 1;
         } else if (!strcmp(a, "--stats")) {
             stats = 1;
+        } else if (!strcmp(a, "--metadata")) {
+            metadata = 1;
         } else if (a[0] == '-' && a[1]) {
             cli_error("animate", "unknown option '%s'", a);
             print_usage(stderr);
@@ -213,6 +220,15 @@ int cmd_animate(int argc, char **argv) {
                   "-o: '%s' must hold exactly one %%d conversion (e.g. frame_%%04d.png) and no "
                   "other %% but %%%%",
                   pattern);
+        return 2;
+    }
+    /* The output's folder and format are checked before any frame is made. */
+    char first_name[4096], why[2048];
+    frame_name(pattern, first, first_name, sizeof first_name);
+    rt_error oerr;
+    if (video ? !cli_video_check(pattern, why, sizeof why)
+              : rt_image_check_output(first_name, &oerr) != RT_OK) {
+        cli_error("animate", "-o %s: %s", pattern, video ? why : oerr.message);
         return 2;
     }
     if (frames < 0) {
@@ -257,7 +273,6 @@ int cmd_animate(int argc, char **argv) {
     memset(&fb, 0, sizeof fb);
     int shown_notice = 0;
     cli_video *vid = NULL;
-    char why[2048];
     for (int k = first; k <= last && !code; k++) {
         double t = (double)k / fps;
         if (rt_scene_set_time(scene, t) != RT_OK) {
@@ -295,7 +310,8 @@ int cmd_animate(int argc, char **argv) {
         char path[4096];
         frame_name(pattern, k, path, sizeof path);
         rt_image img = {fb.width, fb.height, fb.channels, fb.pixels};
-        if (!video && rt_image_write(path, &img, &err) != RT_OK) {
+        rt_image_write_options wopt = {metadata};
+        if (!video && rt_image_write_with(path, &img, &wopt, &err) != RT_OK) {
             cli_progress_done();
             cli_error("animate", "frame %d: %s", k, err.message);
             code = 2;

@@ -135,6 +135,12 @@ int cmd_compare(int argc, char **argv) {
     rt_image a = {0}, b = {0}, diff = {0};
     rt_error err;
     int exit_status = 2;
+    /* The difference image's folder and format are checked before the
+     * images are read. */
+    if (options.diff_path && rt_image_check_output(options.diff_path, &err) != RT_OK) {
+        fprintf(stderr, "rtcl compare: cannot write the difference image: %s\n", err.message);
+        goto done;
+    }
     if (rt_image_read(options.paths[0], &a, &err) != RT_OK ||
         rt_image_read(options.paths[1], &b, &err) != RT_OK) {
         fprintf(stderr, "rtcl compare: %s\n", err.message);

@@ -11,7 +11,8 @@ static const char usage[] =
     "usage: rtcl generate DIR\n"
     "\n"
     "Writes every built-in scene (cornell, keyframes) into the existing folder DIR\n"
-    "as NAME.json plus one NAME_MESH.obj per mesh. The files in scenes/ were made\n"
+    "as NAME.json plus one NAME_MESH.obj per mesh, each file written whole or not at\n"
+    "all (a failed write leaves an existing file as it was). The files in scenes/ were made\n"
     "this way; loading them gives the same scene, bit for bit, as builtin:NAME.\n";
 
 int cmd_generate(int argc, char **argv) {
@@ -29,6 +30,12 @@ int cmd_generate(int argc, char **argv) {
     }
     if (!dir) {
         fputs(usage, stderr);
+        return 2;
+    }
+    /* The folder is checked before any scene is made. */
+    rt_error check;
+    if (rt_scene_save_check(dir, rt_builtin_scene_names[0], &check) != RT_OK) {
+        cli_error("generate", "%s", check.message);
         return 2;
     }
     for (int k = 0; rt_builtin_scene_names[k]; k++) {

@@ -11,7 +11,7 @@
 static const char usage_head[] =
     "usage: rtcl render SCENE [-o FILE] [--backend B] [--device D] [--width W] [--height H]\n"
     "                   [--aov AOV] [--threads N] [--frames N] [--direct] [--time T]\n"
-    "                   [--update P] [--accel A]\n"
+    "                   [--update P] [--accel A] [--metadata]\n"
     "                   [--cl-options OPTS] [--packet-isa I] [--stats] [--verbose] [--help]\n"
     "\n"
     "Renders SCENE (a .json scene, a bare .obj, or builtin:NAME) with Whitted-style\n"
@@ -19,7 +19,10 @@ static const char usage_head[] =
     "after SCENE.\n"
     "\n"
     "  -o FILE        output image, format by extension: .png, .ppm (8-bit, clamped),\n"
-    "                 .exr (32-bit float, linear) [out.png]\n"
+    "                 .exr (32-bit float, linear) [out.png]; written whole or not at\n"
+    "                 all: a failed write leaves an existing FILE as it was\n"
+    "  --metadata     record the time of writing and the software in PNG and EXR\n"
+    "                 files (without it equal images are equal files)\n"
     "  --width W, --height H\n"
     "                 resolution, overriding the scene's camera\n"
     "  --aov AOV      write an arbitrary output variable instead of the image:\n"
@@ -102,6 +105,7 @@ static void print_stats(const rt_render_stats *s, int width, int height) {
 
 int cmd_render(int argc, char **argv) {
     const char *scene_path = NULL, *out_path = "out.png";
+    int metadata = 0;
     rt_render_options opt = rt_render_options_default();
     cli_renderer_args ra;
     cli_renderer_args_init(&ra);
@@ -139,6 +143,8 @@ int cmd_render(int argc, char **argv) {
             if (!(v = cli_value(argc, argv, &i, "render")) ||
                 !cli_int("render", a, v, 1, 1000, &frames))
                 return 2;
+        } else if (!strcmp(a, "--metadata")) {
+            metadata = 1;
         } else if (!strcmp(a, "--stats")) {
             stats = 1;
         } else if (!strcmp(a, "--time")) {
@@ -168,11 +174,16 @@ int cmd_render(int argc, char **argv) {
         print_usage(stderr);
         return 2;
     }
+    rt_error err;
+    /* The output's folder and format are checked before the frame is made. */
+    if (cli_frame_check(out_path, &err) != RT_OK) {
+        cli_error("render", "%s", err.message);
+        return 2;
+    }
     rt_renderer *renderer = cli_renderer_create("render", &ra);
     if (!renderer) return 2;
 
     rt_scene *scene;
-    rt_error err;
     if (cli_load_scene(scene_path, &scene, &err) != RT_OK) {
         cli_error("render", "%s", err.message);
         rt_renderer_destroy(renderer);
@@ -244,7 +255,7 @@ int cmd_render(int argc, char **argv) {
         free(ms);
     }
     if (st.notice) fprintf(stderr, "rtcl render: notice: %s\n", st.notice);
-    status = cli_frame_write(out_path, &fb, opt.aov, &err);
+    status = cli_frame_write(out_path, &fb, opt.aov, metadata, &err);
     rt_framebuffer_free(&fb);
     if (status != RT_OK) {
         cli_error("render", "%s", err.message);

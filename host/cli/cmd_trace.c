@@ -167,6 +167,12 @@ int cmd_trace(int argc, char **argv) {
         print_usage(stderr);
         return 2;
     }
+    /* The output is checked before the rays are read and traced. */
+    rt_error oerr;
+    if (out_path && rt_hits_check_output(out_path, &oerr) != RT_OK) {
+        cli_error("trace", "%s", oerr.message);
+        return 2;
+    }
     rt_renderer *renderer = cli_renderer_create("trace", &ra);
     if (!renderer) return 2;
     rt_ray *rays = NULL;
@@ -223,30 +229,9 @@ int cmd_trace(int argc, char **argv) {
         rt_scene_destroy(scene);
         return 0;
     }
-    FILE *f = fopen(out_path, "w");
-    if (!f) {
-        cli_error("trace", "%s: cannot write: %s", out_path, strerror(errno));
-        free(rays);
-        free(hits);
-        rt_scene_destroy(scene);
-        return 2;
-    }
-    for (size_t i = 0; i < n; i++) {
-        const rt_hit *h = &hits[i];
-        if (h->hit)
-            fprintf(f, "1 %.9g %.9g %.9g %u", h->t, h->u, h->v, h->prim);
-        else
-            fputs("0 inf 0 0 -1", f);
-        if (with_inst) {
-            if (h->hit)
-                fprintf(f, " %u", h->inst);
-            else
-                fputs(" -1", f);
-        }
-        fputc('\n', f);
-    }
-    int bad = fclose(f) != 0;
-    if (bad) cli_error("trace", "%s: write failed", out_path);
+    rt_error werr;
+    int bad = rt_hits_write(out_path, hits, n, with_inst, &werr) != RT_OK;
+    if (bad) cli_error("trace", "%s", werr.message);
     free(rays);
     free(hits);
     rt_scene_destroy(scene);

@@ -73,7 +73,12 @@ float *cli_aov_to_display(const rt_framebuffer *fb, rt_aov aov) {
     return rgb;
 }
 
-rt_status cli_frame_write(const char *path, const rt_framebuffer *fb, rt_aov aov, rt_error *err) {
+rt_status cli_frame_check(const char *path, rt_error *err) {
+    return rt_image_check_output(path, err);
+}
+
+rt_status cli_frame_write(const char *path, const rt_framebuffer *fb, rt_aov aov, int metadata,
+                          rt_error *err) {
     rt_image img = {fb->width, fb->height, fb->channels, fb->pixels};
     float *display = NULL;
     if (aov != RT_AOV_NONE && !cli_is_float_format(path)) {
@@ -87,7 +92,8 @@ rt_status cli_frame_write(const char *path, const rt_framebuffer *fb, rt_aov aov
         img.channels = 3;
         img.pixels = display;
     }
-    rt_status status = rt_image_write(path, &img, err);
+    rt_image_write_options options = {metadata};
+    rt_status status = rt_image_write_with(path, &img, &options, err);
     free(display);
     return status;
 }

@@ -22,7 +22,14 @@ int cli_is_float_format(const char *path);
 float *cli_aov_to_display(const rt_framebuffer *fb, rt_aov aov);
 
 /* Writes fb to path by its extension: the shaded image as it is; an AOV raw
- * in .exr, else through cli_aov_to_display. err names the file on failure. */
-rt_status cli_frame_write(const char *path, const rt_framebuffer *fb, rt_aov aov, rt_error *err);
+ * in .exr, else through cli_aov_to_display. metadata: the time of writing
+ * and the software in PNG and EXR files (rt_image_write_options). Whole or
+ * not at all; err names the file on failure. */
+rt_status cli_frame_write(const char *path, const rt_framebuffer *fb, rt_aov aov, int metadata,
+                          rt_error *err);
+
+/* Whether cli_frame_write could write path (format and folder), checked
+ * before the frame is rendered: RT_OK or the fault in err. */
+rt_status cli_frame_check(const char *path, rt_error *err);
 
 #endif /* RTCL_FRAME_IMAGE_H */

@@ -19,6 +19,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "base/atomic_file.h"
+
 extern char **environ;
 
 struct cli_video {
@@ -28,6 +30,10 @@ struct cli_video {
     int width, height;
     unsigned char *frame; /* one frame in rgb24 */
     struct sigaction old_pipe;
+    /* ffmpeg writes a temporary beside the target (with its extension, so
+     * the container is the same), renamed over it once ffmpeg has succeeded:
+     * a failed or killed encode leaves an existing video as it was. */
+    rt_atomic_file out;
 };
 
 static const char no_ffmpeg[] =
@@ -61,6 +67,13 @@ int cli_have_ffmpeg(void) {
         if (!end) return 0;
         p = end + 1;
     }
+}
+
+int cli_video_check(const char *path, char *why, size_t cap) {
+    rt_error err;
+    if (rt_atomic_file_check(path, "video", &err) == RT_OK) return 1;
+    snprintf(why, cap, "%s", err.message);
+    return 0;
 }
 
 static void close_on_exec(int fd) {
@@ -171,7 +184,9 @@ static void describe(cli_video *v, int status, const char *what, char *why, size
     why[at] = '\0';
 }
 
+/* Frees v; its temporary video, unless committed, is removed. */
 static void release(cli_video *v) {
+    rt_atomic_file_discard(&v->out);
     if (v->in >= 0) close(v->in);
     if (v->log) fclose(v->log);
     sigaction(SIGPIPE, &v->old_pipe, NULL);
@@ -204,20 +219,34 @@ cli_video *cli_video_open(const char *path, int width, int height, double fps, c
     char size[32], rate[40];
     snprintf(size, sizeof size, "%dx%d", width, height);
     snprintf(rate, sizeof rate, "%.17g", fps);
-    size_t url_len = strlen(path) + 6;
-    char *url = malloc(url_len);
     cli_video *v = calloc(1, sizeof *v);
     if (v) v->frame = malloc((size_t)width * (size_t)height * 3);
-    if (!url || !v || !v->frame) {
-        free(url);
+    if (!v || !v->frame) {
         if (v) free(v->frame);
+        free(v);
+        snprintf(why, cap, "out of memory");
+        return NULL;
+    }
+    rt_error err;
+    if (rt_atomic_file_reserve(&v->out, path, "video", &err) != RT_OK) {
+        snprintf(why, cap, "%s", err.message);
+        free(v->frame);
+        free(v);
+        return NULL;
+    }
+    const char *file = v->out.temp ? v->out.temp : v->out.target;
+    size_t url_len = strlen(file) + 6;
+    char *url = malloc(url_len);
+    if (!url) {
+        rt_atomic_file_discard(&v->out);
+        free(v->frame);
         free(v);
         snprintf(why, cap, "out of memory");
         return NULL;
     }
     /* A file: URL: a path starting with '-' is no option, one with a colon
      * no protocol. */
-    snprintf(url, url_len, "file:%s", path);
+    snprintf(url, url_len, "file:%s", file);
     char *argv[48];
     int n = 0;
     char *head[] = {"ffmpeg", "-hide_banner", "-loglevel", "error", "-nostats", "-y",
@@ -259,6 +288,7 @@ cli_video *cli_video_open(const char *path, int width, int height, double fps, c
     if (!v->log || pipe(fds) != 0) {
         snprintf(why, cap, "cannot start ffmpeg: %s", strerror(errno));
         if (v->log) fclose(v->log);
+        rt_atomic_file_discard(&v->out);
         free(v->frame);
         free(v);
         free(url);
@@ -329,6 +359,11 @@ int cli_video_close(cli_video *v, char *why, size_t cap) {
     if (v->log && fflush(v->log) == 0 && fseek(v->log, 0, SEEK_END) == 0) logged = ftell(v->log);
     int ok = WIFEXITED(status) && WEXITSTATUS(status) == 0 && logged == 0;
     if (!ok) describe(v, status, "the video could not be written", why, cap);
+    rt_error err;
+    if (ok && rt_atomic_file_commit(&v->out, &err) != RT_OK) {
+        snprintf(why, cap, "%s", err.message);
+        ok = 0;
+    }
     release(v);
     return ok;
 }

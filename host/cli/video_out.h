@@ -16,7 +16,13 @@ int cli_is_video_path(const char *path);
 /* 1 when an executable ffmpeg is on PATH. */
 int cli_have_ffmpeg(void);
 
-/* Starts ffmpeg writing path (overwritten if it exists) from width x height
+/* 1 when path could be written as a video (its folder exists and is
+ * writable), checked before the frames are made; else 0 with the reason in
+ * why. */
+int cli_video_check(const char *path, char *why, size_t cap);
+
+/* Starts ffmpeg writing path (replaced once the video is complete: ffmpeg
+ * writes a temporary beside it, base/atomic_file.h) from width x height
  * RGB frames at fps: H.264 (libx264) in .mp4 and .mkv where this ffmpeg has
  * it, else MPEG-4 part 2; VP9 (else VP8) in .webm; 4:2:0 chroma, padded by a
  * black column or row to even sides when odd. path reaches ffmpeg as one
@@ -31,11 +37,13 @@ cli_video *cli_video_open(const char *path, int width, int height, double fps, c
  * in why when ffmpeg failed (it is then waited for; call cli_video_abort). */
 int cli_video_write(cli_video *video, const float *rgb, char *why, size_t cap);
 
-/* Ends the stream, waits for ffmpeg and frees video. 1 when the video was
- * written; 0 with the reason (ffmpeg's own messages included) in why. */
+/* Ends the stream, waits for ffmpeg, puts the video in place and frees
+ * video. 1 when the video was written; 0 with the reason (ffmpeg's own
+ * messages included) in why, an existing file at the path untouched. */
 int cli_video_close(cli_video *video, char *why, size_t cap);
 
-/* Stops ffmpeg without finishing the video and frees video (NULL: nothing). */
+/* Stops ffmpeg without finishing the video, removes its temporary and frees
+ * video (NULL: nothing); an existing file at the path is untouched. */
 void cli_video_abort(cli_video *video);
 
 #endif /* RTCL_VIDEO_OUT_H */

@@ -11,6 +11,7 @@
 #include <strings.h>
 #include <unistd.h>
 
+#include "base/atomic_file.h"
 #include "base/error.h"
 #include "base/file_read.h"
 #include "formats/image_module.h"
@@ -54,68 +55,69 @@ static rt_status check_image(const rt_image *image, const char *what, const char
     return RT_OK;
 }
 
-/* " (folder F: reason)" when the file's folder is not writable, else "". */
-static void folder_problem(const char *path, char *out, size_t size) {
-    char folder[1024];
-    snprintf(folder, sizeof folder, "%s", path);
-    char *slash = strrchr(folder, '/');
-    if (!slash)
-        snprintf(folder, sizeof folder, ".");
-    else
-        slash[slash == folder ? 1 : 0] = '\0';
-    out[0] = '\0';
-    if (access(folder, W_OK) != 0) snprintf(out, size, " (folder %s: %s)", folder, strerror(errno));
-}
-
-/* Writes the encoded file: open, write, flush and close each checked, so a
- * full disk (ENOSPC) or an i/o error is reported, never a truncated file. */
-static rt_status write_bytes(const char *path, const unsigned char *data, size_t size,
-                             rt_error *err) {
-    FILE *f = fopen(path, "wb");
-    if (!f) {
-        int e = errno;
-        char folder[1200];
-        folder_problem(path, folder, sizeof folder);
-        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot open for writing: %s%s",
-                            strerror(e), folder);
+/* The format of path's extension, checked for writing: RT_OK, or
+ * RT_ERROR_UNSUPPORTED naming the known ones (and, for PNG and EXR, why the
+ * image module cannot be had). */
+static rt_status check_format(const char *path, file_kind *kind, const rt_image_module **module,
+                              rt_error *err) {
+    *kind = kind_of(path);
+    *module = NULL;
+    if (*kind == KIND_UNKNOWN)
+        return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
+                            "unknown image file extension (supported: .png, .ppm, .pgm, .pfm, "
+                            ".exr)");
+    if (*kind == KIND_PNG || *kind == KIND_EXR) {
+        rt_error why;
+        *module = rt_image_module_get(&why);
+        if (!*module)
+            return rt_error_set(err, why.status, path, 0, 0, "cannot write %s: %s",
+                                *kind == KIND_PNG ? "PNG" : "EXR", why.message);
     }
-    size_t put = size ? fwrite(data, 1, size, f) : 0;
-    int e = put == size ? 0 : errno;
-    if (fflush(f) != 0 && !e) e = errno;
-    if (ferror(f) && !e) e = EIO;
-    if (fclose(f) != 0 && !e) e = errno;
-    if (e)
-        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot write the file: %s", strerror(e));
     return RT_OK;
 }
 
+rt_status rt_image_check_output(const char *path, rt_error *err) {
+    if (!path || !path[0])
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, NULL, 0, 0, "no output file name");
+    file_kind kind;
+    const rt_image_module *module;
+    rt_status st = check_format(path, &kind, &module, err);
+    if (st == RT_OK) st = rt_atomic_file_check(path, "image file", err);
+    return st;
+}
+
 rt_status rt_image_write(const char *path, const rt_image *image, rt_error *err) {
+    return rt_image_write_with(path, image, NULL, err);
+}
+
+rt_status rt_image_write_with(const char *path, const rt_image *image,
+                              const rt_image_write_options *options, rt_error *err) {
     if (!path || !path[0])
         return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, NULL, 0, 0, "no output file name");
     size_t count = 0;
     rt_status st = check_image(image, "the", path, &count, err);
     if (st != RT_OK) return st;
-    file_kind kind = kind_of(path);
-    if (kind == KIND_UNKNOWN)
-        return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
-                            "unknown image file extension (supported: .png, .ppm, .pfm, .exr)");
-    if (kind == KIND_PNG || kind == KIND_EXR) {
-        rt_error why;
-        const rt_image_module *module = rt_image_module_get(&why);
-        if (!module)
-            return rt_error_set(err, why.status, path, 0, 0, "cannot write %s: %s",
-                                kind == KIND_PNG ? "PNG" : "EXR", why.message);
-        return module->write(path, image, err);
+    file_kind kind;
+    const rt_image_module *module;
+    st = check_format(path, &kind, &module, err);
+    if (st != RT_OK) return st;
+    if (kind == KIND_PPM || kind == KIND_PFM) {
+        if (image->channels != 1 && image->channels != 3)
+            return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
+                                "%s holds 1 or 3 channels, not %d (use .png or .exr)",
+                                kind == KIND_PPM ? "PPM" : "PFM", image->channels);
     }
-    if (image->channels != 1 && image->channels != 3)
-        return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
-                            "%s holds 1 or 3 channels, not %d (use .png or .exr)",
-                            kind == KIND_PPM ? "PPM" : "PFM", image->channels);
+    /* The whole file is encoded in memory, then written by the one writer
+     * of every output (base/atomic_file.h): complete or not at all. */
     unsigned char *bytes = NULL;
     size_t size = 0;
-    st = kind == KIND_PPM ? rt_pnm_encode(path, image, &bytes, &size, err)
-                          : rt_pfm_encode(path, image, &bytes, &size, err);
-    if (st == RT_OK) st = write_bytes(path, bytes, size, err);
+    if (module)
+        st = module->encode(path, image, options && options->metadata, &bytes, &size, err);
+    else if (kind == KIND_PPM)
+        st = rt_pnm_encode(path, image, &bytes, &size, err);
+    else
+        st = rt_pfm_encode(path, image, &bytes, &size, err);
+    if (st == RT_OK) st = rt_atomic_file_write(path, "image file", bytes, size, err);
     free(bytes);
     return st;
 }

@@ -29,8 +29,29 @@ typedef struct rt_image {
  * with other than 1 (written as grey, P5 or Pf) or 3 channels. NaN is stored
  * as 0 in 8-bit files. An alpha channel is stored as given, never
  * premultiplied. A file that cannot be created or written in full is
- * RT_ERROR_IO with the system's reason. */
+ * RT_ERROR_IO with the system's reason. The file is written whole or not
+ * at all (base/atomic_file.h): on any failure an existing file at path is
+ * left as it was. No time stamp or other varying field is written, so equal
+ * pixels give equal files. */
 rt_status rt_image_write(const char *path, const rt_image *image, rt_error *err);
+
+typedef struct rt_image_write_options {
+    /* 1: PNG and EXR files record when they were written (EXR capDate, PNG
+     * "Creation Time") and the software ("rtcl"), so two writes of one
+     * image differ; PPM and PFM have no place for either. 0 (the default):
+     * neither is written. */
+    int metadata;
+} rt_image_write_options;
+
+/* rt_image_write with options (NULL: the defaults). */
+rt_status rt_image_write_with(const char *path, const rt_image *image,
+                              const rt_image_write_options *options, rt_error *err);
+
+/* Whether rt_image_write could write path, checked before the work that
+ * makes the image: a known extension, the image module for PNG and EXR,
+ * and a folder that exists and is writable (rt_atomic_file_check). RT_OK or
+ * rt_image_write's error for that fault. Nothing is created. */
+rt_status rt_image_check_output(const char *path, rt_error *err);
 
 /* Reads an image as floats in [0,1] for 8-bit files; the format is told by
  * the file's first bytes (PPM/PGM and PFM here, anything else through the

@@ -52,7 +52,7 @@ static int try_module(const char *path, int must_exist) {
     memcpy(&entry, &symbol, sizeof entry); /* object to function pointer, as POSIX allows */
     const rt_image_module *table = entry ? entry() : NULL;
     if (!table || table->abi != RT_IMAGE_MODULE_ABI || table->image_size != sizeof(rt_image) ||
-        table->error_size != sizeof(rt_error) || !table->read || !table->write) {
+        table->error_size != sizeof(rt_error) || !table->read || !table->encode) {
         snprintf(module_reason, sizeof module_reason,
                  "%.500s is not this version's image module (interface %d, expected %d): "
                  "reinstall rtcl",

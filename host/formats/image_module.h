@@ -21,7 +21,7 @@ extern "C" {
 
 /* Bumped whenever the table or the structs it passes change; the loader
  * refuses a module of another version (a stale install) by name. */
-#define RT_IMAGE_MODULE_ABI 1
+#define RT_IMAGE_MODULE_ABI 2
 
 #define RT_IMAGE_MODULE_FILE   "librtcl_image.so"
 #define RT_IMAGE_MODULE_SYMBOL "rtcl_image_module"
@@ -31,9 +31,13 @@ typedef struct rt_image_module {
     size_t image_size;   /* sizeof(rt_image) there */
     size_t error_size;   /* sizeof(rt_error) there */
     const char *library; /* what it encodes with, "OpenImageIO 2.4.7" */
-    /* rt_image_write and rt_image_read's contracts (image.h), for the
-     * formats the module handles; read takes any image OIIO reads. */
-    rt_status (*write)(const char *path, const rt_image *image, rt_error *err);
+    /* Encodes image in the format of path's extension (PNG or EXR) into a
+     * new buffer (*bytes, to free() by the caller; *size bytes); nothing is
+     * written: the library writes the file (base/atomic_file.h). metadata:
+     * rt_image_write_options.metadata. rt_image_write's errors otherwise. */
+    rt_status (*encode)(const char *path, const rt_image *image, int metadata,
+                        unsigned char **bytes, size_t *size, rt_error *err);
+    /* rt_image_read's contract (image.h); it takes any image OIIO reads. */
     rt_status (*read)(const char *path, rt_image *out, rt_error *err);
 } rt_image_module;
 

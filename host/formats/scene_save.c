@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/atomic_file.h"
 #include "base/error.h"
 #include "scene/scene.h"
 
@@ -28,10 +29,13 @@ static void write_vec3(FILE *f, const float v[3]) {
     fputc(']', f);
 }
 
+/* Writes one mesh as an OBJ file, whole or not at all. */
 static rt_status write_obj(const rt_mesh_data *m, const char *mesh_name, const char *path,
                            rt_error *err) {
-    FILE *f = fopen(path, "wb");
-    if (!f) return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot write: %s", strerror(errno));
+    rt_atomic_file out;
+    rt_status st = rt_atomic_file_open(&out, path, "OBJ file", err);
+    if (st != RT_OK) return st;
+    FILE *f = out.stream;
     fprintf(f, "# %s: %u vertices, %u triangles, written by rtcl\n", mesh_name, m->vertex_count,
             m->triangle_count);
     for (uint32_t v = 0; v < m->vertex_count; v++) {
@@ -51,10 +55,7 @@ static rt_status write_obj(const rt_mesh_data *m, const char *mesh_name, const c
         else
             fprintf(f, "f %u %u %u\n", i[0] + 1, i[1] + 1, i[2] + 1);
     }
-    int bad = ferror(f);
-    if (fclose(f) != 0 || bad)
-        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "write failed: %s", strerror(errno));
-    return RT_OK;
+    return rt_atomic_file_commit(&out, err);
 }
 
 /* A mesh name that can be a JSON key and part of a file name as it is. */
@@ -171,6 +172,21 @@ static const char *saved_name(const rt_scene *s, int usable, uint32_t i, char bu
     return buf;
 }
 
+/* dir/stem.ext into path (cap bytes); 0 when it does not fit. */
+static int path_fits(char *path, size_t cap, const char *dir, const char *stem, const char *ext) {
+    int n = snprintf(path, cap, "%s/%s%s", dir, stem, ext);
+    return n >= 0 && (size_t)n < cap;
+}
+
+rt_status rt_scene_save_check(const char *dir, const char *name, rt_error *err) {
+    char path[1024];
+    if (!dir || !name || !path_fits(path, sizeof path, dir, name, ".json"))
+        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, dir, 0, 0,
+                            "the folder and scene name make a path longer than %zu bytes",
+                            sizeof path - 1);
+    return rt_atomic_file_check(path, "scene file", err);
+}
+
 rt_status rt_scene_save_json(const rt_scene *s, const char *dir, const char *name, rt_error *err) {
     char path[1024], mesh_name[32], other_name[32];
     int usable;
@@ -179,28 +195,42 @@ rt_status rt_scene_save_json(const rt_scene *s, const char *dir, const char *nam
         free(blend);
         return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, NULL, 0, 0, "out of memory");
     }
+    /* Everything that can refuse the scene is checked before any file is
+     * written, so a refused scene leaves no files behind. */
     rt_status st = RT_OK;
-    for (uint32_t i = 0; i < s->mesh_count && st == RT_OK; i++) {
-        if (blend[i]) continue;
-        if (s->meshes[i].tri_materials) {
+    for (uint32_t i = 0; i < s->mesh_count && st == RT_OK; i++)
+        if (!blend[i] && s->meshes[i].tri_materials)
             st = rt_error_set(err, RT_ERROR_UNSUPPORTED, NULL, 0, 0,
                               "mesh %u has per-triangle materials, which JSON cannot express", i);
-            break;
-        }
+    if (st == RT_OK && !path_fits(path, sizeof path, dir, name, ".json"))
+        st = rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, dir, 0, 0,
+                          "the folder and scene name make a path longer than %zu bytes",
+                          sizeof path - 1);
+    if (st == RT_OK) st = rt_atomic_file_check(path, "scene file", err);
+    for (uint32_t i = 0; i < s->mesh_count && st == RT_OK; i++) {
+        if (blend[i]) continue;
         const char *mesh = saved_name(s, usable, i, mesh_name);
-        snprintf(path, sizeof path, "%s/%s_%s.obj", dir, name, mesh);
-        st = write_obj(&s->meshes[i], mesh, path, err);
+        char obj_name[600];
+        snprintf(obj_name, sizeof obj_name, "%s_%s", name, mesh);
+        if (!path_fits(path, sizeof path, dir, obj_name, ".obj"))
+            st = rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, dir, 0, 0,
+                              "the folder and mesh name make a path longer than %zu bytes",
+                              sizeof path - 1);
+        else
+            st = write_obj(&s->meshes[i], mesh, path, err);
     }
     if (st != RT_OK) {
         free(blend);
         return st;
     }
-    snprintf(path, sizeof path, "%s/%s.json", dir, name);
-    FILE *f = fopen(path, "wb");
-    if (!f) {
+    path_fits(path, sizeof path, dir, name, ".json");
+    rt_atomic_file out;
+    st = rt_atomic_file_open(&out, path, "scene file", err);
+    if (st != RT_OK) {
         free(blend);
-        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot write: %s", strerror(errno));
+        return st;
     }
+    FILE *f = out.stream;
     write_camera(f, s);
     fprintf(f, "  \"background\": ");
     write_vec3(f, s->background);
@@ -276,8 +306,5 @@ rt_status rt_scene_save_json(const rt_scene *s, const char *dir, const char *nam
     }
     fprintf(f, "  ]\n}\n");
     free(blend);
-    int bad = ferror(f);
-    if (fclose(f) != 0 || bad)
-        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "write failed: %s", strerror(errno));
-    return RT_OK;
+    return rt_atomic_file_commit(&out, err);
 }

@@ -13,8 +13,16 @@
  * "animation" and "transform_keys", the camera's "path", meshes' "update"
  * and "accel"; the blend meshes of morphing objects are left out (the loader
  * makes them again), so that the saved scene renders at every time as the
- * scene does. */
+ * scene does. Each file is written whole or not at all
+ * (base/atomic_file.h), the OBJ files first and the JSON file, which names
+ * them, last; a scene that cannot be saved (per-triangle materials, a path
+ * too long) is refused before any file is written. */
 rt_status rt_scene_save_json(const rt_scene *scene, const char *dir, const char *name,
                              rt_error *err);
+
+/* Whether rt_scene_save_json could write into dir (checked before the work
+ * that makes the scene): dir is an existing, writable folder and
+ * dir/name.json fits a path. RT_OK, or the fault with the folder named. */
+rt_status rt_scene_save_check(const char *dir, const char *name, rt_error *err);
 
 #endif /* RT_SCENE_SAVE_H */

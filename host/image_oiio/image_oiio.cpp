@@ -1,5 +1,5 @@
 // image_oiio.cpp - the image module (librtcl_image.so, formats/image_module.h):
-// PNG and EXR writing, and reading any format, over OpenImageIO 2.4.
+// PNG and EXR encoding, and reading any format, over OpenImageIO 2.4.
 //
 // This is the project's only C++: it turns OIIO's C++ interface into plain C
 // calls. It is a module of its own, loaded by the library on the first PNG or
@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <limits>
 #include <memory>
 #include <new>
@@ -101,35 +102,17 @@ unsigned char to_8bit(float v) {
     return static_cast<unsigned char>(std::floor(static_cast<double>(v) * 255.0 + 0.5));
 }
 
-// Some OIIO writers (PNG) do not say why a file could not be created; the
-// usual reason is the folder, so that is checked and named.
-std::string folder_problem(const char *path) {
-    std::string folder(path);
-    size_t slash = folder.rfind('/');
-    folder = slash == std::string::npos ? std::string(".") : folder.substr(0, slash ? slash : 1);
-    if (access(folder.c_str(), W_OK) == 0) return std::string();
-    return " (folder " + folder + ": " + std::strerror(errno) + ")";
+// The time now as OIIO's "DateTime" wants it: "YYYY:MM:DD hh:mm:ss", local.
+std::string time_stamp() {
+    std::time_t now = std::time(nullptr);
+    std::tm local;
+    char text[32] = "";
+    if (localtime_r(&now, &local)) std::strftime(text, sizeof text, "%Y:%m:%d %H:%M:%S", &local);
+    return text;
 }
 
-// Writes the encoded file: open, write, flush and close each checked, so a
-// full disk (ENOSPC) or an i/o error is reported, never a truncated file.
-rt_status write_bytes(const char *path, const std::vector<unsigned char> &data, rt_error *err) {
-    std::FILE *f = std::fopen(path, "wb");
-    if (!f)
-        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot open for writing: %s%s",
-                            std::strerror(errno), folder_problem(path).c_str());
-    size_t put = data.empty() ? 0 : std::fwrite(data.data(), 1, data.size(), f);
-    int e = put == data.size() ? 0 : errno;
-    if (std::fflush(f) != 0 && !e) e = errno;
-    if (std::ferror(f) && !e) e = EIO;
-    if (std::fclose(f) != 0 && !e) e = errno;
-    if (e)
-        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot write the file: %s",
-                            std::strerror(e));
-    return RT_OK;
-}
-
-rt_status write_image(const char *path, const rt_image *image, rt_error *err) {
+rt_status encode_image(const char *path, const rt_image *image, int metadata,
+                       unsigned char **bytes_out, size_t *size_out, rt_error *err) {
     size_t count = 0;
     rt_status status = check_image(image, "the", path, &count, err);
     if (status != RT_OK) return status;
@@ -144,6 +127,19 @@ rt_status write_image(const char *path, const rt_image *image, rt_error *err) {
     // The colour channels are stored as given: an alpha channel is not
     // premultiplied into them.
     spec.attribute("oiio:UnassociatedAlpha", 1);
+    if (metadata) {
+        spec.attribute("Software", "rtcl");
+        spec.attribute("DateTime", time_stamp());
+    } else {
+        // OpenImageIO's EXR writer stamps capDate with the time unless the
+        // spec has a DateTime; an integer one keeps it from doing so and is
+        // dropped as the wrong type for capDate, so the file holds no time
+        // (tests/cli_outputs.sh checks that two writes are the same bytes).
+        // Its note about the drop is a debug message, printed unless OIIO's
+        // debug output is off: the library never prints.
+        OIIO::attribute("debug", 0);
+        spec.attribute("DateTime", 0);
+    }
 
     std::unique_ptr<unsigned char[]> bytes;
     if (eight_bit) {
@@ -154,10 +150,10 @@ rt_status write_image(const char *path, const rt_image *image, rt_error *err) {
         for (size_t i = 0; i < count; i++) bytes[i] = to_8bit(image->pixels[i]);
     }
 
-    // OpenImageIO encodes into memory (its IOProxy); the file is then written
-    // here with every error checked. OIIO's PNG writer drops write errors (a
-    // full disk gave a truncated file and success); this way every format
-    // reports them alike, with the system's reason (ENOSPC, EIO, ...).
+    // OpenImageIO encodes into memory (its IOProxy); the library then writes
+    // the file with every error checked (OIIO's PNG writer drops write
+    // errors: a full disk gave a truncated file and success), whole or not
+    // at all (base/atomic_file.h).
     clear_global_error();
     auto out = OIIO::ImageOutput::create(path);
     if (!out)
@@ -182,7 +178,15 @@ rt_status write_image(const char *path, const rt_image *image, rt_error *err) {
     if (!closed)
         return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot finish the file: %s",
                             one_line(out->geterror()).c_str());
-    return write_bytes(path, encoded, err);
+    // malloc'ed: the library frees it with free().
+    unsigned char *file = static_cast<unsigned char *>(std::malloc(encoded.size() + 1));
+    if (!file)
+        return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0,
+                            "no memory for the %zu bytes of the encoded file", encoded.size());
+    if (!encoded.empty()) std::memcpy(file, encoded.data(), encoded.size());
+    *bytes_out = file;
+    *size_out = encoded.size();
+    return RT_OK;
 }
 
 // ---- a structural check of PNG files -------------------------------------
@@ -377,11 +381,14 @@ rt_status exception_error(rt_error *err, const char *path, const char *what) {
 
 namespace {
 
-rt_status module_write(const char *path, const rt_image *image, rt_error *err) {
+rt_status module_encode(const char *path, const rt_image *image, int metadata,
+                        unsigned char **bytes, size_t *size, rt_error *err) {
+    *bytes = nullptr;
+    *size = 0;
     if (!path || !path[0])
         return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, nullptr, 0, 0, "no output file name");
     try {
-        return write_image(path, image, err);
+        return encode_image(path, image, metadata, bytes, size, err);
     } catch (const std::bad_alloc &) {
         return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0, "out of memory");
     } catch (const std::exception &e) {
@@ -410,7 +417,7 @@ rt_status module_read(const char *path, rt_image *out, rt_error *err) {
 
 const rt_image_module the_module = {RT_IMAGE_MODULE_ABI, sizeof(rt_image),
                                     sizeof(rt_error),    "OpenImageIO " OIIO_VERSION_STRING,
-                                    module_write,        module_read};
+                                    module_encode,       module_read};
 
 } // namespace
 

@@ -497,7 +497,7 @@ static void take_shots(app *a, const view_result *r) {
             continue;
         }
         rt_error err;
-        if (cli_frame_write(a->shots[i].path, &r->fb, r->job.aov, &err) != RT_OK) {
+        if (cli_frame_write(a->shots[i].path, &r->fb, r->job.aov, 0, &err) != RT_OK) {
             cli_error("view", "%s", err.message);
             a->status = 2;
         } else {
@@ -718,7 +718,7 @@ int view_run(view_options *o) {
     }
     if (a.status == 0 && o->screenshot && a.last) {
         rt_error err;
-        if (cli_frame_write(o->screenshot, &a.last->fb, a.last->job.aov, &err) != RT_OK) {
+        if (cli_frame_write(o->screenshot, &a.last->fb, a.last->job.aov, 0, &err) != RT_OK) {
             cli_error("view", "%s", err.message);
             a.status = 2;
         } else {
