@@ -97,8 +97,9 @@ if [ ! -s "$tmp/$odd" ] || [ -e "$tmp/pwned" ]; then
     echo "FAIL: -o '$odd': $(ls "$tmp")"; fails=$((fails + 1))
 fi
 
-# ffmpeg's failures: the reason, a non-zero status.
-expect 2 "could not be written: ffmpeg failed .*No such file or directory" -- \
+# A missing folder is found before any frame is made (issue 31); ffmpeg's
+# own failures: the reason, a non-zero status.
+expect 2 "v.mp4: cannot write the video: folder .*dir: No such file or directory" -- \
     "$RTCL" animate "$scene" --fps 8 --frames 3 "${size[@]}" -o "$tmp/no/such/dir/v.mp4"
 if [ -w /dev/full ]; then
     ln -s /dev/full "$tmp/full.mkv"
