@@ -240,8 +240,8 @@ void rt_atomic_file_discard(rt_atomic_file *f) {
     release(f);
 }
 
-rt_status rt_atomic_file_write(const char *target, const char *what, const void *data,
-                               size_t size, rt_error *err) {
+rt_status rt_atomic_file_write(const char *target, const char *what, const void *data, size_t size,
+                               rt_error *err) {
     rt_atomic_file f;
     rt_status status = rt_atomic_file_open(&f, target, what, err);
     if (status != RT_OK) return status;

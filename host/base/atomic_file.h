@@ -40,9 +40,9 @@
 #include "rt.h"
 
 typedef struct rt_atomic_file {
-    FILE *stream;   /* where to write; NULL after rt_atomic_file_reserve */
-    char *target;   /* the final path (a followed symlink's file) */
-    char *temp;     /* the temporary path; NULL when written in place */
+    FILE *stream;     /* where to write; NULL after rt_atomic_file_reserve */
+    char *target;     /* the final path (a followed symlink's file) */
+    char *temp;       /* the temporary path; NULL when written in place */
     const char *what; /* the kind of file, for messages ("image file") */
 } rt_atomic_file;
 
@@ -72,8 +72,8 @@ rt_status rt_atomic_file_commit(rt_atomic_file *f, rt_error *err);
 void rt_atomic_file_discard(rt_atomic_file *f);
 
 /* rt_atomic_file_open, one write of size bytes, rt_atomic_file_commit. */
-rt_status rt_atomic_file_write(const char *target, const char *what, const void *data,
-                               size_t size, rt_error *err);
+rt_status rt_atomic_file_write(const char *target, const char *what, const void *data, size_t size,
+                               rt_error *err);
 
 /* Whether target can be written, checked before any work is done: its
  * folder exists, is a folder and is writable, and target is not a folder.

@@ -61,7 +61,8 @@ static rt_status take_line(ray_reader *r, const char *p, size_t line_len) {
     }
     if (r->n == r->cap) {
         size_t cap = r->cap ? 2 * r->cap : 1024;
-        rt_ray *grown = cap > SIZE_MAX / sizeof *grown ? NULL : realloc(r->rays, cap * sizeof *grown);
+        rt_ray *grown =
+            cap > SIZE_MAX / sizeof *grown ? NULL : realloc(r->rays, cap * sizeof *grown);
         if (!grown)
             return rt_error_set(r->err, RT_ERROR_OUT_OF_MEMORY, r->name, 0, 0,
                                 "out of memory for %zu rays", cap);
@@ -125,7 +126,8 @@ rt_status rt_rays_load(const char *path, int with_normals, rt_ray **rays, size_t
     char *chunk = malloc(RAY_FILE_CHUNK), *line = malloc(RT_MAX_RAY_LINE_BYTES + 1);
     size_t line_len = 0;
     uint64_t total = 0;
-    if (!chunk || !line) st = rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0, "out of memory");
+    if (!chunk || !line)
+        st = rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0, "out of memory");
     while (st == RT_OK) {
         ssize_t got = read(fd, chunk, RAY_FILE_CHUNK);
         if (got < 0 && errno == EINTR) continue;
