@@ -93,6 +93,12 @@ rt_status rt_scene_load(const char *path, rt_scene **out, rt_error *err);
 /* The last error's message, "" when none. */
 const char *rt_scene_error(const rt_scene *scene);
 
+/* What loading the scene went past without failing (a material name an MTL
+ * file defines twice: the first definition is used), one notice per line,
+ * each naming the file and line; "" when none. For the caller to show: the
+ * library never prints. */
+const char *rt_scene_notices(const rt_scene *scene);
+
 /* ---- meshes ------------------------------------------------------------ */
 
 rt_status rt_mesh_create(rt_scene *scene, uint32_t *mesh_id);

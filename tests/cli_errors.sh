@@ -57,4 +57,21 @@ for b in cpu packet; do
     expect 2 'upbad.json:1:[0-9]+: .*up is zero or \(nearly\) parallel to the view direction' -- \
         "$RTCL" render "$tmp/upbad.json" -o "$tmp/upbad.png" --backend $b
 done
+# Messages that named the wrong fault (issue 31): a camera 1e38 away is a
+# camera (it renders), equal points are named with their value; an object
+# scaled by 1e30 in a file with no camera gets the default view; "0x5" is a
+# malformed index, not index 0.
+mesh_t='"meshes": {"t": {"positions": [0,0,0, 1,0,0, 0,1,0], "triangles": [0,1,2]}}'
+printf '{"camera": {"position": [1e38, 0, 0], "look_at": [0, 0, 0], "width": 16, "height": 16},
+ %s, "objects": [{"mesh": "t"}]}\n' "$mesh_t" > "$tmp/far.json"
+expect 0 'wrote' -- "$RTCL" render "$tmp/far.json" -o "$tmp/far.ppm"
+printf '{"camera": {"position": [2, 2, 2], "look_at": [2, 2, 2]},
+ %s, "objects": [{"mesh": "t"}]}\n' "$mesh_t" > "$tmp/same.json"
+expect 2 'same.json:1:12: camera: the look-at point equals the position \(2, 2, 2\)' -- \
+    "$RTCL" render "$tmp/same.json" -o "$tmp/same.ppm"
+printf '{%s, "objects": [{"mesh": "t", "transform": {"matrix": [1e30,0,0,0, 0,1e30,0,0,
+ 0,0,1e30,0, 0,0,0,1]}}]}\n' "$mesh_t" > "$tmp/huge.json"
+expect 0 'wrote' -- "$RTCL" render "$tmp/huge.json" -o "$tmp/huge.ppm" --width 16 --height 16
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0x5\n' > "$tmp/hex.obj"
+expect 2 'hex.obj:4:7: malformed vertex reference "0x5"' -- "$RTCL" info "$tmp/hex.obj"
 finish

@@ -200,6 +200,80 @@ static void test_materials(void) {
     CHECK_CONTAINS(err.message, "bad.mtl:3:4: Ns: malformed number \"1.2.3\"");
 }
 
+/* Issue 31: an mtllib named again (by another path too) is read once; a
+ * material name defined again keeps its first definition, with one notice
+ * naming both places; names are whole (two that differ after 127 bytes are
+ * two materials); an out-of-range colour is refused with file:line. */
+static void test_repeated_materials(void) {
+    /* 1000 materials, named 2000 times over: a file of 2000 mtllib lines
+     * used to read the file 2000 times and keep 2 million materials. */
+    size_t cap = 64 * 1024, n = 0;
+    char *text = malloc(cap);
+    for (int i = 0; i < 1000 && text; i++)
+        n += (size_t)snprintf(text + n, cap - n, "newmtl m%d\nKd 0.%d 0.5 0.5\n", i, i % 10);
+    CHECK(text && test_write_temp("big.mtl", text) != NULL);
+    free(text);
+    cap = 2000 * 24 + 64;
+    text = malloc(cap);
+    n = 0;
+    for (int i = 0; i < 2000 && text; i++)
+        n += (size_t)snprintf(text + n, cap - n, "mtllib %s\n", i % 2 ? "big.mtl" : "./big.mtl");
+    if (text) snprintf(text + n, cap - n, "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m999\nf 1 2 3\n");
+    const char *obj_path = text ? test_write_temp("many_mtllib.obj", text) : NULL;
+    free(text);
+    rt_obj_mesh m;
+    rt_error err;
+    CHECK(obj_path && rt_obj_load(obj_path, &m, &err) == RT_OK);
+    CHECK_EQ_INT(m.material_count, 1000);
+    CHECK(m.tri_materials && m.tri_materials[0] == 999);
+    CHECK(m.notice[0] == '\0');
+    rt_obj_free(&m);
+
+    /* A name defined twice (in one file and across files): the first counts. */
+    char long_a[300], long_b[300];
+    memset(long_a, 'x', 200);
+    memcpy(long_b, long_a, 200);
+    strcpy(long_a + 200, "_red");
+    strcpy(long_b + 200, "_blue");
+    char mtl[2048];
+    snprintf(mtl, sizeof mtl,
+             "newmtl red\nKd 1 0 0\nnewmtl %s\nKd 1 0 0\nnewmtl %s\nKd 0 0 1\n"
+             "newmtl red\nKd 0 1 0\n",
+             long_a, long_b);
+    test_write_temp("first.mtl", mtl);
+    test_write_temp("second.mtl", "newmtl red\nKd 0 0 1\nnewmtl green\nKd 0 1 0\n");
+    char obj[2048];
+    snprintf(obj, sizeof obj,
+             "mtllib first.mtl second.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n"
+             "usemtl %s\nf 1 2 3\nusemtl %s\nf 1 2 3\nusemtl green\nf 1 2 3\n",
+             long_a, long_b);
+    obj_path = test_write_temp("twice.obj", obj);
+    CHECK(rt_obj_load(obj_path, &m, &err) == RT_OK);
+    CHECK_EQ_INT(m.material_count, 4);
+    if (m.material_count == 4 && m.tri_materials) {
+        const uint32_t want[4] = {0, 1, 2, 3};
+        for (int t = 0; t < 4; t++) CHECK_EQ_INT(m.tri_materials[t], want[t]);
+        CHECK(m.materials[0].kd[0] == 1.0f && m.materials[0].kd[1] == 0.0f);
+        CHECK(strcmp(m.materials[1].name, long_a) == 0 && m.materials[1].kd[2] == 0.0f);
+        CHECK(strcmp(m.materials[2].name, long_b) == 0 && m.materials[2].kd[2] == 1.0f);
+        CHECK(strcmp(m.materials[3].name, "green") == 0);
+    }
+    CHECK_CONTAINS(m.notice, "first.mtl:7: material 'red' was defined before, at ");
+    CHECK_CONTAINS(m.notice, "first.mtl:1, and 1 more material names are defined again; the "
+                             "first definition of each is used");
+    rt_obj_free(&m);
+
+    /* Colours beyond the limit (or negative) are refused where they are. */
+    test_write_temp("huge.mtl", "newmtl a\nKd 0.5 0.5 0.5\nnewmtl b\nKd 1 1e38 1\n");
+    obj_path = test_write_temp("huge_mtl.obj", "mtllib huge.mtl\nv 0 0 0\n");
+    CHECK(rt_obj_load(obj_path, &m, &err) == RT_ERROR_PARSE);
+    CHECK_CONTAINS(err.message, "huge.mtl:4: Kd: 1e+38 is outside 0..1e+06 (the colour limit)");
+    test_write_temp("negative.mtl", "newmtl a\nKs -0.5\n");
+    obj_path = test_write_temp("negative_mtl.obj", "mtllib negative.mtl\nv 0 0 0\n");
+    CHECK(rt_obj_load(obj_path, &m, &err) == RT_ERROR_PARSE);
+    CHECK_CONTAINS(err.message, "negative.mtl:2: Ks: -0.5 is outside 0..1e+06");
+}
+
 /* Parses text, expects a parse error at line:column with reason in it. */
 static void expect_error(const char *text, int line, int column, const char *reason) {
     rt_obj_mesh m;
@@ -216,6 +290,12 @@ static void expect_error(const char *text, int line, int column, const char *rea
 }
 
 static void test_errors(void) {
+    /* issue 31: an index followed by more than a '/' is malformed, not the
+     * number it starts with ("vertex index 0 is invalid" for 0x5). */
+    expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0x5\n", 4, 7,
+                 "malformed vertex reference \"0x5\"");
+    expect_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2e0 3\n", 4, 5,
+                 "malformed vertex reference \"2e0\"");
     expect_error("v 0 0 0\nv 1.2.3 0 0\n", 2, 3, "malformed number \"1.2.3\"");
     expect_error("v 0 0 0\nv 0 abc 0\n", 2, 5, "malformed number \"abc\"");
     expect_error("v 1e 0 0\n", 1, 3, "malformed number \"1e\"");
@@ -333,6 +413,7 @@ int main(void) {
     test_line_ends_comments_and_ignored_statements();
     test_normals();
     test_materials();
+    test_repeated_materials();
     test_errors();
     test_file_errors();
     test_mutations_never_crash();

@@ -121,6 +121,18 @@ static void test_camera(void) {
         CHECK_MSG(finite, "camera %d accepted with a non-finite frame", i);
     }
     CHECK(refused > 0);
+    /* issue 31: a camera 1e38 from its look-at point is no "look-at point
+     * equals the position" (the float length overflowed): it is accepted,
+     * with a finite frame; equal points and a length that underflows are
+     * refused, each with its own reason and the values. */
+    rt_camera far = {{1e38f, 0, 0}, {0, 0, 0}, {0, 1, 0}, 60.0f, 64, 32};
+    CHECK_MSG(rt_camera_set(s, &far) == RT_OK, "%s", rt_scene_error(s));
+    rt_camera same = {{1, 2, 3}, {1, 2, 3}, {0, 1, 0}, 60.0f, 64, 32};
+    CHECK(rt_camera_set(s, &same) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK_CONTAINS(rt_scene_error(s), "the look-at point equals the position (1, 2, 3)");
+    rt_camera tiny = {{0, 0, 0}, {1e-30f, 0, 0}, {0, 1, 0}, 60.0f, 64, 32};
+    CHECK(rt_camera_set(s, &tiny) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK_CONTAINS(rt_scene_error(s), "is too short for a float");
     CHECK(rt_camera_set(s, &c) == RT_OK);
     CHECK(rt_camera_move(s, 0, 0, 1) == RT_OK); /* forward is -z */
     rt_camera got;
@@ -153,6 +165,23 @@ static void test_default_view(void) {
     /* eye = c + normalize(0.3, 0.35, 1) * 0.9 d, d = |(2,2,0)| */
     float d = sqrtf(8.0f), n = sqrtf(0.09f + 0.1225f + 1.0f);
     CHECK(fabsf(s->camera.position[2] - 1.0f / n * 0.9f * d) < 1e-5f);
+    /* issue 31: an object scaled by 1e30 (an extent whose square overflows
+     * a float) still gets a default view, not "camera: vectors must be
+     * finite"; bounds whose extent is no float are refused as such. */
+    const float huge[16] = {1e30f, 0, 0, 0, 0, 1e30f, 0, 0, 0, 0, 1e30f, 0, 0, 0, 0, 1};
+    CHECK(rt_object_transform(s, obj, huge) == RT_OK && rt_scene_commit(s) == RT_OK);
+    CHECK_MSG(rt_scene_apply_default_view(s, 0, 0) == RT_OK, "%s", rt_scene_error(s));
+    CHECK(isfinite(s->camera.position[0]) && s->camera.position[2] > 1e30f);
+    const float beyond[16] = {3e8f, 0, 0, 0, 0, 3e8f, 0, 0, 0, 0, 3e8f, 0, 0, 0, 0, 1};
+    const float away[16] = {1, 0, 0, -3e38f, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    uint32_t obj2;
+    rt_object_create(s, mat, &obj2);
+    rt_object_add_mesh(s, obj2, mesh);
+    CHECK(rt_object_transform(s, obj, beyond) == RT_OK &&
+          rt_object_transform(s, obj2, away) == RT_OK && rt_scene_commit(s) == RT_OK);
+    CHECK(rt_scene_apply_default_view(s, 0, 0) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK_CONTAINS(rt_scene_error(s),
+                   "are too large for a default camera: give the scene a camera");
     rt_scene_destroy(s);
 }
 

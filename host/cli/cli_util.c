@@ -55,7 +55,15 @@ int cli_float(const char *command, const char *option, const char *text, double 
 
 rt_status cli_load_scene(const char *arg, rt_scene **out, rt_error *err) {
     if (strncmp(arg, "builtin:", 8) == 0) return rt_scene_builtin(arg + 8, out, err);
-    return rt_scene_load(arg, out, err);
+    rt_status st = rt_scene_load(arg, out, err);
+    /* The loader's notices, one "rtcl: notice: " line each. */
+    for (const char *p = st == RT_OK ? rt_scene_notices(*out) : ""; *p;) {
+        const char *eol = strchr(p, '\n');
+        int n = eol ? (int)(eol - p) : (int)strlen(p);
+        fprintf(stderr, "rtcl: notice: %.*s\n", n, p);
+        p += n + (eol ? 1 : 0);
+    }
+    return st;
 }
 
 static int progress_drawn;

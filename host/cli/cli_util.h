@@ -18,7 +18,9 @@ int cli_int(const char *command, const char *option, const char *text, long min,
 /* Parses a finite float; prints an error naming the option. */
 int cli_float(const char *command, const char *option, const char *text, double *out);
 
-/* Loads a scene file, or a built-in scene written as builtin:NAME. */
+/* Loads a scene file, or a built-in scene written as builtin:NAME; prints
+ * the loader's notices (rt_scene_notices) on stderr, "rtcl: notice: ..."
+ * each. */
 rt_status cli_load_scene(const char *arg, rt_scene **out, rt_error *err);
 
 /* An rt_render_options.progress callback: a bar on stderr when stderr is a

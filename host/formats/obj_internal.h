@@ -11,6 +11,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "formats/name_table.h"
 #include "formats/obj_load.h"
 
 /* A cursor over a text with its line number and the start of that line, for
@@ -89,14 +90,42 @@ static inline int rt_text_line(const rt_text_cursor *c) {
     return c->line > 2000000000 ? 2000000000 : (int)c->line;
 }
 
-/* Reads the materials of an MTL file and appends them to *materials. An
+/* The materials of every MTL file an OBJ file names, each file read once
+ * and each name defined once. */
+typedef struct rt_mtl_library {
+    rt_obj_material *materials; /* by name id */
+    uint32_t capacity;
+    rt_name_table names; /* names.count materials */
+    uint32_t *defined_in; /* per material: the index in files of its MTL */
+    int *defined_at;      /* per material: its newmtl's line */
+    struct rt_mtl_file {
+        char *path;
+        unsigned long long device, inode; /* 0, 0 for text parsed from memory */
+    } *files;
+    uint32_t file_count, file_capacity;
+    /* newmtl statements that name a material defined before (in this or an
+     * earlier file): the first definition counts, the later one is skipped
+     * (its statements are read and ignored). The first such one, for the
+     * notice: */
+    uint32_t repeats;
+    char first_repeat[640];
+} rt_mtl_library;
+
+/* Reads an MTL file into lib: a file read before (the same file by device
+ * and inode, whatever the path that names it) is not read again. An
  * unreadable file gives RT_ERROR_IO (the OBJ reader then goes on without
- * materials); malformed content gives RT_ERROR_PARSE with file and line. */
-rt_status rt_mtl_load(const char *path, rt_obj_material **materials, uint32_t *count,
-                      rt_error *err);
+ * it); malformed content gives RT_ERROR_PARSE with file, line and column,
+ * and lib keeps the materials of the files read before. */
+rt_status rt_mtl_load(rt_mtl_library *lib, const char *path, rt_error *err);
 
 /* The same on text already in memory; name is used in messages. */
-rt_status rt_mtl_parse(const char *text, size_t len, const char *name, rt_obj_material **materials,
-                       uint32_t *count, rt_error *err);
+rt_status rt_mtl_parse(rt_mtl_library *lib, const char *text, size_t len, const char *name,
+                       rt_error *err);
+
+/* A notice about lib's repeated names ("" when none) into out. */
+void rt_mtl_notice(const rt_mtl_library *lib, char *out, size_t cap);
+
+/* Frees lib (the materials' names too, unless moved out before). */
+void rt_mtl_library_free(rt_mtl_library *lib);
 
 #endif /* RT_OBJ_INTERNAL_H */

@@ -43,13 +43,9 @@ typedef struct obj_parser {
     uint32_t *tri_mat; /* per triangle a usemtl name id (or NO_INDEX), once usemtl seen */
     size_t tri_mat_cap;
     uint32_t current_mtl;
-    char (*mtl_names)[128]; /* distinct usemtl names */
-    uint32_t mtl_name_count, mtl_name_cap;
-    uint32_t *mtl_name_slots; /* hash table of mtl_names' ids (id_table) */
-    size_t mtl_name_slot_count;
+    rt_name_table usemtl; /* distinct usemtl names, whole */
 
-    rt_obj_material *materials;
-    uint32_t material_count;
+    rt_mtl_library mtl; /* the materials of the mtllib files */
 } obj_parser;
 
 /* ---- small helpers ------------------------------------------------------ */
@@ -177,6 +173,9 @@ static inline rt_status read_index(obj_parser *o, const char *kind, const char *
     const char *next;
     const char *start = o->c.p;
     rt_number_result res = rt_parse_int64(start, o->c.end, &value, &next);
+    /* The number must end the index: "0x5" or "1e3" is no index 0 or 1. */
+    if (res != RT_NUMBER_MALFORMED && next < o->c.end && *next != '/' && !ends_token(&o->c, next))
+        res = RT_NUMBER_MALFORMED;
     if (res == RT_NUMBER_MALFORMED) {
         o->c.p = corner_start;
         return fail(o, RT_ERROR_PARSE, rt_text_column(&o->c), "malformed vertex reference \"%.*s\"",
@@ -304,51 +303,12 @@ static uint32_t *id_table_new(size_t min_entries, size_t *slot_count) {
     return t;
 }
 
-/* FNV-1a over bytes. */
-static uint64_t hash_bytes(const char *p, size_t len) {
-    uint64_t h = 1469598103934665603ull;
-    for (size_t i = 0; i < len; i++) h = (h ^ (unsigned char)p[i]) * 1099511628211ull;
-    return h;
-}
-
 /* A 64-bit finaliser (splitmix64) for a pair of indices. */
 static uint64_t hash_pair(uint32_t a, uint32_t b) {
     uint64_t x = ((uint64_t)a << 32 | b) + 0x9e3779b97f4a7c15ull;
     x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
     x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
     return x ^ (x >> 31);
-}
-
-/* The id of a usemtl name (its first 'len' bytes), or NO_INDEX; *slot gets
- * the slot where it is or would go. */
-static uint32_t find_mtl_name(const obj_parser *o, const char *name, size_t len, size_t *slot) {
-    const size_t mask = o->mtl_name_slot_count - 1;
-    for (size_t i = (size_t)hash_bytes(name, len) & mask;; i = (i + 1) & mask) {
-        const uint32_t id = o->mtl_name_slots[i];
-        if (id == NO_INDEX ||
-            (strncmp(o->mtl_names[id], name, len) == 0 && o->mtl_names[id][len] == '\0')) {
-            *slot = i;
-            return id;
-        }
-    }
-}
-
-/* Doubles the usemtl name table when it would be more than half full. */
-static int grow_mtl_names(obj_parser *o) {
-    if (o->mtl_name_slots && 2 * ((size_t)o->mtl_name_count + 1) <= o->mtl_name_slot_count)
-        return 1;
-    size_t n;
-    uint32_t *t = id_table_new(2 * ((size_t)o->mtl_name_count + 1), &n);
-    if (!t) return 0;
-    free(o->mtl_name_slots);
-    o->mtl_name_slots = t;
-    o->mtl_name_slot_count = n;
-    for (uint32_t id = 0; id < o->mtl_name_count; id++) {
-        size_t slot;
-        find_mtl_name(o, o->mtl_names[id], strlen(o->mtl_names[id]), &slot);
-        t[slot] = id;
-    }
-    return 1;
 }
 
 static void rest_of_statement(obj_parser *o, const char **start, size_t *len) {
@@ -364,21 +324,9 @@ static rt_status parse_usemtl(obj_parser *o) {
     const char *name;
     size_t len;
     rest_of_statement(o, &name, &len);
-    if (len >= sizeof o->mtl_names[0]) len = sizeof o->mtl_names[0] - 1;
-    if (!grow_mtl_names(o)) return out_of_memory(o);
-    size_t slot;
-    uint32_t id = find_mtl_name(o, name, len, &slot);
-    if (id == NO_INDEX) {
-        id = o->mtl_name_count;
-        o->mtl_name_slots[slot] = id;
-        size_t cap = o->mtl_name_cap;
-        if (!reserve((void **)&o->mtl_names, &cap, (size_t)id + 1, sizeof o->mtl_names[0]))
-            return out_of_memory(o);
-        o->mtl_name_cap = (uint32_t)cap;
-        memcpy(o->mtl_names[id], name, len);
-        o->mtl_names[id][len] = '\0';
-        o->mtl_name_count++;
-    }
+    int added;
+    uint32_t id = rt_name_add(&o->usemtl, name, len, &added);
+    if (id == RT_NO_NAME) return out_of_memory(o);
     o->current_mtl = id;
     if (!o->tri_mat) {
         /* First usemtl: the triangles so far have no material. */
@@ -413,7 +361,7 @@ static rt_status parse_mtllib(obj_parser *o) {
             path[dir_len + 1 + len] = '\0';
         }
         rt_error mtl_err;
-        rt_status st = rt_mtl_load(path, &o->materials, &o->material_count, &mtl_err);
+        rt_status st = rt_mtl_load(&o->mtl, path, &mtl_err);
         free(path);
         if (st == RT_ERROR_IO) continue;
         if (st != RT_OK) {
@@ -514,35 +462,16 @@ done:
     return st;
 }
 
-/* tri_materials from the usemtl name ids and the materials read. */
+/* tri_materials from the usemtl name ids and the materials read: a name
+ * is matched whole (the MTL reader defines each name once). */
 static rt_status build_materials(obj_parser *o, rt_obj_mesh *out) {
-    if (!o->tri_mat || o->material_count == 0) return RT_OK;
-    uint32_t *material_of_name = malloc(((size_t)o->mtl_name_count + 1) * sizeof(uint32_t));
-    size_t slot_count = 0;
-    uint32_t *slots = id_table_new(o->material_count, &slot_count); /* name -> first material */
-    if (!material_of_name || !slots) {
-        free(material_of_name);
-        free(slots);
-        return out_of_memory(o);
+    if (!o->tri_mat || o->mtl.names.count == 0) return RT_OK;
+    uint32_t *material_of_name = malloc(((size_t)o->usemtl.count + 1) * sizeof(uint32_t));
+    if (!material_of_name) return out_of_memory(o);
+    for (uint32_t id = 0; id < o->usemtl.count; id++) {
+        uint32_t m = rt_name_find(&o->mtl.names, o->usemtl.names[id], o->usemtl.sizes[id]);
+        material_of_name[id] = m == RT_NO_NAME ? NO_INDEX : m;
     }
-    const size_t mask = slot_count - 1;
-    /* Names are kept to 127 bytes on both sides, so they compare alike; of
-     * materials of one name the first counts. */
-    for (uint32_t m = 0; m < o->material_count; m++) {
-        const char *name = o->materials[m].name;
-        size_t i = (size_t)hash_bytes(name, strlen(name)) & mask;
-        while (slots[i] != NO_INDEX && strcmp(o->materials[slots[i]].name, name) != 0)
-            i = (i + 1) & mask;
-        if (slots[i] == NO_INDEX) slots[i] = m;
-    }
-    for (uint32_t id = 0; id < o->mtl_name_count; id++) {
-        const char *name = o->mtl_names[id];
-        size_t i = (size_t)hash_bytes(name, strlen(name)) & mask;
-        while (slots[i] != NO_INDEX && strcmp(o->materials[slots[i]].name, name) != 0)
-            i = (i + 1) & mask;
-        material_of_name[id] = slots[i];
-    }
-    free(slots);
     for (size_t t = 0; t < o->tri_count; t++)
         o->tri_mat[t] = o->tri_mat[t] == NO_INDEX ? NO_INDEX : material_of_name[o->tri_mat[t]];
     free(material_of_name);
@@ -591,11 +520,14 @@ static rt_status build_mesh(obj_parser *o, rt_obj_mesh *out) {
     out->triangle_count = (uint32_t)o->tri_count;
     st = build_materials(o, out);
     if (st != RT_OK) return st;
-    if (o->material_count) {
-        out->materials = o->materials;
-        out->material_count = o->material_count;
-        o->materials = NULL;
+    if (o->mtl.names.count) {
+        /* The materials and their names move to the mesh. */
+        out->materials = o->mtl.materials;
+        out->material_count = o->mtl.names.count;
+        for (uint32_t i = 0; i < out->material_count; i++) o->mtl.names.names[i] = NULL;
+        o->mtl.materials = NULL;
     }
+    rt_mtl_notice(&o->mtl, out->notice, sizeof out->notice);
     return RT_OK;
 }
 
@@ -605,9 +537,10 @@ static void free_parser(obj_parser *o) {
     free(o->tri_pos);
     free(o->tri_nrm);
     free(o->tri_mat);
-    free(o->mtl_names);
-    free(o->mtl_name_slots);
-    free(o->materials);
+    rt_name_table_free(&o->usemtl);
+    if (o->mtl.materials)
+        for (uint32_t i = 0; i < o->mtl.names.count; i++) o->mtl.materials[i].name = NULL;
+    rt_mtl_library_free(&o->mtl);
 }
 
 /* ---- public API ------------------------------------------------------------ */
@@ -676,6 +609,8 @@ void rt_obj_free(rt_obj_mesh *mesh) {
     free(mesh->normals);
     free(mesh->indices);
     free(mesh->tri_materials);
+    for (uint32_t i = 0; mesh->materials && i < mesh->material_count; i++)
+        free(mesh->materials[i].name);
     free(mesh->materials);
     memset(mesh, 0, sizeof *mesh);
 }

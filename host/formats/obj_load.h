@@ -14,7 +14,7 @@
 #include "rt.h"
 
 typedef struct rt_obj_material {
-    char name[128];
+    char *name;  /* whole, as newmtl gives it (trailing blanks dropped) */
     float kd[3]; /* diffuse colour (Kd), default 0.8 */
     float ks[3]; /* specular colour (Ks), default 0 */
     float ns;    /* shininess (Ns), default 0 */
@@ -34,6 +34,10 @@ typedef struct rt_obj_mesh {
     uint32_t *tri_materials;
     rt_obj_material *materials;
     uint32_t material_count;
+    /* A notice about the input that loading went past (a material name
+     * defined twice: the first counts), "" when none; the caller shows it
+     * (the library never prints). */
+    char notice[768];
 } rt_obj_mesh;
 
 /* Reads and parses path. On failure out is left empty and err names the file,

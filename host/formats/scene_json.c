@@ -124,6 +124,11 @@ PRINTF_LIKE(2, 3) static rt_status fail_key(loader *L, const char *fmt, ...) {
 /* A failure of an rt.h call, its message placed at the current value. */
 static rt_status fail_scene(loader *L) {
     const char *msg = L->scene->error.message;
+    /* "camera: ..." at the path camera says camera once. */
+    char where[256];
+    path_text(L, where, sizeof where);
+    size_t n = strlen(where);
+    if (n && strncmp(msg, where, n) == 0 && msg[n] == ':' && msg[n + 1] == ' ') msg += n + 2;
     return fail(L, "%s", msg[0] ? msg : "invalid value");
 }
 
@@ -257,16 +262,20 @@ static rt_status read_floats(loader *L, const json_t *v, float *out, size_t n) {
 static rt_status read_color(loader *L, const json_t *v, float out[3]) {
     rt_status st = read_floats(L, v, out, 3);
     for (size_t i = 0; st == RT_OK && i < 3; i++) {
-        if (out[i] >= 0.0f) continue;
+        if (out[i] >= 0.0f && out[i] <= RT_MAX_COLOUR) continue;
         enter_index(L, i);
-        st = fail(L, "a colour component must be >= 0, found %g", (double)out[i]);
+        if (out[i] < 0.0f)
+            st = fail(L, "a colour component must be >= 0, found %g", (double)out[i]);
+        else
+            st = fail(L, "%g is outside 0..%g (the colour limit)", (double)out[i],
+                      (double)RT_MAX_COLOUR);
         leave(L);
     }
     return st;
 }
 
 /* Which values a number may take. */
-typedef enum range { ANY, NON_NEGATIVE, POSITIVE, UNIT, FOV } range;
+typedef enum range { ANY, NON_NEGATIVE, POSITIVE, UNIT, FOV, COLOUR } range;
 
 static rt_status check_range(loader *L, float f, range r) {
     double d = f;
@@ -279,6 +288,11 @@ static rt_status check_range(loader *L, float f, range r) {
         return f > 0.0f ? RT_OK : fail(L, "must be > 0, found %g", d);
     case UNIT:
         return f >= 0.0f && f <= 1.0f ? RT_OK : fail(L, "must be between 0 and 1, found %g", d);
+    case COLOUR:
+        if (f < 0.0f) return fail(L, "must be >= 0, found %g", d);
+        return f <= RT_MAX_COLOUR
+                   ? RT_OK
+                   : fail(L, "%g is outside 0..%g (the colour limit)", d, (double)RT_MAX_COLOUR);
     case FOV:
         return f > 0.0f && f < 180.0f ? RT_OK
                                       : fail(L,
@@ -449,9 +463,9 @@ static rt_status load_material(loader *L, json_t *v, uint32_t *id) {
     rt_status st = expect_object(L, v);
     if (st == RT_OK) st = check_keys(L, v, keys);
     if (st == RT_OK) st = opt_color(L, v, "color", m.color);
-    if (st == RT_OK) st = opt_float(L, v, "ambient", &m.ambient, NON_NEGATIVE);
-    if (st == RT_OK) st = opt_float(L, v, "diffuse", &m.diffuse, NON_NEGATIVE);
-    if (st == RT_OK) st = opt_float(L, v, "specular", &m.specular, NON_NEGATIVE);
+    if (st == RT_OK) st = opt_float(L, v, "ambient", &m.ambient, COLOUR);
+    if (st == RT_OK) st = opt_float(L, v, "diffuse", &m.diffuse, COLOUR);
+    if (st == RT_OK) st = opt_float(L, v, "specular", &m.specular, COLOUR);
     if (st == RT_OK) st = opt_int(L, v, "shininess", 0, 100000, &shininess);
     if (st == RT_OK) st = opt_float(L, v, "reflectivity", &m.reflectivity, UNIT);
     if (st == RT_OK) st = opt_float(L, v, "transparency", &m.transparency, UNIT);

@@ -55,6 +55,7 @@ rt_status rt_scene_add_obj(rt_scene *scene, const char *path, uint32_t *mesh_id,
         free(tri);
     }
     if (st == RT_OK) {
+        rt_scene_add_notice(scene, obj.notice);
         const char *base = strrchr(path, '/');
         snprintf(scene->meshes[id].name, sizeof scene->meshes[id].name, "%s",
                  base ? base + 1 : path);

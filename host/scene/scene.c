@@ -115,11 +115,27 @@ void rt_scene_destroy(rt_scene *scene) {
         free(scene->objects[i].transform_keys);
     }
     free(scene->camera_path);
+    free(scene->notices);
     free(scene->meshes);
     free(scene->materials);
     free(scene->lights);
     free(scene->objects);
     free(scene);
+}
+
+void rt_scene_add_notice(rt_scene *scene, const char *text) {
+    if (!scene || !text || !text[0]) return;
+    size_t have = scene->notices ? strlen(scene->notices) : 0, add = strlen(text);
+    char *grown = realloc(scene->notices, have + add + 2);
+    if (!grown) return;
+    memcpy(grown + have, text, add);
+    grown[have + add] = '\n';
+    grown[have + add + 1] = '\0';
+    scene->notices = grown;
+}
+
+const char *rt_scene_notices(const rt_scene *scene) {
+    return scene && scene->notices ? scene->notices : "";
 }
 
 const char *rt_scene_error(const rt_scene *scene) {
@@ -237,6 +253,17 @@ oom:
 
 /* ---- materials and lights ---------------------------------------------- */
 
+/* RT_OK when each of the n values is a colour component (finite, within
+ * 0..RT_MAX_COLOUR), else the scene's error naming what and the value. */
+static rt_status check_colour(rt_scene *scene, const char *what, const float *v, int n) {
+    for (int i = 0; i < n; i++)
+        if (!(v[i] >= 0.0f && v[i] <= RT_MAX_COLOUR))
+            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                                 "%s %g is outside 0..%g (the colour limit)", what, (double)v[i],
+                                 (double)RT_MAX_COLOUR);
+    return RT_OK;
+}
+
 rt_status rt_material_add(rt_scene *scene, const rt_material *mat, uint32_t *material_id) {
     if (!scene || !mat || !material_id) return RT_ERROR_INVALID_ARGUMENT;
     const float coeffs[6] = {mat->ambient,      mat->diffuse,      mat->specular,
@@ -245,9 +272,10 @@ rt_status rt_material_add(rt_scene *scene, const rt_material *mat, uint32_t *mat
         if (!isfinite(coeffs[i]) || coeffs[i] < 0.0f)
             return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                                  "material: coefficients must be finite and >= 0");
-    if (!finite3(mat->color) || mat->color[0] < 0 || mat->color[1] < 0 || mat->color[2] < 0)
-        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
-                             "material: colour must be finite and >= 0");
+    rt_status st = check_colour(scene, "material: colour component", mat->color, 3);
+    if (st == RT_OK) st = check_colour(scene, "material: ambient, diffuse or specular factor",
+                                       coeffs, 3);
+    if (st != RT_OK) return st;
     if (mat->shininess < 0 || mat->shininess > 100000)
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                              "material: shininess %d is outside 0..100000", mat->shininess);
@@ -268,9 +296,10 @@ rt_status rt_material_add(rt_scene *scene, const rt_material *mat, uint32_t *mat
 rt_status rt_light_add(rt_scene *scene, const float position[3], const float color[3],
                        uint32_t *light_id) {
     if (!scene || !position || !color || !light_id) return RT_ERROR_INVALID_ARGUMENT;
-    if (!finite3(position) || !finite3(color))
-        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
-                             "light: position and colour must be finite");
+    if (!finite3(position))
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "light: position must be finite");
+    rt_status st = check_colour(scene, "light: colour component", color, 3);
+    if (st != RT_OK) return st;
     if (!grow((void **)&scene->lights, &scene->light_capacity, scene->light_count + 1,
               sizeof(rt_light_data)))
         return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory adding a light");
@@ -284,8 +313,10 @@ rt_status rt_light_add(rt_scene *scene, const float position[3], const float col
 
 static rt_status set_color(rt_scene *scene, float dst[3], const float color[3], const char *what) {
     if (!scene || !color) return RT_ERROR_INVALID_ARGUMENT;
-    if (!finite3(color))
-        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "%s must be finite", what);
+    char name[64];
+    snprintf(name, sizeof name, "%s component", what);
+    rt_status st = check_colour(scene, name, color, 3);
+    if (st != RT_OK) return st;
     memcpy(dst, color, 3 * sizeof(float));
     scene->version++;
     return RT_OK;
@@ -438,9 +469,31 @@ rt_status rt_camera_set(rt_scene *scene, const rt_camera *cam) {
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "camera: vectors must be finite");
     float fwd[3] = {cam->look_at[0] - cam->position[0], cam->look_at[1] - cam->position[1],
                     cam->look_at[2] - cam->position[2]};
-    if (!normalize3(fwd))
-        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
-                             "camera: look-at point equals the position");
+    /* The float check stands for every camera whose view vector's length
+     * fits a float; one whose squared length overflows (a camera 1e38 from
+     * its look-at point) is told apart in double, where it cannot
+     * overflow: only an exact zero means the two points are equal. */
+    if (!normalize3(fwd)) {
+        double d[3], len2 = 0.0;
+        for (int k = 0; k < 3; k++) {
+            d[k] = (double)cam->look_at[k] - (double)cam->position[k];
+            len2 += d[k] * d[k];
+        }
+        if (!(len2 > 0.0))
+            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                                 "camera: the look-at point equals the position (%g, %g, %g)",
+                                 (double)cam->position[0], (double)cam->position[1],
+                                 (double)cam->position[2]);
+        /* Not zero: too long for a float (the double frame below decides)
+         * or too short (its square underflows to zero). */
+        if (finite3(fwd) && !(dot3(fwd, fwd) > 0.0f))
+            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                                 "camera: the view direction from (%g, %g, %g) to (%g, %g, %g) is "
+                                 "too short for a float",
+                                 (double)cam->position[0], (double)cam->position[1],
+                                 (double)cam->position[2], (double)cam->look_at[0],
+                                 (double)cam->look_at[1], (double)cam->look_at[2]);
+    }
     double f[3], r[3], u[3];
     if (!rt_camera_frame_d(cam, f, r, u))
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
@@ -580,6 +633,19 @@ rt_status rt_scene_apply_default_view(rt_scene *scene, int width, int height) {
     float c[3], ext[3];
     for (int k = 0; k < 3; k++) c[k] = 0.5f * (bmin[k] + bmax[k]), ext[k] = bmax[k] - bmin[k];
     float d = sqrtf(dot3(ext, ext));
+    if (!isfinite(d)) {
+        /* An extent whose square overflows a float (an object scaled by
+         * 1e30): its length in double, where it cannot; a scene whose
+         * extent itself is not a float has no default view. */
+        double e2 = (double)ext[0] * ext[0] + (double)ext[1] * ext[1] + (double)ext[2] * ext[2];
+        d = (float)sqrt(e2);
+        if (!isfinite(d) || !finite3(ext))
+            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                                 "the scene's bounds (%g, %g, %g) .. (%g, %g, %g) are too large "
+                                 "for a default camera: give the scene a camera",
+                                 (double)bmin[0], (double)bmin[1], (double)bmin[2],
+                                 (double)bmax[0], (double)bmax[1], (double)bmax[2]);
+    }
     if (!(d > 0.0f)) d = 1.0f; /* a single point: any distance will do */
     float dir[3] = {0.3f, 0.35f, 1.0f};
     normalize3(dir);

@@ -86,6 +86,7 @@ struct rt_scene {
      * renderer given another scene knows its caches are not this one's. */
     uint64_t uid;
     char source[512]; /* the file it was loaded from, or "" */
+    char *notices;    /* rt_scene_notices: lines, or NULL when none */
     rt_error error;   /* the last error of a call that edited the scene */
 };
 
@@ -97,6 +98,10 @@ void rt_mat4_mul(const float a[16], const float b[16], float out[16]);
 int rt_transform_is_identity(const float m[16]);
 /* Inverse of an affine matrix (last row 0 0 0 1); returns 0 if singular. */
 int rt_mat4_affine_inverse(const float m[16], float out[16]);
+
+/* Adds a line to the scene's notices (rt_scene_notices); dropped when out
+ * of memory (a notice is no failure). */
+void rt_scene_add_notice(rt_scene *scene, const char *text);
 
 /* Sets the scene's error and returns status. */
 #if defined(__GNUC__)
@@ -116,6 +121,12 @@ rt_scene_fail(rt_scene *scene, rt_status status, const char *fmt, ...);
 /* The largest image side in pixels (camera width and height); a 32768 x
  * 32768 framebuffer of 4 float channels is 16 GiB. */
 #define RT_MAX_IMAGE_SIDE 32768
+/* The largest colour or intensity component (material colours and their
+ * ambient, diffuse and specular factors, light colours, the ambient light,
+ * the background): products of a few such values and their sums over
+ * lights and bounces stay far below float's limit, so no pixel becomes
+ * infinite. Beyond it (or below 0, or not finite) is refused. */
+#define RT_MAX_COLOUR 1e6f
 
 /* The camera's orthonormal frame in double, as the layout stores it
  * (host/layout/flatten.c): forward f, right r = f x up / |f x up|, up u =
