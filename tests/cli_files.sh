@@ -50,4 +50,23 @@ expect 2 'big.obj: the OBJ file is 4294967297 bytes, more than the limit of 4294
     $T "$RTCL" info "$tmp/big.obj"
 expect 2 'big.rays: the ray file is 4294967297 bytes, more than the limit of 4294967296' -- \
     $T "$RTCL" trace "$tmp/tri.obj" --rays "$tmp/big.rays" --out "$tmp/hits.txt"
+rm -f "$tmp/big.json" "$tmp/big.obj" "$tmp/big.rays"
+
+# Limits before memory (issue 31). An OBJ one triangle past the limit (one
+# fan face of 2^28 + 3 corners, 512 MiB of text) is refused from its counts
+# before the parse allocates (it used to grow 3.7 GB first, and run out of
+# the address space allowed here).
+{ printf 'v 0 0 0\nf'; yes ' 1' | tr -d '\n' | head -c $((2 * (268435456 + 3))); echo; } > "$tmp/fan.obj"
+expect 2 'fan.obj: the file.s faces make 268435457 triangles, more than the limit of 268435456' -- \
+    timeout 120 "$RTCL" info "$tmp/fan.obj"
+rm -f "$tmp/fan.obj"
+# A 2 GB sparse ray file is refused at its first line, without reading the
+# rest (it was read whole first: 33 s and 2.1 GB).
+truncate -s $((2 * 1024 * 1024 * 1024)) "$tmp/sparse.rays"
+expect 2 'sparse.rays:1: a NUL byte in the line' -- \
+    $T "$RTCL" trace "$tmp/tri.obj" --rays "$tmp/sparse.rays" --out "$tmp/hits.txt"
+# A ray file line beyond 1 MiB is refused with its line.
+{ printf '0 0 0 0 0 -1 0 inf\n'; head -c 1100000 /dev/zero | tr '\0' ' '; echo; } > "$tmp/longline.rays"
+expect 2 'longline.rays:2: the line is longer than the limit of 1048576 bytes' -- \
+    $T "$RTCL" trace "$tmp/tri.obj" --rays "$tmp/longline.rays" --out "$tmp/hits.txt"
 finish

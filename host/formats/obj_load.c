@@ -17,6 +17,7 @@
 #include "base/file_read.h"
 #include "formats/obj_internal.h"
 #include "formats/parse_number.h"
+#include "scene/scene.h" /* the mesh limits */
 
 #define NO_INDEX UINT32_MAX
 /* Counts above this are refused so that 3 * count still fits in uint32_t. */
@@ -543,6 +544,66 @@ static void free_parser(obj_parser *o) {
     rt_mtl_library_free(&o->mtl);
 }
 
+/* ---- counts before memory ---------------------------------------------- */
+
+/* The statements' counts, read without parsing numbers: v lines, vn lines
+ * and the triangles of the f lines (corners - 2 each), by the parser's own
+ * rules for blanks, comments and continuations. A malformed file counts as
+ * what it would be up to its first error; the counts only bound what the
+ * parse may allocate. */
+static void count_statements(const char *text, size_t len, uint64_t *vertices, uint64_t *normals,
+                             uint64_t *triangles) {
+    rt_text_cursor c = {text, text + len, text, 1};
+    *vertices = *normals = *triangles = 0;
+    while (c.p < c.end) {
+        rt_text_skip_blanks(&c);
+        const char *p = c.p;
+        size_t avail = (size_t)(c.end - p);
+#define ENDS_AT(i) ((i) >= avail || rt_text_is_blank(p[i]) || p[i] == '\n' || p[i] == '#')
+        if (avail && p[0] == 'v' && ENDS_AT(1)) {
+            ++*vertices;
+        } else if (avail > 1 && p[0] == 'v' && p[1] == 'n' && ENDS_AT(2)) {
+            ++*normals;
+        } else if (avail && p[0] == 'f' && ENDS_AT(1)) {
+            uint64_t corners = 0;
+            c.p++;
+            for (;;) {
+                rt_text_skip_blanks(&c);
+                if (rt_text_at_statement_end(&c)) break;
+                corners++;
+                while (c.p < c.end && !rt_text_is_blank(*c.p) && *c.p != '\n' && *c.p != '#' &&
+                       !rt_text_continuation(c.p, c.end))
+                    c.p++;
+            }
+            if (corners >= 3) *triangles += corners - 2;
+        }
+#undef ENDS_AT
+        rt_text_next_line(&c);
+    }
+}
+
+/* The mesh limits checked from the counts, before the parse allocates for
+ * them. Only a file large enough to hold more than a limit is counted: a
+ * triangle takes at least 2 bytes of text (" 1" in a fan), a vertex 8. */
+static rt_status check_counts(const char *text, size_t len, const char *name, rt_error *err) {
+    if (len / 2 <= RT_MAX_MESH_TRIANGLES && len / 8 <= RT_MAX_MESH_VERTICES) return RT_OK;
+    uint64_t vertices, normals, triangles;
+    count_statements(text, len, &vertices, &normals, &triangles);
+    if (triangles > RT_MAX_MESH_TRIANGLES)
+        return rt_error_set(err, RT_ERROR_UNSUPPORTED, name, 0, 0,
+                            "the file's faces make %llu triangles, more than the limit of %llu "
+                            "triangles per mesh",
+                            (unsigned long long)triangles,
+                            (unsigned long long)RT_MAX_MESH_TRIANGLES);
+    if (vertices > RT_MAX_MESH_VERTICES || normals > RT_MAX_MESH_VERTICES)
+        return rt_error_set(err, RT_ERROR_UNSUPPORTED, name, 0, 0,
+                            "the file has %llu vertices and %llu normals, more than the limit "
+                            "of %llu vertices per mesh",
+                            (unsigned long long)vertices, (unsigned long long)normals,
+                            (unsigned long long)RT_MAX_MESH_VERTICES);
+    return RT_OK;
+}
+
 /* ---- public API ------------------------------------------------------------ */
 
 rt_status rt_obj_parse(const char *text, size_t len, const char *name, const char *base_dir,
@@ -553,6 +614,8 @@ rt_status rt_obj_parse(const char *text, size_t len, const char *name, const cha
         text = "";
         len = 0;
     }
+    rt_status st = check_counts(text, len, name ? name : "<obj>", err);
+    if (st != RT_OK) return st;
     obj_parser o;
     memset(&o, 0, sizeof o);
     o.c.p = o.c.line_start = text;
@@ -564,7 +627,6 @@ rt_status rt_obj_parse(const char *text, size_t len, const char *name, const cha
     o.all_normals = 1;
     o.current_mtl = NO_INDEX;
 
-    rt_status st = RT_OK;
     while (o.c.p < o.c.end) {
         rt_text_skip_blanks(&o.c);
         if (!rt_text_at_statement_end(&o.c)) {
