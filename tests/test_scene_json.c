@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "formats/json_bulk.h"
 #include "scene/scene.h"
 
 #define NEAR(a, b) (fabs((double)(a) - (double)(b)) <= 1e-5 * (1.0 + fabs((double)(b))))
@@ -260,6 +261,71 @@ static void test_mesh_files(void) {
     rt_scene_destroy(s);
 }
 
+/* Issue 31: big inline arrays are read from the text (formats/json_bulk.h),
+ * not as a JSON value per number. The same numbers read that way and read
+ * by jansson (the key written with an escape, which the bulk scan does not
+ * take) give the same bits, tricky ones included (-0, denormals, values
+ * rounded twice, long integers, exponents); errors inside a bulk array name
+ * the element and its place; a placeholder written by hand is no array. */
+static void test_bulk_arrays(void) {
+    const char *numbers = "-0, 1e-45, 1.4e-45, 3.4028235e38, 1.0000000596046448, "
+                          "0.1, 12345678901234567, -7, 2.5E+3, 0.000001, 1e-300, 9.999999e-39";
+    char json[4096];
+    snprintf(json, sizeof json,
+             "{\"meshes\": {\"b\": {\"positions\": [%s], \"triangles\": [0, 1, 2, 3, 2, 1, "
+             "0, 0, 0, 1, 2, 3, 0, 1, 2, 3, 2, 1, 0, 0, 0, 1, 2, 3]},\n"
+             " \"j\": {\"posit\\u0069ons\": [%s], \"tri\\u0061ngles\": [0, 1, 2, 3, 2, 1, 0, 0, "
+             "0, 1, 2, 3, 0, 1, 2, 3, 2, 1, 0, 0, 0, 1, 2, 3]}},\n"
+             " \"objects\": [{\"mesh\": \"b\"}, {\"mesh\": \"j\"}]}\n",
+             numbers, numbers);
+    rt_json_bulk_table table;
+    CHECK(rt_json_bulk_scan(json, strlen(json), &table));
+    CHECK_EQ_INT(table.count, 2); /* b's positions and triangles; j's keys are escaped */
+    rt_json_bulk_free(&table);
+    rt_scene *s = load_text("bulk.json", json);
+    if (s) {
+        CHECK(s->mesh_count == 2 && s->meshes[0].vertex_count == 4 &&
+              s->meshes[1].vertex_count == 4 && s->meshes[0].triangle_count == 8);
+        CHECK(memcmp(s->meshes[0].positions, s->meshes[1].positions, 12 * sizeof(float)) == 0);
+        CHECK(memcmp(s->meshes[0].indices, s->meshes[1].indices, 24 * sizeof(uint32_t)) == 0);
+        CHECK(signbit(s->meshes[0].positions[0]) == 0); /* -0 is the integer 0, as jansson has it */
+        rt_scene_destroy(s);
+    }
+    /* Errors at the element, with its place. */
+    const char *head = "{\"meshes\": {\"m\": {\"positions\": [0.00000, 0.00000, 0.00000, 1.00000, "
+                       "0.00000, 0.00000, 0.00000, 1.00000, 0.00000, 1.00000, 1.00000, ";
+    struct {
+        const char *rest, *reason;
+        int column;
+    } bad[] = {
+        {"1e39], \"triangles\": [0, 1, 2]}}, \"objects\": [{\"mesh\": \"m\"}]}",
+         "meshes.m.positions[11]: 1e+39 is out of range for a 32-bit float", 132},
+        {"1], \"triangles\": [0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 3, 1, 4]}}, "
+         "\"objects\": [{\"mesh\": \"m\"}]}",
+         "meshes.m.triangles[20]: vertex index 4 is out of range: the mesh has 4 vertices", 210},
+        {"1], \"triangles\": [0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 3, 1.0, 2]}}, "
+         "\"objects\": [{\"mesh\": \"m\"}]}",
+         "meshes.m.triangles[19]: expected a vertex index (an integer), found a number", 207},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        snprintf(json, sizeof json, "%s%s", head, bad[k].rest);
+        const char *path = test_write_temp("bulk_bad.json", json);
+        rt_scene *none = NULL;
+        rt_error err;
+        CHECK(rt_scene_load(path, &none, &err) == RT_ERROR_PARSE && none == NULL);
+        CHECK_CONTAINS(err.message, bad[k].reason);
+        CHECK_MSG(err.line == 1 && err.column == bad[k].column, "case %zu: at %d:%d: %s", k,
+                  err.line, err.column, err.message);
+    }
+    const char *forged = test_write_temp(
+        "forged.json", "{\"meshes\": {\"m\": {\"positions\": [{\"\": 0}], \"triangles\": [0]}},"
+                       " \"objects\": [{\"mesh\": \"m\"}]}");
+    rt_scene *none = NULL;
+    rt_error err;
+    CHECK(rt_scene_load(forged, &none, &err) == RT_ERROR_PARSE && none == NULL);
+    CHECK_CONTAINS(err.message, "meshes.m.positions");
+}
+
 int main(void) {
     test_full_scene();
     test_camera_direction_and_defaults();
@@ -267,5 +333,6 @@ int main(void) {
     test_keyframes();
     test_transforms();
     test_mesh_files();
+    test_bulk_arrays();
     return TEST_END();
 }

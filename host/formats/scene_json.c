@@ -23,6 +23,7 @@
 
 #include "base/error.h"
 #include "base/file_read.h"
+#include "formats/json_bulk.h"
 #include "formats/json_locate.h"
 #include "scene/scene.h"
 
@@ -38,11 +39,13 @@ typedef struct loader {
     size_t len;
     rt_json_step steps[MAX_DEPTH]; /* the path of the value being read */
     size_t depth;
-    json_t *materials;    /* the document's "materials" (names for messages), or NULL */
-    json_t *meshes;       /* the document's "meshes", or NULL */
-    json_t *material_ids; /* name -> material id */
-    json_t *mesh_ids;     /* name -> mesh id */
-    uint32_t white;       /* the default material, UINT32_MAX until an object needs it */
+    json_t *materials;       /* the document's "materials" (names for messages), or NULL */
+    json_t *meshes;          /* the document's "meshes", or NULL */
+    json_t *material_ids;    /* name -> material id */
+    json_t *mesh_ids;        /* name -> mesh id */
+    uint32_t white;          /* the default material, UINT32_MAX until an object needs it */
+    rt_json_bulk_table bulk; /* the big number arrays, read from the text (json_bulk.h) */
+    size_t at;               /* where the value failing is when known, else SIZE_MAX */
 } loader;
 
 /* ---- where we are, and errors there ----------------------------------- */
@@ -87,7 +90,9 @@ static void path_text(const loader *L, char *out, size_t cap) {
 static rt_status fail_v(loader *L, int at_key, int prefix, const char *fmt, va_list args) {
     int line = 0, column = 0;
     size_t depth = L->depth < MAX_DEPTH ? L->depth : MAX_DEPTH;
-    if (!rt_json_locate(L->text, L->len, L->steps, depth, at_key, &line, &column))
+    if (L->at != SIZE_MAX) /* a number of a bulk array: its place is known */
+        rt_json_offset_position(L->text, L->len, L->at, &line, &column);
+    else if (!rt_json_locate(L->text, L->len, L->steps, depth, at_key, &line, &column))
         line = column = 0;
     char where[256], reason[640];
     path_text(L, where, sizeof where);
@@ -518,11 +523,66 @@ static rt_status load_lights(loader *L, json_t *v) {
 
 /* ---- meshes ---------------------------------------------------------------- */
 
+/* The bulk array (json_bulk.h) whose placeholder v is, taken now; NULL
+ * when v is none (then it is read as the value it is). */
+static rt_json_bulk *take_bulk(loader *L, const json_t *v) {
+    if (!json_is_array(v) || json_array_size(v) != 1) return NULL;
+    const json_t *o = json_array_get(v, 0);
+    const json_t *offset =
+        json_is_object(o) && json_object_size(o) == 1 ? json_object_get(o, "") : NULL;
+    if (!json_is_integer(offset) || json_integer_value(offset) < 0) return NULL;
+    rt_json_bulk *b = rt_json_bulk_at(&L->bulk, (size_t)json_integer_value(offset));
+    if (!b || b->taken) return NULL;
+    b->taken = 1;
+    return b;
+}
+
+/* The numbers of a bulk array as floats (jansson's value, then the float
+ * cast read_float makes), each checked as read_float does. */
+static rt_status read_bulk_floats(loader *L, const rt_json_bulk *b, float *f) {
+    size_t pos = b->start, at = 0;
+    int integer;
+    long long iv = 0;
+    double rv = 0.0;
+    for (size_t i = 0; i < b->count; i++) {
+        if (!rt_json_bulk_next(L->text, b->end, &pos, &at, &integer, &iv, &rv))
+            return rt_error_set(L->err, RT_ERROR_PARSE, L->path, 0, 0, "a bulk array changed");
+        double d = integer ? (double)iv : rv;
+        f[i] = (float)d;
+        if (!isfinite(f[i])) {
+            enter_index(L, i);
+            L->at = at;
+            rt_status st = fail(L, "%g is out of range for a 32-bit float", d);
+            L->at = SIZE_MAX;
+            leave(L);
+            return st;
+        }
+    }
+    return RT_OK;
+}
+
 /* An array of numbers whose length is a multiple of 3, into a new buffer. */
 static rt_status read_float_triples(loader *L, json_t *v, const char *what, float **out,
                                     size_t *count) {
     *out = NULL;
     *count = 0;
+    rt_json_bulk *bulk = take_bulk(L, v);
+    if (bulk) {
+        size_t n = bulk->count;
+        if (n % 3 != 0)
+            return fail(L, "expected 3 numbers per %s, but %zu is not a multiple of 3", what, n);
+        if (n / 3 > UINT32_MAX / 3) return fail(L, "too many values (%zu)", n);
+        float *f = malloc(n * sizeof *f);
+        if (!f) return rt_error_set(L->err, RT_ERROR_OUT_OF_MEMORY, L->path, 0, 0, "out of memory");
+        rt_status st = read_bulk_floats(L, bulk, f);
+        if (st != RT_OK) {
+            free(f);
+            return st;
+        }
+        *out = f;
+        *count = n;
+        return RT_OK;
+    }
     if (!json_is_array(v))
         return fail(L, "expected a flat array of numbers, found %s", type_name(v));
     size_t n = json_array_size(v);
@@ -545,11 +605,58 @@ static rt_status read_float_triples(loader *L, json_t *v, const char *what, floa
     return RT_OK;
 }
 
+/* The vertex indices of a bulk array, each checked as read_triangles does. */
+static rt_status read_bulk_indices(loader *L, const rt_json_bulk *b, uint32_t vertex_count,
+                                   uint32_t *idx) {
+    size_t pos = b->start, at = 0;
+    int integer;
+    long long iv = 0;
+    double rv = 0.0;
+    for (size_t i = 0; i < b->count; i++) {
+        if (!rt_json_bulk_next(L->text, b->end, &pos, &at, &integer, &iv, &rv))
+            return rt_error_set(L->err, RT_ERROR_PARSE, L->path, 0, 0, "a bulk array changed");
+        if (integer && iv >= 0 && iv < (long long)vertex_count) {
+            idx[i] = (uint32_t)iv;
+            continue;
+        }
+        enter_index(L, i);
+        L->at = at;
+        rt_status st =
+            !integer
+                ? fail(L, "expected a vertex index (an integer), found a number")
+                : fail(L, "vertex index %lld is out of range: the mesh has %u vertices (0..%lld)",
+                       iv, vertex_count, (long long)vertex_count - 1);
+        L->at = SIZE_MAX;
+        leave(L);
+        return st;
+    }
+    return RT_OK;
+}
+
 /* Vertex indices, 3 per triangle, each below vertex_count. */
 static rt_status read_triangles(loader *L, json_t *v, uint32_t vertex_count, uint32_t **out,
                                 size_t *count) {
     *out = NULL;
     *count = 0;
+    rt_json_bulk *bulk = take_bulk(L, v);
+    if (bulk) {
+        size_t n = bulk->count;
+        if (n % 3 != 0)
+            return fail(L, "expected 3 vertex indices per triangle, but %zu is not a multiple of 3",
+                        n);
+        if (n / 3 > UINT32_MAX / 3) return fail(L, "too many triangles (%zu)", n / 3);
+        uint32_t *idx = malloc(n * sizeof *idx);
+        if (!idx)
+            return rt_error_set(L->err, RT_ERROR_OUT_OF_MEMORY, L->path, 0, 0, "out of memory");
+        rt_status st = read_bulk_indices(L, bulk, vertex_count, idx);
+        if (st != RT_OK) {
+            free(idx);
+            return st;
+        }
+        *out = idx;
+        *count = n;
+        return RT_OK;
+    }
     if (!json_is_array(v))
         return fail(L, "expected a flat array of vertex indices, found %s", type_name(v));
     size_t n = json_array_size(v);
@@ -1068,16 +1175,22 @@ rt_status rt_scene_load_json(rt_scene *scene, const char *path, rt_error *err) {
     rt_status st = rt_read_file(path, "scene file", RT_MAX_SCENE_FILE_BYTES, &text, &len, err);
     if (st != RT_OK) return st;
 
+    /* jansson reads the text with the big number arrays held back
+     * (json_bulk.h): a value per number would take ten times the text. */
+    loader L;
+    memset(&L, 0, sizeof L);
+    L.at = SIZE_MAX;
+    rt_json_bulk_scan(text, len, &L.bulk); /* out of memory: no bulk arrays, all jansson's */
+    rt_json_bulk_reader reader = {text, len, 0, &L.bulk, 0};
     json_error_t je;
-    json_t *root = json_loadb(text, len, JSON_REJECT_DUPLICATES, &je);
+    json_t *root = json_load_callback(rt_json_bulk_read, &reader, JSON_REJECT_DUPLICATES, &je);
     if (!root) {
         int line, column;
         syntax_position(text, len, &je, &line, &column);
+        rt_json_bulk_free(&L.bulk);
         free(text);
         return rt_error_set(err, RT_ERROR_PARSE, path, line, column, "invalid JSON: %s", je.text);
     }
-    loader L;
-    memset(&L, 0, sizeof L);
     L.scene = scene;
     L.err = err;
     L.path = path;
@@ -1099,6 +1212,7 @@ rt_status rt_scene_load_json(rt_scene *scene, const char *path, rt_error *err) {
     json_decref(L.material_ids);
     json_decref(L.mesh_ids);
     json_decref(root);
+    rt_json_bulk_free(&L.bulk);
     free(text);
     return st;
 }
