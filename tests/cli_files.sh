@@ -79,6 +79,27 @@ if [ -x /usr/bin/time ] && ! ldd "$RTCL" 2> /dev/null | grep -q asan; then
     fi
     rm -f "$tmp/inline.json"
 fi
+# Image reads check the header's size against the pixel limit before any
+# pixel memory is taken: a 100000 x 100000 PNG (a few hundred bytes, valid
+# chunks) asked for 120 GB; an ASCII PPM claiming 30000 x 30000 pixels with
+# six of them is cut short, found before its 10 GB are allocated.
+py=/usr/bin/python3
+[ -x "$py" ] || py=python3
+$py - "$tmp/huge.png" <<'PY'
+import struct, sys, zlib
+def chunk(kind, data):
+    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+ihdr = struct.pack(">IIBBBBB", 100000, 100000, 8, 2, 0, 0, 0)
+with open(sys.argv[1], "wb") as f:
+    f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(b"\0" * 64))
+            + chunk(b"IEND", b""))
+PY
+printf 'P3\n30000 30000\n255\n1 2 3 4 5 6\n' > "$tmp/huge.ppm"
+printf 'P6\n1 1\n255\nabc' > "$tmp/one.ppm"
+expect 2 'huge.png: the image is 100000x100000 with 3 channels, beyond the limit of 1073741824 pixels' -- \
+    $T "$RTCL" compare "$tmp/huge.png" "$tmp/one.ppm"
+expect 2 'huge.ppm: PNM file cut short: fewer pixels than its size says' -- \
+    $T "$RTCL" compare "$tmp/huge.ppm" "$tmp/one.ppm"
 # A 2 GB sparse ray file is refused at its first line, without reading the
 # rest (it was read whole first: 33 s and 2.1 GB).
 truncate -s $((2 * 1024 * 1024 * 1024)) "$tmp/sparse.rays"

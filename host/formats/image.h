@@ -15,6 +15,13 @@
 extern "C" {
 #endif
 
+/* The largest image read (rt_image_read), checked from its header before
+ * any pixel memory is allocated: at most RT_MAX_IMAGE_READ_PIXELS pixels
+ * (32768 x 32768, the largest frame rtcl renders) and
+ * RT_MAX_IMAGE_READ_CHANNELS channels; beyond them RT_ERROR_UNSUPPORTED. */
+#define RT_MAX_IMAGE_READ_PIXELS   ((uint64_t)1 << 30)
+#define RT_MAX_IMAGE_READ_CHANNELS 16
+
 typedef struct rt_image {
     int width;
     int height;
@@ -60,8 +67,9 @@ rt_status rt_image_check_output(const char *path, rt_error *err);
  * k / 65535.0f, so an 8-bit file written from such values reads back
  * bit-identical. Subimage 0 only, all its channels. A file that cannot be
  * opened is RT_ERROR_IO; one that is not an image or is damaged or cut short
- * is RT_ERROR_PARSE (RT_ERROR_UNSUPPORTED for deep images). On failure *out
- * is zeroed. */
+ * is RT_ERROR_PARSE (RT_ERROR_UNSUPPORTED for deep images and for images
+ * beyond the limits above, refused from the header before the pixels are
+ * allocated or read). On failure *out is zeroed. */
 rt_status rt_image_read(const char *path, rt_image *out, rt_error *err);
 
 void rt_image_free(rt_image *image);

@@ -181,6 +181,10 @@ static rt_status decode_pnm(const char *path, cursor *c, char kind, rt_image *ou
     long maxval = read_uint(c, 65535);
     if (maxval <= 0) return parse_fail(path, err, "bad PNM maximum value (1..65535)");
     size_t count = (size_t)width * (size_t)height * (size_t)channels;
+    if (!binary && count > 0 && (size_t)(c->end - c->p) < 2 * count - 1)
+        /* Each level takes a digit and a separator: the file is checked to
+         * be long enough before the pixels are allocated. */
+        return parse_fail(path, err, "PNM file cut short: fewer pixels than its size says");
     if (binary) {
         if (c->p >= c->end || !is_space(*c->p))
             return parse_fail(path, err, "PNM header cut short");

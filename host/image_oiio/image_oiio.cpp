@@ -348,6 +348,16 @@ rt_status read_image(const char *path, rt_image *out, rt_error *err) {
         return rt_error_set(err, RT_ERROR_PARSE, path, 0, 0,
                             "unusable image size %dx%d with %d channels", spec.width, spec.height,
                             spec.nchannels);
+    // The header's size is checked before any pixel memory is taken: a
+    // small file can claim an image of terabytes.
+    if ((uint64_t)spec.width * (uint64_t)spec.height > RT_MAX_IMAGE_READ_PIXELS ||
+        spec.nchannels > RT_MAX_IMAGE_READ_CHANNELS)
+        return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
+                            "the image is %dx%d with %d channels, beyond the limit of %llu pixels "
+                            "and %d channels",
+                            spec.width, spec.height, spec.nchannels,
+                            (unsigned long long)RT_MAX_IMAGE_READ_PIXELS,
+                            RT_MAX_IMAGE_READ_CHANNELS);
 
     float *pixels = static_cast<float *>(std::malloc(count * sizeof(float)));
     if (!pixels)
