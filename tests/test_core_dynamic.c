@@ -124,10 +124,12 @@ static rt_renderer *new_renderer(const char *backend, int threads) {
     return r;
 }
 
-/* The layout the renderer holds equals rt_flatten of its own BVHs. */
+/* The layout the renderer holds equals rt_flatten of its own BVHs (the
+ * static meshes' ones copied back out of the layout, where they are kept). */
 static void check_layout_fresh(rt_renderer *r, rt_scene *s, const char *what) {
     rt_flat f;
     rt_error err;
+    CHECK(rt_accel_cache_unpark(&r->accel) == RT_OK);
     rt_status st = rt_flatten(s, r->accel.bvhs, &r->accel.top, NULL, &f, &err);
     CHECK_MSG(st == RT_OK, "%s: %s", what, err.message);
     if (st != RT_OK) return;

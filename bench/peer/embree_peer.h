@@ -41,6 +41,17 @@ rt_status rt_embree_commit_ms(rt_embree *em, const float *positions, uint32_t ve
                               const uint32_t *indices, uint32_t triangle_count, int quality,
                               double *ms, rt_error *err);
 
+/* What Embree holds for one triangle geometry sharing the caller's arrays
+ * (embree_memory.c): *held, the bytes its device has allocated once
+ * rtcCommitScene returned (BVH and primitive data; the shared arrays are
+ * not Embree's), and *peak, the most it held during the build, both from
+ * its memory monitor callback. quality: 0 low, 1 medium (Embree's
+ * default), 2 high; compact: RTC_SCENE_FLAG_COMPACT. positions must be
+ * readable 4 bytes past the last vertex (Embree loads 16 bytes). */
+rt_status rt_embree_memory(const float *positions, uint32_t vertex_count, const uint32_t *indices,
+                           uint32_t triangle_count, int threads, int quality, int compact,
+                           uint64_t *held, uint64_t *peak, rt_error *err);
+
 /* The RTCDevice (as void *, so that this header needs no Embree header). */
 void *rt_embree_device(rt_embree *em);
 

@@ -22,6 +22,7 @@ void rt_accel_cache_clear(rt_accel_cache *c) {
     free(c->built_topology);
     free(c->built);
     free(c->dirty);
+    free(c->parked);
     free(c->sah);
     free(c->sah_rebuilt);
     free(c->refit);
@@ -56,6 +57,7 @@ static int grow(rt_accel_cache *c, uint32_t meshes) {
     GROW(built_topology, meshes);
     GROW(built, meshes);
     GROW(dirty, meshes);
+    GROW(parked, meshes);
     GROW(sah, meshes);
     GROW(sah_rebuilt, meshes);
     GROW(refit, meshes);
@@ -67,6 +69,7 @@ static int grow(rt_accel_cache *c, uint32_t meshes) {
         memset(&c->kds[i], 0, sizeof(rt_kd));
         memset(&c->refit[i], 0, sizeof(rt_bvh_refit_info));
         c->built[i] = 0;
+        c->parked[i] = 0;
         c->dirty[i] = RT_DIRTY_ALL;
         c->sah[i] = c->sah_rebuilt[i] = 0.0;
     }
@@ -89,6 +92,7 @@ static rt_status tri_boxes(rt_accel_cache *c, const rt_mesh_data *md, rt_error *
 static rt_status build(rt_accel_cache *c, const rt_mesh_data *md, uint32_t m, rt_builder builder,
                        rt_pool *pool, rt_error *err) {
     rt_bvh_free(&c->bvhs[m]);
+    c->parked[m] = 0;
     rt_bvh_refit_info_free(&c->refit[m]);
     rt_build_options bo = rt_build_options_default();
     bo.builder = builder;
@@ -117,6 +121,7 @@ static int mesh_is_kd(const rt_mesh_data *md) {
 static rt_status build_kd(rt_accel_cache *c, const rt_mesh_data *md, uint32_t m, rt_pool *pool,
                           rt_error *err) {
     rt_bvh_free(&c->bvhs[m]);
+    c->parked[m] = 0;
     rt_bvh_refit_info_free(&c->refit[m]);
     rt_kd_options ko = rt_kd_options_default();
     ko.builder = md->accel == RT_ACCEL_KD ? RT_KD_EXACT : RT_KD_BINNED;
@@ -188,6 +193,7 @@ static rt_status update_mesh(rt_accel_cache *c, const rt_scene *scene, uint32_t 
         if (st != RT_OK) return st;
     } else {
         rt_bvh_free(&c->bvhs[m]);
+        c->parked[m] = 0;
         rt_bvh_refit_info_free(&c->refit[m]);
     }
     double ms = rt_now_ms() - t0;
@@ -213,6 +219,73 @@ static rt_status update_mesh(rt_accel_cache *c, const rt_scene *scene, uint32_t 
     u->action = action;
     u->ms = ms;
     u->sah = sah;
+    return RT_OK;
+}
+
+/* Whether the scene's meshes are updated frame after frame by a cheap
+ * policy (fast, auto), which then reuses the triangle boxes' scratch. */
+static int keeps_boxes(const rt_scene *scene) {
+    for (uint32_t m = 0; m < scene->mesh_count; m++)
+        if (scene->meshes[m].update_policy == RT_UPDATE_FAST ||
+            scene->meshes[m].update_policy == RT_UPDATE_AUTO)
+            return 1;
+    return 0;
+}
+
+/* Parks the static meshes the layout holds (accel_cache.h): their BVHs
+ * keep the root node, the layout the tree. A mesh with another update
+ * policy keeps its tree, which the next frame refits or replaces. */
+static void park(rt_accel_cache *c, const rt_scene *scene) {
+    for (uint32_t m = 0; m < scene->mesh_count && m < c->shape.mesh_count; m++) {
+        rt_bvh *b = &c->bvhs[m];
+        const rt_mesh_data *md = &scene->meshes[m];
+        if (c->parked[m] || c->shape.node_base[m] == UINT32_MAX || !md->triangle_count ||
+            c->kds[m].node_count || md->update_policy != RT_UPDATE_REBUILD || b->node_count < 2 ||
+            b->node_count != c->shape.node_count[m] || b->prim_count != c->shape.tri_count[m])
+            continue;
+        rt_node *root = realloc(b->nodes, sizeof *root);
+        if (root) b->nodes = root;
+        free(b->prim_indices);
+        b->prim_indices = NULL;
+        b->node_count = 1;
+        b->prim_count = 0;
+        rt_bvh_refit_info_free(&c->refit[m]);
+        c->parked[m] = 1;
+    }
+}
+
+rt_status rt_accel_cache_unpark(rt_accel_cache *c) {
+    for (uint32_t m = 0; m < c->mesh_count; m++) {
+        if (!c->parked[m]) continue;
+        uint32_t node_base = c->shape.node_base[m], tri_base = c->shape.tri_base[m];
+        uint32_t nodes = c->shape.node_count[m], tris = c->shape.tri_count[m];
+        rt_node *n = malloc(sizeof *n * nodes);
+        uint32_t *prims = malloc(sizeof *prims * tris);
+        if (!n || !prims) {
+            free(n);
+            free(prims);
+            return RT_ERROR_OUT_OF_MEMORY;
+        }
+        /* The inverse of the layout's copy (flatten.c): indices less the
+         * bases, boxes as they are. */
+        for (uint32_t i = 0; i < nodes; i++) {
+            n[i] = c->flat.nodes[node_base + i];
+            if (n[i].b & RT_NODE_LEAF_FLAG) {
+                n[i].a -= tri_base;
+            } else {
+                n[i].a -= node_base;
+                n[i].b -= node_base;
+            }
+        }
+        memcpy(prims, c->flat.tri_ids + tri_base, sizeof *prims * tris);
+        rt_bvh *b = &c->bvhs[m];
+        free(b->nodes);
+        b->nodes = n;
+        b->node_count = nodes;
+        b->prim_indices = prims;
+        b->prim_count = tris;
+        c->parked[m] = 0;
+    }
     return RT_OK;
 }
 
@@ -260,6 +333,13 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
                 update_mesh(c, scene, rt_object_shown_mesh(&scene->objects[o]), pool, err);
             if (st != RT_OK) return st;
         }
+        /* The triangle boxes are scratch of the builds: kept only for
+         * scenes that rebuild cheaply frame after frame. */
+        if (!keeps_boxes(scene)) {
+            free(c->boxes);
+            c->boxes = NULL;
+            c->boxes_cap = 0;
+        }
         /* The object BVH, every frame the scene changed: objects move. */
         double t1 = rt_now_ms();
         rt_bvh_free(&c->top);
@@ -299,6 +379,9 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
             c->base_generation = 0;
             c->shapes_kept = 0;
             c->dirty_node_ranges = c->dirty_tri_ranges = 0;
+            /* The parked trees come back out of the old layout first. */
+            if (rt_accel_cache_unpark(c) != RT_OK)
+                return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
             rt_flat_free(&c->flat);
             rt_flat_shape_free(&c->shape);
             c->flat_valid = 0;
@@ -310,6 +393,7 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
             c->layout_bytes = rt_flat_bytes(&c->flat);
         }
         memset(c->dirty, 0, c->mesh_count);
+        if (!has_kd) park(c, scene);
         c->layout_ms = rt_now_ms() - t2;
         c->flat_valid = 1;
         c->flat_scene_version = scene->version;
@@ -319,4 +403,26 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
     *build_ms = rt_now_ms() - t0;
     *sah_cost = mean_sah(c, scene);
     return RT_OK;
+}
+
+static uint64_t bvh_bytes(const rt_bvh *b) {
+    return (uint64_t)b->node_count * sizeof(rt_node) + (uint64_t)b->prim_count * sizeof(uint32_t);
+}
+
+void rt_accel_cache_memory(const rt_accel_cache *c, rt_memory_stats *out) {
+    for (uint32_t m = 0; m < c->mesh_count; m++) {
+        out->mesh_bvhs += bvh_bytes(&c->bvhs[m]) +
+                          (uint64_t)c->kds[m].node_count * sizeof(rt_kd_node) +
+                          (uint64_t)c->kds[m].prim_count * sizeof(uint32_t);
+        const rt_bvh_refit_info *r = &c->refit[m];
+        if (r->parents)
+            out->kept += (uint64_t)r->node_count * (sizeof(uint32_t) + sizeof(uint32_t)) +
+                         (uint64_t)r->leaf_count * sizeof(uint32_t);
+    }
+    out->object_bvh += bvh_bytes(&c->top);
+    out->kept += (uint64_t)c->boxes_cap * sizeof(rt_aabb);
+    if (c->flat_valid) {
+        out->layout += rt_flat_bytes(&c->flat);
+        out->triangles += c->flat.tri_count;
+    }
 }

@@ -29,7 +29,12 @@ typedef struct rt_accel_cache {
     uint32_t *built_version;  /* the mesh version its structure was made from */
     uint32_t *built_topology; /* ... and its topology version */
     uint8_t *built;
-    uint8_t *dirty;           /* its BVH or vertices changed since the layout was made */
+    uint8_t *dirty; /* its BVH or vertices changed since the layout was made */
+    /* 1: the mesh is static and its tree lives only in the layout (its BVH
+     * keeps the root node, for the object BVH); rt_accel_cache_unpark
+     * copies it back out when the layout is to be made anew. One copy of a
+     * static mesh's tree instead of two (issue 31). */
+    uint8_t *parked;
     double *sah;              /* per mesh: its BVH's SAH cost, measured at each update */
     double *sah_rebuilt;      /* ... at its last SAH build (the "auto" policy's reference) */
     rt_bvh_refit_info *refit; /* per mesh: the tree's shape, made at the first refit */
@@ -68,6 +73,16 @@ typedef struct rt_accel_cache {
  * SAH cost of the shown meshes' structures. */
 rt_status rt_accel_cache_update(rt_accel_cache *cache, const rt_scene *scene, rt_pool *pool,
                                 double *build_ms, double *sah_cost, rt_error *err);
+
+/* Gives every parked mesh its whole BVH again, copied out of the layout
+ * (the tree it was flattened from, bit for bit). RT_ERROR_OUT_OF_MEMORY on
+ * failure. For a layout to be made anew, and for tests that flatten the
+ * cache's BVHs themselves. */
+rt_status rt_accel_cache_unpark(rt_accel_cache *cache);
+
+/* The bytes the cache holds, by part (rt_memory_stats's mesh_bvhs,
+ * object_bvh, kept, layout and triangles). */
+void rt_accel_cache_memory(const rt_accel_cache *cache, rt_memory_stats *out);
 
 /* Frees everything; the cache is then empty (and may be used again). */
 void rt_accel_cache_clear(rt_accel_cache *cache);

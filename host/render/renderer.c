@@ -196,3 +196,16 @@ rt_status rt_renderer_update_stats(const rt_renderer *r, rt_update_stats *out) {
     out->camera_only = r->accel.camera_only;
     return RT_OK;
 }
+
+rt_status rt_renderer_memory(const rt_renderer *r, const rt_scene *scene, rt_memory_stats *out) {
+    if (!r || !out) return RT_ERROR_INVALID_ARGUMENT;
+    memset(out, 0, sizeof *out);
+    for (uint32_t m = 0; scene && m < scene->mesh_count; m++) {
+        const rt_mesh_data *md = &scene->meshes[m];
+        out->scene += (uint64_t)md->vertex_count * 3 * sizeof(float) * (md->normals ? 2 : 1) +
+                      (uint64_t)md->triangle_count *
+                          (3 * sizeof(uint32_t) + (md->tri_materials ? sizeof(uint32_t) : 0));
+    }
+    if (scene && r->accel.scene_uid == scene->uid) rt_accel_cache_memory(&r->accel, out);
+    return RT_OK;
+}
