@@ -90,6 +90,45 @@ static void test_determinism(void) {
     free(boxes);
 }
 
+/* rt_bvh_build_tris (issue 31: no box array at the build's peak) gives the
+ * very tree rt_bvh_build gives of rt_tri_box's boxes, for the fast builder
+ * (which reads the triangles itself, on 1 and 3 threads, above and below
+ * the size whose scratch is kept between builds) and for the LBVH (a
+ * temporary box array). */
+static void test_from_triangles(void) {
+    const uint32_t counts[] = {5000, 700000};
+    for (int c = 0; c < 2; c++) {
+        const uint32_t n = counts[c], nv = n + 2;
+        float *pos = malloc(sizeof *pos * 3 * nv);
+        uint32_t *idx = malloc(sizeof *idx * 3 * n);
+        rt_aabb *boxes = malloc(sizeof *boxes * n);
+        uint32_t s = 11;
+        for (uint32_t v = 0; v < 3 * nv; v++) pos[v] = bvh_test_uniform(&s, -50.0f, 50.0f);
+        for (uint32_t t = 0; t < n; t++) {
+            idx[3 * t] = t;
+            idx[3 * t + 1] = (t * 7 + 1) % nv;
+            idx[3 * t + 2] = (t * 13 + 2) % nv;
+            rt_tri_box(pos, idx + 3 * t, &boxes[t]);
+        }
+        const rt_builder builders[2] = {RT_BUILDER_SAH, RT_BUILDER_LBVH};
+        for (int b = 0; b < 2; b++)
+            for (int threads = 1; threads <= 3; threads += 2) {
+                rt_build_options o = opts(threads);
+                o.builder = builders[b];
+                rt_bvh from_boxes, from_tris;
+                CHECK(rt_bvh_build(boxes, n, &o, NULL, &from_boxes, NULL) == RT_OK);
+                CHECK(rt_bvh_build_tris(pos, idx, n, &o, NULL, &from_tris, NULL) == RT_OK);
+                CHECK_MSG(same_bvh(&from_boxes, &from_tris), "%u triangles, %s, %d threads", n,
+                          rt_builder_name(builders[b]), threads);
+                rt_bvh_free(&from_boxes);
+                rt_bvh_free(&from_tris);
+            }
+        free(pos);
+        free(idx);
+        free(boxes);
+    }
+}
+
 /* SAH leaves: a leaf never exceeds leaf_size, and with a huge leaf size the
  * SAH still splits a spread-out input (leaves are not simply as large as
  * allowed). */
@@ -381,6 +420,7 @@ int main(void) {
     test_leaf_sizes_used();
     test_ranges_traverse();
     test_determinism();
+    test_from_triangles();
     test_scratch_reuse();
     test_sah_leaves();
     test_degenerate();

@@ -39,6 +39,27 @@ const char *rt_builder_name(rt_builder builder) {
     return "unknown";
 }
 
+rt_status rt_bvh_build_tris(const float *positions, const uint32_t *indices, uint32_t count,
+                            const rt_build_options *options, rt_pool *pool, rt_bvh *out,
+                            rt_error *err) {
+    if (!out || (count && (!positions || !indices))) return RT_ERROR_INVALID_ARGUMENT;
+    memset(out, 0, sizeof *out);
+    rt_build_options o = options ? *options : rt_build_options_default();
+    if (o.builder == RT_BUILDER_SAH) {
+        if (o.bins < 2 || o.bins > 256 || o.leaf_size < 1 || o.leaf_size > 1 << 20) {
+            rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "bins must be 2..256 and leaf size >= 1");
+            return RT_ERROR_INVALID_ARGUMENT;
+        }
+        return rt_bvh_build_sah_tris(positions, indices, count, &o, pool, 1, out, err);
+    }
+    rt_aabb *boxes = malloc(sizeof *boxes * (count ? count : 1));
+    if (!boxes) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory for the boxes");
+    for (uint32_t t = 0; t < count; t++) rt_tri_box(positions, indices + 3 * (size_t)t, &boxes[t]);
+    rt_status st = rt_bvh_build(boxes, count, &o, pool, out, err);
+    free(boxes);
+    return st;
+}
+
 rt_status rt_bvh_build(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
                        rt_pool *pool, rt_bvh *out, rt_error *err) {
     if (!out || (!boxes && count)) return RT_ERROR_INVALID_ARGUMENT;

@@ -9,6 +9,7 @@
 #ifndef RT_BVH_H
 #define RT_BVH_H
 
+#include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -73,6 +74,33 @@ typedef struct rt_bvh {
  * traversal must check node_count before reading the root). */
 rt_status rt_bvh_build(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
                        rt_pool *pool, rt_bvh *out, rt_error *err);
+
+/* The box of the triangle whose three vertex indices are at tri, as every
+ * mesh BVH's input is computed (scene_boxes.h's rt_mesh_tri_boxes and
+ * rt_bvh_build_tris: one definition, so both give the same bits). */
+static inline void rt_tri_box(const float *positions, const uint32_t *tri, rt_aabb *b) {
+    for (int k = 0; k < 3; k++) {
+        b->bmin[k] = INFINITY;
+        b->bmax[k] = -INFINITY;
+    }
+    for (int v = 0; v < 3; v++) {
+        const float *p = positions + 3 * (size_t)tri[v];
+        for (int k = 0; k < 3; k++) {
+            if (p[k] < b->bmin[k]) b->bmin[k] = p[k];
+            if (p[k] > b->bmax[k]) b->bmax[k] = p[k];
+        }
+    }
+}
+
+/* rt_bvh_build over the boxes of count triangles (vertex indices, 3 per
+ * triangle, into positions), the same tree as rt_bvh_build of the boxes
+ * rt_tri_box gives. With the fast builder no box array is made: the
+ * builder reads the triangles as it sets up, which saves a box per triangle
+ * at the build's peak of memory (issue 31); other builders get a temporary
+ * box array. */
+rt_status rt_bvh_build_tris(const float *positions, const uint32_t *indices, uint32_t count,
+                            const rt_build_options *options, rt_pool *pool, rt_bvh *out,
+                            rt_error *err);
 
 void rt_bvh_free(rt_bvh *bvh);
 

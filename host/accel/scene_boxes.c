@@ -4,20 +4,8 @@
 #include <math.h>
 
 void rt_mesh_tri_boxes(const rt_mesh_data *m, rt_aabb *boxes) {
-    for (uint32_t t = 0; t < m->triangle_count; t++) {
-        rt_aabb *b = &boxes[t];
-        for (int k = 0; k < 3; k++) {
-            b->bmin[k] = INFINITY;
-            b->bmax[k] = -INFINITY;
-        }
-        for (int v = 0; v < 3; v++) {
-            const float *p = m->positions + 3 * (size_t)m->indices[3 * t + v];
-            for (int k = 0; k < 3; k++) {
-                if (p[k] < b->bmin[k]) b->bmin[k] = p[k];
-                if (p[k] > b->bmax[k]) b->bmax[k] = p[k];
-            }
-        }
-    }
+    for (uint32_t t = 0; t < m->triangle_count; t++)
+        rt_tri_box(m->positions, m->indices + 3 * (size_t)t, &boxes[t]);
 }
 
 void rt_object_world_box(const rt_scene *scene, uint32_t object, rt_aabb *box) {

@@ -182,6 +182,8 @@ static void store_tri(const rt_mesh_data *m, uint32_t t, rt_tri *out) {
 
 static void write_mesh(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b, uint32_t node_base,
                        uint32_t tri_base);
+static void write_tris(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b, uint32_t node_base,
+                       uint32_t tri_base);
 static rt_status write_frame(const rt_scene *scene, const rt_bvh *top, const rt_kd *mesh_kds,
                              int single, uint32_t top_root, const uint32_t *node_base,
                              const uint32_t *tri_base, const uint32_t *tri_span,
@@ -197,9 +199,39 @@ static const rt_kd *kd_of(const rt_kd *mesh_kds, uint32_t m) {
     return mesh_kds && mesh_kds[m].node_count ? &mesh_kds[m] : NULL;
 }
 
+static rt_status flatten(const rt_scene *scene, rt_bvh *mesh_bvhs, const uint8_t *take,
+                         const rt_kd *mesh_kds, const rt_bvh *top, const rt_flat_options *options,
+                         rt_flat *out, rt_error *err);
+
 rt_status rt_flatten_accel(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_kd *mesh_kds,
                            const rt_bvh *top, const rt_flat_options *options, rt_flat *out,
                            rt_error *err) {
+    /* Nothing is taken, so the BVHs are only read. */
+    return flatten(scene, (rt_bvh *)mesh_bvhs, NULL, mesh_kds, top, options, out, err);
+}
+
+rt_status rt_flatten_take(const rt_scene *scene, rt_bvh *mesh_bvhs, const uint8_t *take,
+                          const rt_bvh *top, const rt_flat_options *options, rt_flat *out,
+                          rt_error *err) {
+    return flatten(scene, mesh_bvhs, take, NULL, top, options, out, err);
+}
+
+/* Leaves a taken mesh's BVH as its root node alone (the layout holds the
+ * tree); root is that node as the layout has it. */
+static void leave_root(rt_bvh *b, const rt_node *root) {
+    rt_node *n = malloc(sizeof *n);
+    free(b->nodes);
+    free(b->prim_indices);
+    memset(b, 0, sizeof *b);
+    if (!n) return; /* no root: the caller's BVH is empty, and rebuilt */
+    *n = *root;
+    b->nodes = n;
+    b->node_count = 1;
+}
+
+static rt_status flatten(const rt_scene *scene, rt_bvh *mesh_bvhs, const uint8_t *take,
+                         const rt_kd *mesh_kds, const rt_bvh *top, const rt_flat_options *options,
+                         rt_flat *out, rt_error *err) {
     memset(out, 0, sizeof *out);
     rt_flat_options opt = options ? *options : rt_flat_options_default();
     if (opt.tri_method > RT_TRI_BADOUEL || opt.max_depth > RT_MAX_DEPTH) {
@@ -273,9 +305,29 @@ rt_status rt_flatten_accel(const rt_scene *scene, const rt_bvh *mesh_bvhs, const
 
     out->node_count = (uint32_t)nodes;
     out->tri_count = (uint32_t)tris;
-    out->nodes = malloc(sizeof(rt_node) * (nodes ? nodes : 1));
+    /* A taken mesh at the layout's start (a one-mesh scene) gives it its
+     * node and entry arrays: at base 0 the layout's nodes are the BVH's as
+     * they are, and its triangle ids the BVH's primitive indices. */
+    uint32_t first = UINT32_MAX;
+    for (uint32_t m = 0; take && m < nmesh && first == UINT32_MAX; m++)
+        if (used[m] && take[m] && !kd_of(mesh_kds, m) && scene->meshes[m].triangle_count &&
+            node_base[m] == 0 && tri_base[m] == 0)
+            first = m;
+    if (first != UINT32_MAX) {
+        rt_bvh *b = &mesh_bvhs[first];
+        rt_node *n = realloc(b->nodes, sizeof(rt_node) * nodes);
+        if (!n) goto oom;
+        b->nodes = NULL;
+        out->nodes = n;
+        uint32_t *ids = realloc(b->prim_indices, sizeof(uint32_t) * (tris ? tris : 1));
+        if (!ids) goto oom;
+        b->prim_indices = NULL;
+        out->tri_ids = ids;
+    } else {
+        out->nodes = malloc(sizeof(rt_node) * (nodes ? nodes : 1));
+        out->tri_ids = malloc(sizeof(uint32_t) * (tris ? tris : 1));
+    }
     out->tris = malloc(sizeof(rt_tri) * (tris ? tris : 1));
-    out->tri_ids = malloc(sizeof(uint32_t) * (tris ? tris : 1));
     if (any_normals) out->tri_normals = calloc(9 * (tris ? tris : 1), sizeof(float));
     if (any_mats) out->tri_mats = malloc(sizeof(uint32_t) * (tris ? tris : 1));
     out->instances = calloc(nobj ? nobj : 1, sizeof(rt_instance));
@@ -298,8 +350,19 @@ rt_status rt_flatten_accel(const rt_scene *scene, const rt_bvh *mesh_bvhs, const
         if (!used[m]) continue;
         const rt_mesh_data *md = &scene->meshes[m];
         const rt_kd *kd = kd_of(mesh_kds, m);
+        if (m == first) {
+            /* Nodes and ids in place already: the triangles, in id order. */
+            rt_bvh in_place = mesh_bvhs[m];
+            in_place.nodes = out->nodes;
+            in_place.prim_indices = out->tri_ids;
+            write_tris(out, md, &in_place, 0, 0);
+            leave_root(&mesh_bvhs[m], &out->nodes[0]);
+            continue;
+        }
         if (!kd) {
             write_mesh(out, md, &mesh_bvhs[m], node_base[m], tri_base[m]);
+            if (take && take[m] && md->triangle_count)
+                leave_root(&mesh_bvhs[m], &out->nodes[node_base[m]]);
             continue;
         }
         /* The root box, then the tree with absolute indices. */
@@ -341,6 +404,9 @@ rt_status rt_flatten_accel(const rt_scene *scene, const rt_bvh *mesh_bvhs, const
     return RT_OK;
 oom:
     rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory flattening the scene");
+    /* A tree given to the layout went with it: that BVH is empty now. */
+    for (uint32_t m = 0; take && m < nmesh; m++)
+        if (take[m] && !mesh_bvhs[m].nodes) rt_bvh_free(&mesh_bvhs[m]);
     free(node_base);
     free(tri_base);
     free(tri_span);
@@ -349,6 +415,8 @@ oom:
     rt_flat_free(out);
     return RT_ERROR_OUT_OF_MEMORY;
 fail:
+    for (uint32_t m = 0; take && m < nmesh; m++)
+        if (take[m] && !mesh_bvhs[m].nodes) rt_bvh_free(&mesh_bvhs[m]);
     free(node_base);
     free(tri_base);
     free(tri_span);
@@ -361,6 +429,9 @@ fail:
 /* Writes a mesh's BVH nodes and triangles at its place in the layout;
  * moved_only: only the nodes and the vertices (and normals), the tree's
  * shape and the triangle order being the same as written before (a refit). */
+static void write_tris_as(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b, uint32_t tri_base,
+                          int moved_only);
+
 static void write_mesh_as(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b, uint32_t node_base,
                           uint32_t tri_base, int moved_only) {
     if (!md->triangle_count) {
@@ -368,6 +439,13 @@ static void write_mesh_as(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b,
         return;
     }
     copy_nodes(b, out->nodes + node_base, node_base, tri_base);
+    write_tris_as(out, md, b, tri_base, moved_only);
+}
+
+/* The mesh's triangles (and ids, normals, materials) in the order of its
+ * BVH's entries, from tri_base on. */
+static void write_tris_as(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b, uint32_t tri_base,
+                          int moved_only) {
     for (uint32_t j = 0; j < b->prim_count; j++) {
         uint32_t t = b->prim_indices[j], e = tri_base + j;
         store_tri(md, t, &out->tris[e]);
@@ -385,6 +463,12 @@ static void write_mesh_as(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b,
 static void write_mesh(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b, uint32_t node_base,
                        uint32_t tri_base) {
     write_mesh_as(out, md, b, node_base, tri_base, 0);
+}
+
+static void write_tris(rt_flat *out, const rt_mesh_data *md, const rt_bvh *b, uint32_t node_base,
+                       uint32_t tri_base) {
+    (void)node_base;
+    write_tris_as(out, md, b, tri_base, 0);
 }
 
 /* Writes what changes with every frame: the object BVH, the instances,

@@ -33,6 +33,19 @@ rt_status rt_flatten(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_bv
 rt_status rt_flatten_accel(const rt_scene *scene, const rt_bvh *mesh_bvhs, const rt_kd *mesh_kds,
                            const rt_bvh *top, const rt_flat_options *options, rt_flat *out,
                            rt_error *err);
+/* As rt_flatten_accel without kd-trees, taking the trees of the meshes
+ * marked in take (indexed by mesh id; shown BVH meshes with triangles):
+ * their nodes and entries go into the layout (a mesh that starts the
+ * layout, as a one-mesh scene's does, gives it its arrays without a copy;
+ * the others are freed as soon as they are copied), so that the tree is
+ * never held twice (issue 31). Each taken BVH is then left as its root node
+ * alone (node_count 1, no entries), for the object BVH; the layout holds
+ * the rest. On failure a taken BVH may be left empty (node_count 0): the
+ * caller builds it again. */
+rt_status rt_flatten_take(const rt_scene *scene, rt_bvh *mesh_bvhs, const uint8_t *take,
+                          const rt_bvh *top, const rt_flat_options *options, rt_flat *out,
+                          rt_error *err);
+
 /* What a layout was made of: which mesh each object shows, where each
  * shown mesh's nodes and triangles start and how many there are, and the
  * object BVH's size. While these stay, a new frame's layout is the old one

@@ -98,7 +98,16 @@ static rt_status build(rt_accel_cache *c, const rt_mesh_data *md, uint32_t m, rt
     bo.builder = builder;
     rt_error why;
     rt_error_clear(&why);
-    rt_status st = rt_bvh_build(c->boxes, md->triangle_count, &bo, pool, &c->bvhs[m], &why);
+    rt_status st;
+    if (builder == RT_BUILDER_SAH) {
+        /* Straight from the triangles: no box array at the build's peak. */
+        st = rt_bvh_build_tris(md->positions, md->indices, md->triangle_count, &bo, pool,
+                               &c->bvhs[m], &why);
+    } else {
+        st = tri_boxes(c, md, err);
+        if (st != RT_OK) return st;
+        st = rt_bvh_build(c->boxes, md->triangle_count, &bo, pool, &c->bvhs[m], &why);
+    }
     if (st != RT_OK) return rt_fail(err, st, "BVH of mesh '%s': %s", md->name, why.message);
     return RT_OK;
 }
@@ -176,19 +185,15 @@ static rt_status update_mesh(rt_accel_cache *c, const rt_scene *scene, uint32_t 
                  * rebuild's cost; past it, rebuild. */
                 sah = rt_bvh_sah_cost(&c->bvhs[m], rt_sah_costs_default());
                 if (sah > RT_UPDATE_AUTO_BOUND * c->sah_rebuilt[m]) {
-                    st = tri_boxes(c, md, err);
-                    if (st == RT_OK) st = build(c, md, m, RT_BUILDER_SAH, pool, err);
+                    st = build(c, md, m, RT_BUILDER_SAH, pool, err);
                     action = RT_ACTION_REBUILD;
                 }
             }
+        } else if (policy == RT_UPDATE_LBVH) {
+            st = build(c, md, m, RT_BUILDER_LBVH, pool, err);
+            action = RT_ACTION_LBVH;
         } else {
-            st = tri_boxes(c, md, err);
-            if (st == RT_OK && policy == RT_UPDATE_LBVH) {
-                st = build(c, md, m, RT_BUILDER_LBVH, pool, err);
-                action = RT_ACTION_LBVH;
-            } else if (st == RT_OK) {
-                st = build(c, md, m, RT_BUILDER_SAH, pool, err);
-            }
+            st = build(c, md, m, RT_BUILDER_SAH, pool, err);
         }
         if (st != RT_OK) return st;
     } else {
@@ -222,27 +227,33 @@ static rt_status update_mesh(rt_accel_cache *c, const rt_scene *scene, uint32_t 
     return RT_OK;
 }
 
-/* Whether the scene's meshes are updated frame after frame by a cheap
- * policy (fast, auto), which then reuses the triangle boxes' scratch. */
+/* Whether the scene's meshes are rebuilt frame after frame by the LBVH
+ * (policy lbvh), which reuses the triangle boxes' scratch (the SAH
+ * builder reads the triangles themselves). */
 static int keeps_boxes(const rt_scene *scene) {
     for (uint32_t m = 0; m < scene->mesh_count; m++)
-        if (scene->meshes[m].update_policy == RT_UPDATE_FAST ||
-            scene->meshes[m].update_policy == RT_UPDATE_AUTO)
-            return 1;
+        if (scene->meshes[m].update_policy == RT_UPDATE_LBVH) return 1;
     return 0;
 }
 
 /* Parks the static meshes the layout holds (accel_cache.h): their BVHs
  * keep the root node, the layout the tree. A mesh with another update
  * policy keeps its tree, which the next frame refits or replaces. */
+/* Whether mesh m's tree may live in the layout alone (accel_cache.h):
+ * a static BVH mesh the layout shows, with the tree the shape says. */
+static int parkable(const rt_accel_cache *c, const rt_scene *scene, uint32_t m) {
+    const rt_bvh *b = &c->bvhs[m];
+    const rt_mesh_data *md = &scene->meshes[m];
+    return !c->parked[m] && m < c->shape.mesh_count && c->shape.node_base[m] != UINT32_MAX &&
+           md->triangle_count && !c->kds[m].node_count && md->update_policy == RT_UPDATE_SAH &&
+           b->node_count >= 2 && b->node_count == c->shape.node_count[m] &&
+           b->prim_count == c->shape.tri_count[m];
+}
+
 static void park(rt_accel_cache *c, const rt_scene *scene) {
     for (uint32_t m = 0; m < scene->mesh_count && m < c->shape.mesh_count; m++) {
         rt_bvh *b = &c->bvhs[m];
-        const rt_mesh_data *md = &scene->meshes[m];
-        if (c->parked[m] || c->shape.node_base[m] == UINT32_MAX || !md->triangle_count ||
-            c->kds[m].node_count || md->update_policy != RT_UPDATE_REBUILD || b->node_count < 2 ||
-            b->node_count != c->shape.node_count[m] || b->prim_count != c->shape.tri_count[m])
-            continue;
+        if (!parkable(c, scene, m)) continue;
         rt_node *root = realloc(b->nodes, sizeof *root);
         if (root) b->nodes = root;
         free(b->prim_indices);
@@ -385,15 +396,39 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
             rt_flat_free(&c->flat);
             rt_flat_shape_free(&c->shape);
             c->flat_valid = 0;
-            st = rt_flatten_accel(scene, c->bvhs, has_kd ? c->kds : NULL, &c->top, NULL, &c->flat,
-                                  &why);
-            if (st != RT_OK) return rt_fail(err, st, "%s", why.message);
-            if (!has_kd) st = rt_flat_shape_of(scene, c->bvhs, &c->top, &c->shape);
-            if (st != RT_OK) return rt_fail(err, st, "out of memory");
+            if (has_kd) {
+                st = rt_flatten_accel(scene, c->bvhs, c->kds, &c->top, NULL, &c->flat, &why);
+                if (st != RT_OK) return rt_fail(err, st, "%s", why.message);
+            } else {
+                /* The shape first: the static meshes' trees go into the
+                 * layout (rt_flatten_take), each held once. */
+                st = rt_flat_shape_of(scene, c->bvhs, &c->top, &c->shape);
+                if (st != RT_OK) return rt_fail(err, st, "out of memory");
+                uint8_t *take = calloc(scene->mesh_count ? scene->mesh_count : 1, 1);
+                if (!take) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+                for (uint32_t m = 0; m < scene->mesh_count; m++) take[m] = parkable(c, scene, m);
+                st = rt_flatten_take(scene, c->bvhs, take, &c->top, NULL, &c->flat, &why);
+                for (uint32_t m = 0; m < scene->mesh_count; m++) {
+                    if (!take[m]) continue;
+                    if (st == RT_OK) {
+                        c->parked[m] = 1;
+                        rt_bvh_refit_info_free(&c->refit[m]);
+                    } else {
+                        /* Its tree went with the failed layout: built anew next time. */
+                        rt_bvh_free(&c->bvhs[m]);
+                        c->built[m] = 0;
+                    }
+                }
+                free(take);
+                if (st != RT_OK) {
+                    rt_flat_shape_free(&c->shape);
+                    return rt_fail(err, st, "%s", why.message);
+                }
+            }
             c->layout_bytes = rt_flat_bytes(&c->flat);
         }
         memset(c->dirty, 0, c->mesh_count);
-        if (!has_kd) park(c, scene);
+        if (!has_kd) park(c, scene); /* the meshes rebuilt and rewritten in place */
         c->layout_ms = rt_now_ms() - t2;
         c->flat_valid = 1;
         c->flat_scene_version = scene->version;
