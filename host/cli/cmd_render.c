@@ -37,7 +37,8 @@ static const char usage_head[] =
     "                 camera path, docs/SCENE_FORMAT.md) [0]\n"
     "  --update P     every mesh's BVH update policy: sah, refit, lbvh, auto\n"
     "                 (a single frame builds afresh whatever the policy) [the scene's]\n"
-    "  --stats        print BVH cost, box and triangle tests per ray and render time;\n"
+    "  --stats        print BVH cost, box and triangle tests per ray, render time and\n"
+    "                 the memory held (scene, BVHs, layout, the backend's copies);\n"
     "                 for opencl and vulkan also the device, kernel specialisation\n"
     "                 (-D switches, specialization constants), compile, upload\n"
     "                 (bytes), per-kernel (vulkan: timestamp queries) and download\n"
@@ -46,6 +47,20 @@ static const char usage_head[] =
 static void print_usage(FILE *f) {
     fputs(usage_head, f);
     fputs(cli_renderer_usage, f);
+}
+
+/* What the scene and the renderer hold, in MB and bytes per triangle. */
+static void print_memory(const rt_renderer *r, const rt_scene *scene) {
+    rt_memory_stats m;
+    if (rt_renderer_memory(r, scene, &m) != RT_OK) return;
+    double t = (double)(m.triangles ? m.triangles : 1);
+    uint64_t all = m.scene + m.mesh_bvhs + m.object_bvh + m.kept + m.layout + m.backend;
+    printf("memory           %.1f MB, %.1f bytes/triangle: scene %.1f, BVHs %.1f, kept %.1f, "
+           "layout %.1f, backend %.1f\n",
+           (double)all / 1e6, (double)all / t, (double)m.scene / t,
+           (double)(m.mesh_bvhs + m.object_bvh) / t, (double)m.kept / t, (double)m.layout / t,
+           (double)m.backend / t);
+    if (m.device) printf("device memory    %.1f MB\n", (double)m.device / 1e6);
 }
 
 static void print_stats(const rt_render_stats *s, int width, int height) {
@@ -263,7 +278,10 @@ int cmd_render(int argc, char **argv) {
         rt_renderer_destroy(renderer);
         return 2;
     }
-    if (stats) print_stats(&st, cam.width, cam.height);
+    if (stats) {
+        print_stats(&st, cam.width, cam.height);
+        print_memory(renderer, scene);
+    }
     fprintf(stderr, "wrote %s (%dx%d)\n", out_path, cam.width, cam.height);
     rt_scene_destroy(scene);
     rt_renderer_destroy(renderer);
