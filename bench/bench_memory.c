@@ -3,17 +3,21 @@
  * per triangle"; bench/memory_section.sh makes the section).
  *
  * usage: bench_memory (SCENE | --grid N) [--backend B]... [--accel bvh|kd]
- *                     [--threads T] [--json]
+ *                     [--threads T] [--no-rays] [--no-embree] [--json]
  *
  * The mesh is a scene file's or a height field of N triangles made here (a
  * terrain of about N/2 vertices). For each backend a fresh renderer renders
  * one 64x64 frame (direct rays) and rt_renderer_memory says what the scene
- * and the renderer hold, by part; the process's resident memory is read
+ * and the renderer hold, by part, then (unless --no-rays) traces 64 ray
+ * queries, which make the packet backend's single-ray trees, and says it
+ * again; the process's resident memory is read
  * before the renderer is made, after the frame and at its peak (VmHWM, reset
  * first through /proc/self/clear_refs). Embree (when the build has it) gets
  * the same triangles in one geometry that shares our arrays, at its default
  * (medium) quality and with RTC_SCENE_FLAG_COMPACT; its memory monitor
- * callback counts what it allocates. Memory is counted, not timed: the
+ * callback counts what it allocates. --backend none measures Embree alone.
+ * One backend per run gives clean resident figures (memory a backend freed
+ * stays with the allocator for the next). Memory is counted, not timed: the
  * figures do not depend on the machine's load. */
 #include <math.h>
 #include <stdint.h>
@@ -127,7 +131,7 @@ static void print_row(int json, const char *what, const char *accel, uint64_t tr
                (unsigned long long)peak_delta);
         return;
     }
-    printf("%-8s %-4s scene %6.1f  BVHs %6.1f  kept %6.1f  layout %6.1f  backend %6.1f  device "
+    printf("%-12s %-4s scene %6.1f  BVHs %6.1f  kept %6.1f  layout %6.1f  backend %6.1f  device "
            "%6.1f | structures %6.1f  RSS +%6.1f  peak +%6.1f bytes/triangle\n",
            what, accel, per(m->scene, tris), per(m->mesh_bvhs + m->object_bvh, tris),
            per(m->kept, tris), per(m->layout, tris), per(m->backend, tris), per(m->device, tris),
@@ -136,7 +140,7 @@ static void print_row(int json, const char *what, const char *accel, uint64_t tr
 
 int main(int argc, char **argv) {
     const char *path = NULL, *backends[8];
-    int nb = 0, json = 0, threads = 0, grid = 0;
+    int nb = 0, json = 0, threads = 0, grid = 0, rays_too = 1, embree = 1;
     rt_accel accel = RT_ACCEL_BVH;
     for (int i = 1; i < argc; i++) {
         int ok = 1;
@@ -150,6 +154,10 @@ int main(int argc, char **argv) {
             ok = rt_accel_parse(argv[++i], &accel);
         else if (!strcmp(argv[i], "--json"))
             json = 1;
+        else if (!strcmp(argv[i], "--no-rays"))
+            rays_too = 0;
+        else if (!strcmp(argv[i], "--no-embree"))
+            embree = 0;
         else if (argv[i][0] != '-' && !path)
             path = argv[i];
         else
@@ -161,7 +169,7 @@ int main(int argc, char **argv) {
     }
     if (!path && !grid) {
         fprintf(stderr, "usage: bench_memory (SCENE | --grid N) [--backend B]... [--accel "
-                        "bvh|kd] [--threads T] [--json]\n");
+                        "bvh|kd] [--threads T] [--no-rays] [--no-embree] [--json]\n");
         return 2;
     }
     if (!nb) backends[nb++] = "packet";
@@ -187,6 +195,7 @@ int main(int argc, char **argv) {
         printf("%s: %llu triangles, %llu vertices; bytes per triangle:\n", path ? path : "grid",
                (unsigned long long)t.triangles, (unsigned long long)t.vertices);
     for (int b = 0; b < nb; b++) {
+        if (!strcmp(backends[b], "none")) continue; /* Embree alone */
         uint64_t rss0 = proc_bytes("VmRSS");
         reset_peak();
         rt_renderer *r = bench_renderer(backends[b], threads);
@@ -206,10 +215,28 @@ int main(int argc, char **argv) {
         rt_renderer_memory(r, scene, &m);
         print_row(json, backends[b], rt_accel_name(accel), t.triangles, &m,
                   rss1 > rss0 ? rss1 - rss0 : 0, peak > rss0 ? peak - rss0 : 0);
+        /* Ray queries make the packet backend's single-ray trees too. */
+        rt_ray rays[64];
+        rt_hit hits[64];
+        for (int k = 0; k < 64; k++) {
+            rays[k] = (rt_ray){
+                {0, 2.0f, 0}, {0.01f * (float)(k - 32), -1, 0.013f * (float)k}, 0.0f, INFINITY};
+        }
+        rt_trace_options to;
+        memset(&to, 0, sizeof to);
+        if (rays_too && rt_trace_rays(r, scene, rays, 64, hits, &to) == RT_OK) {
+            rss1 = proc_bytes("VmRSS");
+            peak = proc_bytes("VmHWM");
+            rt_renderer_memory(r, scene, &m);
+            char what[64];
+            snprintf(what, sizeof what, "%s+rays", backends[b]);
+            print_row(json, what, rt_accel_name(accel), t.triangles, &m,
+                      rss1 > rss0 ? rss1 - rss0 : 0, peak > rss0 ? peak - rss0 : 0);
+        }
         rt_renderer_destroy(r);
     }
 #ifdef RT_HAVE_EMBREE
-    if (scene->mesh_count == 1 && scene->object_count == 1) {
+    if (embree && scene->mesh_count == 1 && scene->object_count == 1) {
         const rt_mesh_data *md = &scene->meshes[0];
         /* Embree loads 16 bytes at a vertex: a copy with one float more. */
         float *pos = malloc(((size_t)md->vertex_count * 3 + 1) * sizeof *pos);
@@ -232,6 +259,8 @@ int main(int argc, char **argv) {
         }
         free(pos);
     }
+#else
+    (void)embree;
 #endif
     rt_scene_destroy(scene);
     return 0;

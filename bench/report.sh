@@ -88,7 +88,7 @@ done
 # Separately callable sections: each prints its Markdown on stdout and runs
 # alone too (bash bench/kd_section.sh [BUILD] [SHARED] [--quick]).
 sections=()
-for name in kd_section; do
+for name in kd_section memory_section; do
     step "section $name"
     quick_arg=()
     [ $quick = 1 ] && quick_arg=(--quick)

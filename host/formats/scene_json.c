@@ -537,9 +537,12 @@ static rt_json_bulk *take_bulk(loader *L, const json_t *v) {
     return b;
 }
 
-/* The numbers of a bulk array as floats (jansson's value, then the float
- * cast read_float makes), each checked as read_float does. */
-static rt_status read_bulk_floats(loader *L, const rt_json_bulk *b, float *f) {
+/* The numbers of a bulk array: as floats (out_f: jansson's value, then the
+ * float cast read_float makes, each checked as read_float does) or as
+ * vertex indices below vertex_count (out_i, each checked as read_triangles
+ * does). An element that fails is named with its index and place. */
+static rt_status read_bulk(loader *L, const rt_json_bulk *b, float *out_f, uint32_t *out_i,
+                           uint32_t vertex_count) {
     size_t pos = b->start, at = 0;
     int integer;
     long long iv = 0;
@@ -548,15 +551,24 @@ static rt_status read_bulk_floats(loader *L, const rt_json_bulk *b, float *f) {
         if (!rt_json_bulk_next(L->text, b->end, &pos, &at, &integer, &iv, &rv))
             return rt_error_set(L->err, RT_ERROR_PARSE, L->path, 0, 0, "a bulk array changed");
         double d = integer ? (double)iv : rv;
-        f[i] = (float)d;
-        if (!isfinite(f[i])) {
-            enter_index(L, i);
-            L->at = at;
-            rt_status st = fail(L, "%g is out of range for a 32-bit float", d);
-            L->at = SIZE_MAX;
-            leave(L);
-            return st;
+        if (out_f) {
+            out_f[i] = (float)d;
+            if (isfinite(out_f[i])) continue;
+        } else if (integer && iv >= 0 && iv < (long long)vertex_count) {
+            out_i[i] = (uint32_t)iv;
+            continue;
         }
+        enter_index(L, i);
+        L->at = at;
+        rt_status st =
+            out_f ? fail(L, "%g is out of range for a 32-bit float", d)
+            : !integer
+                ? fail(L, "expected a vertex index (an integer), found a number")
+                : fail(L, "vertex index %lld is out of range: the mesh has %u vertices (0..%lld)",
+                       iv, vertex_count, (long long)vertex_count - 1);
+        L->at = SIZE_MAX;
+        leave(L);
+        return st;
     }
     return RT_OK;
 }
@@ -574,7 +586,7 @@ static rt_status read_float_triples(loader *L, json_t *v, const char *what, floa
         if (n / 3 > UINT32_MAX / 3) return fail(L, "too many values (%zu)", n);
         float *f = malloc(n * sizeof *f);
         if (!f) return rt_error_set(L->err, RT_ERROR_OUT_OF_MEMORY, L->path, 0, 0, "out of memory");
-        rt_status st = read_bulk_floats(L, bulk, f);
+        rt_status st = read_bulk(L, bulk, f, NULL, 0);
         if (st != RT_OK) {
             free(f);
             return st;
@@ -605,34 +617,6 @@ static rt_status read_float_triples(loader *L, json_t *v, const char *what, floa
     return RT_OK;
 }
 
-/* The vertex indices of a bulk array, each checked as read_triangles does. */
-static rt_status read_bulk_indices(loader *L, const rt_json_bulk *b, uint32_t vertex_count,
-                                   uint32_t *idx) {
-    size_t pos = b->start, at = 0;
-    int integer;
-    long long iv = 0;
-    double rv = 0.0;
-    for (size_t i = 0; i < b->count; i++) {
-        if (!rt_json_bulk_next(L->text, b->end, &pos, &at, &integer, &iv, &rv))
-            return rt_error_set(L->err, RT_ERROR_PARSE, L->path, 0, 0, "a bulk array changed");
-        if (integer && iv >= 0 && iv < (long long)vertex_count) {
-            idx[i] = (uint32_t)iv;
-            continue;
-        }
-        enter_index(L, i);
-        L->at = at;
-        rt_status st =
-            !integer
-                ? fail(L, "expected a vertex index (an integer), found a number")
-                : fail(L, "vertex index %lld is out of range: the mesh has %u vertices (0..%lld)",
-                       iv, vertex_count, (long long)vertex_count - 1);
-        L->at = SIZE_MAX;
-        leave(L);
-        return st;
-    }
-    return RT_OK;
-}
-
 /* Vertex indices, 3 per triangle, each below vertex_count. */
 static rt_status read_triangles(loader *L, json_t *v, uint32_t vertex_count, uint32_t **out,
                                 size_t *count) {
@@ -648,7 +632,7 @@ static rt_status read_triangles(loader *L, json_t *v, uint32_t vertex_count, uin
         uint32_t *idx = malloc(n * sizeof *idx);
         if (!idx)
             return rt_error_set(L->err, RT_ERROR_OUT_OF_MEMORY, L->path, 0, 0, "out of memory");
-        rt_status st = read_bulk_indices(L, bulk, vertex_count, idx);
+        rt_status st = read_bulk(L, bulk, NULL, idx, vertex_count);
         if (st != RT_OK) {
             free(idx);
             return st;
