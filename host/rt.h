@@ -561,15 +561,15 @@ rt_status rt_renderer_update_stats(const rt_renderer *renderer, rt_update_stats 
  * triangle"): what the scene holds and what a renderer keeps between frames
  * for it. Counted from the arrays' sizes (not allocator overhead). */
 typedef struct rt_memory_stats {
-    uint64_t scene;       /* the scene's meshes: positions, normals, indices, per-triangle
-                             materials */
-    uint64_t mesh_bvhs;   /* the renderer's per-mesh BVHs (nodes, primitive indices) and kd-trees */
-    uint64_t object_bvh;  /* the object BVH */
-    uint64_t kept;        /* kept for the next frame's updates: refit records, build scratch */
-    uint64_t layout;      /* the flattened layout every backend reads */
-    uint64_t backend;     /* the current backend's own host copies (packet: its wide BVHs) */
-    uint64_t device;      /* device memory the current backend holds (opencl, vulkan) */
-    uint64_t triangles;   /* triangles of the meshes the layout holds, for bytes per triangle */
+    uint64_t scene;      /* the scene's meshes: positions, normals, indices, per-triangle
+                            materials */
+    uint64_t mesh_bvhs;  /* the renderer's per-mesh BVHs (nodes, primitive indices) and kd-trees */
+    uint64_t object_bvh; /* the object BVH */
+    uint64_t kept;       /* kept for the next frame's updates: refit records, build scratch */
+    uint64_t layout;     /* the flattened layout every backend reads */
+    uint64_t backend;    /* the current backend's own host copies (packet: its wide BVHs) */
+    uint64_t device;     /* device memory the current backend holds (opencl, vulkan) */
+    uint64_t triangles;  /* triangles of the meshes the layout holds, for bytes per triangle */
 } rt_memory_stats;
 
 /* The memory of scene and of renderer's structures for it (as the last

@@ -78,8 +78,8 @@ static rt_status read_colour(mtl_reader *r, const char *keyword, float rgb[3]) {
     for (int i = 0; i < 3; i++)
         if (!(v[i] >= 0.0f && v[i] <= RT_MAX_COLOUR))
             return rt_error_set(r->err, RT_ERROR_PARSE, r->name, rt_text_line(&r->c), 0,
-                                "%s: %g is outside 0..%g (the colour limit)", keyword,
-                                (double)v[i], (double)RT_MAX_COLOUR);
+                                "%s: %g is outside 0..%g (the colour limit)", keyword, (double)v[i],
+                                (double)RT_MAX_COLOUR);
     memcpy(rgb, v, sizeof v);
     return RT_OK;
 }
@@ -235,8 +235,10 @@ void rt_mtl_notice(const rt_mtl_library *lib, char *out, size_t cap) {
     if (lib->repeats == 1)
         snprintf(out, cap, "%s; the first definition is used", lib->first_repeat);
     else
-        snprintf(out, cap, "%s, and %u more material names are defined again; the first "
-                 "definition of each is used", lib->first_repeat, lib->repeats - 1);
+        snprintf(out, cap,
+                 "%s, and %u more material names are defined again; the first "
+                 "definition of each is used",
+                 lib->first_repeat, lib->repeats - 1);
 }
 
 void rt_mtl_library_free(rt_mtl_library *lib) {

@@ -95,13 +95,13 @@ static inline int rt_text_line(const rt_text_cursor *c) {
 typedef struct rt_mtl_library {
     rt_obj_material *materials; /* by name id */
     uint32_t capacity;
-    rt_name_table names; /* names.count materials */
+    rt_name_table names;  /* names.count materials */
     uint32_t *defined_in; /* per material: the index in files of its MTL */
     int *defined_at;      /* per material: its newmtl's line */
     struct rt_mtl_file {
         char *path;
         unsigned long long device, inode; /* 0, 0 for text parsed from memory */
-    } *files;
+    } * files;
     uint32_t file_count, file_capacity;
     /* newmtl statements that name a material defined before (in this or an
      * earlier file): the first definition counts, the later one is skipped

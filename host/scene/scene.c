@@ -273,8 +273,8 @@ rt_status rt_material_add(rt_scene *scene, const rt_material *mat, uint32_t *mat
             return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                                  "material: coefficients must be finite and >= 0");
     rt_status st = check_colour(scene, "material: colour component", mat->color, 3);
-    if (st == RT_OK) st = check_colour(scene, "material: ambient, diffuse or specular factor",
-                                       coeffs, 3);
+    if (st == RT_OK)
+        st = check_colour(scene, "material: ambient, diffuse or specular factor", coeffs, 3);
     if (st != RT_OK) return st;
     if (mat->shininess < 0 || mat->shininess > 100000)
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
@@ -643,8 +643,8 @@ rt_status rt_scene_apply_default_view(rt_scene *scene, int width, int height) {
             return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                                  "the scene's bounds (%g, %g, %g) .. (%g, %g, %g) are too large "
                                  "for a default camera: give the scene a camera",
-                                 (double)bmin[0], (double)bmin[1], (double)bmin[2],
-                                 (double)bmax[0], (double)bmax[1], (double)bmax[2]);
+                                 (double)bmin[0], (double)bmin[1], (double)bmin[2], (double)bmax[0],
+                                 (double)bmax[1], (double)bmax[2]);
     }
     if (!(d > 0.0f)) d = 1.0f; /* a single point: any distance will do */
     float dir[3] = {0.3f, 0.35f, 1.0f};
