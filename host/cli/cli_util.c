@@ -161,8 +161,12 @@ static void backend_help(char *buf, size_t cap) {
     rt_backend_info b;
     for (int i = 0; rt_backend_name(i) && used < cap; i++) {
         if (rt_backend_describe(rt_backend_name(i), &b, NULL) != RT_OK) continue;
-        used += (size_t)snprintf(buf + used, cap - used, "\n%s%s: %s%s", b.name,
-                                 b.takes_device ? "[:D]" : "", b.summary,
+        const char *exact = !strcmp(b.name, "auto") ? ""
+                            : b.exact_always        ? "; the CPU oracle's bits everywhere"
+                                                    : "; the oracle's bits where the device "
+                                                      "promises them (rtcl devices)";
+        used += (size_t)snprintf(buf + used, cap - used, "\n%s%s: %s%s%s", b.name,
+                                 b.takes_device ? "[:D]" : "", b.summary, exact,
                                  b.built ? "" : " (not in this build)");
     }
     if (used < cap)

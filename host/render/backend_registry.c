@@ -52,7 +52,7 @@ static const registry_entry registry[] = {
 #endif
     {"cpu", &rt_backend_cpu, NULL, 0, "the scalar CPU oracle, one ray at a time", NULL},
     {"packet", &rt_backend_packet, NULL, 0,
-     "SIMD ray packets (and single rays through wide BVHs) on the CPU, the oracle's bits", NULL},
+     "SIMD ray packets (and single rays through wide BVHs) on the CPU", NULL},
 };
 enum { ENTRIES = sizeof registry / sizeof registry[0] };
 
@@ -117,7 +117,7 @@ void rt_backend_names(char *out, size_t size) {
 /* "auto" is no backend of its own: it picks the first device backend with a
  * device (rt_backend_auto), else cpu. It is listed last. */
 static const rt_backend_info auto_info = {
-    "auto", "the first device backend with a device (opencl, then vulkan), else cpu with a notice",
+    "auto", "the first device backend that finds a device (in this order), else cpu with a notice",
     1,      "",
     1,      0};
 
