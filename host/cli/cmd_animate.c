@@ -136,6 +136,70 @@ static int parse_range(const char *text, int *a, int *b) {
     return 1;
 }
 
+/* The frames to render, from the options: frames 0..count-1 of which
+ * first..last, and whether -o names a video. 0 after printing the error. */
+typedef struct frame_plan {
+    int count, first, last, video;
+} frame_plan;
+
+static int plan_frames(const animate_args *a, frame_plan *p) {
+    const char *pattern = a->out;
+    double fps = a->fps, duration = a->duration > 0.0 ? a->duration : -1.0;
+    int frames = a->frames ? a->frames : -1, first = 0, last = -1;
+    if (a->range && !parse_range(a->range, &first, &last)) {
+        cli_usage_error(&cmd_animate_spec, "--frame-range: '%s' is not A:B with 0 <= A <= B",
+                        a->range);
+        return 0;
+    }
+    if (!(fps > 0.0)) {
+        cli_usage_error(&cmd_animate_spec, "--fps F is required");
+        return 0;
+    }
+    if ((frames < 0) == (duration < 0.0)) {
+        cli_usage_error(&cmd_animate_spec, "give one of --duration S and --frames N");
+        return 0;
+    }
+    if (!pattern) {
+        cli_usage_error(&cmd_animate_spec, "-o PATTERN is required (e.g. -o out/frame_%%04d.png)");
+        return 0;
+    }
+    int video = cli_is_video_path(pattern);
+    if (video && !cli_have_ffmpeg()) {
+        cli_error("animate",
+                  "-o %s: writing a video needs ffmpeg, which is not on PATH (Debian: apt-get "
+                  "install ffmpeg); or write the frames as images with -o DIR/frame_%%04d.png",
+                  pattern);
+        return 0;
+    }
+    if (!video && !check_pattern(pattern)) {
+        cli_error("animate",
+                  "-o: '%s' must hold exactly one %%d conversion (e.g. frame_%%04d.png) and no "
+                  "other %% but %%%%",
+                  pattern);
+        return 0;
+    }
+    if (frames < 0) {
+        double n = duration * fps;
+        frames = n > 100000000.0 ? 100000001 : (int)n;
+        if ((double)frames < n) frames++;
+        if (frames > 100000000) {
+            cli_error("animate", "--duration %g at %g fps is more than 10^8 frames", duration, fps);
+            return 0;
+        }
+    }
+    if (last < 0) last = frames - 1;
+    if (last >= frames) {
+        cli_error("animate", "--frame-range %d:%d: the animation has frames 0..%d", first, last,
+                  frames - 1);
+        return 0;
+    }
+    p->count = frames;
+    p->first = first;
+    p->last = last;
+    p->video = video;
+    return 1;
+}
+
 int cmd_animate(int argc, char **argv) {
     animate_args a;
     memset(&a, 0, sizeof a);
@@ -144,56 +208,11 @@ int cmd_animate(int argc, char **argv) {
     cli_renderer_args_init(&a.renderer);
     int status;
     if (cli_parse(&cmd_animate_spec, &a, argc, argv, &status) < 0) return status;
+    frame_plan plan;
+    if (!plan_frames(&a, &plan)) return 2;
     const char *scene_path = argv[0], *pattern = a.out;
-    double fps = a.fps, duration = a.duration > 0.0 ? a.duration : -1.0;
-    int frames = a.frames ? a.frames : -1, first = 0, last = -1, stats = a.stats;
-    if (a.range && !parse_range(a.range, &first, &last)) {
-        cli_usage_error(&cmd_animate_spec, "--frame-range: '%s' is not A:B with 0 <= A <= B",
-                        a.range);
-        return 2;
-    }
-    if (!(fps > 0.0)) {
-        cli_usage_error(&cmd_animate_spec, "--fps F is required");
-        return 2;
-    }
-    if ((frames < 0) == (duration < 0.0)) {
-        cli_usage_error(&cmd_animate_spec, "give one of --duration S and --frames N");
-        return 2;
-    }
-    if (!pattern) {
-        cli_usage_error(&cmd_animate_spec, "-o PATTERN is required (e.g. -o out/frame_%%04d.png)");
-        return 2;
-    }
-    int video = cli_is_video_path(pattern);
-    if (video && !cli_have_ffmpeg()) {
-        cli_error("animate",
-                  "-o %s: writing a video needs ffmpeg, which is not on PATH (Debian: apt-get "
-                  "install ffmpeg); or write the frames as images with -o DIR/frame_%%04d.png",
-                  pattern);
-        return 2;
-    }
-    if (!video && !check_pattern(pattern)) {
-        cli_error("animate",
-                  "-o: '%s' must hold exactly one %%d conversion (e.g. frame_%%04d.png) and no "
-                  "other %% but %%%%",
-                  pattern);
-        return 2;
-    }
-    if (frames < 0) {
-        double n = duration * fps;
-        frames = n > 100000000.0 ? 100000001 : (int)n;
-        if ((double)frames < n) frames++;
-        if (frames > 100000000) {
-            cli_error("animate", "--duration %g at %g fps is more than 10^8 frames", duration, fps);
-            return 2;
-        }
-    }
-    if (last < 0) last = frames - 1;
-    if (last >= frames) {
-        cli_error("animate", "--frame-range %d:%d: the animation has frames 0..%d", first, last,
-                  frames - 1);
-        return 2;
-    }
+    const double fps = a.fps;
+    const int first = plan.first, last = plan.last, video = plan.video, stats = a.stats;
 
     rt_renderer *renderer = cli_renderer_create("animate", &a.renderer);
     if (!renderer) return 2;

@@ -28,10 +28,8 @@ typedef struct registry_entry {
     rt_status (*devices)(const char *selector, rt_device_info **out, int *count, rt_error *err);
 } registry_entry;
 
-#define OPENCL_SUMMARY                                                                             \
-    "OpenCL kernels on a device (rtcl devices), the oracle's bits where it promises them"
-#define VULKAN_SUMMARY                                                                             \
-    "Vulkan compute shaders on a device (rtcl devices), the oracle's bits where it promises them"
+#define OPENCL_SUMMARY "OpenCL kernels on a device"
+#define VULKAN_SUMMARY "Vulkan compute shaders on a device (always the portable maths)"
 
 static const registry_entry registry[] = {
 #ifdef RT_HAVE_OPENCL
