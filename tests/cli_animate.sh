@@ -78,7 +78,7 @@ expect 2 "--frame-range: '3:1' is not A:B" -- \
     "$RTCL" animate "$scene" --fps 4 --frames 5 --frame-range 3:1 -o "$tmp/x%d.png"
 expect 2 "the animation has frames 0..4" -- \
     "$RTCL" animate "$scene" --fps 4 --frames 5 --frame-range 3:5 -o "$tmp/x%d.png"
-expect 2 "--update: 'lazy' is not one of rebuild, refit, fast or auto" -- \
+expect 2 "--update: 'lazy' is not one of sah, refit, lbvh or auto" -- \
     "$RTCL" animate "$scene" --fps 4 --frames 2 --update lazy -o "$tmp/x%d.png"
 # A video without ffmpeg on PATH: the reason and the way to get frames instead,
 # and no file (tests/cli_animate_video.sh tests videos where ffmpeg is).
@@ -143,6 +143,6 @@ for backend in $cam_backends; do
         fails=$((fails + 1))
     fi
 done
-expect 2 "--update: 'lazy' is not one of rebuild, refit, fast or auto" -- "$RTCL" render "$scene" --update lazy
+expect 2 "--update: 'lazy' is not one of sah, refit, lbvh or auto" -- "$RTCL" render "$scene" --update lazy
 expect 2 "--time: 'nan' is not a finite number" -- "$RTCL" render "$scene" --time nan
 finish

@@ -108,8 +108,9 @@ expect 2 "--fps: '0' is out of range \(> 0\)" -- \
 expect 2 "--max-diff: '-1' is out of range \(>= 0\)" -- "$RTCL" compare a b --max-diff -1
 
 # Choices are listed from the same table as the help.
-expect 2 "--update: 'lazy' is not one of rebuild, refit, fast or auto" -- \
+expect 2 "--update: 'lazy' is not one of sah, refit, lbvh or auto" -- \
     "$RTCL" render builtin:cornell --update lazy
+expect 0 "wrote" -- "$RTCL" render builtin:cornell --update rebuild --width 8 --height 8 -o "$tmp/u.ppm"
 expect 2 "--accel: 'octree' is not one of bvh, kd or kd-binned" -- \
     "$RTCL" info builtin:cornell --accel octree
 

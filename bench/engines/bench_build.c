@@ -134,7 +134,7 @@ static void bench_ours(const bench_args *a, const tri_input *in, rt_builder buil
         }
         if (i >= 0) times[i] = t;
         if (i == a->reps - 1) {
-            rt_bvh_quality q = rt_bvh_measure(&bvh, o.cost_box, o.cost_tri);
+            rt_bvh_quality q = rt_bvh_measure(&bvh, o.costs);
             r->sah = q.sah;
             r->nodes = q.nodes;
             r->bytes = (double)q.bytes;
@@ -173,7 +173,7 @@ static void bench_kd(const bench_args *a, const tri_input *in, rt_kd_builder bui
         }
         if (i >= 0) times[i] = t;
         if (i == a->reps - 1) {
-            rt_kd_quality q = rt_kd_measure(&kd, 1.0f, 2.0f);
+            rt_kd_quality q = rt_kd_measure(&kd, rt_sah_costs_default());
             r->sah = q.sah;
             r->nodes = q.nodes;
             r->bytes = (double)q.bytes;
@@ -215,7 +215,7 @@ static int bench_embree(const bench_args *a, const tri_input *in, row *rows) {
         }
         if (i >= 0) times[i] = ms;
         if (i == a->reps - 1) {
-            rt_bvh_quality q = rt_bvh_measure(&bvh, o.cost_box, o.cost_tri);
+            rt_bvh_quality q = rt_bvh_measure(&bvh, o.costs);
             b->sah = q.sah;
             b->nodes = q.nodes;
             summarize(b, times, a->reps);
@@ -397,13 +397,13 @@ static int bench_scene(const char *path, const bench_args *a, rt_pool *pool) {
     row rows[MAX_ROWS];
     memset(rows, 0, sizeof rows);
     const rt_builder ours[] = {RT_BUILDER_THESIS_SCALAR, RT_BUILDER_THESIS_NEON,
-                               RT_BUILDER_THESIS_MT, RT_BUILDER_FAST};
+                               RT_BUILDER_THESIS_MT, RT_BUILDER_SAH};
     int n = 0;
     for (int i = 0; i < 4; i++) {
         progress(a, path, rt_builder_name(ours[i]));
         bench_ours(a, &in, ours[i], pool, &rows[n++]);
     }
-    if (a->accel == RT_ACCEL_KD || a->accel == RT_ACCEL_KD_BINNED) {
+    if (a->accel >= 0 && a->accel != RT_ACCEL_BVH) { /* --accel kd, kd-binned: both kd rows */
         progress(a, path, "kd-exact");
         bench_kd(a, &in, RT_KD_EXACT, pool, &rows[n++]);
         progress(a, path, "kd-binned");

@@ -13,8 +13,8 @@ static const char *action_name(rt_update_action a) {
         return "build";
     case RT_ACTION_REFIT:
         return "refit";
-    case RT_ACTION_FAST:
-        return "fast";
+    case RT_ACTION_LBVH:
+        return "lbvh";
     case RT_ACTION_REBUILD:
         return "rebuild";
     }

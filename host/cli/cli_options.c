@@ -158,6 +158,10 @@ static int store(const cli_command *c, const found *f, const char *text) {
                 *(int *)dest = value;
                 return 1;
             }
+        if (o->choice_parse && o->choice_parse(text, &value)) {
+            *(int *)dest = value;
+            return 1;
+        }
         char names[512];
         choice_list(o, names, sizeof names);
         cli_usage_error(c, "%s: '%s' is not one of %s", o->name, text, names);

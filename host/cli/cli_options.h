@@ -55,6 +55,9 @@ typedef struct cli_option {
     /* CLI_CHOICE from the library's own names: the name of value 0, 1, ...
      * (NULL after the last), e.g. rt_update_policy_name's. */
     const char *(*choice_name)(int value);
+    /* CLI_CHOICE: the library's own parser, which may take more names than
+     * it lists (older names); NULL: the names listed only. 1 when taken. */
+    int (*choice_parse)(const char *text, int *value);
     /* The help, wrapped to the terminal width by the printer. "{choices}"
      * is replaced by the choices' names; the range (numbers) and the
      * default follow it, so that they are never written twice. */

@@ -59,6 +59,13 @@ const char *cli_accel_name(int v) {
     return rt_accel_parse(name, &back) && (int)back == v ? name : NULL;
 }
 
+static int update_parse(const char *text, int *value) {
+    rt_update_policy p;
+    if (!rt_update_policy_parse(text, &p)) return 0;
+    *value = (int)p;
+    return 1;
+}
+
 static const char *update_name(int v) {
     const char *name = rt_update_policy_name((rt_update_policy)v);
     rt_update_policy back;
@@ -110,9 +117,11 @@ rt_scene *cli_scene_open(const char *command, const char *source, const cli_scen
 
 const cli_option cli_update_options[] = {
     {"--update", 0, CLI_CHOICE, "P", offsetof(cli_scene_args, update), .choice_name = update_name,
+     .choice_parse = update_parse,
      .help = "every mesh's BVH update policy after its vertices move: {choices} "
-             "(docs/SCENE_FORMAT.md); all give the same bits",
-     .fallback = "each mesh's \"update\" in the scene file, else rebuild"},
+             "(docs/SCENE_FORMAT.md; the names before 0.2, rebuild for sah and fast for lbvh, "
+             "are read too); all give the same bits",
+     .fallback = "each mesh's \"update\" in the scene file, else sah"},
     {NULL}};
 
 /* ---- image options -------------------------------------------------------- */

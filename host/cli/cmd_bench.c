@@ -62,16 +62,17 @@ static const cli_option build_options[] = {
 
 static const cli_option animate_options[] = {
     {"--animate", 0, CLI_FLAG, NULL, offsetof(bench_args, animate),
-     .help = "the keyframe benchmark instead (Langr 2016, section 4.1): each SCENE's first "
-             "morphing object played frame by frame, frame k at time k/F, on the packet backend "
-             "with the update policies rebuild, refit, fast and auto, beside Embree (when built "
-             "with it) updating and tracing the same frames at build quality REFIT, LOW and "
-             "MEDIUM (its widest packets); N runs, rows interleaved frame by frame; per row the "
-             "mesh update, trace and whole-frame ms (the update included), each a mean over the "
-             "frames (min and median over the runs), the SAH cost (Embree's: of rtcBuildBVH's "
-             "trees of that quality) and whether every frame's image is rebuild's, bit for bit; "
-             "with --json a \"dynamic\" array per scene. Frame 0 (the first build) is not "
-             "counted"},
+     .help =
+         "the keyframe benchmark instead (Langr 2016, section 4.1): each SCENE's first "
+         "morphing object played frame by frame, frame k at time k/F, on the packet backend "
+         "with the update policies sah, refit, lbvh and auto, beside Embree (when built "
+         "with it) updating and tracing the same frames at build quality REFIT, LOW and "
+         "MEDIUM (its widest packets); N runs, rows interleaved frame by frame; per row the "
+         "mesh update, trace and whole-frame ms (the update included), each a mean over the "
+         "frames (min and median over the runs), the SAH cost (Embree's: of rtcBuildBVH's "
+         "trees of that quality) and whether every frame's image is the sah policy's, bit for bit; "
+         "with --json a \"dynamic\" array per scene. Frame 0 (the first build) is not "
+         "counted"},
     {"--frames", 0, CLI_INT, "K", offsetof(bench_args, frames), 1, 100000,
      .help = "frames after frame 0", .fallback = "one per keyframe"},
     {"--fps", 0, CLI_FLOAT, "F", offsetof(bench_args, fps), 0.0, 100000.0, CLI_MIN_OPEN,
