@@ -255,3 +255,43 @@ rt_status rt_atomic_file_write(const char *target, const char *what, const void 
     }
     return rt_atomic_file_commit(&f, err);
 }
+
+/* ---- rt.h's rt_output: the same for programs on the library ------------- */
+
+struct rt_output {
+    rt_atomic_file file;
+};
+
+rt_status rt_output_reserve(const char *target, const char *what, rt_output **out,
+                            rt_error *err) {
+    *out = NULL;
+    rt_output *o = calloc(1, sizeof *o);
+    if (!o) return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, target, 0, 0, "out of memory");
+    rt_status st = rt_atomic_file_reserve(&o->file, target, what ? what : "file", err);
+    if (st != RT_OK) {
+        free(o);
+        return st;
+    }
+    *out = o;
+    return RT_OK;
+}
+
+const char *rt_output_path(const rt_output *o) {
+    return o->file.temp ? o->file.temp : o->file.target;
+}
+
+rt_status rt_output_commit(rt_output *o, rt_error *err) {
+    rt_status st = rt_atomic_file_commit(&o->file, err);
+    free(o);
+    return st;
+}
+
+void rt_output_discard(rt_output *o) {
+    if (!o) return;
+    rt_atomic_file_discard(&o->file);
+    free(o);
+}
+
+rt_status rt_output_check(const char *target, const char *what, rt_error *err) {
+    return rt_atomic_file_check(target, what ? what : "file", err);
+}

@@ -19,7 +19,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "base/atomic_file.h"
+#include "rt.h"
 
 extern char **environ;
 
@@ -33,7 +33,7 @@ struct cli_video {
     /* ffmpeg writes a temporary beside the target (with its extension, so
      * the container is the same), renamed over it once ffmpeg has succeeded:
      * a failed or killed encode leaves an existing video as it was. */
-    rt_atomic_file out;
+    rt_output *out;
 };
 
 static const char no_ffmpeg[] =
@@ -71,7 +71,7 @@ int cli_have_ffmpeg(void) {
 
 int cli_video_check(const char *path, char *why, size_t cap) {
     rt_error err;
-    if (rt_atomic_file_check(path, "video", &err) == RT_OK) return 1;
+    if (rt_output_check(path, "video", &err) == RT_OK) return 1;
     snprintf(why, cap, "%s", err.message);
     return 0;
 }
@@ -186,7 +186,7 @@ static void describe(cli_video *v, int status, const char *what, char *why, size
 
 /* Frees v; its temporary video, unless committed, is removed. */
 static void release(cli_video *v) {
-    rt_atomic_file_discard(&v->out);
+    rt_output_discard(v->out); /* NULL once committed */
     if (v->in >= 0) close(v->in);
     if (v->log) fclose(v->log);
     sigaction(SIGPIPE, &v->old_pipe, NULL);
@@ -228,17 +228,17 @@ cli_video *cli_video_open(const char *path, int width, int height, double fps, c
         return NULL;
     }
     rt_error err;
-    if (rt_atomic_file_reserve(&v->out, path, "video", &err) != RT_OK) {
+    if (rt_output_reserve(path, "video", &v->out, &err) != RT_OK) {
         snprintf(why, cap, "%s", err.message);
         free(v->frame);
         free(v);
         return NULL;
     }
-    const char *file = v->out.temp ? v->out.temp : v->out.target;
+    const char *file = rt_output_path(v->out);
     size_t url_len = strlen(file) + 6;
     char *url = malloc(url_len);
     if (!url) {
-        rt_atomic_file_discard(&v->out);
+        rt_output_discard(v->out);
         free(v->frame);
         free(v);
         snprintf(why, cap, "out of memory");
@@ -288,7 +288,7 @@ cli_video *cli_video_open(const char *path, int width, int height, double fps, c
     if (!v->log || pipe(fds) != 0) {
         snprintf(why, cap, "cannot start ffmpeg: %s", strerror(errno));
         if (v->log) fclose(v->log);
-        rt_atomic_file_discard(&v->out);
+        rt_output_discard(v->out);
         free(v->frame);
         free(v);
         free(url);
@@ -360,9 +360,13 @@ int cli_video_close(cli_video *v, char *why, size_t cap) {
     int ok = WIFEXITED(status) && WEXITSTATUS(status) == 0 && logged == 0;
     if (!ok) describe(v, status, "the video could not be written", why, cap);
     rt_error err;
-    if (ok && rt_atomic_file_commit(&v->out, &err) != RT_OK) {
-        snprintf(why, cap, "%s", err.message);
-        ok = 0;
+    if (ok) {
+        rt_output *out = v->out;
+        v->out = NULL;
+        if (rt_output_commit(out, &err) != RT_OK) {
+            snprintf(why, cap, "%s", err.message);
+            ok = 0;
+        }
     }
     release(v);
     return ok;

@@ -19,23 +19,11 @@
 rt_status rt_rays_parse(const char *text, size_t len, const char *name, int with_normals,
                         rt_ray **rays, size_t *count, rt_error *err);
 
-/* Reads the ray file at path (a regular file of at most
- * RT_MAX_RAY_FILE_BYTES, base/file_read.h) and parses it as above, reading
- * it a chunk at a time: memory is the rays and one line (of at most
- * RT_MAX_RAY_LINE_BYTES, else RT_ERROR_UNSUPPORTED with file:line), and a
- * NUL byte fails the file at its line before the rest is read. */
-rt_status rt_rays_load(const char *path, int with_normals, rt_ray **rays, size_t *count,
-                       rt_error *err);
+/* rt_rays_load (public, rt.h) reads the ray file at path (a regular file of
+ * at most RT_MAX_RAY_FILE_BYTES, base/file_read.h) a chunk at a time (lines
+ * of at most RT_MAX_RAY_LINE_BYTES) and parses it as above. */
 
-/* Writes the hit file of `rtcl trace --out`: per ray one line "1 t u v prim"
- * (t, u, v with %.9g, so they read back as the same floats) or "0 inf 0 0 -1"
- * for a miss, followed by " inst" (" -1" for a miss) when with_instances.
- * Whole or not at all (base/atomic_file.h); err names the file. */
-rt_status rt_hits_write(const char *path, const rt_hit *hits, size_t count, int with_instances,
-                        rt_error *err);
-
-/* Whether rt_hits_write could write path (its folder exists and is
- * writable; rt_atomic_file_check), checked before the rays are traced. */
-rt_status rt_hits_check_output(const char *path, rt_error *err);
+/* rt_hits_write and rt_hits_check_output (the hit files of `rtcl trace
+ * --out`) are public too: rt.h. */
 
 #endif /* RT_RAY_FILE_H */
