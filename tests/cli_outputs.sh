@@ -15,6 +15,7 @@
 #    place (not replaced).
 # The full-disk cases are tests/cli_outputs_full_disk.sh (they need root).
 source "$RT_SOURCE_DIR/tests/shell_check.sh"
+anim=$RT_SOURCE_DIR/scenes/keyframes_animated.json
 py=/usr/bin/python3
 [ -x "$py" ] || py=python3
 
@@ -31,17 +32,16 @@ mkdir "$tmp/adir.png"
 expect 2 'adir.png: cannot write the image file: it is a folder' -- \
     $T "$RTCL" render builtin:cornell "${big[@]}" -o "$tmp/adir.png"
 expect 2 'nodir/f_%04d.png: .*nodir/f_0000.png: cannot write the image file: folder' -- \
-    $T "$RTCL" animate builtin:keyframes --fps 1 --frames 3 "${big[@]}" -o "$tmp/nodir/f_%04d.png"
+    $T "$RTCL" animate "$anim" --fps 1 --frames 3 "${big[@]}" -o "$tmp/nodir/f_%04d.png"
 expect 2 'f_%04d.tga: .*f_0000.tga: unknown image file extension' -- \
-    $T "$RTCL" animate builtin:keyframes --fps 1 --frames 3 "${big[@]}" -o "$tmp/f_%04d.tga"
+    $T "$RTCL" animate "$anim" --fps 1 --frames 3 "${big[@]}" -o "$tmp/f_%04d.tga"
 if command -v ffmpeg > /dev/null; then
     expect 2 'nodir/v.mp4: .*cannot write the video: folder' -- \
-        $T "$RTCL" animate builtin:keyframes --fps 1 --frames 3 "${big[@]}" -o "$tmp/nodir/v.mp4"
+        $T "$RTCL" animate "$anim" --fps 1 --frames 3 "${big[@]}" -o "$tmp/nodir/v.mp4"
 fi
 expect 2 'nodir/hits.txt: cannot write the hit file: folder' -- \
     $T "$RTCL" trace builtin:cornell --rays "$tmp/missing.rays" --out "$tmp/nodir/hits.txt"
-expect 2 'nodir/cornell.json: cannot write the scene file: folder .*nodir: No such file' -- \
-    $T "$RTCL" generate "$tmp/nodir"
+expect 2 'plainfile: not a folder' -- $T "$RTCL" generate "$tmp/plainfile/gen"
 expect 2 'difference image: .*nodir/d.exr: cannot write the image file: folder' -- \
     $T "$RTCL" compare "$tmp/missing_a.png" "$tmp/missing_b.png" --diff "$tmp/nodir/d.exr"
 
@@ -63,9 +63,9 @@ expect 0 'wrote' -- "$RTCL" render builtin:cornell --width 48 --height 32 --meta
 checks=$((checks + 1))
 grep -q capDate "$tmp/same/meta.exr" ||
     { echo "FAIL: --metadata wrote no capDate"; fails=$((fails + 1)); }
-expect 0 '' -- "$RTCL" animate builtin:keyframes --fps 2 --frames 2 --width 24 --height 16 \
+expect 0 '' -- "$RTCL" animate "$anim" --fps 2 --frames 2 --width 24 --height 16 \
     -o "$tmp/same/f_%d.exr"
-expect 0 '' -- "$RTCL" animate builtin:keyframes --fps 2 --frames 2 --width 24 --height 16 \
+expect 0 '' -- "$RTCL" animate "$anim" --fps 2 --frames 2 --width 24 --height 16 \
     -o "$tmp/same/g_%d.exr"
 checks=$((checks + 1))
 cmp -s "$tmp/same/f_1.exr" "$tmp/same/g_1.exr" ||

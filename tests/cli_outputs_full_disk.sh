@@ -6,6 +6,7 @@
 # (issue 31; before, each left a truncated file under its final name).
 # Mounting needs root: CI runs as root; elsewhere the test says skipped.
 source "$RT_SOURCE_DIR/tests/shell_check.sh"
+anim=$RT_SOURCE_DIR/scenes/keyframes_animated.json
 
 if [ "$(id -u)" != 0 ]; then
     echo "skipped: mounting a small tmpfs needs root"
@@ -26,7 +27,7 @@ mkdir "$tmp/good"
 for ext in ppm pgm pfm png exr; do
     "$RTCL" render builtin:cornell "${small[@]}" -o "$disk/out.$ext" > /dev/null 2>&1
 done
-"$RTCL" animate builtin:keyframes --fps 2 --frames 2 "${small[@]}" -o "$disk/f_%d.png" > /dev/null 2>&1
+"$RTCL" animate "$anim" --fps 2 --frames 2 "${small[@]}" -o "$disk/f_%d.png" > /dev/null 2>&1
 awk 'BEGIN { srand(3); for (i = 0; i < 4000; i++) printf "%f %f %f %f %f %f 0 inf\n",
      rand() * 3 - 1.5, rand() * 1.8, rand() * 4 - 1, rand() - 0.5, rand() - 0.5, rand() - 0.5 }' > "$tmp/rays.txt"
 head -3 "$tmp/rays.txt" > "$tmp/few.txt"
@@ -36,7 +37,7 @@ mkdir "$disk/gen"
 have_ffmpeg=0
 if command -v ffmpeg > /dev/null; then
     have_ffmpeg=1
-    "$RTCL" animate builtin:keyframes --fps 2 --frames 2 "${small[@]}" -o "$disk/v.mp4" > /dev/null 2>&1
+    "$RTCL" animate "$anim" --fps 2 --frames 2 "${small[@]}" -o "$disk/v.mp4" > /dev/null 2>&1
 fi
 cp -a "$disk/." "$tmp/good/"
 
@@ -48,14 +49,14 @@ nospace='No space left on device'
 for ext in ppm pgm pfm png exr; do
     expect 2 "out.$ext: .*$nospace" -- "$RTCL" render builtin:cornell "${large[@]}" -o "$disk/out.$ext"
 done
-expect 2 "f_0.png: .*$nospace" -- "$RTCL" animate builtin:keyframes --fps 2 --frames 2 \
+expect 2 "f_0.png: .*$nospace" -- "$RTCL" animate "$anim" --fps 2 --frames 2 \
     "${large[@]}" -o "$disk/f_%d.png"
 expect 2 "hits.txt: .*$nospace" -- "$RTCL" trace builtin:cornell --rays "$tmp/rays.txt" \
     --out "$disk/hits.txt"
 # A scene of several pages of OBJ: a mesh file fails.
 expect 2 "$nospace" -- "$RTCL" generate "$disk/gen"
 if [ $have_ffmpeg = 1 ]; then
-    expect 2 'v.mp4: .*(No space left|ffmpeg)' -- "$RTCL" animate builtin:keyframes --fps 8 \
+    expect 2 'v.mp4: .*(No space left|ffmpeg)' -- "$RTCL" animate "$anim" --fps 8 \
         --frames 16 "${large[@]}" -o "$disk/v.mp4"
 fi
 
