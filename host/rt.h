@@ -780,8 +780,7 @@ rt_status rt_hits_check_output(const char *path, rt_error *err);
  * is no regular file (/dev/null) is given as it is, written in place.
  * what names the file's kind in messages ("video"). */
 typedef struct rt_output rt_output;
-rt_status rt_output_reserve(const char *target, const char *what, rt_output **out,
-                            rt_error *err);
+rt_status rt_output_reserve(const char *target, const char *what, rt_output **out, rt_error *err);
 const char *rt_output_path(const rt_output *output);
 rt_status rt_output_commit(rt_output *output, rt_error *err);
 void rt_output_discard(rt_output *output);

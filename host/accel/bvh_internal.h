@@ -16,8 +16,8 @@ rt_status rt_bvh_build_sah(const rt_aabb *boxes, uint32_t count, const rt_build_
 /* The same over count triangles' boxes (rt_tri_box), computed as the build
  * sets up instead of read from an array. */
 rt_status rt_bvh_build_sah_tris(const float *positions, const uint32_t *indices, uint32_t count,
-                                 const rt_build_options *options, rt_pool *pool, int use_neon,
-                                 rt_bvh *out, rt_error *err);
+                                const rt_build_options *options, rt_pool *pool, int use_neon,
+                                rt_bvh *out, rt_error *err);
 
 /* The Morton-code LBVH (bvh_lbvh.c): leaves of at most 4 primitives; the
  * same tree for any thread count. options' bins and leaf size are unused. */

@@ -830,25 +830,25 @@ static rt_status run_build(build_ctx *c, rt_pool *pool, rt_bvh *out, rt_error *e
 }
 
 static rt_status build_sah(const rt_aabb *boxes, const float *positions, const uint32_t *indices,
-                            uint32_t count, const rt_build_options *options, rt_pool *pool,
-                            int use_neon, rt_bvh *out, rt_error *err);
+                           uint32_t count, const rt_build_options *options, rt_pool *pool,
+                           int use_neon, rt_bvh *out, rt_error *err);
 
 rt_status rt_bvh_build_sah(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
-                            rt_pool *pool, int use_neon, rt_bvh *out, rt_error *err) {
+                           rt_pool *pool, int use_neon, rt_bvh *out, rt_error *err) {
     if (!out || !options || (!boxes && count)) return RT_ERROR_INVALID_ARGUMENT;
     return build_sah(boxes, NULL, NULL, count, options, pool, use_neon, out, err);
 }
 
 rt_status rt_bvh_build_sah_tris(const float *positions, const uint32_t *indices, uint32_t count,
-                                 const rt_build_options *options, rt_pool *pool, int use_neon,
-                                 rt_bvh *out, rt_error *err) {
+                                const rt_build_options *options, rt_pool *pool, int use_neon,
+                                rt_bvh *out, rt_error *err) {
     if (!out || !options || (count && (!positions || !indices))) return RT_ERROR_INVALID_ARGUMENT;
     return build_sah(NULL, positions, indices, count, options, pool, use_neon, out, err);
 }
 
 static rt_status build_sah(const rt_aabb *boxes, const float *positions, const uint32_t *indices,
-                            uint32_t count, const rt_build_options *options, rt_pool *pool,
-                            int use_neon, rt_bvh *out, rt_error *err) {
+                           uint32_t count, const rt_build_options *options, rt_pool *pool,
+                           int use_neon, rt_bvh *out, rt_error *err) {
     memset(out, 0, sizeof *out);
     if (options->bins < 2 || options->bins > FAST_MAX_BINS || options->leaf_size < 1)
         return fail(err, RT_ERROR_INVALID_ARGUMENT, "bins must be 2..256, leaf size >= 1");

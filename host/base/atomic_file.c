@@ -262,8 +262,7 @@ struct rt_output {
     rt_atomic_file file;
 };
 
-rt_status rt_output_reserve(const char *target, const char *what, rt_output **out,
-                            rt_error *err) {
+rt_status rt_output_reserve(const char *target, const char *what, rt_output **out, rt_error *err) {
     *out = NULL;
     rt_output *o = calloc(1, sizeof *o);
     if (!o) return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, target, 0, 0, "out of memory");
