@@ -378,7 +378,10 @@ typedef struct rt_ray {
  *   each component rounded to float.
  * Scaling by m first keeps huge and tiny triangles from overflowing or
  * underflowing. mesh is the scene mesh the object shows (its selected
- * keyframe, or the blend mesh the scene made for a morphing object). */
+ * keyframe, or the blend mesh the scene made for a morphing object). An
+ * any-hit answer has the normal and mesh of the triangle it names; the
+ * packet backend's packets name none (inst UINT32_MAX): normal 0, mesh
+ * UINT32_MAX. */
 typedef struct rt_hit {
     float t, u, v;
     uint32_t prim; /* 0-based triangle index in the mesh's file order */

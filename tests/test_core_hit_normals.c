@@ -7,7 +7,9 @@
  *   through a mirror): for identity, rotated and translated, non-uniformly
  *   scaled and mirrored instances, and triangles from 1e-16 to 1e18 across.
  * - mesh is the instance's mesh; a miss has normal 0 and mesh UINT32_MAX.
- * - The normal and mesh of an any-hit answer are those of its triangle.
+ * - The normal and mesh of an any-hit answer are those of its triangle (or
+ *   none, for the packets' answers, which name no triangle), and a coherent
+ *   beam (packets) and random rays (single rays) are both answered.
  * - cpu and packet (packets and single rays) give the same rt_hit bytes, and
  *   so do 1 and 3 threads.
  * The device backends compute no normals: the host does it after their trace
@@ -20,7 +22,7 @@
 #include "check.h"
 #include "rt.h"
 
-enum { RAYS = 6000 };
+enum { RAYS = 6000, COHERENT = 256 }; /* the last COHERENT rays: two packets' worth of a beam */
 
 /* Mesh 0: a tetrahedron with its faces wound outwards. Mesh 1: a triangle
  * 1e-16 across. Mesh 2: one 1e18 across, far out. */
@@ -142,6 +144,13 @@ static void make_rays(rt_ray *rays) {
         if (i % 10 == 9) { /* a random ray: a hit or a miss */
             for (int k = 0; k < 3; k++) r->org[k] = 20.0f * uniform(&seed) - 10.0f;
         }
+        if (i >= RAYS - COHERENT) { /* a beam down onto the rotated tetrahedron */
+            const int j = i - (RAYS - COHERENT);
+            *r = (rt_ray){{3.7f + 0.01f * (float)(j % 16), 0.1f + 0.01f * (float)(j / 16), 5.0f},
+                          {0.0f, 0.0f, -1.0f},
+                          0.0f,
+                          INFINITY};
+        }
     }
 }
 
@@ -154,6 +163,12 @@ static void check_hits(const rt_hit *h, const rt_ray *rays, int any_hit, int *hi
             continue;
         }
         ++*hits_seen;
+        if (any_hit && h[i].inst == UINT32_MAX) { /* a packet's any hit names no triangle */
+            CHECK_MSG(h[i].mesh == UINT32_MAX && h[i].normal[0] == 0.0f &&
+                          h[i].normal[1] == 0.0f && h[i].normal[2] == 0.0f,
+                      "ray %d: an any hit without a triangle has mesh %u", i, h[i].mesh);
+            continue;
+        }
         CHECK_MSG(h[i].inst < INSTS && h[i].mesh == insts[h[i].inst].mesh,
                   "ray %d: mesh %u for instance %u", i, h[i].mesh, h[i].inst);
         if (h[i].inst >= INSTS) continue;

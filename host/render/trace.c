@@ -105,12 +105,20 @@ static void finish_chunk(void *ctx, int worker, int workers) {
                               {0.0f, 0.0f, 0.0f}, UINT32_MAX};
                 continue;
             }
-            const rt_instance *in = &job->flat->instances[d->inst];
             h->t = d->t;
             h->u = d->u;
             h->v = d->v;
             h->prim = d->prim;
             h->inst = d->inst;
+            /* An any-hit answer of the packet path names no triangle (inst
+             * RT_NO_HIT: only that the packet found a hit): no normal then. */
+            const rt_instance *in =
+                d->inst < job->flat->hdr.instance_count ? &job->flat->instances[d->inst] : NULL;
+            if (!in || d->prim >= job->scene->meshes[in->mesh].triangle_count) {
+                h->mesh = UINT32_MAX;
+                h->normal[0] = h->normal[1] = h->normal[2] = 0.0f;
+                continue;
+            }
             h->mesh = in->mesh;
             hit_normal(job->scene, in, d->prim, h->normal);
         }
