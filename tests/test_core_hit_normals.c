@@ -164,8 +164,8 @@ static void check_hits(const rt_hit *h, const rt_ray *rays, int any_hit, int *hi
         }
         ++*hits_seen;
         if (any_hit && h[i].inst == UINT32_MAX) { /* a packet's any hit names no triangle */
-            CHECK_MSG(h[i].mesh == UINT32_MAX && h[i].normal[0] == 0.0f &&
-                          h[i].normal[1] == 0.0f && h[i].normal[2] == 0.0f,
+            CHECK_MSG(h[i].mesh == UINT32_MAX && h[i].normal[0] == 0.0f && h[i].normal[1] == 0.0f &&
+                          h[i].normal[2] == 0.0f,
                       "ray %d: an any hit without a triangle has mesh %u", i, h[i].mesh);
             continue;
         }
