@@ -90,23 +90,12 @@ def random_rays(n, lo, hi, seed):
     return np.concatenate([o, d], axis=1).astype(np.float32)
 
 
-def camera_rays(n, lo, hi, view):
+def camera_rays(n, lo, hi, view, rtcl):
     side = max(1, int(math.isqrt(n)))
     if view is None:  # the box's front, from +z, the whole box in a 40 degree view
         c, ext = (lo + hi) / 2, hi - lo
-        eye, look, fov = c + np.array([0, 0, 1.6 * max(ext)]), c, 40.0
-    else:
-        eye, look, fov = np.array(view[0], float), np.array(view[1], float), view[2]
-    f = look - eye
-    f /= np.linalg.norm(f)
-    r = np.cross(f, [0, 1, 0])
-    r /= np.linalg.norm(r)
-    u = np.cross(r, f)
-    t = math.tan(math.radians(fov) / 2)
-    s = (2 * (np.arange(side) + 0.5) / side - 1) * t
-    d = f + s[None, :, None] * r + (-s)[:, None, None] * u
-    o = np.broadcast_to(eye, d.shape)
-    return np.concatenate([o, d], axis=-1).reshape(-1, 6).astype(np.float32)
+        view = (c + np.array([0, 0, 1.6 * max(ext)]), c, 40.0)
+    return rtcl.pinhole_rays(view[0], view[1], side, side, view[2]).reshape(-1, 6)
 
 
 def vertex_rays(n, verts, tris, seed):
@@ -226,7 +215,7 @@ def bench_scene(name, path, view, args, o3d, rtcl, embree_ctypes):
     lo, hi = verts.min(axis=0).astype(float), verts.max(axis=0).astype(float)
     row["sets"] = []
     for set_name, rays in (("random", random_rays(args.rays, lo, hi, 1)),
-                           ("camera", camera_rays(args.rays, lo, hi, view)),
+                           ("camera", camera_rays(args.rays, lo, hi, view, rtcl)),
                            ("vertex", vertex_rays(args.rays, verts, tris, 2))):
         tr = o3d.core.Tensor(rays)
         n = len(rays)

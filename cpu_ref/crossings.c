@@ -140,38 +140,64 @@ static uint32_t leaf_crossings(const rt_scene_view *s, rt_u32 first, rt_u32 coun
     return n;
 }
 
+/* A depth-first walk over a BVH's leaves whose boxes the range [lo, hi]
+ * passes (both levels use it). The tree's depth bounds the stack as in
+ * rt_descend: one entry per level at most (flatten refuses deeper trees). */
+typedef struct bvh_walk {
+    rt_u32 stack[RT_STACK_SIZE];
+    int sp;
+    int live; /* 0: the walk is over */
+    rt_u32 node;
+    float lo, hi;
+} bvh_walk;
+
+static void walk_start(bvh_walk *w, const rt_scene_view *s, rt_u32 root, const rt_ray *r,
+                       const rt_ray_pre *p) {
+    float t;
+    w->lo = rt_box_lo(r->tmin);
+    w->hi = rt_box_hi(r->tmax);
+    w->sp = 0;
+    w->node = root;
+    w->live = rt_box_test(&s->nodes[root], r, p, w->lo, w->hi, &t);
+}
+
+/* The next leaf of the walk, or NULL when there is none. */
+static const rt_node *walk_next_leaf(bvh_walk *w, const rt_scene_view *s, const rt_ray *r,
+                                     const rt_ray_pre *p) {
+    while (w->live) {
+        const rt_node *nd = &s->nodes[w->node];
+        int h0 = 0, h1 = 0;
+        if (!(nd->b & RT_NODE_LEAF_FLAG)) {
+            float t0, t1;
+            h0 = rt_box_test(&s->nodes[nd->a], r, p, w->lo, w->hi, &t0);
+            h1 = rt_box_test(&s->nodes[nd->b], r, p, w->lo, w->hi, &t1);
+        }
+        if (h0 && h1) {
+            w->stack[w->sp++] = nd->b;
+            w->node = nd->a;
+        } else if (h0 || h1) {
+            w->node = h0 ? nd->a : nd->b;
+        } else {
+            /* A leaf, or a node whose children both missed: on with the stack. */
+            if (w->sp == 0)
+                w->live = 0;
+            else
+                w->node = w->stack[--w->sp];
+            if (nd->b & RT_NODE_LEAF_FLAG) return nd;
+        }
+    }
+    return NULL;
+}
+
 /* Every leaf of a mesh BVH whose boxes the ray's range passes. */
 static uint32_t bvh_mesh_crossings(const rt_scene_view *s, rt_u32 root, const rt_ray *r,
                                    const rt_ray_pre *p) {
-    const float lo = rt_box_lo(r->tmin), hi = rt_box_hi(r->tmax);
-    rt_u32 stack[RT_STACK_SIZE];
-    int sp = 0;
-    float t0, t1;
-    if (!rt_box_test(&s->nodes[root], r, p, lo, hi, &t0)) return 0;
+    bvh_walk w;
+    walk_start(&w, s, root, r, p);
     uint32_t n = 0;
-    rt_u32 node = root;
-    for (;;) {
-        const rt_node *nd = &s->nodes[node];
-        if (nd->b & RT_NODE_LEAF_FLAG) {
-            n += leaf_crossings(s, nd->a, nd->b & RT_NODE_COUNT_MASK, r, p, NULL);
-            if (sp == 0) return n;
-            node = stack[--sp];
-            continue;
-        }
-        /* Both children's boxes; the tree's depth bounds the stack as in
-         * rt_descend (flatten refuses deeper trees). */
-        int h0 = rt_box_test(&s->nodes[nd->a], r, p, lo, hi, &t0);
-        int h1 = rt_box_test(&s->nodes[nd->b], r, p, lo, hi, &t1);
-        if (h0 && h1) {
-            stack[sp++] = nd->b;
-            node = nd->a;
-        } else if (h0 || h1) {
-            node = h0 ? nd->a : nd->b;
-        } else {
-            if (sp == 0) return n;
-            node = stack[--sp];
-        }
-    }
+    for (const rt_node *leaf; (leaf = walk_next_leaf(&w, s, r, p));)
+        n += leaf_crossings(s, leaf->a, leaf->b & RT_NODE_COUNT_MASK, r, p, NULL);
+    return n;
 }
 
 /* Every leaf of a kd mesh whose cell the ray's range passes, by
@@ -269,35 +295,13 @@ static uint32_t ray_crossings(const rt_scene_view *s, const rt_ray *r, prim_list
     rt_ray_pre p;
     rt_ray_prepare(r, &p);
     if (RT_SCENE_FLAGS(s) & RT_SCENE_SINGLE) return instance_crossings(s, 0, r, &p, list);
-    const float lo = rt_box_lo(r->tmin), hi = rt_box_hi(r->tmax);
-    rt_u32 stack[RT_STACK_SIZE];
-    int sp = 0;
-    float t0, t1;
-    rt_u32 node = s->hdr->top_root;
-    if (!rt_box_test(&s->nodes[node], r, &p, lo, hi, &t0)) return 0;
+    bvh_walk w;
+    walk_start(&w, s, s->hdr->top_root, r, &p);
     uint32_t n = 0;
-    for (;;) {
-        const rt_node *nd = &s->nodes[node];
-        if (nd->b & RT_NODE_LEAF_FLAG) {
-            rt_u32 count = nd->b & RT_NODE_COUNT_MASK;
-            for (rt_u32 e = nd->a; e < nd->a + count; e++)
-                n += instance_crossings(s, s->inst_ids[e], r, &p, list);
-            if (sp == 0) return n;
-            node = stack[--sp];
-            continue;
-        }
-        int h0 = rt_box_test(&s->nodes[nd->a], r, &p, lo, hi, &t0);
-        int h1 = rt_box_test(&s->nodes[nd->b], r, &p, lo, hi, &t1);
-        if (h0 && h1) {
-            stack[sp++] = nd->b;
-            node = nd->a;
-        } else if (h0 || h1) {
-            node = h0 ? nd->a : nd->b;
-        } else {
-            if (sp == 0) return n;
-            node = stack[--sp];
-        }
-    }
+    for (const rt_node *leaf; (leaf = walk_next_leaf(&w, s, r, &p));)
+        for (rt_u32 e = leaf->a; e < leaf->a + (leaf->b & RT_NODE_COUNT_MASK); e++)
+            n += instance_crossings(s, s->inst_ids[e], r, &p, list);
+    return n;
 }
 
 typedef struct count_job {

@@ -176,6 +176,25 @@ static int inside(const voxels *v, const float *p) {
     return full_at(v, cell[0], cell[1], cell[2]);
 }
 
+/* Whether p lies within 1e-3 cells of a lattice plane (there a crossing's
+ * t is a few ulps from 0, and the random rays leave such points out). */
+static int near_plane(const voxels *v, const float *p) {
+    int near = 0;
+    for (int k = 0; k < 3; k++) {
+        float u = (p[k] - v->offset) / v->scale;
+        near |= fabsf(u - roundf(u)) < 1e-3f;
+    }
+    return near;
+}
+
+/* A ray from p along d over [0, tmax]. */
+static void set_ray(rt_ray *r, const float *p, const float *d, float tmax) {
+    memcpy(r->org, p, sizeof r->org);
+    memcpy(r->dir, d, sizeof r->dir);
+    r->tmin = 0.0f;
+    r->tmax = tmax;
+}
+
 static rt_scene *scene_of(const voxels *v, rt_accel accel, const float *matrix, int twice) {
     rt_scene *s = NULL;
     uint32_t mesh, mat, obj;
@@ -223,11 +242,7 @@ static void make_rays(const voxels *v, ray_set *set, uint32_t seed) {
                 for (int k = 0; k < 3; k++) p[k] = q[k] - s * d[k];
                 int in = inside(v, p);
                 if (in < 0) continue;
-                rt_ray *r = &set->rays[set->n];
-                memcpy(r->org, p, sizeof p);
-                memcpy(r->dir, d, sizeof d);
-                r->tmin = 0.0f;
-                r->tmax = INFINITY;
+                set_ray(&set->rays[set->n], p, d, INFINITY);
                 set->expect[set->n] = in;
                 set->from_inside[set->n] = in;
                 set->n++;
@@ -240,30 +255,15 @@ static void make_rays(const voxels *v, ray_set *set, uint32_t seed) {
         for (int k = 0; k < 3; k++) p[k] = lo + span * uniform(&seed);
         for (int k = 0; k < 3; k++) d[k] = uniform(&seed) - 0.5f;
         int in = inside(v, p);
-        if (in < 0 || (d[0] == 0.0f && d[1] == 0.0f && d[2] == 0.0f)) continue;
-        /* Points within 1e-3 cells of a lattice plane are left out: there a
-         * crossing's t is a few ulps from 0. */
-        int near = 0;
-        for (int k = 0; k < 3; k++) {
-            float u = (p[k] - v->offset) / v->scale;
-            near |= fabsf(u - roundf(u)) < 1e-3f;
-        }
-        if (near) continue;
+        if (in < 0 || near_plane(v, p) || (d[0] == 0.0f && d[1] == 0.0f && d[2] == 0.0f)) continue;
         rt_ray *r = &set->rays[set->n];
-        memcpy(r->org, p, sizeof p);
-        memcpy(r->dir, d, sizeof d);
-        r->tmin = 0.0f;
-        r->tmax = INFINITY;
+        set_ray(r, p, d, INFINITY);
         set->from_inside[set->n] = in;
         if (set->n % 2) { /* a segment to another point: parity of one inside */
             float tmax = 0.5f + 4.0f * uniform(&seed);
             for (int k = 0; k < 3; k++) e[k] = p[k] + tmax * d[k];
-            int in2 = inside(v, e), near2 = 0;
-            for (int k = 0; k < 3; k++) {
-                float u = (e[k] - v->offset) / v->scale;
-                near2 |= fabsf(u - roundf(u)) < 1e-3f;
-            }
-            if (in2 < 0 || near2) continue;
+            int in2 = inside(v, e);
+            if (in2 < 0 || near_plane(v, e)) continue;
             r->tmax = tmax;
             in ^= in2;
         }

@@ -13,6 +13,8 @@ slip through a closed mesh. docs/PYTHON.md has the whole API."""
 
 from ._arrays import BACKENDS
 from ._rtcl import version as __version__
+from .rays import pinhole_rays
 from .scene import ACCELS, INVALID_ID, UPDATE_POLICIES, Scene
 
-__all__ = ["Scene", "INVALID_ID", "BACKENDS", "ACCELS", "UPDATE_POLICIES", "__version__"]
+__all__ = ["Scene", "pinhole_rays", "INVALID_ID", "BACKENDS", "ACCELS", "UPDATE_POLICIES",
+           "__version__"]

@@ -481,20 +481,11 @@ done:
     return ret;
 }
 
-static PyObject *scene_mesh_count(SceneObject *self, void *closure) {
-    (void)closure;
+/* mesh_count (closure NULL) and instance_count (non-NULL). */
+static PyObject *scene_count(SceneObject *self, void *closure) {
     uint32_t n;
     LOCKED_BEGIN(self)
-    n = rt_scene_mesh_count(self->scene);
-    LOCKED_END(self)
-    return PyLong_FromUnsignedLong(n);
-}
-
-static PyObject *scene_object_count(SceneObject *self, void *closure) {
-    (void)closure;
-    uint32_t n;
-    LOCKED_BEGIN(self)
-    n = rt_scene_object_count(self->scene);
+    n = closure ? rt_scene_object_count(self->scene) : rt_scene_mesh_count(self->scene);
     LOCKED_END(self)
     return PyLong_FromUnsignedLong(n);
 }
@@ -518,8 +509,8 @@ static PyMethodDef scene_methods[] = {
     {NULL, NULL, 0, NULL}};
 
 static PyGetSetDef scene_getset[] = {
-    {"mesh_count", (getter)scene_mesh_count, NULL, "meshes in the scene", NULL},
-    {"instance_count", (getter)scene_object_count, NULL, "instances (objects) in the scene", NULL},
+    {"mesh_count", (getter)scene_count, NULL, "meshes in the scene", NULL},
+    {"instance_count", (getter)scene_count, NULL, "instances (objects) in the scene", "objects"},
     {"last_backend", (getter)scene_last_backend, NULL,
      "the backend that ran the last cast or occlusion query (None before the first)", NULL},
     {NULL, NULL, NULL, NULL, NULL}};

@@ -5,6 +5,7 @@ while tracing, and concurrent queries."""
 
 import math
 import os
+import subprocess
 import threading
 import time
 import tracemalloc
@@ -68,6 +69,35 @@ def test_leading_shapes(sphere_scene):
     one = sphere_scene.cast_rays(rays[4, 8])  # a single ray: 0-d results
     assert one["t_hit"].shape == () and one["primitive_uvs"].shape == (2,)
     assert one["t_hit"] == h["t_hit"][4, 8]
+
+
+def test_pinhole_rays_are_the_cameras(tmp_path):
+    """rtcl.pinhole_rays gives the library's camera rays (within float
+    rounding): their t on the Cornell box is the depth AOV of rtcl render."""
+    rays = rtcl.pinhole_rays((0, 0.9, 3), (0, 0.9, 0), 48, 27, 60.0)
+    assert rays.shape == (27, 48, 6) and rays.dtype == np.float32
+    assert np.allclose(rays[..., :3], [0, 0.9, 3])
+    mid = rays[13, 23, 3:] + rays[13, 24, 3:]  # the two centre pixels: straight ahead
+    assert abs(mid[0]) < 1e-6 and abs(mid[1]) < 1e-6 and mid[2] < 0
+    out = str(tmp_path / "depth.pfm")
+    r = subprocess.run([util.rtcl_tool(), "render", os.path.join(util.SOURCE_DIR, "scenes",
+                                                                   "cornell.json"),
+                        "--width", "48", "--height", "27", "--aov", "depth", "-o", out],
+                       capture_output=True, text=True)
+    if r.returncode != 0 and "JSON" in r.stderr:
+        pytest.skip("this build has no JSON scenes: %s" % r.stderr.strip())
+    assert r.returncode == 0, r.stderr
+    data = open(out, "rb").read()
+    parts = data.split(b"\n", 3)  # "Pf", "W H", scale, pixels (bottom row first)
+    w, h = (int(x) for x in parts[1].split())
+    scale = float(parts[2])
+    depth = np.frombuffer(parts[3], "<f4" if scale < 0 else ">f4").reshape(h, w)[::-1]
+    scene = rtcl.Scene.load(os.path.join(util.SOURCE_DIR, "scenes", "cornell.json"))
+    t = scene.cast_rays(rays)["t_hit"]
+    close = np.isclose(t, depth, rtol=1e-4) | ((t == np.inf) & (depth == np.inf))
+    assert close.mean() > 0.98, close.mean()  # silhouette pixels may go either way
+    with pytest.raises(ValueError, match="parallel"):
+        rtcl.pinhole_rays((0, 0, 0), (0, 1, 0), 4, 4)
 
 
 def test_origins_and_directions(sphere_scene):

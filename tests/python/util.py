@@ -179,20 +179,9 @@ def random_rays(n, lo, hi, seed=0, dtype=np.float32):
 
 
 def camera_rays(eye, look_at, width, height, hfov=60.0):
-    """Pinhole camera rays (height, width, 6), up +y."""
-    eye, look_at = np.asarray(eye, np.float64), np.asarray(look_at, np.float64)
-    f = look_at - eye
-    f /= np.linalg.norm(f)
-    r = np.cross(f, [0.0, 1.0, 0.0])
-    r /= np.linalg.norm(r)
-    u = np.cross(r, f)
-    tx = np.tan(np.radians(hfov) / 2)
-    ty = tx * height / width
-    sx = (2 * (np.arange(width) + 0.5) / width - 1) * tx
-    sy = (1 - 2 * (np.arange(height) + 0.5) / height) * ty
-    d = f + sx[None, :, None] * r + sy[:, None, None] * u
-    o = np.broadcast_to(eye, d.shape)
-    return np.concatenate([o, d], axis=-1).astype(np.float32)
+    """Pinhole camera rays (height, width, 6), up +y (rtcl.pinhole_rays)."""
+    import rtcl
+    return rtcl.pinhole_rays(eye, look_at, width, height, hfov)
 
 
 # ---- the C oracle through rtcl trace ---------------------------------------------
