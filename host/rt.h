@@ -459,7 +459,7 @@ rt_status rt_count_intersections(rt_renderer *renderer, rt_scene *scene, const r
  * gives identical hits and images; it changes build time, memory and
  * tracing speed. Meant for static meshes: a kd-tree is rebuilt whole when its
  * mesh changes, and a deforming mesh (rt_mesh_set_positions, an update
- * policy other than RT_UPDATE_REBUILD) has a BVH whatever was set. */
+ * policy other than RT_UPDATE_SAH) has a BVH whatever was set. */
 typedef enum rt_accel {
     RT_ACCEL_BVH = 0,
     RT_ACCEL_KD = 1,       /* exact SAH kd-tree */
@@ -471,11 +471,11 @@ rt_status rt_mesh_set_accel(rt_scene *scene, uint32_t mesh_id, rt_accel accel);
 
 /* Sets the structure of every static mesh: every mesh that is no keyframe
  * of an object with several, no blend mesh of one, and whose update policy
- * is RT_UPDATE_REBUILD (deforming meshes keep theirs, a BVH unless set). */
+ * is RT_UPDATE_SAH (deforming meshes keep theirs, a BVH unless set). */
 rt_status rt_scene_set_static_accel(rt_scene *scene, rt_accel accel);
 
 /* mesh_id's structure, RT_ACCEL_BVH for a mesh that does not exist or
- * whose update policy is not RT_UPDATE_REBUILD. */
+ * whose update policy is not RT_UPDATE_SAH. */
 rt_accel rt_mesh_accel(const rt_scene *scene, uint32_t mesh_id);
 
 /* "bvh", "kd", "kd-binned"; rt_accel_parse gives 0 for an unknown name. */
@@ -485,14 +485,19 @@ int rt_accel_parse(const char *name, rt_accel *accel);
 
 /* How a renderer brings a mesh's BVH up to date after its vertices moved
  * (rt_mesh_set_positions). Every policy gives the same hits (closest hits
- * have a total order); they differ in update time and tree quality. */
+ * have a total order); they differ in update time and tree quality. The two
+ * policies that build are named for their builder, the same name `rtcl
+ * bench` gives that builder's rows. */
 typedef enum rt_update_policy {
-    RT_UPDATE_REBUILD = 0, /* a fresh binned SAH build (the default) */
-    RT_UPDATE_REFIT,       /* keep the tree, recompute its boxes bottom-up */
-    RT_UPDATE_FAST,        /* a Morton-code LBVH build: fastest build, lower quality */
-    RT_UPDATE_AUTO         /* refit while the refitted tree's SAH cost stays within
-                              RT_UPDATE_AUTO_BOUND of the last rebuild's, else rebuild */
+    RT_UPDATE_SAH = 0, /* "sah": a fresh binned SAH build (the default) */
+    RT_UPDATE_REFIT,   /* "refit": keep the tree, recompute its boxes bottom-up */
+    RT_UPDATE_LBVH,    /* "lbvh": a Morton-code LBVH build: fastest build, lower quality */
+    RT_UPDATE_AUTO     /* "auto": refit while the refitted tree's SAH cost stays within
+                          RT_UPDATE_AUTO_BOUND of the last SAH build's, else an SAH build */
 } rt_update_policy;
+/* The names before 0.2, kept for source compatibility. */
+#define RT_UPDATE_REBUILD RT_UPDATE_SAH
+#define RT_UPDATE_FAST    RT_UPDATE_LBVH
 
 /* The SAH cost ratio (refitted / last rebuild) above which "auto" rebuilds.
  * Measured (docs/BENCHMARKS.md, "Dynamic scenes"): refitting stops paying
@@ -503,7 +508,9 @@ typedef enum rt_update_policy {
  * so the bound follows the large meshes, whose rebuilds matter. */
 #define RT_UPDATE_AUTO_BOUND 1.5
 
-/* "rebuild", "refit", "fast", "auto"; and back (returns 0 for an unknown name). */
+/* "sah", "refit", "lbvh", "auto"; and back (returns 0 for an unknown name).
+ * The parser also takes the names before 0.2: "rebuild" (sah) and "fast"
+ * (lbvh). */
 const char *rt_update_policy_name(rt_update_policy policy);
 int rt_update_policy_parse(const char *name, rt_update_policy *out);
 
@@ -515,7 +522,7 @@ int rt_update_policy_parse(const char *name, rt_update_policy *out);
 rt_status rt_mesh_set_positions(rt_scene *scene, uint32_t mesh_id, const float *positions,
                                 const float *normals, uint32_t vertex_count);
 
-/* The mesh's update policy (RT_UPDATE_REBUILD until set). Any other policy
+/* The mesh's update policy (RT_UPDATE_SAH until set). Any other policy
  * gives the mesh a BVH, whatever its rt_accel says. */
 rt_status rt_mesh_set_update(rt_scene *scene, uint32_t mesh_id, rt_update_policy policy);
 
@@ -573,7 +580,7 @@ typedef enum rt_update_action {
     RT_ACTION_NONE = 0,
     RT_ACTION_BUILD,  /* SAH build */
     RT_ACTION_REFIT,  /* boxes recomputed */
-    RT_ACTION_FAST,   /* LBVH build */
+    RT_ACTION_LBVH,   /* LBVH build */
     RT_ACTION_REBUILD /* "auto": refitted, found worse than the bound, rebuilt */
 } rt_update_action;
 

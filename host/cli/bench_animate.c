@@ -32,7 +32,7 @@
 #endif
 
 enum { OURS = 4 };
-static const rt_update_policy policies[OURS] = {RT_UPDATE_REBUILD, RT_UPDATE_REFIT, RT_UPDATE_FAST,
+static const rt_update_policy policies[OURS] = {RT_UPDATE_SAH, RT_UPDATE_REFIT, RT_UPDATE_LBVH,
                                                 RT_UPDATE_AUTO};
 
 static int cmp_double(const void *a, const void *b) {
@@ -126,7 +126,7 @@ static int ours_frame(rt_scene *s, bench_anim_result *res, bench_anim_row *row, 
     row->tests[i] = (double)rs->st.box_tests + 2.0 * (double)rs->st.tri_tests;
     if (ref) {
         uint64_t h = image_hash(&rs->fb);
-        if (p == RT_UPDATE_REBUILD)
+        if (p == RT_UPDATE_SAH)
             ref[k] = h;
         else if (h != ref[k])
             row->images_match = 0;
@@ -191,12 +191,12 @@ static double mesh_sah(rt_embree *em, const rt_mesh_data *md, int quality, embre
     rt_bvh *keep = &t->bvh[m];
     if (quality == RT_EMBREE_REFIT && keep->node_count && keep->prim_count == n) {
         rt_bvh_refit(keep, &t->info[m], boxes, NULL);
-        sah = rt_bvh_sah(keep, 1.0f, 2.0f);
+        sah = rt_bvh_sah_cost(keep, rt_sah_costs_default());
     } else {
         rt_bvh b;
         int q = quality == RT_EMBREE_LOW ? RT_EMBREE_LOW : RT_EMBREE_MEDIUM;
         if (rt_embree_build_bvh_quality(em, boxes, n, &o, q, &b, &ms, &e) == RT_OK) {
-            sah = rt_bvh_sah(&b, 1.0f, 2.0f);
+            sah = rt_bvh_sah_cost(&b, rt_sah_costs_default());
             if (quality == RT_EMBREE_REFIT) {
                 rt_bvh_free(keep);
                 rt_bvh_refit_info_free(&t->info[m]);
@@ -573,9 +573,7 @@ void bench_anim_print_text(const char *path, const bench_anim_result *res) {
             printf("%8.2f ", r->sah);
         else
             printf("%8s ", "-");
-        printf("%s\n", r->images_match < 0 ? "-"
-                       : r->images_match   ? "= rebuild"
-                                           : "DIFFER from rebuild");
+        printf("%s\n", r->images_match < 0 ? "-" : r->images_match ? "= sah" : "DIFFER from sah");
     }
     if (res->embree_note[0]) printf("  embree: no rows: %s\n", res->embree_note);
 }

@@ -9,7 +9,10 @@
 
 int cli_update_policy(const char *command, const char *text, rt_update_policy *out) {
     if (rt_update_policy_parse(text, out)) return 1;
-    cli_error(command, "--update: unknown policy '%s' (rebuild, refit, fast, auto)", text);
+    cli_error(
+        command,
+        "--update: unknown policy '%s' (sah, refit, lbvh, auto; or rebuild = sah, fast = lbvh)",
+        text);
     return 0;
 }
 
@@ -25,8 +28,8 @@ static const char *action_name(rt_update_action a) {
         return "build";
     case RT_ACTION_REFIT:
         return "refit";
-    case RT_ACTION_FAST:
-        return "fast";
+    case RT_ACTION_LBVH:
+        return "lbvh";
     case RT_ACTION_REBUILD:
         return "rebuild";
     }

@@ -38,8 +38,8 @@ static const char usage_head[] =
     "                 and .mkv, else MPEG-4 part 2; VP9 in .webm; 8 bits, 4:2:0 chroma\n"
     "                 (lossy: use images for exact frames); an odd width or height gets\n"
     "                 one black column or row. ffmpeg's messages show only on failure\n"
-    "  --update P     every mesh's BVH update policy: rebuild, refit, fast, auto\n"
-    "                 [the scene's, rebuild where it says none]\n"
+    "  --update P     every mesh's BVH update policy: sah, refit, lbvh, auto\n"
+    "                 [the scene's, sah where it says none]\n"
     "  --width W, --height H\n"
     "                 resolution, overriding the scene's camera\n"
     "  --direct       primary and shadow rays only, no reflection or refraction\n"
@@ -119,7 +119,7 @@ int cmd_animate(int argc, char **argv) {
     cli_renderer_args_init(&ra);
     int width = 0, height = 0, stats = 0, frames = -1, first = 0, last = -1, has_update = 0;
     double fps = 0.0, duration = -1.0;
-    rt_update_policy update = RT_UPDATE_REBUILD;
+    rt_update_policy update = RT_UPDATE_SAH;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         int taken = cli_renderer_arg(argc, argv, &i, "animate", &ra);

@@ -112,7 +112,7 @@ static void usage(FILE *f) {
                "  --animate    the keyframe benchmark instead (Langr 2016, section 4.1):\n"
                "               each SCENE's first morphing object played frame by frame,\n"
                "               frame k at time k/F, on the packet backend with the update\n"
-               "               policies rebuild, refit, fast and auto, beside Embree (when\n"
+               "               policies sah, refit, lbvh and auto, beside Embree (when\n"
                "               built with it) updating and tracing the same frames at build\n"
                "               quality REFIT, LOW and MEDIUM (its widest packets); N runs,\n"
                "               rows interleaved frame by frame; per row the mesh update, trace and "
@@ -120,7 +120,7 @@ static void usage(FILE *f) {
                "               ms (the update included), each a mean over the frames (min\n"
                "               and median over the runs), the SAH cost (Embree's: of\n"
                "               rtcBuildBVH's trees of that quality) and whether every\n"
-               "               frame's image is rebuild's, bit for bit; with --json a\n"
+               "               frame's image is the sah policy's, bit for bit; with --json a\n"
                "               \"dynamic\" array per scene. Frame 0 (the first build) is\n"
                "               not counted.\n"
                "  --frames K   with --animate: frames after frame 0 [one per keyframe]\n"
@@ -231,7 +231,7 @@ static void bench_ours(const bench_args *a, const tri_input *in, rt_builder buil
         }
         if (i >= 0) times[i] = t;
         if (i == a->reps - 1) {
-            rt_bvh_quality q = rt_bvh_measure(&bvh, o.cost_box, o.cost_tri);
+            rt_bvh_quality q = rt_bvh_measure(&bvh, o.costs);
             r->sah = q.sah;
             r->nodes = q.nodes;
             r->bytes = (double)q.bytes;
@@ -270,7 +270,7 @@ static void bench_kd(const bench_args *a, const tri_input *in, rt_kd_builder bui
         }
         if (i >= 0) times[i] = t;
         if (i == a->reps - 1) {
-            rt_kd_quality q = rt_kd_measure(&kd, 1.0f, 2.0f);
+            rt_kd_quality q = rt_kd_measure(&kd, rt_sah_costs_default());
             r->sah = q.sah;
             r->nodes = q.nodes;
             r->bytes = (double)q.bytes;
@@ -312,7 +312,7 @@ static int bench_embree(const bench_args *a, const tri_input *in, row *rows) {
         }
         if (i >= 0) times[i] = ms;
         if (i == a->reps - 1) {
-            rt_bvh_quality q = rt_bvh_measure(&bvh, o.cost_box, o.cost_tri);
+            rt_bvh_quality q = rt_bvh_measure(&bvh, o.costs);
             b->sah = q.sah;
             b->nodes = q.nodes;
             summarize(b, times, a->reps);
@@ -498,13 +498,13 @@ static int bench_scene(const char *path, const bench_args *a, rt_pool *pool) {
     row rows[MAX_ROWS];
     memset(rows, 0, sizeof rows);
     const rt_builder ours[] = {RT_BUILDER_THESIS_SCALAR, RT_BUILDER_THESIS_NEON,
-                               RT_BUILDER_THESIS_MT, RT_BUILDER_FAST};
+                               RT_BUILDER_THESIS_MT, RT_BUILDER_SAH};
     int n = 0;
     for (int i = 0; i < 4; i++) {
         progress(a, path, rt_builder_name(ours[i]));
         bench_ours(a, &in, ours[i], pool, &rows[n++]);
     }
-    if (a->accel == RT_ACCEL_KD || a->accel == RT_ACCEL_KD_BINNED) {
+    if (a->accel >= 0 && a->accel != RT_ACCEL_BVH) { /* --accel kd, kd-binned: both kd rows */
         progress(a, path, "kd-exact");
         bench_kd(a, &in, RT_KD_EXACT, pool, &rows[n++]);
         progress(a, path, "kd-binned");

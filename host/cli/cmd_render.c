@@ -32,7 +32,7 @@ static const char usage_head[] =
     "                 (the thesis's benchmark set-up)\n"
     "  --time T       the scene at time T seconds (animation, transform_keys and the\n"
     "                 camera path, docs/SCENE_FORMAT.md) [0]\n"
-    "  --update P     every mesh's BVH update policy: rebuild, refit, fast, auto\n"
+    "  --update P     every mesh's BVH update policy: sah, refit, lbvh, auto\n"
     "                 (a single frame builds afresh whatever the policy) [the scene's]\n"
     "  --stats        print BVH cost, box and triangle tests per ray and render time;\n"
     "                 for opencl and vulkan also the device, kernel specialisation\n"
@@ -107,7 +107,7 @@ int cmd_render(int argc, char **argv) {
     cli_renderer_args_init(&ra);
     int width = 0, height = 0, stats = 0, frames = 1, has_time = 0, has_update = 0;
     double time = 0.0;
-    rt_update_policy update = RT_UPDATE_REBUILD;
+    rt_update_policy update = RT_UPDATE_SAH;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v;
         int taken = cli_renderer_arg(argc, argv, &i, "render", &ra);
