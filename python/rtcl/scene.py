@@ -13,7 +13,9 @@ INVALID_ID = 0xFFFFFFFF
 Open3D's RaycastingScene.INVALID_ID)."""
 
 ACCELS = ("bvh", "kd", "kd-binned")
-UPDATE_POLICIES = ("auto", "refit", "fast", "rebuild")
+UPDATE_POLICIES = ("auto", "refit", "lbvh", "sah")
+# The library's names before 0.2 (and the issue's): "fast" is lbvh, "rebuild" sah.
+POLICY_ALIASES = {"fast": "lbvh", "rebuild": "sah"}
 
 
 class Scene:
@@ -87,15 +89,18 @@ class Scene:
     def update_vertices(self, mesh, vertices, policy="auto"):
         """Moves every vertex of a mesh (the triangles stay) and says how the
         next query brings its BVH up to date: "refit" (keep the tree, recompute
-        its boxes), "fast" (a quick LBVH build), "rebuild" (a full SAH build)
-        or "auto" (refit while the tree stays good, else rebuild). Every policy
-        gives the same hits. A kd-tree mesh becomes a BVH mesh."""
-        if policy not in UPDATE_POLICIES:
-            raise ValueError("policy: unknown update policy %r (%s)"
+        its boxes), "lbvh" (a quick Morton-code LBVH build; also "fast"),
+        "sah" (a full binned SAH build; also "rebuild") or "auto" (refit while
+        the tree stays within rtcl's bound of an SAH build's cost, else an SAH
+        build). Every policy gives the same hits. A kd-tree mesh becomes a BVH
+        mesh."""
+        name = POLICY_ALIASES.get(policy, policy) if isinstance(policy, str) else policy
+        if name not in UPDATE_POLICIES:
+            raise ValueError("policy: unknown update policy %r (%s; or fast, rebuild)"
                              % (policy, ", ".join(UPDATE_POLICIES)))
         m = _arrays.identifier("mesh", mesh)
         v = _arrays.vertices("vertices", vertices)
-        self._core.update_vertices(m, v, policy)
+        self._core.update_vertices(m, v, name)
 
     def build(self, backend="packet", threads=None):
         """Brings the acceleration structures (and a device backend's copy of

@@ -282,7 +282,7 @@ static PyObject *scene_update_vertices(SceneObject *self, PyObject *args) {
     rt_update_policy policy;
     if (!rt_update_policy_parse(policy_name, &policy))
         return PyErr_Format(PyExc_ValueError,
-                            "policy: unknown update policy '%s' (refit, fast, rebuild or auto)",
+                            "policy: unknown update policy '%s' (sah, refit, lbvh or auto)",
                             policy_name);
     Py_buffer v;
     if (!get_array(vobj, &v, "vertices", "f", 4, 0)) return NULL;
