@@ -225,7 +225,7 @@ def main():
                 os.cpu_count() or 0))
     text = ['## Dynamic scenes (issue 16): update policies beside Embree, `rtcl bench --animate`',
             '', stamp, '', '```', a.command, '```', '',
-            'What `rtcl bench --animate` measures (`host/cli/bench_animate.c`): the scene\'s '
+            'What `rtcl bench --animate` measures (`bench/engines/bench_animate.c`): the scene\'s '
             'morphing object played frame by frame (frame k at time k/fps; the blend of two '
             'keyframes is the scene\'s work and not timed), %dx%d, one point light, primary plus '
             'shadow rays, %d threads. Ours: the packet backend, a fresh renderer per row and run, '

@@ -139,8 +139,7 @@ rt_accel rt_mesh_data_structure(const rt_mesh_data *m);
  * ambient 0.1, from the bounding box of all meshes. Fails on an empty scene. */
 rt_status rt_scene_apply_default_view(rt_scene *scene, int width, int height);
 
-/* World-space bounds of the selected keyframes; returns 0 if empty. */
-int rt_scene_bounds(const rt_scene *scene, float bmin[3], float bmax[3]);
+/* rt_scene_bounds, the world-space box of the current frame, is public (rt.h). */
 
 /* Which features the scene uses; backends specialise to these. */
 typedef struct rt_scene_features {
