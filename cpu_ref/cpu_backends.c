@@ -10,7 +10,7 @@
 #include "base/clock.h"
 #include "base/error.h"
 #include "cpu_render.h"
-#include "rt_fp_mode.h"
+#include "kernel_maths.h"
 
 /* ---- ray queries, shared by both -------------------------------------- */
 

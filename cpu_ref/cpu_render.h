@@ -11,7 +11,7 @@
 #include "cpu_isa.h"
 #include "packet_trace.h"
 #include "rt.h"
-#include "rt_shade.h"
+#include "kernel_maths.h"
 #include "single_trace.h"
 #include "wide_bvh.h"
 

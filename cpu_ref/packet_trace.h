@@ -22,7 +22,7 @@
 #include <stdint.h>
 
 #include "cpu_isa.h"
-#include "rt_shared.h"
+#include "kernel_maths.h"
 #include "wide_bvh.h"
 
 enum { RT_PK_LANES = 64 };

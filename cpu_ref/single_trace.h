@@ -26,7 +26,7 @@
 #include <stddef.h>
 
 #include "cpu_isa.h"
-#include "rt_shared.h"
+#include "kernel_maths.h"
 #include "wide_bvh.h"
 
 /* Subtrees of at most RT_SW_LEAF_MERGE times the width triangles (one run of
