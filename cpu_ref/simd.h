@@ -64,48 +64,40 @@ typedef int32_t rt_v16i __attribute__((vector_size(64)));
  *
  * rt_vN_splat(x), rt_vN_splat_i(x): x in every lane (bit for bit: -0 stays
  *   -0).
- * rt_vN_sel(m, a, b): m ? a : b per lane, m a comparison result.
  * rt_vN_min_of(a, b), rt_vN_max_of(a, b): the oracle's 'a < b ? a : b' and
  *   'a > b ? a : b' per lane (b where they are equal or either is NaN):
  *   exactly what x86's min and max instructions compute.
- * rt_vN_bits(m): bit l set where lane l of m (a comparison result) is. */
+ * These are the same SIMDe call at every width (P the intrinsics' prefix,
+ * T SIMDe's vector type):
+ */
+#define RT_SIMD_X86(N, P, T)                                                                       \
+    static inline rt_v##N##f rt_v##N##_splat(float x) {                                            \
+        return (rt_v##N##f)simde_##P##_set1_ps(x);                                                 \
+    }                                                                                              \
+    static inline rt_v##N##i rt_v##N##_splat_i(int32_t x) {                                        \
+        return (rt_v##N##i)simde_##P##_set1_epi32(x);                                              \
+    }                                                                                              \
+    static inline rt_v##N##f rt_v##N##_min_of(rt_v##N##f a, rt_v##N##f b) {                        \
+        return (rt_v##N##f)simde_##P##_min_ps((T)a, (T)b);                                         \
+    }                                                                                              \
+    static inline rt_v##N##f rt_v##N##_max_of(rt_v##N##f a, rt_v##N##f b) {                        \
+        return (rt_v##N##f)simde_##P##_max_ps((T)a, (T)b);                                         \
+    }
+RT_SIMD_X86(4, mm, simde__m128)
+RT_SIMD_X86(8, mm256, simde__m256)
+RT_SIMD_X86(16, mm512, simde__m512)
+#undef RT_SIMD_X86
 
-static inline rt_v4f rt_v4_splat(float x) {
-    return (rt_v4f)simde_mm_set1_ps(x);
-}
-static inline rt_v4i rt_v4_splat_i(int32_t x) {
-    return (rt_v4i)simde_mm_set1_epi32(x);
-}
+/* rt_vN_sel(m, a, b): m ? a : b per lane, m a comparison result: blendv
+ * (AVX), a ternary-logic instruction (AVX-512) or NEON's bit select where
+ * the build has them, else and, and-not and or (SSE2 has no blendv; SIMDe's
+ * stands in with one more instruction). */
 static inline rt_v4f rt_v4_sel(rt_v4i m, rt_v4f a, rt_v4f b) {
 #if defined(SIMDE_ARM_NEON_A32V7_NATIVE)
     return (rt_v4f)vbslq_f32((uint32x4_t)m, (float32x4_t)a, (float32x4_t)b);
 #else
-    /* SSE2 has no blendv; SIMDe's stands in with one more instruction. */
     return (rt_v4f)((m & (rt_v4i)a) | (~m & (rt_v4i)b));
 #endif
-}
-static inline rt_v4f rt_v4_min_of(rt_v4f a, rt_v4f b) {
-    return (rt_v4f)simde_mm_min_ps((simde__m128)a, (simde__m128)b);
-}
-static inline rt_v4f rt_v4_max_of(rt_v4f a, rt_v4f b) {
-    return (rt_v4f)simde_mm_max_ps((simde__m128)a, (simde__m128)b);
-}
-static inline uint32_t rt_v4_bits(rt_v4i m) {
-#if defined(SIMDE_ARM_NEON_A64V8_NATIVE)
-    /* Each lane masked to its bit and the lanes added: shorter than
-     * SIMDe's movemask, which shifts and extracts. */
-    static const uint32_t bit[4] = {1, 2, 4, 8};
-    return vaddvq_u32(vandq_u32((uint32x4_t)m, vld1q_u32(bit)));
-#else
-    return (uint32_t)simde_mm_movemask_ps((simde__m128)m);
-#endif
-}
-
-static inline rt_v8f rt_v8_splat(float x) {
-    return (rt_v8f)simde_mm256_set1_ps(x);
-}
-static inline rt_v8i rt_v8_splat_i(int32_t x) {
-    return (rt_v8i)simde_mm256_set1_epi32(x);
 }
 static inline rt_v8f rt_v8_sel(rt_v8i m, rt_v8f a, rt_v8f b) {
 #if defined(SIMDE_X86_AVX_NATIVE)
@@ -114,39 +106,31 @@ static inline rt_v8f rt_v8_sel(rt_v8i m, rt_v8f a, rt_v8f b) {
     return (rt_v8f)((m & (rt_v8i)a) | (~m & (rt_v8i)b));
 #endif
 }
-static inline rt_v8f rt_v8_min_of(rt_v8f a, rt_v8f b) {
-    return (rt_v8f)simde_mm256_min_ps((simde__m256)a, (simde__m256)b);
-}
-static inline rt_v8f rt_v8_max_of(rt_v8f a, rt_v8f b) {
-    return (rt_v8f)simde_mm256_max_ps((simde__m256)a, (simde__m256)b);
-}
-static inline uint32_t rt_v8_bits(rt_v8i m) {
-    return (uint32_t)simde_mm256_movemask_ps((simde__m256)m);
-}
-
-static inline rt_v16f rt_v16_splat(float x) {
-    return (rt_v16f)simde_mm512_set1_ps(x);
-}
-static inline rt_v16i rt_v16_splat_i(int32_t x) {
-    return (rt_v16i)simde_mm512_set1_epi32(x);
-}
 static inline rt_v16f rt_v16_sel(rt_v16i m, rt_v16f a, rt_v16f b) {
 #if defined(SIMDE_X86_AVX512F_NATIVE)
-    /* Bitwise m ? a : b in one instruction. */
     return (rt_v16f)simde_mm512_ternarylogic_epi32((simde__m512i)m, (simde__m512i)a,
                                                    (simde__m512i)b, 0xca);
 #else
     return (rt_v16f)((m & (rt_v16i)a) | (~m & (rt_v16i)b));
 #endif
 }
-static inline rt_v16f rt_v16_min_of(rt_v16f a, rt_v16f b) {
-    return (rt_v16f)simde_mm512_min_ps((simde__m512)a, (simde__m512)b);
+
+/* rt_vN_bits(m): bit l set where lane l of m (a comparison result) is: the
+ * sign bits by movemask, by a compare into a mask register (16 lanes), or on
+ * aarch64 each lane masked to its bit and the lanes added (shorter than
+ * SIMDe's movemask, which shifts and extracts). */
+static inline uint32_t rt_v4_bits(rt_v4i m) {
+#if defined(SIMDE_ARM_NEON_A64V8_NATIVE)
+    static const uint32_t bit[4] = {1, 2, 4, 8};
+    return vaddvq_u32(vandq_u32((uint32x4_t)m, vld1q_u32(bit)));
+#else
+    return (uint32_t)simde_mm_movemask_ps((simde__m128)m);
+#endif
 }
-static inline rt_v16f rt_v16_max_of(rt_v16f a, rt_v16f b) {
-    return (rt_v16f)simde_mm512_max_ps((simde__m512)a, (simde__m512)b);
+static inline uint32_t rt_v8_bits(rt_v8i m) {
+    return (uint32_t)simde_mm256_movemask_ps((simde__m256)m);
 }
 static inline uint32_t rt_v16_bits(rt_v16i m) {
-    /* 0 > m: the sign bits, as a mask register. */
     return (uint32_t)simde_mm512_cmpgt_epi32_mask(simde_mm512_setzero_si512(), (simde__m512i)m);
 }
 
