@@ -449,13 +449,11 @@ static void pk_tri(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u32 e, 
             b[k] = rt_vsplat(tri->v1[k]) - p->org[k][g];
             c[k] = rt_vsplat(tri->v2[k]) - p->org[k][g];
         }
-        const rt_vi k0[3] = {p->kx0[g], p->ky0[g], p->kz0[g]};
-        const rt_vi k1[3] = {p->kx1[g], p->ky1[g], p->kz1[g]};
-        for (int i = 0; i < 3; i++) {
-            A[i] = pick(k0[i], k1[i], a);
-            B[i] = pick(k0[i], k1[i], b);
-            C[i] = pick(k0[i], k1[i], c);
-        }
+        const rt_vi x0 = p->kx0[g], x1 = p->kx1[g], y0 = p->ky0[g], y1 = p->ky1[g];
+        const rt_vi z0 = p->kz0[g], z1 = p->kz1[g];
+        A[0] = pick(x0, x1, a), A[1] = pick(y0, y1, a), A[2] = pick(z0, z1, a);
+        B[0] = pick(x0, x1, b), B[1] = pick(y0, y1, b), B[2] = pick(z0, z1, b);
+        C[0] = pick(x0, x1, c), C[1] = pick(y0, y1, c), C[2] = pick(z0, z1, c);
     }
     rt_vwt x;
     /* An edge function of exactly zero takes the oracle's exact re-check. */
