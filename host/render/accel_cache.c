@@ -427,7 +427,7 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
             }
             c->layout_bytes = rt_flat_bytes(&c->flat);
         }
-        memset(c->dirty, 0, c->mesh_count);
+        if (c->mesh_count) memset(c->dirty, 0, c->mesh_count); /* dirty is NULL without meshes */
         if (!has_kd) park(c, scene); /* the meshes rebuilt and rewritten in place */
         c->layout_ms = rt_now_ms() - t2;
         c->flat_valid = 1;
