@@ -169,7 +169,8 @@ static void cpu_destroy(void *state) {
 }
 
 const rt_backend_ops rt_backend_cpu = {"cpu",      always_available, cpu_create,  cpu_prepare,
-                                       cpu_render, cpu_trace,        cpu_destroy, NULL};
+                                       cpu_render, cpu_trace,        cpu_destroy, NULL,
+                                       NULL};
 
 /* ---- packet: ray packets through wide BVHs ------------------------------ */
 
@@ -290,6 +291,24 @@ static rt_status packet_trace(void *state, const rt_backend_layout *layout, cons
     return RT_OK;
 }
 
+/* A wide tree's bytes: its nodes and their binary sources (for refits),
+ * its triangle blocks, its instance roots. */
+static uint64_t wide_bytes(const rt_wide_bvh *b) {
+    const uint64_t w = (uint64_t)b->shape.width;
+    return ((uint64_t)b->node_count * (RT_WIDE_NODE_WORDS(w) + (b->src ? w : 0)) +
+            (uint64_t)b->block_count * RT_WIDE_BLOCK_WORDS(w) + b->inst_count) *
+           sizeof(uint32_t);
+}
+
+/* The packet backend's copies: the packet tracer's trees and, once made,
+ * the single-ray tracer's (with their triangle blocks). */
+static void packet_memory(void *state, uint64_t *host, uint64_t *device) {
+    const packet_state *s = state;
+    *device = 0;
+    *host = (s->packets.have ? wide_bytes(&s->packets.bvh) : 0) +
+            (s->single.have ? wide_bytes(&s->single.bvh) : 0);
+}
+
 static void packet_destroy(void *state) {
     packet_state *s = state;
     if (!s) return;
@@ -299,5 +318,5 @@ static void packet_destroy(void *state) {
 }
 
 const rt_backend_ops rt_backend_packet = {
-    "packet",      always_available, packet_create,  packet_prepare,
-    packet_render, packet_trace,     packet_destroy, NULL};
+    "packet",     always_available, packet_create, packet_prepare, packet_render,
+    packet_trace, packet_destroy,   NULL,          packet_memory};

@@ -104,6 +104,10 @@ typedef struct rt_backend_ops {
      * what the driver printed on stderr meanwhile (the library keeps that off
      * the terminal); "" when none. NULL for backends that compile nothing. */
     const char *(*build_log)(void *state);
+    /* The bytes the backend holds between frames (rt_renderer_memory): its
+     * host copies (the packet backend's wide BVHs) and device memory. NULL
+     * for a backend that keeps no copy of its own. */
+    void (*memory)(void *state, uint64_t *host_bytes, uint64_t *device_bytes);
 } rt_backend_ops;
 
 #endif /* RT_BACKEND_H */

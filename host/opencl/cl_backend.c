@@ -1023,5 +1023,6 @@ static int cl_available(rt_error *why) {
     return 1;
 }
 
-const rt_backend_ops rt_backend_opencl = {"opencl",  cl_available, cl_create,  cl_prepare,
-                                          cl_render, cl_trace,     cl_destroy, cl_build_log};
+const rt_backend_ops rt_backend_opencl = {"opencl",   cl_available, cl_create,
+                                          cl_prepare, cl_render,    cl_trace,
+                                          cl_destroy, cl_build_log, NULL};

@@ -207,5 +207,8 @@ rt_status rt_renderer_memory(const rt_renderer *r, const rt_scene *scene, rt_mem
                           (3 * sizeof(uint32_t) + (md->tri_materials ? sizeof(uint32_t) : 0));
     }
     if (scene && r->accel.scene_uid == scene->uid) rt_accel_cache_memory(&r->accel, out);
+    const rt_backend_slot *slot = rt_renderer_slot(r);
+    if (slot->ops && slot->ops->memory && slot->state)
+        slot->ops->memory(slot->state, &out->backend, &out->device);
     return RT_OK;
 }

@@ -934,5 +934,5 @@ rt_status rt_vk_trace_kd_stack(const char *device, const rt_flat *flat, const rt
     return st;
 }
 
-const rt_backend_ops rt_backend_vulkan = {"vulkan",  vk_available, vk_create,  vk_prepare,
-                                          vk_render, vk_trace,     vk_destroy, NULL};
+const rt_backend_ops rt_backend_vulkan = {"vulkan", vk_available, vk_create, vk_prepare, vk_render,
+                                          vk_trace, vk_destroy,   NULL,      NULL};
