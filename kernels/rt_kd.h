@@ -1,7 +1,8 @@
 /* rt_kd.h - kd-tree traversal of one mesh (the layout of rt_layout.h,
- * RT_INST_KD), shared by the C oracle and the OpenCL kernels. rt_shared.h
- * includes it after the triangle and leaf tests it uses; valid C99 and
- * OpenCL C under the same rules as rt_shared.h.
+ * RT_INST_KD), shared by the C oracle and the OpenCL kernels; rt_trace.h
+ * calls it for kd meshes beside rt_bvh.h's BVH walk. Valid C99 and OpenCL C
+ * under the rules of rt_math_profile.h; the GLSL mirror is
+ * kernels/vulkan/rt_vk_kd.glsl.
  *
  * Front to back with an explicit stack of (node, entry t, exit t) cells
  * (Havran's recursive traversal without recursion). Exactness against the
@@ -24,6 +25,8 @@
  */
 #ifndef RT_KD_TRAVERSE_H
 #define RT_KD_TRAVERSE_H
+
+#include "rt_hit.h"
 
 /* Stack entries; host/layout/flatten.c rejects deeper trees. */
 #define RT_KD_STACK 64

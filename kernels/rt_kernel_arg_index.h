@@ -1,5 +1,5 @@
 /* rt_kernel_arg_index.h - the position of every argument of every OpenCL
- * kernel (kernels/rt_render.cl, kernels/rt_packet.cl), named once for the
+ * kernel (kernels/rt_single_ray.cl, kernels/rt_ray_packet.cl), named once for the
  * host (host/opencl/cl_backend.c sets arguments by these names) and held to
  * the kernels' signatures by a test (tests/test_opencl_kernel_args.c asks the
  * built program for each argument's name). Valid C and OpenCL C.

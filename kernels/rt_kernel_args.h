@@ -1,10 +1,11 @@
-/* rt_kernel_args.h - what the OpenCL kernel files (rt_render.cl, rt_packet.cl)
+/* rt_kernel_args.h - what the OpenCL kernel files (rt_single_ray.cl, rt_ray_packet.cl)
  * share besides the maths: the scene-view arguments every tracing kernel
  * takes (in this order: host/cl_backend.c sets them as arguments 0..10) and
  * the AOV codes of rt.h. OpenCL C only. */
 #ifndef RT_KERNEL_ARGS_H
 #define RT_KERNEL_ARGS_H
 
+#include "rt_camera.h"
 #include "rt_shade.h"
 
 /* The view arguments every tracing kernel takes, in this order. */

@@ -20,8 +20,8 @@
 #include "rt_kernel_arg_index.h"
 
 /* Generated from kernels/ at build time (the library embeds them). */
-extern const char rt_cl_source_rt_render[];
-extern const char rt_cl_source_rt_packet[];
+extern const char rt_cl_source_rt_single_ray[];
+extern const char rt_cl_source_rt_ray_packet[];
 
 static void check_kernel(cl_program program, const rt_kernel_signature *sig) {
     cl_int ce;
@@ -58,7 +58,7 @@ int main(void) {
     cl_int ce;
     cl_context ctx = clCreateContext(props, 1, &d, NULL, NULL, &ce);
     CHECK(ctx != NULL);
-    const char *src[2] = {rt_cl_source_rt_render, rt_cl_source_rt_packet};
+    const char *src[2] = {rt_cl_source_rt_single_ray, rt_cl_source_rt_ray_packet};
     cl_program program = ctx ? clCreateProgramWithSource(ctx, 2, src, NULL, &ce) : NULL;
     CHECK(program != NULL);
     if (program) {

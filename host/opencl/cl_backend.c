@@ -1,7 +1,7 @@
 /* cl_backend.c - the OpenCL backend (host/backend/backend.h): device state
  * kept by the renderer, uploads of what changed, the kernel program
  * specialised to the scene, and frames rendered in bounded tiles
- * (kernels/rt_render.cl).
+ * (kernels/rt_single_ray.cl).
  *
  * The kernels compute with the CPU oracle's header, built with no contraction
  * and correctly rounded division and sqrt, so on a device that promises both
@@ -24,8 +24,8 @@
 #include "rt_shade.h" /* rt_wave_entry, rt_wave_record: the wavefront's buffers */
 
 /* Generated from kernels/ at build time. */
-extern const char rt_cl_source_rt_render[];
-extern const char rt_cl_source_rt_packet[];
+extern const char rt_cl_source_rt_single_ray[];
+extern const char rt_cl_source_rt_ray_packet[];
 
 /* Tile sizes in pixels: adapted per frame so that one launch stays near
  * RT_CL_TARGET_MS (a GPU watchdog fires after a few seconds; we keep far from
@@ -337,7 +337,7 @@ static void append_log(rt_error *err, const char *log) {
 static rt_status compile(cl_state *s, const rt_flat *f, const char *options, const char *defines,
                          int lanes, char **log, rt_error *err) {
     /* CPU devices get the packet kernel in the same program. */
-    const char *src[2] = {rt_cl_source_rt_render, rt_cl_source_rt_packet};
+    const char *src[2] = {rt_cl_source_rt_single_ray, rt_cl_source_rt_ray_packet};
     cl_int ce;
     s->program = clCreateProgramWithSource(s->ctx, lanes ? 2 : 1, src, NULL, &ce);
     if (!s->program)
@@ -736,7 +736,7 @@ static rt_status zero_buf(cl_state *s, int b, size_t bytes, rt_error *err) {
 }
 
 /* One tile of an image with secondary rays as wavefront passes (see
- * kernels/rt_render.cl): the primary rays' queue, then per level a trace and
+ * kernels/rt_single_ray.cl): the primary rays' queue, then per level a trace and
  * a shade launch whose secondary rays make the next queue (its length read
  * back between the launches), until the queue is empty; then the per-pixel
  * sum in rt_shade_hit's order. *overflow is set (and the tile left

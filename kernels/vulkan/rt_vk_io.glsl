@@ -5,7 +5,8 @@
 #ifndef RT_VK_IO_GLSL
 #define RT_VK_IO_GLSL
 
-#include "rt_vk_shared.glsl"
+#include "rt_vk_camera.glsl"
+#include "rt_vk_shade.glsl"
 
 layout(std430, set = 0, binding = 10) readonly buffer B_rays { rt_ray rays[]; };
 layout(std430, set = 0, binding = 11) writeonly buffer B_hits { rt_hit_d hits[]; };

@@ -1,13 +1,13 @@
 /* rt_vk_kd.glsl - the GLSL mirror of kernels/rt_kd.h: kd-tree traversal of
  * one mesh (instance flag RT_INST_KD) for the Vulkan backend.
- * rt_vk_shared.glsl includes it after rt_leaf_test, which a leaf calls as
- * the C code does: the triangle test and the hit's acceptance are the BVH's
+ * rt_vk_trace.glsl calls it for kd meshes; a leaf calls rt_leaf_test
+ * (rt_vk_hit.glsl) as the C code does: the triangle test and the hit's acceptance are the BVH's
  * own code, so the bits and the closest hit are the oracle's. The same
  * operations in the same order as rt_kd_trace_mesh (every one NoContraction
  * through host/vulkan/spv_precise.c; there is no division here).
  *
- * The kd nodes are storage buffer binding 14 (after the per-dispatch
- * buffers 10..13). Scenes without kd meshes leave RT_INST_KD out of the
+ * The kd nodes are storage buffer binding 14 (rt_vk_view.glsl, after the
+ * per-dispatch buffers 10..13). Scenes without kd meshes leave RT_INST_KD out of the
  * SC_INST_MASK specialization constant, so the driver drops this code.
  *
  * The stack: (node, entry t, exit t) per cell. The workgroup's shared
@@ -22,18 +22,11 @@
 #ifndef RT_VK_KD_GLSL
 #define RT_VK_KD_GLSL
 
-#define RT_INST_KD   4u
-#define RT_KD_LEAF   3u
+#include "rt_vk_bvh.glsl"
+
 #define RT_KD_STACK  64
 layout(constant_id = 5) const uint SC_KD_SHARED = 21u; /* at most RT_STACK_SIZE / 3 */
 #define RT_VK_KD_SHARED int(SC_KD_SHARED)
-
-struct rt_kd_node {
-    uint a;
-    uint b;
-};
-
-layout(std430, set = 0, binding = 14) readonly buffer B_kd_nodes { rt_kd_node kd_nodes[]; };
 
 /* rt_kd_root_interval: the slab test of rt_box_test, also returning the far
  * end. */
