@@ -38,6 +38,9 @@ NO_TWIN = {
     "rt_kernel_args.h": "OpenCL only: the kernels' view arguments; its Vulkan twin is "
     "rt_vk_io.glsl (buffers, not functions)",
     "rt_kernel_arg_index.h": "OpenCL only: kernel argument positions",
+    "rt_interface.h": "the C side of the GPU interface table (rt_interface.def); the GLSL "
+    "side, rt_vk_interface.glsl, is generated from the same table",
+    "rt_interface_rows.h": "the table's rows defined empty, for its expansions",
 }
 
 # C functions with no GLSL function of the same name, and why.

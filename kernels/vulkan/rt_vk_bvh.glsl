@@ -12,10 +12,10 @@
  * In workgroup-shared memory, not in per-invocation arrays: a driver keeps a
  * private array indexed at run time in scratch memory or as a chain of
  * selects (lavapipe traced 100 times slower so). Entry k of invocation l is
- * at k * RT_VK_LOCAL + l (consecutive invocations in consecutive words). The
+ * at k * RT_VK_LOCAL + l (consecutive invocations in consecutive words;
+ * RT_VK_LOCAL, the work group size, is kernels/rt_interface.def's). The
  * object BVH's stack is entries 0 .. RT_STACK_SIZE - 1, a mesh BVH's the
  * next RT_STACK_SIZE. */
-#define RT_VK_LOCAL 64u
 shared uint rt_vk_stack[2 * RT_STACK_SIZE * RT_VK_LOCAL];
 #define STACK_AT(level, k) rt_vk_stack[(uint(level) * uint(RT_STACK_SIZE) + uint(k)) * RT_VK_LOCAL + gl_LocalInvocationIndex]
 

@@ -14,8 +14,9 @@
  * memory is full (the two BVH stacks take 32 KiB, Vulkan's usual limit), so
  * the kd stack takes the mesh BVH's stack (level 1 of STACK_AT), which a kd
  * mesh does not use, three words per cell: SC_KD_SHARED cells (21, the
- * most that fit; specialization constant 5, which test_vulkan_oracle sets
- * lower to run the other path). A tree deep enough to need more
+ * most that fit; the specialization constant SC_KD_SHARED of
+ * kernels/rt_interface.def, which test_vulkan_oracle sets lower to run the
+ * other path). A tree deep enough to need more
  * (host/layout/flatten.c admits depth up to RT_KD_STACK - 2) goes on in a
  * private array, which a driver may keep in slow memory but only such deep
  * paths touch. */
@@ -25,7 +26,6 @@
 #include "rt_vk_bvh.glsl"
 
 #define RT_KD_STACK  64
-layout(constant_id = 5) const uint SC_KD_SHARED = 21u; /* at most RT_STACK_SIZE / 3 */
 #define RT_VK_KD_SHARED int(SC_KD_SHARED)
 
 /* rt_kd_root_interval: the slab test of rt_box_test, also returning the far

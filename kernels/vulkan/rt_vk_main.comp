@@ -29,9 +29,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
-layout(local_size_x = 64) in;
-
 #include "rt_vk_io.glsl"
+
+layout(local_size_x = RT_VK_LOCAL) in;
 
 /* What the next rt_trace is for. */
 #define STEP_QUERY  0 /* a ray query: write its hit, done */

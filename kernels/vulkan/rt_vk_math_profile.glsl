@@ -1,14 +1,13 @@
 /* rt_vk_math_profile.glsl - the GLSL mirror of kernels/rt_math_profile.h:
  * the portable profile's division, square root and difference of products
  * (rt_vk_soft_math.glsl), fabs as a bit operation and infinity by its bits;
- * SC_DENORM_FLUSH (specialization constant 4) picks the flush-to-zero
- * variants, as -DRT_FLUSH_DENORMALS does in OpenCL. */
+ * SC_DENORM_FLUSH (a specialization constant of kernels/rt_interface.def)
+ * picks the flush-to-zero variants, as -DRT_FLUSH_DENORMALS does in OpenCL. */
 #ifndef RT_VK_MATH_PROFILE_GLSL
 #define RT_VK_MATH_PROFILE_GLSL
 
+#include "rt_vk_interface.glsl" /* SC_DENORM_FLUSH */
 #include "rt_vk_soft_math.glsl"
-
-layout(constant_id = 4) const uint SC_DENORM_FLUSH = 0u; /* 1: the _ftz soft maths */
 
 #define RT_INF uintBitsToFloat(0x7f800000u)
 
