@@ -38,26 +38,45 @@ RT_FN void rt_slab(float a, float b, float org, float inv, float *lo, float *hi)
     *hi = t1 < *hi ? t1 : *hi;
 }
 
-/* The end of the test: the far distance made conservative (Ize), cut at
- * tmax; *tnear is the entry distance. */
-RT_FN int rt_slab_end(float lo, float hi, float tmax, float *tnear) {
+/* The far end of the test: the far distance hi made conservative (Ize),
+ * cut at tmax. */
+RT_FN float rt_slab_far(float hi, float tmax) {
     hi = hi * (hi < 0.0f ? RT_BOX_FAR_SCALE_NEG : RT_BOX_FAR_SCALE);
-    hi = tmax < hi ? tmax : hi;
+    return tmax < hi ? tmax : hi;
+}
+
+/* The end of the test: whether the entry distance lo is at or before the
+ * far end (rt_slab_far); *tnear is the entry distance. */
+RT_FN int rt_slab_end(float lo, float hi, float tmax, float *tnear) {
+    hi = rt_slab_far(hi, tmax);
     *tnear = lo;
     return lo <= hi;
 }
 
-/* Tests the box [bmin, bmax] against [tmin, tmax]; *tnear is the entry
- * distance. A 0 * inf (origin on a slab plane, direction parallel to it)
- * gives NaN, which the comparisons skip, keeping the test conservative. */
-RT_FN int rt_box_test_bounds(RT_GLOBAL const float *bmin, RT_GLOBAL const float *bmax,
-                             const rt_ray *r, const rt_ray_pre *p, float tmin, float tmax,
-                             float *tnear) {
+/* The ray's interval [*tnear, *tfar] in the box [bmin, bmax], intersected
+ * with [tmin, tmax] (the far end conservative, rt_slab_far); 0 when it is
+ * empty. A 0 * inf (origin on a slab plane, direction parallel to it) gives
+ * NaN, which the comparisons skip, keeping the test conservative. The box
+ * tests below and the kd-tree's root cell (rt_kd.h) are this. */
+RT_FN int rt_box_interval(RT_GLOBAL const float *bmin, RT_GLOBAL const float *bmax, const rt_ray *r,
+                          const rt_ray_pre *p, float tmin, float tmax, float *tnear, float *tfar) {
     float lo = tmin, hi = RT_INF;
     for (int i = 0; i < 3; i++)
         rt_slab(p->sign[i] ? bmax[i] : bmin[i], p->sign[i] ? bmin[i] : bmax[i], r->org[i],
                 p->inv[i], &lo, &hi);
-    return rt_slab_end(lo, hi, tmax, tnear);
+    hi = rt_slab_far(hi, tmax);
+    *tnear = lo;
+    *tfar = hi;
+    return lo <= hi;
+}
+
+/* Tests the box [bmin, bmax] against [tmin, tmax]; *tnear is the entry
+ * distance. */
+RT_FN int rt_box_test_bounds(RT_GLOBAL const float *bmin, RT_GLOBAL const float *bmax,
+                             const rt_ray *r, const rt_ray_pre *p, float tmin, float tmax,
+                             float *tnear) {
+    float tfar;
+    return rt_box_interval(bmin, bmax, r, p, tmin, tmax, tnear, &tfar);
 }
 
 /* rt_box_test_bounds on a node's box. */

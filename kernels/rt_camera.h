@@ -28,4 +28,10 @@ RT_FN void rt_camera_ray(RT_GLOBAL const rt_scene_header *h, rt_i32 px, rt_i32 p
     rt_camera_ray_at(h, rt_camera_sx(h, px), rt_camera_sy(h, py), r);
 }
 
+/* The primary ray of pixel number pixel, counted row by row from the
+ * top-left (the GPU kernels' tiles are ranges of these numbers). */
+RT_FN void rt_camera_pixel_ray(RT_GLOBAL const rt_scene_header *h, rt_u32 pixel, rt_ray *r) {
+    rt_camera_ray(h, (rt_i32)(pixel % (rt_u32)h->width), (rt_i32)(pixel / (rt_u32)h->width), r);
+}
+
 #endif /* RT_KERNELS_CAMERA_H */

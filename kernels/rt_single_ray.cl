@@ -33,9 +33,8 @@ __kernel void rt_k_camera(__global const rt_scene_header *hdr, uint first, uint 
                           __global rt_ray *rays) {
     uint i = (uint)get_global_id(0);
     if (i >= count) return;
-    uint pixel = first + i;
     rt_ray r;
-    rt_camera_ray(hdr, (rt_i32)(pixel % (uint)hdr->width), (rt_i32)(pixel / (uint)hdr->width), &r);
+    rt_camera_pixel_ray(hdr, first + i, &r);
     rays[i] = r;
 }
 
@@ -111,10 +110,8 @@ __kernel void rt_k_wave_camera(__global const rt_scene_header *hdr, uint first, 
                                __global rt_wave_entry *queue) {
     uint i = (uint)get_global_id(0);
     if (i >= count) return;
-    uint pixel = first + i;
     rt_wave_entry q;
-    rt_camera_ray(hdr, (rt_i32)(pixel % (uint)hdr->width), (rt_i32)(pixel / (uint)hdr->width),
-                  &q.e.ray);
+    rt_camera_pixel_ray(hdr, first + i, &q.e.ray);
     q.e.w[0] = q.e.w[1] = q.e.w[2] = 1.0f;
     q.e.depth = 0;
     q.pixel = i;

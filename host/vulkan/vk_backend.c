@@ -234,15 +234,17 @@ static void destroy_buffer(vk_state *s, vk_buf *b) {
     memset(b, 0, sizeof *b);
 }
 
-static void vk_destroy(void *p) {
-    vk_state *s = p;
-    if (!s) return;
+/* Destroys what was made on the device, the device and the instance, and
+ * leaves every handle null, so that ready() may open them again. */
+static void close_device(vk_state *s) {
     if (s->device) {
         vkDeviceWaitIdle(s->device);
         for (int i = 0; i < RT_VK_BUF_COUNT; i++) destroy_buffer(s, &s->buf[i]);
         for (int i = 0; i < P_COUNT; i++) {
             if (s->pipe[i]) vkDestroyPipeline(s->device, s->pipe[i], NULL);
             if (s->module[i]) vkDestroyShaderModule(s->device, s->module[i], NULL);
+            s->pipe[i] = VK_NULL_HANDLE;
+            s->module[i] = VK_NULL_HANDLE;
         }
         if (s->dpool) vkDestroyDescriptorPool(s->device, s->dpool, NULL);
         if (s->layout) vkDestroyPipelineLayout(s->device, s->layout, NULL);
@@ -253,6 +255,22 @@ static void vk_destroy(void *p) {
         vkDestroyDevice(s->device, NULL);
     }
     if (s->inst) vkDestroyInstance(s->inst, NULL);
+    s->inst = VK_NULL_HANDLE;
+    s->device = VK_NULL_HANDLE;
+    s->fence = VK_NULL_HANDLE;
+    s->qpool = VK_NULL_HANDLE;
+    s->cpool = VK_NULL_HANDLE;
+    s->cmd = VK_NULL_HANDLE;
+    s->dpool = VK_NULL_HANDLE;
+    s->set = VK_NULL_HANDLE;
+    s->layout = VK_NULL_HANDLE;
+    s->dsl = VK_NULL_HANDLE;
+}
+
+static void vk_destroy(void *p) {
+    vk_state *s = p;
+    if (!s) return;
+    close_device(s);
     rt_upload_memo_free(&s->memo);
     free(s);
 }
@@ -375,31 +393,7 @@ static rt_status ready(vk_state *s, rt_error *err) {
                        s->dev.name);
     if (s->device) return RT_OK;
     rt_status st = open_device(s, err);
-    if (st != RT_OK) { /* start afresh next time */
-        vk_state keep = *s;
-        s->device = VK_NULL_HANDLE;
-        s->inst = VK_NULL_HANDLE;
-        if (keep.device) {
-            s->device = keep.device;
-            if (s->fence) vkDestroyFence(s->device, s->fence, NULL);
-            if (s->qpool) vkDestroyQueryPool(s->device, s->qpool, NULL);
-            if (s->cpool) vkDestroyCommandPool(s->device, s->cpool, NULL);
-            if (s->dpool) vkDestroyDescriptorPool(s->device, s->dpool, NULL);
-            if (s->layout) vkDestroyPipelineLayout(s->device, s->layout, NULL);
-            if (s->dsl) vkDestroyDescriptorSetLayout(s->device, s->dsl, NULL);
-            vkDestroyDevice(s->device, NULL);
-        }
-        if (keep.inst) vkDestroyInstance(keep.inst, NULL);
-        s->device = VK_NULL_HANDLE;
-        s->fence = VK_NULL_HANDLE;
-        s->qpool = VK_NULL_HANDLE;
-        s->cpool = VK_NULL_HANDLE;
-        s->cmd = VK_NULL_HANDLE;
-        s->dpool = VK_NULL_HANDLE;
-        s->set = VK_NULL_HANDLE;
-        s->layout = VK_NULL_HANDLE;
-        s->dsl = VK_NULL_HANDLE;
-    }
+    if (st != RT_OK) close_device(s); /* start afresh next time */
     return st;
 }
 

@@ -17,27 +17,35 @@ void rt_slab(float a, float b, float org, float inv, inout float lo, inout float
     hi = t1 < hi ? t1 : hi;
 }
 
-bool rt_slab_end(float lo, float hi, float tmax, out float tnear) {
+float rt_slab_far(float hi, float tmax) {
     hi = hi * (hi < 0.0 ? RT_BOX_FAR_SCALE_NEG : RT_BOX_FAR_SCALE);
-    hi = tmax < hi ? tmax : hi;
+    return tmax < hi ? tmax : hi;
+}
+
+bool rt_slab_end(float lo, float hi, float tmax, out float tnear) {
+    hi = rt_slab_far(hi, tmax);
     tnear = lo;
     return lo <= hi;
 }
 
-bool rt_box_test(uint node, rt_ray r, rt_ray_pre p, float tmin, float tmax, out float tnear) {
+/* The C function on the box of node (GLSL has no pointer to a buffer's
+ * array). */
+bool rt_box_interval(uint node, rt_ray r, rt_ray_pre p, float tmin, float tmax, out float tnear,
+                     out float tfar) {
     float lo = tmin, hi = RT_INF;
     for (int i = 0; i < 3; i++) {
         float a = p.sign[i] != 0 ? nodes[node].bmax[i] : nodes[node].bmin[i];
         float b = p.sign[i] != 0 ? nodes[node].bmin[i] : nodes[node].bmax[i];
-        float t0 = (a - r.org[i]) * p.inv[i];
-        float t1 = (b - r.org[i]) * p.inv[i];
-        lo = t0 > lo ? t0 : lo;
-        hi = t1 < hi ? t1 : hi;
+        rt_slab(a, b, r.org[i], p.inv[i], lo, hi);
     }
-    hi = hi * (hi < 0.0 ? RT_BOX_FAR_SCALE_NEG : RT_BOX_FAR_SCALE);
-    hi = tmax < hi ? tmax : hi;
+    tfar = rt_slab_far(hi, tmax);
     tnear = lo;
-    return lo <= hi;
+    return lo <= tfar;
+}
+
+bool rt_box_test(uint node, rt_ray r, rt_ray_pre p, float tmin, float tmax, out float tnear) {
+    float tfar;
+    return rt_box_interval(node, r, p, tmin, tmax, tnear, tfar);
 }
 
 float rt_box_lo(float tmin) {

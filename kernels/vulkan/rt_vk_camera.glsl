@@ -21,5 +21,8 @@ void rt_camera_ray(int px, int py, out rt_ray r) {
     r.tmin = 0.0;
     r.tmax = RT_INF;
 }
+void rt_camera_pixel_ray(uint pixel, out rt_ray r) {
+    rt_camera_ray(int(pixel % uint(hdr.width)), int(pixel / uint(hdr.width)), r);
+}
 
 #endif

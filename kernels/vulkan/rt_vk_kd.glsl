@@ -28,24 +28,10 @@
 #define RT_KD_STACK  64
 #define RT_VK_KD_SHARED int(SC_KD_SHARED)
 
-/* rt_kd_root_interval: the slab test of rt_box_test, also returning the far
- * end. */
+/* rt_kd_root_interval: rt_box_test's slab test, also giving the far end. */
 bool rt_kd_root_interval(uint node, rt_ray r, rt_ray_pre p, float lo, float hi, out float tn,
                          out float tf) {
-    float near = lo, far = RT_INF;
-    for (int i = 0; i < 3; i++) {
-        float a = p.sign[i] != 0 ? nodes[node].bmax[i] : nodes[node].bmin[i];
-        float b = p.sign[i] != 0 ? nodes[node].bmin[i] : nodes[node].bmax[i];
-        float t0 = (a - r.org[i]) * p.inv[i];
-        float t1 = (b - r.org[i]) * p.inv[i];
-        near = t0 > near ? t0 : near;
-        far = t1 < far ? t1 : far;
-    }
-    far = far * (far < 0.0 ? RT_BOX_FAR_SCALE_NEG : RT_BOX_FAR_SCALE);
-    far = hi < far ? hi : far;
-    tn = near;
-    tf = far;
-    return near <= far;
+    return rt_box_interval(node, r, p, lo, hi, tn, tf);
 }
 
 /* Stack cell k: words 3k .. 3k + 2 of the mesh level's stack while k is

@@ -72,7 +72,7 @@ void main() {
     if (step == STEP_QUERY) {
         e.ray = rays[i];
     } else {
-        rt_camera_ray(int(pixel % uint(hdr.width)), int(pixel / uint(hdr.width)), e.ray);
+        rt_camera_pixel_ray(pixel, e.ray);
         e.w[0] = 1.0;
         e.w[1] = 1.0;
         e.w[2] = 1.0;
