@@ -5,7 +5,7 @@
  * usage: bench_builders SCENE [--width W] [--height H] [--reps N] [--threads T]
  *                       SETUP...
  * SETUP is BUILDER:BINS:LEAF, BUILDER one of thesis-scalar, thesis-neon,
- * thesis-mt, fast, embree (Embree ignores BINS: it bins by itself).
+ * thesis-mt, sah, embree (Embree ignores BINS: it bins by itself).
  *
  * Per setup, every mesh of the scene gets its BVH from that setup (Ct = 1,
  * Ci = 2 for all): "build ms" is the sum over the meshes of rt_bvh_build (for
@@ -22,7 +22,7 @@
  * "differ" counts the pixels that are not (it must be 0).
  *
  * Threads: thesis-scalar and thesis-neon are single-threaded setups (the
- * thesis's setups 1 and 2); thesis-mt, fast and Embree build with T threads;
+ * thesis's setups 1 and 2); thesis-mt, sah and Embree build with T threads;
  * every frame is traced with T threads. Each setup is built and traced once
  * as a warm-up (not counted), then N times, setups interleaved round by
  * round; min and median ms.
@@ -91,7 +91,7 @@ static int parse_setup(const char *text, setup *s) {
     } builders[] = {{"thesis-scalar", RT_BUILDER_THESIS_SCALAR},
                     {"thesis-neon", RT_BUILDER_THESIS_NEON},
                     {"thesis-mt", RT_BUILDER_THESIS_MT},
-                    {"fast", RT_BUILDER_FAST}};
+                    {"sah", RT_BUILDER_SAH}};
     if (!strcmp(name, "embree")) {
         s->embree = 1;
         return 1;
@@ -279,7 +279,7 @@ int main(int argc, char **argv) {
                     const rt_bvh *t = &b.bvhs[m];
                     s->hash = fnv1a(s->hash, t->nodes, sizeof(rt_node) * t->node_count);
                     s->hash = fnv1a(s->hash, t->prim_indices, sizeof(uint32_t) * t->prim_count);
-                    rt_bvh_quality q = rt_bvh_measure(&b.bvhs[m], 1.0f, 2.0f);
+                    rt_bvh_quality q = rt_bvh_measure(&b.bvhs[m], rt_sah_costs_default());
                     sah += q.sah * (double)sc->meshes[m].triangle_count;
                     s->nodes += q.nodes;
                 }

@@ -5,7 +5,7 @@
  * LOW (Morton) and MEDIUM (binned SAH), tracing them too. Engines are
  * interleaved frame by frame so that the machine's noise spreads over all.
  *
- * The measuring is 'rtcl bench --animate's (host/cli/bench_animate.c,
+ * The measuring is 'rtcl bench --animate's (bench/engines/bench_animate.c,
  * built into this program too); this program prints its table and, from
  * the same samples, the study behind RT_UPDATE_AUTO_BOUND below. Frame 0
  * (the first build) is left out.
@@ -18,7 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bench_animate.h"
+#include "engines/bench_animate.h"
 #include "bench_util.h"
 
 static double ms_min, ms_med;

@@ -1,5 +1,5 @@
 /* bench_incoherent.c - the incoherent-ray benchmark as a program of its own
- * (the same code as 'rtcl bench --incoherent': host/cli/incoherent_bench.h),
+ * (the same code as 'rtcl bench --incoherent': bench/engines/incoherent_bench.h),
  * with the interior views of VIEWS.md for the bare OBJ files of Sponza and
  * Sibenik, and no Whitted frames unless --whitted.
  *
@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "bench_util.h"
-#include "incoherent_bench.h"
+#include "engines/incoherent_bench.h"
 
 enum { MAX_REPS = 64 };
 

@@ -95,7 +95,7 @@ int main(int argc, char **argv) {
                 set[s].wall[r] = t1 - t0;
                 set[s].cpu[r] = c1 - c0;
             }
-            if (r == reps - 1) set[s].q = rt_kd_measure(&kd, 1.0f, 2.0f);
+            if (r == reps - 1) set[s].q = rt_kd_measure(&kd, rt_sah_costs_default());
             rt_kd_free(&kd);
         }
     printf("%s: %u triangles, %d runs after 1 warm-up run\n", argv[1], tb, reps);

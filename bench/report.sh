@@ -148,7 +148,7 @@ is not counted, then $reps times. SAH is \`rt_bvh_measure\` (the thesis's "BVH c
 Ci = 2, areas relative to the root) for every tree, Embree's included (its binary tree is
 converted to our node format). All builders: 16 bins (ours), leaf size 10, Ct = 1, Ci = 2.
 Embree (libembree 3, Debian 12): \`rtcBuildBVH\` at \`RTC_BUILD_QUALITY_MEDIUM\`, branching
-factor 2, \`maxLeafSize\` 10, the same costs, device \`threads=$threads\`. The fast builder's
+factor 2, \`maxLeafSize\` 10, the same costs, device \`threads=$threads\`. The SAH builder's
 targets: SAH within a few percent of Embree's, build time no more than Embree's, about
 100,000 triangles in under 10 ms.
 

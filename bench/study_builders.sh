@@ -6,7 +6,7 @@
 # one repetition (checks that it works).
 #
 # The setups: the thesis's three (one thread scalar, one thread NEON binning,
-# two-phase threaded; 16 bins, leaf size 10), the fast builder (the default)
+# two-phase threaded; 16 bins, leaf size 10), the SAH builder (the default)
 # at 4, 8, 16, 32 and 64 bins (leaf size 10) and at leaf sizes 1, 2, 4, 8 and
 # 16 (16 bins), and Embree's rtcBuildBVH (leaf size 10). bench/bench_builders
 # builds every mesh BVH with each, renders the thesis's benchmark frame
@@ -15,8 +15,8 @@
 set -euo pipefail
 . "$(dirname "$0")/common_study_args.sh"
 setups=(thesis-scalar:16:10 thesis-neon:16:10 thesis-mt:16:10
-        fast:4:10 fast:8:10 fast:16:10 fast:32:10 fast:64:10
-        fast:16:1 fast:16:2 fast:16:4 fast:16:8 fast:16:16 embree::10)
+        sah:4:10 sah:8:10 sah:16:10 sah:32:10 sah:64:10
+        sah:16:1 sah:16:2 sah:16:4 sah:16:8 sah:16:16 embree::10)
 grep -q "RT_HAVE_EMBREE=1" "$build/build.ninja" 2>/dev/null || {
     echo "study_builders: this build has no Embree: its row is left out" >&2
     unset 'setups[13]'

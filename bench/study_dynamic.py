@@ -53,7 +53,7 @@ def policy_section(objs, root, shared, data_dir):
                           sr.ms(r['trace_ms_min']), sr.ms(r['trace_ms_median']),
                           sr.ms(r['frame_ms_min']), sr.ms(r['frame_ms_median']),
                           '%.2f' % r['sah'] if r.get('sah') is not None else '-',
-                          'reference' if r['engine'] == 'rtcl' and r['policy'] == 'rebuild'
+                          'reference' if r['engine'] == 'rtcl' and r['policy'] == 'sah'
                           else ('yes' if same else 'NO') if same is not None else '-',
                           '**yes**' if f else ''])
         out.append(sr.md_table(['engine', 'policy', 'update ms min', 'median', 'trace ms min',
@@ -70,12 +70,12 @@ def policy_section(objs, root, shared, data_dir):
             notes.append('refit / Embree REFIT update (min) %.2f (target at most 0.5)'
                          % ratio(e['rtcl', 'refit']['update_ms_min'],
                                  e['embree', 'refit']['update_ms_min']))
-            notes.append('fast / Embree LOW update %.2f (target at most 1) at SAH %.2f against '
-                         '%.2f' % (ratio(e['rtcl', 'fast']['update_ms_min'],
+            notes.append('lbvh / Embree LOW update %.2f (target at most 1) at SAH %.2f against '
+                         '%.2f' % (ratio(e['rtcl', 'lbvh']['update_ms_min'],
                                          e['embree', 'low']['update_ms_min']),
-                                   e['rtcl', 'fast']['sah'], e['embree', 'low']['sah']))
+                                   e['rtcl', 'lbvh']['sah'], e['embree', 'low']['sah']))
             notes.append('rebuild / Embree MEDIUM update %.2f'
-                         % ratio(e['rtcl', 'rebuild']['update_ms_min'],
+                         % ratio(e['rtcl', 'sah']['update_ms_min'],
                                  e['embree', 'medium']['update_ms_min']))
             ours = min((r for r in rows if r['engine'] == 'rtcl'), key=lambda r: r['frame_ms_min'])
             theirs = min((r for r in rows if r['engine'] == 'embree'),
@@ -111,7 +111,7 @@ def long_section(obj, data_dir):
     out = []
     n = obj['frames']
     fps = obj['fps']
-    want = ['refit', 'auto', 'rebuild']
+    want = ['refit', 'auto', 'sah']
     if not all(p in rows for p in want):
         return ['The long morph has no rows for refit, auto and rebuild.'], []
     sah = {p: rows[p]['series']['sah'] for p in want}
@@ -120,7 +120,7 @@ def long_section(obj, data_dir):
     frame = {p: rows[p]['series']['frame_ms'] for p in want}
     # auto rebuilt where its tree is a fresh SAH build: its SAH cost equals
     # rebuild's (the same builder on the same positions).
-    rebuilt = [k + 1 for k in range(n) if abs(sah['auto'][k] - sah['rebuild'][k]) < 1e-3]
+    rebuilt = [k + 1 for k in range(n) if abs(sah['auto'][k] - sah['sah'][k]) < 1e-3]
     step = max(1, n // 24)
     table = []
     for k in range(0, n, step):
@@ -131,7 +131,7 @@ def long_section(obj, data_dir):
     out.append(sr.md_table(['frame', 'time s', 'SAH refit', 'auto', 'rebuild', 'trace ms refit',
                             'auto', 'rebuild', 'update ms refit', 'auto', 'rebuild'], table,
                            right=set(range(11))))
-    ratios = [sah['refit'][k] / sah['rebuild'][k] for k in range(n)]
+    ratios = [sah['refit'][k] / sah['sah'][k] for k in range(n)]
     worst = max(range(n), key=lambda k: ratios[k])
     mean = {p: statistics.mean(frame[p]) for p in want}
     tmean = {p: statistics.mean(trace[p]) for p in want}
@@ -145,9 +145,9 @@ def long_section(obj, data_dir):
                   (worst + 1) / fps, len(rebuilt), n,
                   ' (frames %s)' % ', '.join(str(k) for k in rebuilt[:20]) +
                   (', ...' if len(rebuilt) > 20 else '') if rebuilt else '', n,
-                  sr.ms(umean['refit']), sr.ms(umean['auto']), sr.ms(umean['rebuild']),
-                  sr.ms(tmean['refit']), sr.ms(tmean['auto']), sr.ms(tmean['rebuild']),
-                  sr.ms(mean['refit']), sr.ms(mean['auto']), sr.ms(mean['rebuild'])))
+                  sr.ms(umean['refit']), sr.ms(umean['auto']), sr.ms(umean['sah']),
+                  sr.ms(tmean['refit']), sr.ms(tmean['auto']), sr.ms(tmean['sah']),
+                  sr.ms(mean['refit']), sr.ms(mean['auto']), sr.ms(mean['sah'])))
     if emb:
         summary += (' Embree over the same frames, whole frame mean: ' + ', '.join(
             '%s %s ms' % (p.upper(), sr.ms(statistics.mean(r['series']['frame_ms'])))
@@ -155,9 +155,9 @@ def long_section(obj, data_dir):
     smean = {p: statistics.mean(sah[p]) for p in want}
     tests = {p: rows[p]['series'].get('tests') for p in want}
     summary += (' Mean SAH cost: %.2f / %.2f / %.2f.' % (smean['refit'], smean['auto'],
-                                                          smean['rebuild']))
+                                                          smean['sah']))
     if all(tests[p] and None not in tests[p] for p in want):
-        tr = [tests['refit'][k] / tests['rebuild'][k] for k in range(n)]
+        tr = [tests['refit'][k] / tests['sah'][k] for k in range(n)]
         summary += (' The counted traversal work (box tests + 2 x triangle tests of all rays, '
                     'which the SAH cost predicts and the machine\'s noise does not touch) of the '
                     'refitted tree is %.2f to %.2f times the rebuilt tree\'s (mean %.3f).'
@@ -174,7 +174,7 @@ def long_section(obj, data_dir):
                        'further' if a_s > r_s else 'the rebuilds paid off'))
     out.append(summary)
     # Line panels: SAH and trace ms per frame.
-    colors = {'refit': '#1f77b4', 'auto': '#2ca02c', 'rebuild': '#d62728'}
+    colors = {'refit': '#1f77b4', 'auto': '#2ca02c', 'sah': '#d62728'}
     panels = []
     for key, ylabel, title in (('sah', 'SAH cost (Ct 1, Ci 2)', 'long morph: SAH per frame'),
                                ('trace_ms', 'trace ms (median)', 'long morph: trace ms per frame'),
@@ -225,7 +225,7 @@ def main():
                 os.cpu_count() or 0))
     text = ['## Dynamic scenes (issue 16): update policies beside Embree, `rtcl bench --animate`',
             '', stamp, '', '```', a.command, '```', '',
-            'What `rtcl bench --animate` measures (`host/cli/bench_animate.c`): the scene\'s '
+            'What `rtcl bench --animate` measures (`bench/engines/bench_animate.c`): the scene\'s '
             'morphing object played frame by frame (frame k at time k/fps; the blend of two '
             'keyframes is the scene\'s work and not timed), %dx%d, one point light, primary plus '
             'shadow rays, %d threads. Ours: the packet backend, a fresh renderer per row and run, '

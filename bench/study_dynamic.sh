@@ -8,7 +8,7 @@
 # runs it, and it runs alone (about 10 minutes on 2 cores; --quick: tiny
 # frames, to check that it works).
 #
-# Everything is measured by 'rtcl bench --animate' (host/cli/bench_animate.c):
+# Everything is measured by 'rtcl bench --animate' (bench/engines/bench_animate.c):
 # frame k at time k/F, each row's frames after the first build, rows
 # interleaved frame by frame; the short runs use one frame per keyframe (the
 # thesis's section 4.1 method), the long morph FPS x seconds frames.

@@ -460,7 +460,7 @@ def setup_label(r):
         return 'Embree, leaf %s' % leaf
     if b.startswith('thesis'):
         return '%s (%s bins, leaf %s)' % (b, bins, leaf)
-    return 'fast, %s bins, leaf %s%s' % (bins, leaf, ' (default)' if (bins, leaf) == ('16', '10')
+    return 'sah, %s bins, leaf %s%s' % (bins, leaf, ' (default)' if (bins, leaf) == ('16', '10')
                                          else '')
 
 
@@ -470,7 +470,7 @@ def setup_short(r):
         return 'embree'
     if b.startswith('thesis'):
         return b
-    return 'fast %s/%s' % (r['bins'], r['leaf'])
+    return 'sah %s/%s' % (r['bins'], r['leaf'])
 
 
 def ranks(v):
@@ -509,11 +509,11 @@ def builders(args):
         'the thesis\'s benchmark set-up (primary and shadow rays, Phong; `rtcl render --direct`) at '
         '%dx%d through those trees, traced by the scalar oracle, so every tree is traced by the '
         'same code. Threads: thesis-scalar and thesis-neon are single-threaded setups (the '
-        'thesis\'s setups 1 and 2); thesis-mt, fast and Embree build with %d threads; every frame '
+        'thesis\'s setups 1 and 2); thesis-mt, sah and Embree build with %d threads; every frame '
         'is traced with %s. Each setup is built and traced once as a warm-up (not counted), then '
         '%d time(s), setups interleaved round by round; min and median. All setups use Ct = 1, '
-        'Ci = 2; the fast builder bins nodes under 64 primitives into at most 8 bins whatever the '
-        'setting (`host/bvh_fast.c`), so its bin count acts on the larger nodes. "image differs" '
+        'Ci = 2; the SAH builder bins nodes under 64 primitives into at most 8 bins whatever the '
+        'setting (`host/bvh_sah.c`), so its bin count acts on the larger nodes. "image differs" '
         'counts the pixels that are not the default build\'s image bit for bit: it must be 0 '
         '(closest hits have a total order, so the tree cannot change them).'
         % (args.width, args.height, args.threads, machine(args), args.runs))
@@ -582,19 +582,19 @@ def builders(args):
                  short_scene(name), setup_short(best_sah), float(best_sah['sah']),
                  setup_short(best_build), ms(float(best_build['build_min'])),
                  setup_short(best_trace), ms(float(best_trace['trace_min'])))]
-        if 'fast 16/10' in d and 'thesis-scalar' in d:
-            a, b = float(d['thesis-scalar']['trace_min']), float(d['fast 16/10']['trace_min'])
+        if 'sah 16/10' in d and 'thesis-scalar' in d:
+            a, b = float(d['thesis-scalar']['trace_min']), float(d['sah 16/10']['trace_min'])
             s.append('The thesis\'s leaf rule (every node of at most 10 triangles is a leaf) gives '
-                     'an SAH %.0f%% above the fast builder\'s default (which keeps splitting while '
+                     'an SAH %.0f%% above the SAH builder\'s default (which keeps splitting while '
                      'the SAH says so) and a frame %.0f%% %s%s.' % (
-                         pct(float(d['thesis-scalar']['sah']), float(d['fast 16/10']['sah'])),
+                         pct(float(d['thesis-scalar']['sah']), float(d['sah 16/10']['sah'])),
                          abs(pct(a, b)), 'slower' if a > b else 'faster', within(a, b)))
-        if 'embree' in d and 'fast 16/10' in d:
+        if 'embree' in d and 'sah 16/10' in d:
             s.append('Embree\'s tree has an SAH %+.1f%% against the default\'s, built in %s ms '
                      'against %s ms.' % (
-                         pct(float(d['embree']['sah']), float(d['fast 16/10']['sah'])),
+                         pct(float(d['embree']['sah']), float(d['sah 16/10']['sah'])),
                          ms(float(d['embree']['build_min'])),
-                         ms(float(d['fast 16/10']['build_min']))))
+                         ms(float(d['sah 16/10']['build_min']))))
         s.append('The rank correlation of SAH and frame time over the setups is %.2f (Spearman). '
                  '%s%s.' % (
                      rho, 'Frame medians were up to %.1f%% above their minimum' % noise

@@ -14,7 +14,7 @@ def main():
             o = json.loads(line)
             ours[o["scene"]] = (o["triangles"], {b["builder"]: b for b in o["build"]})
     print("| thesis scene (2013 phone) | triangles | thesis-mt build ms (phone) | our scene | "
-          "our triangles | thesis-mt ms (min / med), this machine | fast ms (min / med) | note |")
+          "our triangles | thesis-mt ms (min / med), this machine | sah ms (min / med) | note |")
     print("|---|---|---|---|---|---|---|---|")
     for line in open(sys.argv[1]):
         if line.startswith("#") or not line.strip():
@@ -25,7 +25,7 @@ def main():
         if match:
             n, by = ours[match[0]]
             cells.append(f"{n:,}")
-            for b in ["thesis-mt", "fast"]:
+            for b in ["thesis-mt", "sah"]:
                 x = by.get(b)
                 cells.append(f"{x['ms_min']:.2f} / {x['ms_median']:.2f}"
                              if x and x.get("ms_min") is not None else "-")

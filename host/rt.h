@@ -406,7 +406,7 @@ rt_status rt_trace_rays(rt_renderer *renderer, rt_scene *scene, const rt_ray *ra
  * gives identical hits and images; it changes build time, memory and
  * tracing speed. Meant for static meshes: a kd-tree is rebuilt whole when its
  * mesh changes, and a deforming mesh (rt_mesh_set_positions, an update
- * policy other than RT_UPDATE_REBUILD) has a BVH whatever was set. */
+ * policy other than RT_UPDATE_SAH) has a BVH whatever was set. */
 typedef enum rt_accel {
     RT_ACCEL_BVH = 0,
     RT_ACCEL_KD = 1,       /* exact SAH kd-tree */
@@ -418,11 +418,11 @@ rt_status rt_mesh_set_accel(rt_scene *scene, uint32_t mesh_id, rt_accel accel);
 
 /* Sets the structure of every static mesh: every mesh that is no keyframe
  * of an object with several, no blend mesh of one, and whose update policy
- * is RT_UPDATE_REBUILD (deforming meshes keep theirs, a BVH unless set). */
+ * is RT_UPDATE_SAH (deforming meshes keep theirs, a BVH unless set). */
 rt_status rt_scene_set_static_accel(rt_scene *scene, rt_accel accel);
 
 /* mesh_id's structure, RT_ACCEL_BVH for a mesh that does not exist or
- * whose update policy is not RT_UPDATE_REBUILD. */
+ * whose update policy is not RT_UPDATE_SAH. */
 rt_accel rt_mesh_accel(const rt_scene *scene, uint32_t mesh_id);
 
 /* "bvh", "kd", "kd-binned"; rt_accel_parse gives 0 for an unknown name. */
@@ -432,14 +432,19 @@ int rt_accel_parse(const char *name, rt_accel *accel);
 
 /* How a renderer brings a mesh's BVH up to date after its vertices moved
  * (rt_mesh_set_positions). Every policy gives the same hits (closest hits
- * have a total order); they differ in update time and tree quality. */
+ * have a total order); they differ in update time and tree quality. The two
+ * policies that build are named for their builder, the same name `rtcl
+ * bench` gives that builder's rows. */
 typedef enum rt_update_policy {
-    RT_UPDATE_REBUILD = 0, /* a fresh binned SAH build (the default) */
-    RT_UPDATE_REFIT,       /* keep the tree, recompute its boxes bottom-up */
-    RT_UPDATE_FAST,        /* a Morton-code LBVH build: fastest build, lower quality */
-    RT_UPDATE_AUTO         /* refit while the refitted tree's SAH cost stays within
-                              RT_UPDATE_AUTO_BOUND of the last rebuild's, else rebuild */
+    RT_UPDATE_SAH = 0, /* "sah": a fresh binned SAH build (the default) */
+    RT_UPDATE_REFIT,   /* "refit": keep the tree, recompute its boxes bottom-up */
+    RT_UPDATE_LBVH,    /* "lbvh": a Morton-code LBVH build: fastest build, lower quality */
+    RT_UPDATE_AUTO     /* "auto": refit while the refitted tree's SAH cost stays within
+                          RT_UPDATE_AUTO_BOUND of the last SAH build's, else an SAH build */
 } rt_update_policy;
+/* The names before 0.2, kept for source compatibility. */
+#define RT_UPDATE_REBUILD RT_UPDATE_SAH
+#define RT_UPDATE_FAST    RT_UPDATE_LBVH
 
 /* The SAH cost ratio (refitted / last rebuild) above which "auto" rebuilds.
  * Measured (docs/BENCHMARKS.md, "Dynamic scenes"): refitting stops paying
@@ -450,7 +455,9 @@ typedef enum rt_update_policy {
  * so the bound follows the large meshes, whose rebuilds matter. */
 #define RT_UPDATE_AUTO_BOUND 1.5
 
-/* "rebuild", "refit", "fast", "auto"; and back (returns 0 for an unknown name). */
+/* "sah", "refit", "lbvh", "auto"; and back (returns 0 for an unknown name).
+ * The parser also takes the names before 0.2: "rebuild" (sah) and "fast"
+ * (lbvh). */
 const char *rt_update_policy_name(rt_update_policy policy);
 int rt_update_policy_parse(const char *name, rt_update_policy *out);
 
@@ -462,7 +469,7 @@ int rt_update_policy_parse(const char *name, rt_update_policy *out);
 rt_status rt_mesh_set_positions(rt_scene *scene, uint32_t mesh_id, const float *positions,
                                 const float *normals, uint32_t vertex_count);
 
-/* The mesh's update policy (RT_UPDATE_REBUILD until set). Any other policy
+/* The mesh's update policy (RT_UPDATE_SAH until set). Any other policy
  * gives the mesh a BVH, whatever its rt_accel says. */
 rt_status rt_mesh_set_update(rt_scene *scene, uint32_t mesh_id, rt_update_policy policy);
 
@@ -520,7 +527,7 @@ typedef enum rt_update_action {
     RT_ACTION_NONE = 0,
     RT_ACTION_BUILD,  /* SAH build */
     RT_ACTION_REFIT,  /* boxes recomputed */
-    RT_ACTION_FAST,   /* LBVH build */
+    RT_ACTION_LBVH,   /* LBVH build */
     RT_ACTION_REBUILD /* "auto": refitted, found worse than the bound, rebuilt */
 } rt_update_action;
 
@@ -543,6 +550,216 @@ typedef struct rt_update_stats {
 
 /* The renderer's last update (after rt_render or rt_trace_rays). */
 rt_status rt_renderer_update_stats(const rt_renderer *renderer, rt_update_stats *out);
+
+/* ---- for programs on the library (rtcl is one): scenes by name, saving,
+ * describing, images, ray files, the backends and their devices ---------- */
+
+/* Opens a scene: source "builtin:NAME" builds the built-in scene NAME
+ * (rt_scene_builtin), anything else is a file for rt_scene_load. On failure
+ * *out is NULL and err says why. */
+rt_status rt_scene_open(const char *source, rt_scene **out, rt_error *err);
+
+/* Builds the built-in scene called name (rt_builtin_scene_name) into a new
+ * scene; an unknown name is RT_ERROR_INVALID_ARGUMENT naming the known ones. */
+rt_status rt_scene_builtin(const char *name, rt_scene **out, rt_error *err);
+
+/* The name of built-in scene index (0, 1, ...: "cornell", "keyframes"), NULL
+ * past the last. */
+const char *rt_builtin_scene_name(int index);
+
+/* Writes dir/name.json and dir/name_MESH.obj for each mesh (dir must exist).
+ * MESH is the mesh's name when every mesh has a plain name (letters, digits,
+ * '_', '-', '.', not starting with '.') and no two are alike, else
+ * mesh_INDEX for every mesh. Floats are written with %.9g so that loading
+ * the files gives the same bits. Meshes with per-triangle materials are
+ * RT_ERROR_UNSUPPORTED. Everything the JSON reader reads about time is
+ * written: objects' "animation" and "transform_keys", the camera's "path",
+ * meshes' "update" and "accel"; the blend meshes of morphing objects are
+ * left out (the loader makes them again), so that the saved scene renders at
+ * every time as the scene does. */
+rt_status rt_scene_save_json(const rt_scene *scene, const char *dir, const char *name,
+                             rt_error *err);
+
+/* What a scene holds (rt_scene_describe). */
+typedef struct rt_scene_info {
+    uint32_t meshes, objects, materials, lights;
+    uint64_t triangles;     /* in the current frame: the mesh each object shows */
+    uint64_t all_triangles; /* in all meshes */
+    /* Features the backends specialise to. */
+    int reflection;    /* some material has reflectivity > 0 */
+    int refraction;    /* some material has transparency > 0 */
+    int instancing;    /* more than one object, or a transform other than identity */
+    int normals;       /* some mesh has vertex normals */
+    int keyframes;     /* some object has more than one mesh */
+    int tri_materials; /* some mesh has per-triangle materials */
+    /* Time (rt_scene_is_animated is animated). */
+    int animated;
+    uint32_t switched_objects; /* objects whose keyframes switch with time */
+    uint32_t blended_objects;  /* objects whose keyframes blend */
+    uint32_t keyed_objects;    /* objects with transform keys */
+    uint32_t camera_path_keys; /* keys of the camera's path, 0: none */
+} rt_scene_info;
+
+/* Fills *out with what scene holds now (a few operations per mesh, object
+ * and material: cheap enough for every frame). */
+rt_status rt_scene_describe(const rt_scene *scene, rt_scene_info *out);
+
+/* The world-space box of the triangles shown in the current frame (the
+ * vertices their triangles use, through each object's transform): 1, or 0
+ * for a scene without triangles (bmin/bmax then +inf/-inf). It reads every
+ * triangle. */
+int rt_scene_bounds(const rt_scene *scene, float bmin[3], float bmax[3]);
+
+/* One mesh (rt_mesh_describe). */
+typedef struct rt_mesh_info {
+    const char *name; /* where it came from (a file name) or "": valid while the scene lives */
+    uint32_t triangles, vertices;
+    int normals;             /* 1: it has vertex normals */
+    rt_update_policy update; /* rt_mesh_set_update's, RT_UPDATE_REBUILD until set */
+    rt_accel accel;          /* the structure a renderer builds for it (rt_mesh_accel) */
+} rt_mesh_info;
+
+/* Fills *out for mesh_id (RT_ERROR_INVALID_ARGUMENT for an id out of range). */
+rt_status rt_mesh_describe(const rt_scene *scene, uint32_t mesh_id, rt_mesh_info *out);
+
+/* One object (rt_object_describe). */
+typedef struct rt_object_info {
+    uint32_t keyframes;      /* meshes added (rt_object_add_mesh) */
+    uint32_t selected;       /* the keyframe shown now (0-based) */
+    uint32_t material;       /* the object's material id */
+    float keyframe_rate;     /* rt_object_set_animation's, 0 when none */
+    int interpolate;         /* keyframes blend (rt_object_set_animation) */
+    int morphing;            /* 1: a blend of two keyframes is shown now */
+    uint32_t transform_keys; /* rt_object_set_transform_keys' count */
+} rt_object_info;
+
+/* Fills *out for object_id (RT_ERROR_INVALID_ARGUMENT for an id out of range). */
+rt_status rt_object_describe(const rt_scene *scene, uint32_t object_id, rt_object_info *out);
+
+/* An image in memory: floats, row-major, top row first, channels interleaved. */
+typedef struct rt_image {
+    int width;
+    int height;
+    int channels;
+    float *pixels;
+} rt_image;
+
+/* Writes pixels by the file's extension: .png and .ppm (or .pgm) store 8
+ * bits per channel (values clamped to [0,1], rounded to nearest), .exr and
+ * .pfm store 32-bit floats. err names the file on failure. The extension is
+ * case-insensitive; any other is RT_ERROR_UNSUPPORTED, as is a .ppm or .pfm
+ * with other than 1 (written as grey, P5 or Pf) or 3 channels. NaN is stored
+ * as 0 in 8-bit files. An alpha channel is stored as given, never
+ * premultiplied. A file that cannot be created or written in full is
+ * RT_ERROR_IO with the system's reason. PNG and EXR need the image module
+ * (librtcl_image.so, OpenImageIO): without it they are RT_ERROR_UNSUPPORTED
+ * saying so. */
+rt_status rt_image_write(const char *path, const rt_image *image, rt_error *err);
+
+/* Reads an image as floats in [0,1] for 8-bit files; the format is told by
+ * the file's first bytes (PPM/PGM and PFM in the library, anything else
+ * through the image module). The caller frees with rt_image_free. 8- and
+ * 16-bit levels k read as exactly k / 255.0f and k / 65535.0f, so an 8-bit
+ * file written from such values reads back bit-identical. Subimage 0 only,
+ * all its channels. A file that cannot be opened is RT_ERROR_IO; one that is
+ * not an image or is damaged or cut short is RT_ERROR_PARSE
+ * (RT_ERROR_UNSUPPORTED for deep images). On failure *out is zeroed. */
+rt_status rt_image_read(const char *path, rt_image *out, rt_error *err);
+
+void rt_image_free(rt_image *image);
+
+/* How far two images are apart (rt_image_compare). */
+typedef struct rt_image_diff {
+    double max_abs;     /* largest absolute channel difference */
+    double rmse;        /* over all channels */
+    double psnr;        /* dB, against a peak of 1; INFINITY when identical */
+    uint64_t differing; /* pixels with any channel different */
+    uint64_t pixels;
+    int first_x, first_y; /* first differing pixel in row order, -1 if none */
+} rt_image_diff;
+
+/* Compares a and b (same size and channel count, else RT_ERROR_INVALID_ARGUMENT).
+ * If diff_out is not NULL it receives |a - b| per channel (caller frees with
+ * rt_image_free; zeroed on failure). Equal values, infinities included,
+ * differ by 0; NaN against NaN counts as equal, NaN against a number as an
+ * infinite difference, so a NaN in one image never passes as a match. */
+rt_status rt_image_compare(const rt_image *a, const rt_image *b, rt_image_diff *result,
+                           rt_image *diff_out, rt_error *err);
+
+/* Reads a ray file (a regular text file of at most 4 GiB): one ray per line,
+ * "ox oy oz dx dy dz tmin tmax", plus "nx ny nz" when with_normals (the
+ * origin is then a surface point with that normal and is moved off the
+ * surface with the engine's offset, to the side the direction points to).
+ * Blank lines and lines starting with '#' are skipped. On success *rays (to
+ * free(), NULL when there are none) holds *count rays; on failure *rays is
+ * NULL, *count 0, and err says "file:line: reason". */
+rt_status rt_rays_load(const char *path, int with_normals, rt_ray **rays, size_t *count,
+                       rt_error *err);
+
+/* What a backend is (rt_backend_describe): the registry's facts, for
+ * programs that list or check backends without naming them. */
+typedef struct rt_backend_info {
+    const char *name;    /* "cpu", "packet", "opencl", "vulkan", or "auto" */
+    const char *summary; /* one line: what it runs on */
+    int built;           /* 1: this build has it */
+    const char *missing; /* when not built: why, and what to install; else "" */
+    /* 1: it runs on a device, chosen as NAME:DEVICE (an index or a part of
+     * its name, rt_devices); "auto" passes the device to the backend it picks. */
+    int takes_device;
+    /* 1: it gives the CPU oracle's bits on every machine (the CPU backends);
+     * 0: where the device promises them (rt_device_info.exact). */
+    int exact_always;
+} rt_backend_info;
+
+/* The name of registered backend index (0, 1, ...), built in this build or
+ * not: the CPU backends first, then the device backends, "auto" last; NULL
+ * past the last. */
+const char *rt_backend_name(int index);
+
+/* Fills *out for the backend called name; an unknown name is
+ * RT_ERROR_UNSUPPORTED naming the known ones (err may be NULL). */
+rt_status rt_backend_describe(const char *name, rt_backend_info *out, rt_error *err);
+
+/* One device of a device backend (rt_devices). Fields that the backend's API
+ * does not report are 0, "" or -1 as said. */
+typedef struct rt_device_info {
+    char backend[16]; /* "opencl" or "vulkan" */
+    int index;        /* the number NAME:N takes, in the backend's own numbering */
+    char name[256];
+    int platform_index; /* OpenCL: the platform's position in the ICD loader's list; else -1 */
+    char platform[128]; /* OpenCL: the platform's name; else "" */
+    char vendor[128];   /* OpenCL; else "" */
+    char type[24];      /* Vulkan: "integrated GPU", "discrete GPU", "CPU", ...; else "" */
+    char version[128];  /* the API version the device reports */
+    char driver[160];
+    uint32_t compute_units; /* OpenCL; else 0 */
+    uint64_t memory;        /* bytes: OpenCL's global memory, Vulkan's largest device-local heap */
+    uint64_t max_buffer;    /* bytes: the largest buffer */
+    /* OpenCL: 1 or 0 (correctly rounded float divide and sqrt; hardware FMA,
+     * never used by contraction; fp64, used by no kernel); else -1. */
+    int cr_div_sqrt, fma, fp64;
+    int timestamps; /* Vulkan: the compute queue has timestamps; else -1 */
+    /* Vulkan float controls (VK_KHR_shader_float_controls, for 32-bit
+     * floats): float_controls is 0 when the device does not report them
+     * (then the others are 0), -1 for OpenCL. */
+    int float_controls, rte, denorm_preserve, denorm_flush, signed_zero_inf_nan;
+    char math_profile[16]; /* with device_math auto: "native" or "portable" */
+    int exact;             /* the CPU oracle's bits promised with the defaults ... */
+    char exact_note[400];  /* ... and why, one line */
+    int exact_flush;       /* the same with RT_DENORMALS_FLUSH */
+    char exact_flush_note[400];
+    char denormals_note[400]; /* OpenCL: which denormal policy compares it; else "" */
+    char kernels_note[400];   /* OpenCL: which kernels render there; else "" */
+} rt_device_info;
+
+/* The devices of the device backend called backend ("opencl", "vulkan"), or
+ * with selector not NULL only the one it picks (an index or a part of a
+ * name, as NAME:DEVICE does). *out (to free()) holds *count devices. A
+ * backend this build lacks, no driver or platform, no device or no match is
+ * RT_ERROR_UNSUPPORTED or RT_ERROR_INVALID_ARGUMENT with the reason; *out is
+ * then NULL. */
+rt_status rt_devices(const char *backend, const char *selector, rt_device_info **out, int *count,
+                     rt_error *err);
 
 #ifdef __cplusplus
 }

@@ -64,7 +64,7 @@ same "$tmp/range/r5.exr" "$tmp/ref_5.exr"
 expect 0 "usage: rtcl animate" -- "$RTCL" animate --help
 expect 2 "no scene given" -- "$RTCL" animate --fps 4 --frames 2 -o "$tmp/x%d.png"
 expect 2 "--fps F is required" -- "$RTCL" animate "$scene" --frames 2 -o "$tmp/x%d.png"
-expect 2 "--fps: must be > 0" -- "$RTCL" animate "$scene" --fps 0 --frames 2 -o "$tmp/x%d.png"
+expect 2 "--fps: '0' is out of range \\(> 0\\)" -- "$RTCL" animate "$scene" --fps 0 --frames 2 -o "$tmp/x%d.png"
 expect 2 "give one of --duration S and --frames N" -- \
     "$RTCL" animate "$scene" --fps 4 -o "$tmp/x%d.png"
 expect 2 "give one of --duration S and --frames N" -- \
@@ -78,7 +78,7 @@ expect 2 "--frame-range: '3:1' is not A:B" -- \
     "$RTCL" animate "$scene" --fps 4 --frames 5 --frame-range 3:1 -o "$tmp/x%d.png"
 expect 2 "the animation has frames 0..4" -- \
     "$RTCL" animate "$scene" --fps 4 --frames 5 --frame-range 3:5 -o "$tmp/x%d.png"
-expect 2 "--update: unknown policy 'lazy'" -- \
+expect 2 "--update: 'lazy' is not one of sah, refit, lbvh or auto" -- \
     "$RTCL" animate "$scene" --fps 4 --frames 2 --update lazy -o "$tmp/x%d.png"
 # A video without ffmpeg on PATH: the reason and the way to get frames instead,
 # and no file (tests/cli_animate_video.sh tests videos where ffmpeg is).
@@ -143,6 +143,6 @@ for backend in $cam_backends; do
         fails=$((fails + 1))
     fi
 done
-expect 2 "--update: unknown policy 'lazy'" -- "$RTCL" render "$scene" --update lazy
+expect 2 "--update: 'lazy' is not one of sah, refit, lbvh or auto" -- "$RTCL" render "$scene" --update lazy
 expect 2 "--time: 'nan' is not a finite number" -- "$RTCL" render "$scene" --time nan
 finish

@@ -35,7 +35,7 @@ obj = json.loads(lines[0])
 assert obj["scene"].endswith("grid.obj"), obj["scene"]
 assert obj["triangles"] == 3200, obj["triangles"]
 names = [b["builder"] for b in obj["build"]]
-for want in ["thesis-scalar", "thesis-neon", "thesis-mt", "fast"]:
+for want in ["thesis-scalar", "thesis-neon", "thesis-mt", "sah"]:
     assert want in names, "builder %s missing from %s" % (want, names)
 for b in obj["build"]:
     for key in ["builder", "threads", "ms_min", "ms_median", "sah", "nodes"]:
@@ -44,7 +44,7 @@ for b in obj["build"]:
         continue
     assert 0 < b["ms_min"] <= b["ms_median"], b
     assert b["sah"] > 1.0 and 1 <= b["nodes"] <= 2 * 3200 - 1, b
-fast = [b for b in obj["build"] if b["builder"] == "fast"][0]
+fast = [b for b in obj["build"] if b["builder"] == "sah"][0]
 assert "error" not in fast and fast["threads"] == 2, fast
 print("builders:", ", ".join(names))
 

@@ -79,7 +79,7 @@ expect 0 'packet-auto' -- "$RTCL" bench "$scene" "${args[@]}" --no-render
 checks=$((checks + 1))
 "$RTCL" bench "$scene" "${args[@]}" --no-render --json | grep -q '"whitted"' &&
     { echo "FAIL: --no-render still timed Whitted frames"; fails=$((fails + 1)); }
-expect 2 'rays needs a number' -- "$RTCL" bench "$scene" --incoherent --rays 0
+expect 2 "--rays: '0' is out of range \\(1..100000000\\)" -- "$RTCL" bench "$scene" --incoherent --rays 0
 expect 2 'applies to --incoherent only' -- "$RTCL" bench "$scene" --rays 10
 expect 2 'one at a time' -- "$RTCL" bench "$scene" --incoherent --animate
 expect 2 'accel does not apply to --incoherent' -- "$RTCL" bench "$scene" --incoherent --accel kd

@@ -13,7 +13,7 @@ expect 2 "no scene given" -- "$RTCL" render
 expect 2 "unknown option '--frob'" -- "$RTCL" render builtin:cornell --frob
 expect 2 "--width: 'abc' is not an integer" -- "$RTCL" render builtin:cornell --width abc
 expect 2 "option --height needs a value" -- "$RTCL" render builtin:cornell --height
-expect 2 "unknown AOV 'colour'" -- "$RTCL" render --aov colour builtin:cornell
+expect 2 "--aov: 'colour' is not one of depth, primid, instid, normal, boxtests or tritests" -- "$RTCL" render --aov colour builtin:cornell
 expect 2 "no built-in scene named 'nope'" -- "$RTCL" info builtin:nope
 expect 2 "missing.obj.*(No such file|cannot open)" -- "$RTCL" info "$tmp/missing.obj"
 expect 2 "missing.json.*(No such file|cannot open)" -- "$RTCL" render "$tmp/missing.json"

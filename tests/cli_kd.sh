@@ -194,7 +194,7 @@ else
 fi
 
 # ---- choices, errors, info ---------------------------------------------------
-expect 2 "--accel takes bvh, kd or kd-binned, not 'octree'" -- "$RTCL" render builtin:cornell \
+expect 2 "--accel: 'octree' is not one of bvh, kd or kd-binned" -- "$RTCL" render builtin:cornell \
     -o "$tmp/x.png" --accel octree
 sed 's|"room": {"file": "cornell_room.obj"}|"room": {"file": "cornell_room.obj", "accel": 3}|' \
     "$RT_SOURCE_DIR/scenes/cornell.json" > "$RT_SOURCE_DIR/scenes/.cli_kd_bad.json"

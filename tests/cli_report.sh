@@ -53,9 +53,9 @@ if [ -f "$RT_SOURCE_DIR/bench/study_tri_tests.sh" ]; then
 fi
 if [ -f "$RT_SOURCE_DIR/bench/study_builders.sh" ]; then
     need '^## Speed against error: BVH builders'
-    need '^\| fast, 16 bins, leaf 10 \(default\) \| 2 \| [0-9.]+ / [0-9.]+ \| [0-9.]+ \|'
-    need '^\| fast, 64 bins, leaf 10 \|'
-    need '^\| fast, 16 bins, leaf 1 \|'
+    need '^\| sah, 16 bins, leaf 10 \(default\) \| 2 \| [0-9.]+ / [0-9.]+ \| [0-9.]+ \|'
+    need '^\| sah, 64 bins, leaf 10 \|'
+    need '^\| sah, 16 bins, leaf 1 \|'
     need 'Every tree gave the default image bit for bit\.'
     ! grep -q 'NOT the default image' "$md" || { echo "FAIL: a tree changed the image"; fails=$((fails + 1)); }
 fi

@@ -95,6 +95,6 @@ done
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 nan 1\nf 1//1 2//1 3//1\n' > "$tmp/badn.obj"
 expect 2 "badn.obj:4(:[0-9]+)?: .*(NaN|[Ii]nf|finite)" -- "$RTCL" trace "$tmp/badn.obj" \
     --rays "$tmp/one.rays" --out "$tmp/x.hits"
-expect 2 "unknown triangle test 'fast'" -- "$RTCL" trace "$tmp/badn.obj" --rays "$tmp/one.rays" \
+expect 2 "--tri-test: 'fast' is not one of watertight, mt, pluecker or badouel" -- "$RTCL" trace "$tmp/badn.obj" --rays "$tmp/one.rays" \
     --out "$tmp/x.hits" --tri-test fast
 finish

@@ -109,9 +109,9 @@ expect 0 'trace: 2000 rays \(any hit\), 3 runs after a warm-up: min [0-9.]+ ms, 
     "$RTCL" trace builtin:cornell --rays "$tmp/random.txt" --any-hit --stats --reps 3
 expect 0 '^\{"rays": 2000, "reps": 2, .*"ms_min": [0-9.]+, "ms_median": [0-9.]+, "mrays": [0-9.]+, .*"backend": "packet"' -- \
     "$RTCL" trace builtin:cornell --rays "$tmp/random.txt" --backend packet --json --reps 2
-expect 2 "unknown packet path 'both'" -- "$RTCL" trace builtin:cornell --rays "$rays" --out "$tmp/x.txt" --packet-path both
+expect 2 "--packet-path: 'both' is not one of auto, packets or single" -- "$RTCL" trace builtin:cornell --rays "$rays" --out "$tmp/x.txt" --packet-path both
 expect 2 'reps' -- "$RTCL" trace builtin:cornell --rays "$rays" --stats --reps 0
 expect 2 "unknown backend 'warp'" -- "$RTCL" trace builtin:cornell --rays "$rays" --out "$tmp/x.txt" --backend warp
-expect 2 'need SCENE' -- "$RTCL" trace builtin:cornell --rays "$rays"
+expect 2 '--out HITS.txt is required \(or --stats or --json\)' -- "$RTCL" trace builtin:cornell --rays "$rays"
 expect 0 'usage: rtcl trace' -- "$RTCL" trace --help
 finish

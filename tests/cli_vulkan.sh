@@ -18,7 +18,7 @@ expect 0 'float controls +round to nearest even (yes|no), denormals kept (yes|no
 expect 0 'exact +(yes|no): ' -- "$RTCL" devices --api vulkan --device 0
 expect 2 'no Vulkan device 99' -- "$RTCL" devices --api vulkan --device 99
 expect 2 "no Vulkan device named like 'no-such-gpu'" -- "$RTCL" devices --api vulkan --device no-such-gpu
-expect 2 "unknown --api 'metal'" -- "$RTCL" devices --api metal
+expect 2 "--api: 'metal' is not one of opencl or vulkan" -- "$RTCL" devices --api metal
 
 # Images: the PNG files are byte-identical, Whitted and direct, at an odd
 # size (a partial work group).

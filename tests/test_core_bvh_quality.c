@@ -28,14 +28,14 @@ static void test_hand_computed(void) {
                         box_node(1, 0, 0, 2, 1, 1, 3, 2 | RT_NODE_LEAF_FLAG)};
     uint32_t idx[5] = {0, 1, 2, 3, 4};
     rt_bvh bvh = {nodes, 3, idx, 5};
-    rt_bvh_quality q = rt_bvh_measure(&bvh, 1.0f, 2.0f);
+    rt_bvh_quality q = rt_bvh_measure(&bvh, rt_sah_costs_default());
     CHECK_MSG(NEAR(q.sah, 7.0), "sah %.12g", q.sah);
     CHECK_EQ_INT(q.nodes, 3);
     CHECK_EQ_INT(q.leaves, 2);
     CHECK_EQ_INT(q.depth, 2);
     CHECK_EQ_INT(q.bytes, 3 * 32 + 5 * 4);
     /* Other costs scale the two sums apart: Ct 3, Ci 0.5: 3 + 0.9 + 0.6. */
-    q = rt_bvh_measure(&bvh, 3.0f, 0.5f);
+    q = rt_bvh_measure(&bvh, (rt_sah_costs){3.0f, 0.5f});
     CHECK_MSG(NEAR(q.sah, 4.5), "sah %.12g", q.sah);
 
     /* Depth 3 with children stored before parents (any builder's order):
@@ -48,7 +48,7 @@ static void test_hand_computed(void) {
         box_node(0, 0, 0, 1, 1, 1, 0, 1 | RT_NODE_LEAF_FLAG), box_node(0, 0, 0, 2, 1, 1, 2, 4),
         box_node(1, 0, 0, 2, 1, 1, 1, 1 | RT_NODE_LEAF_FLAG)};
     rt_bvh d = {deep, 5, idx, 4};
-    q = rt_bvh_measure(&d, 1.0f, 2.0f);
+    q = rt_bvh_measure(&d, rt_sah_costs_default());
     CHECK_MSG(NEAR(q.sah, 1.0 + 74.0 / 18.0), "sah %.12g", q.sah);
     CHECK_EQ_INT(q.depth, 3);
     CHECK_EQ_INT(q.leaves, 3);
@@ -57,7 +57,7 @@ static void test_hand_computed(void) {
     /* A leaf root counts Ci * count. */
     rt_node leaf = box_node(0, 0, 0, 1, 2, 3, 0, 5 | RT_NODE_LEAF_FLAG);
     rt_bvh l = {&leaf, 1, idx, 5};
-    q = rt_bvh_measure(&l, 1.0f, 2.0f);
+    q = rt_bvh_measure(&l, rt_sah_costs_default());
     CHECK_MSG(NEAR(q.sah, 10.0), "sah %.12g", q.sah);
     CHECK_EQ_INT(q.depth, 1);
 
@@ -66,12 +66,12 @@ static void test_hand_computed(void) {
                        box_node(0, 0, 0, 1, 0, 0, 0, 1 | RT_NODE_LEAF_FLAG),
                        box_node(1, 0, 0, 2, 0, 0, 1, 1 | RT_NODE_LEAF_FLAG)};
     rt_bvh fl = {flat, 3, idx, 2};
-    q = rt_bvh_measure(&fl, 1.0f, 2.0f);
+    q = rt_bvh_measure(&fl, rt_sah_costs_default());
     CHECK_MSG(NEAR(q.sah, 5.0), "sah %.12g", q.sah);
 
     /* The empty tree. */
     rt_bvh empty = {NULL, 0, NULL, 0};
-    q = rt_bvh_measure(&empty, 1.0f, 2.0f);
+    q = rt_bvh_measure(&empty, rt_sah_costs_default());
     CHECK(q.sah == 0.0 && q.nodes == 0 && q.leaves == 0 && q.depth == 0 && q.bytes == 0);
 }
 
@@ -83,7 +83,7 @@ static void test_built_trees(void) {
     rt_bvh t;
     char msg[256];
     CHECK(rt_bvh_build(&one, 1, &o, NULL, &t, &lib_err) == RT_OK);
-    rt_bvh_quality q = rt_bvh_measure(&t, 1.0f, 2.0f);
+    rt_bvh_quality q = rt_bvh_measure(&t, rt_sah_costs_default());
     CHECK(NEAR(q.sah, 2.0) && q.nodes == 1 && q.leaves == 1 && q.depth == 1);
     rt_bvh_free(&t);
 
@@ -100,7 +100,7 @@ static void test_built_trees(void) {
     }
     CHECK(rt_bvh_build(boxes, 40, &o, NULL, &t, &lib_err) == RT_OK);
     CHECK(bvh_validate(&t, boxes, 40, 10, 0, msg, sizeof msg));
-    q = rt_bvh_measure(&t, 1.0f, 2.0f);
+    q = rt_bvh_measure(&t, rt_sah_costs_default());
     CHECK_MSG(q.sah < 10.0, "sah %g", q.sah);
     CHECK_EQ_INT(q.nodes, t.node_count);
     CHECK_EQ_INT(q.leaves, (t.node_count + 1) / 2);

@@ -52,7 +52,7 @@ static rt_bvh_quality check_all_setups(const char *what, const rt_aabb *boxes, u
     o.leaf_size = leaf_size;
     rt_status st = rt_bvh_build(boxes, n, &o, NULL, &ref, &lib_err);
     CHECK_MSG(st == RT_OK, "%s: scalar build failed: %s", what, lib_err.message);
-    rt_bvh_quality q = rt_bvh_measure(&ref, o.cost_box, o.cost_tri);
+    rt_bvh_quality q = rt_bvh_measure(&ref, o.costs);
     if (st != RT_OK) return q;
     CHECK_MSG(bvh_validate(&ref, boxes, n, (uint32_t)leaf_size, 0, msg, sizeof msg), "%s: %s", what,
               msg);
@@ -78,7 +78,7 @@ static rt_bvh_quality check_all_setups(const char *what, const rt_aabb *boxes, u
                   "%s/%s/%d threads: %s", what, rt_builder_name(ok.builder), ok.threads, msg);
         CHECK_MSG(same_tree(&ref, &t), "%s: %s with %d threads differs from scalar", what,
                   rt_builder_name(ok.builder), ok.threads);
-        rt_bvh_quality qt = rt_bvh_measure(&t, o.cost_box, o.cost_tri);
+        rt_bvh_quality qt = rt_bvh_measure(&t, o.costs);
         CHECK_MSG(fabs(qt.sah - q.sah) <= 0.01 * q.sah, "%s: SAH %g vs scalar %g", what, qt.sah,
                   q.sah);
         rt_bvh_free(&t);
@@ -304,7 +304,7 @@ static void scene_figures(const char *rel, int reps) {
         CHECK_MSG(st == RT_OK, "%s: %s", rel, lib_err.message);
         if (st != RT_OK) continue;
         CHECK_MSG(bvh_validate(&t, boxes, n, 10, 0, msg, sizeof msg), "%s: %s", rel, msg);
-        rt_bvh_quality q = rt_bvh_measure(&t, o.cost_box, o.cost_tri);
+        rt_bvh_quality q = rt_bvh_measure(&t, o.costs);
         printf("%s: %u triangles, %s: SAH %.3f, %u nodes, %u leaves, depth %u, %zu bytes\n", rel, n,
                rt_builder_name(setups[s]), q.sah, q.nodes, q.leaves, q.depth, q.bytes);
         if (s == 0)

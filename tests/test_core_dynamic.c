@@ -144,7 +144,7 @@ static void check_layout_fresh(rt_renderer *r, rt_scene *s, const char *what) {
     rt_flat_free(&f);
 }
 
-static const rt_update_action expected_action[] = {RT_ACTION_BUILD, RT_ACTION_REFIT, RT_ACTION_FAST,
+static const rt_update_action expected_action[] = {RT_ACTION_BUILD, RT_ACTION_REFIT, RT_ACTION_LBVH,
                                                    RT_ACTION_REFIT};
 
 /* Frames 0..3 of a gentle wave, then a violent one (99), then gentle again. */
@@ -177,7 +177,7 @@ static void check_policy(rt_update_policy policy, const char *backend) {
             found = 1;
             rt_update_action act = us.meshes[i].action;
             rt_update_action want =
-                fi == 0 ? (policy == RT_UPDATE_FAST ? RT_ACTION_FAST : RT_ACTION_BUILD)
+                fi == 0 ? (policy == RT_UPDATE_LBVH ? RT_ACTION_LBVH : RT_ACTION_BUILD)
                         : expected_action[policy];
             if (policy == RT_UPDATE_AUTO && fi > 0) {
                 CHECK_MSG(act == RT_ACTION_REFIT || act == RT_ACTION_REBUILD, "%s: action %d", what,
@@ -192,8 +192,8 @@ static void check_policy(rt_update_policy policy, const char *backend) {
         }
         CHECK_MSG(found, "%s: the grid's update is not reported", what);
         if (fi > 0)
-            CHECK_MSG(us.layout_in_place || policy == RT_UPDATE_FAST ||
-                          policy == RT_UPDATE_REBUILD || policy == RT_UPDATE_AUTO,
+            CHECK_MSG(us.layout_in_place || policy == RT_UPDATE_LBVH || policy == RT_UPDATE_SAH ||
+                          policy == RT_UPDATE_AUTO,
                       "%s: the layout was not rewritten in place", what);
         if (fi > 0 && policy == RT_UPDATE_REFIT)
             CHECK_MSG(us.layout_in_place, "%s: a refit should rewrite the layout in place", what);
@@ -204,7 +204,7 @@ static void check_policy(rt_update_policy policy, const char *backend) {
         CHECK(rt_render(r, s, NULL, &fa) == RT_OK);
 
         /* The reference: a fresh renderer, a fresh SAH build, the oracle. */
-        rt_mesh_set_update(s, grid, RT_UPDATE_REBUILD);
+        rt_mesh_set_update(s, grid, RT_UPDATE_SAH);
         rt_renderer *ref = new_renderer("cpu", 1);
         if (ref) {
             CHECK(rt_trace_rays(ref, s, rays, RAYS, b, NULL) == RT_OK);
@@ -488,7 +488,7 @@ static void check_kd_static(const char *backend) {
         rt_scene_destroy(rs);
     }
     /* Positions given to a kd mesh make it a BVH: it deforms. */
-    CHECK(rt_mesh_set_update(s, floor, RT_UPDATE_REBUILD) == RT_OK);
+    CHECK(rt_mesh_set_update(s, floor, RT_UPDATE_SAH) == RT_OK);
     const float fp[12] = {-3, -0.6f, -3, 3, -0.6f, -3, 3, -0.6f, 3, -3, -0.6f, 3};
     CHECK(rt_mesh_set_positions(s, floor, fp, NULL, 4) == RT_OK);
     CHECK(rt_mesh_accel(s, floor) == RT_ACCEL_BVH);
@@ -509,8 +509,8 @@ int main(void) {
     check_kd_static("cpu");
     check_kd_static("packet");
     check_lbvh();
-    const rt_update_policy policies[] = {RT_UPDATE_REFIT, RT_UPDATE_FAST, RT_UPDATE_AUTO,
-                                         RT_UPDATE_REBUILD};
+    const rt_update_policy policies[] = {RT_UPDATE_REFIT, RT_UPDATE_LBVH, RT_UPDATE_AUTO,
+                                         RT_UPDATE_SAH};
     for (int i = 0; i < 4; i++) {
         check_policy(policies[i], "cpu");
         check_policy(policies[i], "packet");

@@ -418,7 +418,7 @@ static int in_leaf_at(const rt_kd *kd, uint32_t node, const float *p, uint32_t t
 }
 
 static void check_structure(const char *name, const rt_mesh_data *md, const rt_kd *kd) {
-    rt_kd_quality q = rt_kd_measure(kd, 1.0f, 1.5f);
+    rt_kd_quality q = rt_kd_measure(kd, (rt_sah_costs){1.0f, 1.5f});
     CHECK_MSG(q.depth <= RT_KD_MAX_DEPTH, "%s: depth %u", name, q.depth);
     int missing = 0;
     for (uint32_t t = 0; t < md->triangle_count; t++) {
@@ -497,7 +497,7 @@ static void test_degenerate_builds(void) {
         float one[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
         for (int i = 0; i < 9000; i++) many[i] = (uint32_t)(i % 3);
         CHECK(rt_kd_build(one, 3, many, 3000, &o, NULL, &kd, &lib_err) == RT_OK);
-        rt_kd_quality q = rt_kd_measure(&kd, 1.0f, 1.5f);
+        rt_kd_quality q = rt_kd_measure(&kd, (rt_sah_costs){1.0f, 1.5f});
         CHECK(q.depth <= RT_KD_MAX_DEPTH && kd.prim_count >= 3000);
         rt_kd_free(&kd);
         free(many);
@@ -522,7 +522,7 @@ static void test_guard(void) {
                           NULL, &one, &lib_err) == RT_OK);
         CHECK(rt_kd_build(md->positions, md->vertex_count, md->indices, md->triangle_count, &o,
                           pool, &two, &lib_err) == RT_OK);
-        rt_kd_quality q = rt_kd_measure(&one, 1.0f, 1.0f);
+        rt_kd_quality q = rt_kd_measure(&one, (rt_sah_costs){1.0f, 1.0f});
         printf("fan of %u, %s: %u nodes, %u entries (bound %.0f), depth %u\n", n,
                rt_kd_builder_name(o.builder), one.node_count, one.prim_count,
                (1.0 + RT_KD_GUARD_DUPS) * n, q.depth);

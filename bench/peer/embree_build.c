@@ -216,8 +216,8 @@ rt_status rt_embree_build_bvh_quality(rt_embree *em, const rt_aabb *boxes, uint3
     args.sahBlockSize = 1;
     args.minLeafSize = 1;
     args.maxLeafSize = (unsigned)options->leaf_size;
-    args.traversalCost = options->cost_box;
-    args.intersectionCost = options->cost_tri;
+    args.traversalCost = options->costs.traverse;
+    args.intersectionCost = options->costs.intersect;
     args.bvh = em->bvh;
     args.primitives = prims;
     args.primitiveCount = count;

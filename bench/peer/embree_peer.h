@@ -26,8 +26,8 @@ rt_status rt_embree_create(int threads, rt_embree **out, rt_error *err);
 void rt_embree_destroy(rt_embree *em);
 
 /* rtcBuildBVH at RTC_BUILD_QUALITY_MEDIUM, branching factor 2, leaf size
- * options->leaf_size, traversal cost options->cost_box and intersection cost
- * options->cost_tri. *ms is the time of rtcBuildBVH alone (the copy of the
+ * options->leaf_size, traversal cost options->costs.traverse and intersection cost
+ * options->costs.intersect. *ms is the time of rtcBuildBVH alone (the copy of the
  * build primitives, which Embree consumes, and the conversion into *out are
  * not timed). */
 rt_status rt_embree_build_bvh(rt_embree *em, const rt_aabb *boxes, uint32_t count,

@@ -10,13 +10,17 @@
 
 rt_build_options rt_build_options_default(void) {
     rt_build_options o;
-    o.builder = RT_BUILDER_FAST;
+    o.builder = RT_BUILDER_SAH;
     o.threads = 0;
     o.bins = 16;
     o.leaf_size = 10;
-    o.cost_box = 1.0f;
-    o.cost_tri = 2.0f;
+    o.costs = rt_sah_costs_default();
     return o;
+}
+
+rt_sah_costs rt_sah_costs_default(void) {
+    rt_sah_costs c = {1.0f, 2.0f};
+    return c;
 }
 
 const char *rt_builder_name(rt_builder builder) {
@@ -27,8 +31,8 @@ const char *rt_builder_name(rt_builder builder) {
         return "thesis-neon";
     case RT_BUILDER_THESIS_MT:
         return "thesis-mt";
-    case RT_BUILDER_FAST:
-        return "fast";
+    case RT_BUILDER_SAH:
+        return "sah";
     case RT_BUILDER_LBVH:
         return "lbvh";
     }
@@ -44,7 +48,7 @@ rt_status rt_bvh_build(const rt_aabb *boxes, uint32_t count, const rt_build_opti
         rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "bins must be 2..256 and leaf size >= 1");
         return RT_ERROR_INVALID_ARGUMENT;
     }
-    if (o.builder == RT_BUILDER_FAST) return rt_bvh_build_fast(boxes, count, &o, pool, 1, out, err);
+    if (o.builder == RT_BUILDER_SAH) return rt_bvh_build_sah(boxes, count, &o, pool, 1, out, err);
     if (o.builder == RT_BUILDER_LBVH) return rt_bvh_build_lbvh(boxes, count, &o, pool, out, err);
     return rt_bvh_build_thesis(boxes, count, &o, pool, out, err);
 }

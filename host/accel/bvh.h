@@ -30,20 +30,32 @@ typedef enum rt_builder {
     RT_BUILDER_THESIS_SCALAR = 0, /* thesis setup 1: one thread, scalar */
     RT_BUILDER_THESIS_NEON = 1,   /* thesis setup 2: one thread, NEON binning */
     RT_BUILDER_THESIS_MT = 2,     /* thesis setup 3: two-phase threaded */
-    RT_BUILDER_FAST = 3,          /* the default: pooled, parallel binning, SAH leaves */
-    RT_BUILDER_LBVH = 4           /* Morton-code LBVH (bvh_lbvh.c): the "fast" update policy */
+    RT_BUILDER_SAH = 3,           /* the default: pooled, parallel binning, SAH leaves */
+    RT_BUILDER_LBVH = 4           /* Morton-code LBVH (bvh_lbvh.c): the "lbvh" update policy */
 } rt_builder;
+
+/* The constants of the surface area heuristic, for every structure: the
+ * cost of one node step (Ct) and of one triangle test (Ci). Builders take
+ * them from their options; every SAH figure (rt_bvh_sah_cost, rt_bvh_measure,
+ * rt_kd_measure) takes them as one value, so trees are judged alike. */
+typedef struct rt_sah_costs {
+    float traverse;  /* Ct */
+    float intersect; /* Ci */
+} rt_sah_costs;
+
+/* The thesis's costs, Ct = 1, Ci = 2: the BVH builders' default and the
+ * one every reported SAH figure uses. */
+rt_sah_costs rt_sah_costs_default(void);
 
 typedef struct rt_build_options {
     rt_builder builder;
-    int threads;    /* worker count for threaded builders; <= 0: all cores */
-    int bins;       /* SAH bins (thesis: 16) */
-    int leaf_size;  /* maximum primitives per leaf (thesis: 10) */
-    float cost_box; /* Ct (thesis: 1) */
-    float cost_tri; /* Ci (thesis: 2) */
+    int threads;        /* worker count for threaded builders; <= 0: all cores */
+    int bins;           /* SAH bins (thesis: 16) */
+    int leaf_size;      /* maximum primitives per leaf (thesis: 10) */
+    rt_sah_costs costs; /* [rt_sah_costs_default()] */
 } rt_build_options;
 
-/* The thesis's settings with the fast builder. */
+/* The thesis's settings with the SAH builder. */
 rt_build_options rt_build_options_default(void);
 
 typedef struct rt_bvh {
@@ -72,9 +84,13 @@ typedef struct rt_bvh_quality {
     size_t bytes;   /* nodes + primitive indices */
 } rt_bvh_quality;
 
-rt_bvh_quality rt_bvh_measure(const rt_bvh *bvh, float cost_box, float cost_tri);
+rt_bvh_quality rt_bvh_measure(const rt_bvh *bvh, rt_sah_costs costs);
 
-/* Names as rtcl bench prints them: thesis-scalar, thesis-neon, thesis-mt, fast, lbvh. */
+/* rt_bvh_measure's SAH cost alone (one pass over the nodes, no depth): cheap
+ * enough for the renderer to judge a refitted tree every frame. */
+double rt_bvh_sah_cost(const rt_bvh *bvh, rt_sah_costs costs);
+
+/* Names as rtcl bench prints them: thesis-scalar, thesis-neon, thesis-mt, sah, lbvh. */
 const char *rt_builder_name(rt_builder builder);
 
 #ifdef __cplusplus

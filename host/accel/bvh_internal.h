@@ -8,18 +8,18 @@
 rt_status rt_bvh_build_thesis(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
                               rt_pool *pool, rt_bvh *out, rt_error *err);
 
-/* The fast builder (bvh_fast.c). use_neon selects the NEON binning path; the
+/* The SAH builder (bvh_sah.c). use_neon selects the NEON binning path; the
  * output is identical either way and for any thread count. */
-rt_status rt_bvh_build_fast(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
-                            rt_pool *pool, int use_neon, rt_bvh *out, rt_error *err);
+rt_status rt_bvh_build_sah(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
+                           rt_pool *pool, int use_neon, rt_bvh *out, rt_error *err);
 
 /* The Morton-code LBVH (bvh_lbvh.c): leaves of at most 4 primitives; the
  * same tree for any thread count. options' bins and leaf size are unused. */
 rt_status rt_bvh_build_lbvh(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
                             rt_pool *pool, rt_bvh *out, rt_error *err);
 
-/* The fast builder keeps its scratch memory (up to 64 MiB) between builds;
+/* The SAH builder keeps its scratch memory (up to 64 MiB) between builds;
  * this frees it now (it is otherwise reused or held until exit). */
-void rt_bvh_fast_release_scratch(void);
+void rt_bvh_sah_release_scratch(void);
 
 #endif /* RT_BVH_INTERNAL_H */

@@ -1,4 +1,4 @@
-/* bvh_lbvh.c - the per-frame builder of the "fast" update policy: a linear
+/* bvh_lbvh.c - the per-frame builder of the "lbvh" update policy: a linear
  * BVH over Morton codes (after Lauterbach et al. 2009 and Karras 2012).
  *
  * 1. Each primitive's box centre is quantised to a 1024^3 grid over the

@@ -57,25 +57,30 @@ static uint32_t tree_depth(const rt_bvh *bvh) {
     return depth;
 }
 
-rt_bvh_quality rt_bvh_measure(const rt_bvh *bvh, float cost_box, float cost_tri) {
-    rt_bvh_quality q = {0.0, 0, 0, 0, 0};
-    if (!bvh || !bvh->nodes || bvh->node_count == 0) return q;
-    q.nodes = bvh->node_count;
-    q.bytes =
-        (size_t)bvh->node_count * sizeof(rt_node) + (size_t)bvh->prim_count * sizeof(uint32_t);
+double rt_bvh_sah_cost(const rt_bvh *bvh, rt_sah_costs costs) {
+    if (!bvh || !bvh->nodes || bvh->node_count == 0) return 0.0;
     double root_area = node_area(&bvh->nodes[0]);
     double sah = 0.0;
     for (uint32_t i = 0; i < bvh->node_count; i++) {
         const rt_node *n = &bvh->nodes[i];
         double rel = root_area > 0.0 ? node_area(n) / root_area : 1.0;
-        if (n->b & RT_NODE_LEAF_FLAG) {
-            q.leaves++;
-            sah += (double)cost_tri * (double)(n->b & RT_NODE_COUNT_MASK) * rel;
-        } else {
-            sah += (double)cost_box * rel;
-        }
+        if (n->b & RT_NODE_LEAF_FLAG)
+            sah += (double)costs.intersect * (double)(n->b & RT_NODE_COUNT_MASK) * rel;
+        else
+            sah += (double)costs.traverse * rel;
     }
-    q.sah = sah;
+    return sah;
+}
+
+rt_bvh_quality rt_bvh_measure(const rt_bvh *bvh, rt_sah_costs costs) {
+    rt_bvh_quality q = {0.0, 0, 0, 0, 0};
+    if (!bvh || !bvh->nodes || bvh->node_count == 0) return q;
+    q.nodes = bvh->node_count;
+    q.bytes =
+        (size_t)bvh->node_count * sizeof(rt_node) + (size_t)bvh->prim_count * sizeof(uint32_t);
+    for (uint32_t i = 0; i < bvh->node_count; i++)
+        if (bvh->nodes[i].b & RT_NODE_LEAF_FLAG) q.leaves++;
+    q.sah = rt_bvh_sah_cost(bvh, costs);
     q.depth = tree_depth(bvh);
     return q;
 }

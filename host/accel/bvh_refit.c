@@ -171,24 +171,3 @@ void rt_bvh_refit_tris(rt_bvh *bvh, rt_bvh_refit_info *info, const float *positi
     refit_job job = {bvh, info, NULL, positions, indices};
     run(&job, pool);
 }
-
-static double area(const rt_node *n) {
-    double dx = (double)n->bmax[0] - n->bmin[0];
-    double dy = (double)n->bmax[1] - n->bmin[1];
-    double dz = (double)n->bmax[2] - n->bmin[2];
-    return 2.0 * (dx * dy + dy * dz + dz * dx);
-}
-
-double rt_bvh_sah(const rt_bvh *bvh, float cost_box, float cost_tri) {
-    if (!bvh->node_count) return 0.0;
-    double root = area(&bvh->nodes[0]), sum = 0.0;
-    for (uint32_t i = 0; i < bvh->node_count; i++) {
-        const rt_node *n = &bvh->nodes[i];
-        double a = root > 0.0 ? area(n) / root : 1.0;
-        if (n->b & RT_NODE_LEAF_FLAG)
-            sum += (double)cost_tri * (double)(n->b & RT_NODE_COUNT_MASK) * a;
-        else
-            sum += (double)cost_box * a;
-    }
-    return sum;
-}

@@ -34,8 +34,4 @@ void rt_bvh_refit(rt_bvh *bvh, rt_bvh_refit_info *info, const rt_aabb *prim_boxe
 void rt_bvh_refit_tris(rt_bvh *bvh, rt_bvh_refit_info *info, const float *positions,
                        const uint32_t *indices, rt_pool *pool);
 
-/* The SAH cost of rt_bvh_measure alone (one pass over the nodes, no depth):
- * what the "auto" policy compares after each refit. */
-double rt_bvh_sah(const rt_bvh *bvh, float cost_box, float cost_tri);
-
 #endif /* RT_BVH_REFIT_H */

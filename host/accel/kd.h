@@ -39,14 +39,13 @@ typedef enum rt_kd_builder {
 
 typedef struct rt_kd_options {
     rt_kd_builder builder;
-    float cost_traverse;  /* KT, cost of one inner node step [1] */
-    float cost_intersect; /* KI, cost of one triangle test [1] */
-    float empty_bonus;    /* the cost factor of a split with an empty side [0.8] */
-    int max_depth;        /* <= 0: 8 + 1.3 log2 N, at most RT_KD_MAX_DEPTH */
-    int bins;             /* binned builder: bins per axis [32], 2..256 */
-    int ref_guard;        /* the reference guard (below) [1]; 0: off, for measurements
-                             only (overlapping coplanar input may then take minutes
-                             and gigabytes) */
+    rt_sah_costs costs; /* KT (traverse) and KI (intersect) [1, 1] */
+    float empty_bonus;  /* the cost factor of a split with an empty side [0.8] */
+    int max_depth;      /* <= 0: 8 + 1.3 log2 N, at most RT_KD_MAX_DEPTH */
+    int bins;           /* binned builder: bins per axis [32], 2..256 */
+    int ref_guard;      /* the reference guard (below) [1]; 0: off, for measurements
+                           only (overlapping coplanar input may then take minutes
+                           and gigabytes) */
 } rt_kd_options;
 
 /* The reference guard, for input whose every split lowers the SAH (many
@@ -96,8 +95,9 @@ typedef struct rt_kd_quality {
     double refs_per_tri; /* refs / triangles with area */
 } rt_kd_quality;
 
-/* Figures of a tree; cost_traverse/cost_intersect as in rt_kd_options. */
-rt_kd_quality rt_kd_measure(const rt_kd *kd, float cost_traverse, float cost_intersect);
+/* Figures of a tree under the SAH costs given (rt_sah_costs_default() for
+ * the figure comparable with a BVH's rt_bvh_measure). */
+rt_kd_quality rt_kd_measure(const rt_kd *kd, rt_sah_costs costs);
 
 /* Names as rtcl bench prints them: kd-exact, kd-binned. */
 const char *rt_kd_builder_name(rt_kd_builder builder);

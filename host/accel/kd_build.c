@@ -39,8 +39,8 @@
 rt_kd_options rt_kd_options_default(void) {
     rt_kd_options o;
     o.builder = RT_KD_EXACT;
-    o.cost_traverse = 1.0f;
-    o.cost_intersect = 1.0f;
+    o.costs.traverse = 1.0f;
+    o.costs.intersect = 1.0f;
     o.empty_bonus = 0.8f;
     o.max_depth = 0;
     o.bins = 32;
@@ -213,7 +213,7 @@ static void build_rec(const kd_ctx *c, const kd_finder *f, kd_node_in *in, kd_sc
         /* SAH termination: split only when it is cheaper than the leaf; in
          * the budget pass, also only when the node's budget pays its
          * duplicates. */
-        if (!(sp.cost < (double)c->opt.cost_intersect * (double)in->tris) ||
+        if (!(sp.cost < (double)c->opt.costs.intersect * (double)in->tris) ||
             (c->budget && sp.both > in->allow)) {
             uint32_t n = f->leaf(c, in, w);
             if (n == UINT32_MAX)
@@ -465,7 +465,7 @@ rt_status rt_kd_build(const float *positions, uint32_t vertex_count, const uint3
                       rt_kd *out, rt_error *err) {
     memset(out, 0, sizeof *out);
     rt_kd_options opt = options ? *options : rt_kd_options_default();
-    if (!(opt.cost_traverse > 0.0f) || !(opt.cost_intersect > 0.0f) ||
+    if (!(opt.costs.traverse > 0.0f) || !(opt.costs.intersect > 0.0f) ||
         !(opt.empty_bonus > 0.0f && opt.empty_bonus <= 1.0f) || opt.bins < 2 || opt.bins > 256 ||
         opt.max_depth > RT_KD_MAX_DEPTH ||
         (opt.builder != RT_KD_EXACT && opt.builder != RT_KD_BINNED))

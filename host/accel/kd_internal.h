@@ -93,7 +93,7 @@ typedef struct kd_axis {
     double s, p;       /* the sum and product of the other two extents */
     double lo, hi;     /* the cell's bounds on the axis */
     double inv_area;   /* 1 / the cell's area */
-    double kt, ki, eb; /* cost_traverse, cost_intersect, empty_bonus */
+    double kt, ki, eb; /* costs.traverse, costs.intersect, empty_bonus */
     float flo, fhi;    /* the bounds as floats (a plane on a face) */
     int k;
 } kd_axis;
@@ -106,8 +106,8 @@ static inline void kd_axis_init(kd_axis *x, const kd_ctx *c, const kd_cell *v, i
     x->flo = v->box->bmin[k];
     x->fhi = v->box->bmax[k];
     x->inv_area = v->inv_area;
-    x->kt = (double)c->opt.cost_traverse;
-    x->ki = (double)c->opt.cost_intersect;
+    x->kt = (double)c->opt.costs.traverse;
+    x->ki = (double)c->opt.costs.intersect;
     x->eb = (double)c->opt.empty_bonus;
     x->k = k;
 }

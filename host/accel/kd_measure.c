@@ -12,7 +12,7 @@ static double area(const rt_aabb *b) {
     return 2.0 * (dx * dy + dy * dz + dz * dx);
 }
 
-rt_kd_quality rt_kd_measure(const rt_kd *kd, float cost_traverse, float cost_intersect) {
+rt_kd_quality rt_kd_measure(const rt_kd *kd, rt_sah_costs costs) {
     rt_kd_quality q;
     memset(&q, 0, sizeof q);
     if (!kd->node_count) return q;
@@ -36,10 +36,10 @@ rt_kd_quality rt_kd_measure(const rt_kd *kd, float cost_traverse, float cost_int
             uint32_t cnt = n->b >> 2;
             q.leaves++;
             if (!cnt) q.empty++;
-            q.sah += (double)cost_intersect * p * (double)cnt;
+            q.sah += (double)costs.intersect * p * (double)cnt;
             continue;
         }
-        q.sah += (double)cost_traverse * p;
+        q.sah += (double)costs.traverse * p;
         if (sp + 2 > RT_KD_MAX_DEPTH + 4) continue; /* deeper than any built tree */
         int k = (int)(n->b & 3u);
         float split;

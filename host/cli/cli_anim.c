@@ -1,21 +1,9 @@
-/* cli_anim.c - the --update and --stats parts of the dynamic-scene commands. */
+/* cli_anim.c - the --stats part of the dynamic-scene commands (cli_anim.h). */
 #include "cli_anim.h"
-#include "json_out.h"
 
 #include <stdio.h>
 
-#include "cli_util.h"
-#include "scene/scene.h"
-
-int cli_update_policy(const char *command, const char *text, rt_update_policy *out) {
-    if (rt_update_policy_parse(text, out)) return 1;
-    cli_error(command, "--update: unknown policy '%s' (rebuild, refit, fast, auto)", text);
-    return 0;
-}
-
-void cli_apply_update(rt_scene *scene, rt_update_policy policy) {
-    for (uint32_t m = 0; m < scene->mesh_count; m++) rt_mesh_set_update(scene, m, policy);
-}
+#include "engines/bench_print.h"
 
 static const char *action_name(rt_update_action a) {
     switch (a) {
@@ -25,8 +13,8 @@ static const char *action_name(rt_update_action a) {
         return "build";
     case RT_ACTION_REFIT:
         return "refit";
-    case RT_ACTION_FAST:
-        return "fast";
+    case RT_ACTION_LBVH:
+        return "lbvh";
     case RT_ACTION_REBUILD:
         return "rebuild";
     }
@@ -40,7 +28,8 @@ void cli_print_update_json(const rt_renderer *renderer, const rt_scene *scene) {
     for (uint32_t i = 0; i < u.mesh_count; i++) {
         const rt_mesh_update *m = &u.meshes[i];
         printf("%s{\"mesh\": %u, \"name\": ", i ? ", " : "", m->mesh);
-        json_out_string(m->mesh < scene->mesh_count ? scene->meshes[m->mesh].name : "");
+        rt_mesh_info info;
+        json_out_string(rt_mesh_describe(scene, m->mesh, &info) == RT_OK ? info.name : "");
         printf(", \"action\": \"%s\", \"ms\": %.3f, \"sah\": %.4f}", action_name(m->action), m->ms,
                m->sah);
     }

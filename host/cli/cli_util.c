@@ -1,15 +1,15 @@
-/* cli_util.c - shared helpers of the rtcl commands. */
+/* cli_util.c - shared parts of the rtcl commands (cli_util.h). */
 #include "cli_util.h"
 
-#include <errno.h>
+#include "frame_image.h"
+
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
-
-#include "scene/scene_builtin.h"
 
 void cli_error(const char *command, const char *fmt, ...) {
     va_list args;
@@ -20,42 +20,10 @@ void cli_error(const char *command, const char *fmt, ...) {
     va_end(args);
 }
 
-const char *cli_value(int argc, char **argv, int *i, const char *command) {
-    if (*i + 1 >= argc) {
-        cli_error(command, "option %s needs a value (see rtcl %s --help)", argv[*i], command);
-        return NULL;
-    }
-    return argv[++*i];
-}
-
-int cli_int(const char *command, const char *option, const char *text, long min, long max,
-            int *out) {
-    char *end;
-    errno = 0;
-    long v = strtol(text, &end, 10);
-    if (errno || end == text || *end || v < min || v > max) {
-        cli_error(command, "%s: '%s' is not an integer in %ld..%ld", option, text, min, max);
-        return 0;
-    }
-    *out = (int)v;
-    return 1;
-}
-
-int cli_float(const char *command, const char *option, const char *text, double *out) {
-    char *end;
-    errno = 0;
-    double v = strtod(text, &end);
-    if (errno || end == text || *end || !isfinite(v)) {
-        cli_error(command, "%s: '%s' is not a finite number", option, text);
-        return 0;
-    }
-    *out = v;
-    return 1;
-}
-
-rt_status cli_load_scene(const char *arg, rt_scene **out, rt_error *err) {
-    if (strncmp(arg, "builtin:", 8) == 0) return rt_scene_builtin(arg + 8, out, err);
-    return rt_scene_load(arg, out, err);
+double cli_now_ms(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1000.0 + (double)ts.tv_nsec / 1e6;
 }
 
 static int progress_drawn;
@@ -81,156 +49,278 @@ void cli_progress_done(void) {
     progress_drawn = 0;
 }
 
-const char cli_renderer_usage[] =
-    "  --backend B    cpu (the scalar oracle), packet (SIMD ray packets), opencl or\n"
-    "                 vulkan (fail when no device exists; opencl:D, vulkan:D pick a\n"
-    "                 device), or auto (opencl, else vulkan, when a device exists,\n"
-    "                 else cpu with a notice) [cpu]\n"
-    "  --device D     the OpenCL or Vulkan device: an index or part of a name (rtcl\n"
-    "                 devices)\n"
-    "  --threads N    worker threads, 0 = one per core [0]\n"
-    "  --accel A      the structure of every static mesh (one that is no keyframe of\n"
-    "                 an animated object): bvh, kd (exact SAH kd-tree) or kd-binned;\n"
-    "                 without it each mesh's \"accel\" from the scene file [bvh]. All\n"
-    "                 give the same bits\n"
-    "  --cl-options OPTS\n"
-    "                 extra OpenCL compiler options, e.g. -cl-mad-enable,\n"
-    "                 -cl-fast-relaxed-math, -DRT_NATIVE_MATH (options appended to\n"
-    "                 the kernels' build); results may then differ from the CPU\n"
-    "                 oracle, and --stats says so (the speed-versus-error study)\n"
-    "  --packet-isa I the packet backend's instruction set: generic, avx2, avx512\n"
-    "                 (x86-64) [the widest the CPU runs]; all give the same bits\n"
-    "  --verbose      print the OpenCL compiler's messages (build log, and what the\n"
-    "                 driver printed while building) on stderr; without it they are\n"
-    "                 shown only when the kernels fail to build\n"
-    "  --device-math M\n"
-    "                 device backends' divide and sqrt: native (the device's, correctly\n"
-    "                 rounded where it promises it), portable (software, from integer\n"
-    "                 operations: exact on any conforming device), or auto (native\n"
-    "                 where promised, else portable) [auto]; --stats says which ran\n"
-    "  --denormals P  preserve (IEEE) or flush (flush-to-zero and denormals-are-zero,\n"
-    "                 as most GPUs: the CPU backends set their threads' FTZ/DAZ and\n"
-    "                 kernels are built with -cl-denorms-are-zero) [preserve]; compare a\n"
-    "                 device with the oracle in the mode 'rtcl devices' names\n"
-    "For tests and comparisons (every choice gives the same bits):\n"
-    "  --cl-one-ray   OpenCL: one ray per work-item on CPU devices too\n"
-    "  --cl-packet-lanes N\n"
-    "                 OpenCL on CPU devices: 4 (2x2), 8 (4x2) or 16 (4x4) rays per\n"
-    "                 work-item [16]\n"
-    "  --cl-no-wavefront\n"
-    "                 OpenCL: shade every image in one kernel, never as wavefront passes\n"
-    "  --cl-wave-cap N\n"
-    "                 OpenCL: wavefront queues of at most N rays (overflows sooner)\n";
+/* ---- scene options ------------------------------------------------------- */
 
-void cli_renderer_args_init(cli_renderer_args *a) {
-    memset(a, 0, sizeof *a);
-    a->opt = rt_renderer_options_default();
-    a->backend = "cpu";
+/* The library's names for its enums, value by value while they name one
+ * (cli_option.choice_name). */
+const char *cli_accel_name(int v) {
+    const char *name = rt_accel_name((rt_accel)v);
+    rt_accel back;
+    return rt_accel_parse(name, &back) && (int)back == v ? name : NULL;
 }
 
-int cli_maths_arg(int argc, char **argv, int *i, const char *command, rt_device_math *math,
-                  rt_denormals *denormals) {
-    const char *o = argv[*i], *v;
-    int is_math = !strcmp(o, "--device-math");
-    if (!is_math && strcmp(o, "--denormals") != 0) return 0;
-    if (!(v = cli_value(argc, argv, i, command))) return -1;
-    if (is_math && !strcmp(v, "auto"))
-        *math = RT_DEVICE_MATH_AUTO;
-    else if (is_math && !strcmp(v, "native"))
-        *math = RT_DEVICE_MATH_NATIVE;
-    else if (is_math && !strcmp(v, "portable"))
-        *math = RT_DEVICE_MATH_PORTABLE;
-    else if (!is_math && !strcmp(v, "preserve"))
-        *denormals = RT_DENORMALS_PRESERVE;
-    else if (!is_math && !strcmp(v, "flush"))
-        *denormals = RT_DENORMALS_FLUSH;
-    else {
-        cli_error(command, "%s takes %s, not '%s'", o,
-                  is_math ? "auto, native or portable" : "preserve or flush", v);
-        return -1;
-    }
+static int update_parse(const char *text, int *value) {
+    rt_update_policy p;
+    if (!rt_update_policy_parse(text, &p)) return 0;
+    *value = (int)p;
     return 1;
 }
 
-int cli_renderer_arg(int argc, char **argv, int *i, const char *command, cli_renderer_args *a) {
-    const char *o = argv[*i], *v;
-    int n;
-    if (!strcmp(o, "--backend")) {
-        if (!(a->backend = cli_value(argc, argv, i, command))) return -1;
-    } else if (!strcmp(o, "--device")) {
-        if (!(a->device = cli_value(argc, argv, i, command))) return -1;
-    } else if (!strcmp(o, "--accel")) {
-        if (!(v = cli_value(argc, argv, i, command))) return -1;
-        if (!rt_accel_parse(v, &a->accel)) {
-            cli_error(command, "--accel takes bvh, kd or kd-binned, not '%s'", v);
-            return -1;
-        }
-        a->accel_set = 1;
-    } else if (!strcmp(o, "--threads")) {
-        if (!(v = cli_value(argc, argv, i, command)) ||
-            !cli_int(command, o, v, 0, 1024, &a->opt.threads))
-            return -1;
-    } else if (!strcmp(o, "--cl-options")) {
-        if (!(a->opt.device_options = cli_value(argc, argv, i, command))) return -1;
-    } else if (!strcmp(o, "--packet-isa")) {
-        if (!(a->opt.packet_isa = cli_value(argc, argv, i, command))) return -1;
-    } else if (!strcmp(o, "--verbose")) {
-        a->verbose = 1;
-    } else if ((n = cli_maths_arg(argc, argv, i, command, &a->opt.device_math,
-                                  &a->opt.denormals)) != 0) {
-        return n;
-    } else if (!strcmp(o, "--cl-one-ray")) {
-        a->opt.opencl.one_ray_kernels = 1;
-    } else if (!strcmp(o, "--cl-no-wavefront")) {
-        a->opt.opencl.no_wavefront = 1;
-    } else if (!strcmp(o, "--cl-packet-lanes")) {
-        if (!(v = cli_value(argc, argv, i, command)) || !cli_int(command, o, v, 4, 16, &n))
-            return -1;
-        if (n != 4 && n != 8 && n != 16) {
-            cli_error(command, "--cl-packet-lanes takes 4, 8 or 16, not %d", n);
-            return -1;
-        }
-        a->opt.opencl.packet_lanes = n;
-    } else if (!strcmp(o, "--cl-wave-cap")) {
-        if (!(v = cli_value(argc, argv, i, command)) || !cli_int(command, o, v, 1, 1 << 30, &n))
-            return -1;
-        a->opt.opencl.wave_queue_cap = (uint32_t)n;
-    } else {
+static const char *update_name(int v) {
+    const char *name = rt_update_policy_name((rt_update_policy)v);
+    rt_update_policy back;
+    return rt_update_policy_parse(name, &back) && (int)back == v ? name : NULL;
+}
+
+const cli_option cli_scene_options[] = {
+    {"--accel", 0, CLI_CHOICE, "A", offsetof(cli_scene_args, accel), .choice_name = cli_accel_name,
+     .help = "the structure of every static mesh (one that is no keyframe of an animated "
+             "object): {choices} (kd: the exact SAH kd-tree, kd-binned: a binned one); all give "
+             "the same bits",
+     .fallback = "each mesh's \"accel\" in the scene file, else bvh"},
+    {NULL}};
+
+const cli_option cli_time_options[] = {
+    {"--time", 0, CLI_FLOAT, "T", offsetof(cli_scene_args, time), -INFINITY, INFINITY,
+     .help = "the scene at time T seconds: its keyframes, transform keys and camera path "
+             "(docs/SCENE_FORMAT.md, \"Time\")",
+     .fallback = "0"},
+    {NULL}};
+
+void cli_scene_args_init(cli_scene_args *a) {
+    a->accel = -1;
+    a->time = NAN;
+    a->update = -1;
+}
+
+rt_scene *cli_scene_open(const char *command, const char *source, const cli_scene_args *a) {
+    rt_scene *s = NULL;
+    rt_error err;
+    if (rt_scene_open(source, &s, &err) != RT_OK) {
+        cli_error(command, "%s", err.message);
+        return NULL;
+    }
+    if ((a->accel >= 0 && rt_scene_set_static_accel(s, (rt_accel)a->accel) != RT_OK) ||
+        (!isnan(a->time) && rt_scene_set_time(s, a->time) != RT_OK)) {
+        cli_error(command, "%s", rt_scene_error(s));
+        rt_scene_destroy(s);
+        return NULL;
+    }
+    if (a->update >= 0) {
+        rt_scene_info info;
+        rt_scene_describe(s, &info);
+        for (uint32_t m = 0; m < info.meshes; m++)
+            rt_mesh_set_update(s, m, (rt_update_policy)a->update);
+    }
+    return s;
+}
+
+const cli_option cli_update_options[] = {
+    {"--update", 0, CLI_CHOICE, "P", offsetof(cli_scene_args, update), .choice_name = update_name,
+     .choice_parse = update_parse,
+     .help = "every mesh's BVH update policy after its vertices move: {choices} "
+             "(docs/SCENE_FORMAT.md; the names before 0.2, rebuild for sah and fast for lbvh, "
+             "are read too); all give the same bits",
+     .fallback = "each mesh's \"update\" in the scene file, else sah"},
+    {NULL}};
+
+/* ---- image options -------------------------------------------------------- */
+
+const cli_option cli_frame_options[] = {
+    {"--width", 0, CLI_INT, "W", offsetof(cli_frame_args, width), 1, 32768,
+     .help = "image width in pixels, overriding the scene camera's", .fallback = "the scene's"},
+    {"--height", 0, CLI_INT, "H", offsetof(cli_frame_args, height), 1, 32768,
+     .help = "image height in pixels, overriding the scene camera's", .fallback = "the scene's"},
+    {"--direct", 0, CLI_FLAG, NULL, offsetof(cli_frame_args, direct),
+     .help = "primary and shadow rays only, no reflection or refraction (the thesis's benchmark "
+             "set-up)"},
+    {NULL}};
+
+const cli_option cli_aov_options[] = {
+    {"--aov", 0, CLI_CHOICE, "AOV", offsetof(cli_frame_args, aov), .choices = cli_aov_choices,
+     .help = "an arbitrary output variable instead of the shaded image: {choices}. In EXR the "
+             "raw values; in 8-bit formats depth and counters scaled to [0,1] by their maximum, "
+             "ids in false colour, normals as 0.5 + 0.5 n",
+     .fallback = "the shaded image"},
+    {NULL}};
+
+void cli_frame_args_init(cli_frame_args *a) {
+    memset(a, 0, sizeof *a);
+    a->aov = RT_AOV_NONE;
+}
+
+int cli_apply_frame_size(const char *command, rt_scene *scene, const cli_frame_args *a) {
+    rt_camera cam;
+    rt_camera_get(scene, &cam);
+    if (a->width) cam.width = a->width;
+    if (a->height) cam.height = a->height;
+    if (rt_camera_set(scene, &cam) != RT_OK) {
+        cli_error(command, "%s", rt_scene_error(scene));
         return 0;
     }
     return 1;
 }
 
+/* ---- renderer options ---------------------------------------------------- */
+
+/* --backend's help from the backend registry: every backend, what it is,
+ * and whether this build has it. */
+static void backend_help(char *buf, size_t cap) {
+    size_t used = (size_t)snprintf(buf, cap, "the backend:");
+    rt_backend_info b;
+    for (int i = 0; rt_backend_name(i) && used < cap; i++) {
+        if (rt_backend_describe(rt_backend_name(i), &b, NULL) != RT_OK) continue;
+        const char *exact = !strcmp(b.name, "auto") ? ""
+                            : b.exact_always        ? "; the CPU oracle's bits everywhere"
+                                                    : "; the oracle's bits where the device "
+                                                      "promises them (rtcl devices)";
+        used += (size_t)snprintf(buf + used, cap - used, "\n%s%s: %s%s%s", b.name,
+                                 b.takes_device ? "[:D]" : "", b.summary, exact,
+                                 b.built ? "" : " (not in this build)");
+    }
+    if (used < cap)
+        snprintf(buf + used, cap - used,
+                 "\nA device backend fails when it finds no device; :D picks one, as --device");
+}
+
+static const cli_choice lane_choices[] = {{"4", 4}, {"8", 8}, {"16", 16}, {NULL, 0}};
+
+const cli_choice cli_device_math_choices[] = {{"auto", RT_DEVICE_MATH_AUTO},
+                                              {"native", RT_DEVICE_MATH_NATIVE},
+                                              {"portable", RT_DEVICE_MATH_PORTABLE},
+                                              {NULL, 0}};
+const cli_choice cli_denormals_choices[] = {
+    {"preserve", RT_DENORMALS_PRESERVE}, {"flush", RT_DENORMALS_FLUSH}, {NULL, 0}};
+
+const cli_option cli_renderer_options[] = {
+    {"--backend", 0, CLI_STRING, "B", offsetof(cli_renderer_args, backend), .flags = CLI_NONEMPTY,
+     .dynamic_help = backend_help, .fallback = "cpu"},
+    {"--device", 0, CLI_STRING, "D", offsetof(cli_renderer_args, device), .flags = CLI_NONEMPTY,
+     .help = "the device of a device backend (or of the one auto picks): an index or a part of "
+             "its name, as 'rtcl devices' lists them",
+     .fallback = "the first device, an exact one where there is one"},
+    {"--threads", 0, CLI_INT, "N", offsetof(cli_renderer_args, threads), 0, 1024,
+     .help = "worker threads of the CPU backends and the BVH builders, 0: one per core",
+     .fallback = "0"},
+    {"--packet-isa", 0, CLI_STRING, "I", offsetof(cli_renderer_args, packet_isa),
+     .flags = CLI_NONEMPTY,
+     .help = "the packet backend's instruction set: generic, avx2 or avx512 (x86-64); all give "
+             "the same bits",
+     .fallback = "the widest the CPU runs"},
+    {"--verbose", 0, CLI_FLAG, NULL, offsetof(cli_renderer_args, verbose),
+     .help = "print the device compiler's messages (the build log, and what the driver printed "
+             "while building) on stderr; without it they are shown only when the kernels fail "
+             "to build"},
+    {NULL}};
+
+const cli_option cli_kernel_options[] = {
+    {"--cl-options", 0, CLI_STRING, "OPTS", offsetof(cli_renderer_args, cl_options),
+     .help = "extra OpenCL compiler options, e.g. -cl-mad-enable, -cl-fast-relaxed-math, "
+             "-DRT_NATIVE_MATH, appended to the kernels' build; results may then differ from the "
+             "CPU oracle, and --stats says so (the speed-versus-error study)",
+     .fallback = "none: the exact build"},
+    {"--device-math", 0, CLI_CHOICE, "M", offsetof(cli_renderer_args, device_math),
+     .choices = cli_device_math_choices,
+     .help = "device backends' divide and sqrt: {choices} (native: the device's, correctly "
+             "rounded where it promises it; portable: software, from integer operations, exact "
+             "on any conforming device; auto: native where promised, else portable); --stats "
+             "says which ran",
+     .fallback = "auto"},
+    {"--denormals", 0, CLI_CHOICE, "P", offsetof(cli_renderer_args, denormals),
+     .choices = cli_denormals_choices,
+     .help = "{choices}: IEEE gradual underflow, or flush-to-zero and denormals-are-zero as "
+             "most GPUs do (the CPU backends set their threads' FTZ/DAZ, kernels are built with "
+             "-cl-denorms-are-zero); compare a device with the oracle in the mode 'rtcl devices' "
+             "names",
+     .fallback = "preserve"},
+    {NULL}};
+
+const cli_option cli_test_options[] = {
+    {"--cl-one-ray", 0, CLI_FLAG, NULL, offsetof(cli_renderer_args, cl_one_ray),
+     .help = "OpenCL: one ray per work-item on CPU devices too"},
+    {"--cl-packet-lanes", 0, CLI_CHOICE, "N", offsetof(cli_renderer_args, cl_packet_lanes),
+     .choices = lane_choices,
+     .help = "OpenCL on CPU devices: {choices} rays per work-item (2x2, 4x2, 4x4)",
+     .fallback = "16"},
+    {"--cl-no-wavefront", 0, CLI_FLAG, NULL, offsetof(cli_renderer_args, cl_no_wavefront),
+     .help = "OpenCL: shade every image in one kernel, never as wavefront passes"},
+    {"--cl-wave-cap", 0, CLI_INT, "N", offsetof(cli_renderer_args, cl_wave_cap), 1, 1 << 30,
+     .help = "OpenCL: wavefront queues of at most N rays (they overflow sooner)",
+     .fallback = "the tile's size"},
+    {NULL}};
+
+void cli_renderer_args_init(cli_renderer_args *a) {
+    memset(a, 0, sizeof *a);
+    a->backend = "cpu";
+    a->device_math = RT_DEVICE_MATH_AUTO;
+    a->denormals = RT_DENORMALS_PRESERVE;
+}
+
+/* The backend's name in spec (NAME or NAME:DEVICE) into buf. */
+static void backend_of(const char *spec, char *buf, size_t cap) {
+    const char *colon = strchr(spec, ':');
+    size_t n = colon ? (size_t)(colon - spec) : strlen(spec);
+    snprintf(buf, cap, "%.*s", (int)(n < cap ? n : cap - 1), spec);
+}
+
+int cli_backend_takes_device(const char *spec) {
+    char name[64];
+    backend_of(spec, name, sizeof name);
+    rt_backend_info b;
+    return rt_backend_describe(name, &b, NULL) == RT_OK && b.takes_device;
+}
+
+/* "opencl, vulkan or auto": the backends that take a device. */
+static void device_backends(char *buf, size_t cap) {
+    size_t used = 0;
+    int count = 0, total = 0;
+    rt_backend_info b;
+    for (int i = 0; rt_backend_name(i); i++)
+        total += rt_backend_describe(rt_backend_name(i), &b, NULL) == RT_OK && b.takes_device;
+    buf[0] = '\0';
+    for (int i = 0; rt_backend_name(i) && used < cap; i++) {
+        if (rt_backend_describe(rt_backend_name(i), &b, NULL) != RT_OK || !b.takes_device) continue;
+        count++;
+        const char *sep = count == 1 ? "" : count == total ? " or " : ", ";
+        used += (size_t)snprintf(buf + used, cap - used, "%s%s", sep, b.name);
+    }
+}
+
 rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a) {
     if (a->device) {
-        if (strcmp(a->backend, "opencl") != 0 && strcmp(a->backend, "vulkan") != 0 &&
-            strcmp(a->backend, "auto") != 0) {
-            cli_error(command, "--device applies to --backend opencl, vulkan or auto, not '%s'",
-                      a->backend);
+        if (!cli_backend_takes_device(a->backend) || strchr(a->backend, ':')) {
+            char names[128];
+            device_backends(names, sizeof names);
+            if (strchr(a->backend, ':'))
+                cli_error(command, "--device %s and --backend %s both name a device: give one",
+                          a->device, a->backend);
+            else
+                cli_error(command, "--device applies to --backend %s, not '%s'", names, a->backend);
             return NULL;
         }
         snprintf(a->spec, sizeof a->spec, "%s:%s", a->backend, a->device);
     } else {
         snprintf(a->spec, sizeof a->spec, "%s", a->backend);
     }
-    a->opt.backend = a->spec;
+    rt_renderer_options o = rt_renderer_options_default();
+    o.backend = a->spec;
+    o.threads = a->threads;
+    o.device_options = a->cl_options;
+    o.packet_isa = a->packet_isa;
+    o.device_math = (rt_device_math)a->device_math;
+    o.denormals = (rt_denormals)a->denormals;
+    o.opencl.one_ray_kernels = a->cl_one_ray;
+    o.opencl.no_wavefront = a->cl_no_wavefront;
+    o.opencl.packet_lanes = a->cl_packet_lanes;
+    o.opencl.wave_queue_cap = (uint32_t)a->cl_wave_cap;
     rt_renderer *r = NULL;
     rt_error err;
     memset(&err, 0, sizeof err);
-    if (rt_renderer_create(&a->opt, &r, &err) != RT_OK) {
+    if (rt_renderer_create(&o, &r, &err) != RT_OK) {
         cli_error(command, "%s", err.message);
         return NULL;
     }
     return r;
-}
-
-int cli_apply_accel(const char *command, const cli_renderer_args *a, rt_scene *scene) {
-    if (!a->accel_set) return 1;
-    if (rt_scene_set_static_accel(scene, a->accel) != RT_OK) {
-        cli_error(command, "%s", rt_scene_error(scene));
-        return 0;
-    }
-    return 1;
 }
 
 void cli_print_build_log(const char *command, const rt_renderer *renderer) {

@@ -1,32 +1,15 @@
-/* cli_util.h - what every rtcl command shares: argument helpers, scene
- * loading (files and builtin:NAME), and the progress bar. */
+/* cli_util.h - what the rtcl commands share: the option groups of scenes,
+ * renderers and kernels (tables for cli_options.h) with what applies them,
+ * messages, the progress bar and the clock. rtcl is a program on rt.h
+ * alone (tests/arch/check_includes.py holds it to that). */
 #ifndef RTCL_CLI_UTIL_H
 #define RTCL_CLI_UTIL_H
 
 #include <stddef.h>
+#include <stdio.h>
 
+#include "cli_options.h"
 #include "rt.h"
-
-/* The value after option argv[*i]; advances *i. Prints a usage error and
- * returns NULL when it is missing. */
-const char *cli_value(int argc, char **argv, int *i, const char *command);
-
-/* Parses an integer in [min, max]; prints an error naming the option. */
-int cli_int(const char *command, const char *option, const char *text, long min, long max,
-            int *out);
-
-/* Parses a finite float; prints an error naming the option. */
-int cli_float(const char *command, const char *option, const char *text, double *out);
-
-/* Loads a scene file, or a built-in scene written as builtin:NAME. */
-rt_status cli_load_scene(const char *arg, rt_scene **out, rt_error *err);
-
-/* An rt_render_options.progress callback: a bar on stderr when stderr is a
- * terminal, nothing otherwise. user is the label (const char *). */
-void cli_progress(void *user, double done);
-
-/* Ends the progress line if one was drawn. */
-void cli_progress_done(void);
 
 /* Prints "rtcl COMMAND: " and the message to stderr. */
 void cli_error(const char *command, const char *fmt, ...)
@@ -35,42 +18,104 @@ void cli_error(const char *command, const char *fmt, ...)
 #endif
     ;
 
-/* The options every command that renders or traces takes: the renderer's
- * (rt_renderer_options). */
+/* Milliseconds on a monotonic clock (differences only). */
+double cli_now_ms(void);
+
+/* An rt_render_options.progress callback: a bar on stderr when stderr is a
+ * terminal, nothing otherwise. user is the label (const char *). */
+void cli_progress(void *user, double done);
+
+/* Ends the progress line if one was drawn. */
+void cli_progress_done(void);
+
+/* ---- scene options: how SCENE is opened ---------------------------------- */
+
+typedef struct cli_scene_args {
+    int accel;   /* --accel: an rt_accel for every static mesh, or -1: each mesh's own */
+    double time; /* --time: seconds, NAN when not given */
+    int update;  /* --update: an rt_update_policy for every mesh, or -1: each mesh's own */
+} cli_scene_args;
+
+/* The scene groups, each a table into cli_scene_args (title
+ * CLI_SCENE_TITLE): --accel; --time; --update. */
+extern const cli_option cli_scene_options[];
+extern const cli_option cli_time_options[];
+extern const cli_option cli_update_options[];
+#define CLI_SCENE_TITLE "Scene options"
+
+void cli_scene_args_init(cli_scene_args *a);
+
+/* Opens source (a file or builtin:NAME, rt_scene_open) and applies the
+ * scene options given: --accel, then --time, then --update. Prints the
+ * error and returns NULL when that fails. */
+rt_scene *cli_scene_open(const char *command, const char *source, const cli_scene_args *a);
+
+/* ---- image options: what a frame is --------------------------------------- */
+
+typedef struct cli_frame_args {
+    int width, height; /* --width, --height: 0 for the scene camera's */
+    int direct;        /* --direct: primary and shadow rays only */
+    int aov;           /* --aov (cli_aov_options): an rt_aov */
+} cli_frame_args;
+
+/* --width, --height, --direct. */
+extern const cli_option cli_frame_options[];
+/* --aov (the same struct). */
+extern const cli_option cli_aov_options[];
+#define CLI_FRAME_TITLE "Image options"
+
+void cli_frame_args_init(cli_frame_args *a);
+
+/* Sets the camera's size from --width and --height; prints the error and
+ * returns 0 when the scene refuses it. */
+int cli_apply_frame_size(const char *command, rt_scene *scene, const cli_frame_args *a);
+
+/* ---- renderer options --------------------------------------------------- */
+
 typedef struct cli_renderer_args {
-    rt_renderer_options opt;
-    const char *backend; /* --backend [cpu] */
-    const char *device;  /* --device, or NULL */
-    int accel_set;       /* --accel given: */
-    rt_accel accel;      /* the structure of every static mesh */
-    int verbose;         /* --verbose: the device compiler's messages on stderr */
-    char spec[256];      /* backend[:device], made by cli_renderer_create */
+    const char *backend;    /* --backend [cpu] */
+    const char *device;     /* --device, or NULL */
+    int threads;            /* --threads [0: one per core] */
+    const char *packet_isa; /* --packet-isa, or NULL */
+    int verbose;            /* --verbose: the device compiler's messages on stderr */
+    /* Kernel options (cli_kernel_options). */
+    const char *cl_options; /* --cl-options, or NULL */
+    int device_math;        /* --device-math: rt_device_math */
+    int denormals;          /* --denormals: rt_denormals */
+    /* Test options (cli_test_options). */
+    int cl_one_ray, cl_no_wavefront, cl_packet_lanes, cl_wave_cap;
+    char spec[256]; /* backend[:device], made by cli_renderer_create */
 } cli_renderer_args;
 
-/* The help lines of those options. */
-extern const char cli_renderer_usage[];
+/* --backend, --device, --threads, --packet-isa, --verbose. */
+extern const cli_option cli_renderer_options[];
+#define CLI_RENDERER_TITLE "Renderer options"
+/* --cl-options, --device-math, --denormals: how device kernels are built. */
+extern const cli_option cli_kernel_options[];
+#define CLI_KERNEL_TITLE "Kernel options (device backends)"
+/* --cl-one-ray, --cl-packet-lanes, --cl-no-wavefront, --cl-wave-cap. */
+extern const cli_option cli_test_options[];
+#define CLI_TEST_TITLE "For tests and comparisons (every choice gives the same bits)"
+
+/* The choices of --accel (the library's names, cli_option.choice_name),
+ * --device-math and --denormals, for commands with rows of their own. */
+const char *cli_accel_name(int value);
+extern const cli_choice cli_device_math_choices[];
+extern const cli_choice cli_denormals_choices[];
 
 void cli_renderer_args_init(cli_renderer_args *a);
 
-/* If argv[*i] is one of the renderer options, takes it (and its value) and
- * returns 1; 0 when it is not one; -1 after printing an error. */
-int cli_renderer_arg(int argc, char **argv, int *i, const char *command, cli_renderer_args *a);
-
-/* --device-math auto|native|portable and --denormals preserve|flush at
- * argv[*i]: 1 when taken (the value stored, *i past it), 0 when argv[*i] is
- * neither option, -1 after printing the error for a bad or missing value. */
-int cli_maths_arg(int argc, char **argv, int *i, const char *command, rt_device_math *math,
-                  rt_denormals *denormals);
-
 /* Creates the renderer the options ask for; prints the error and returns
- * NULL when it cannot. */
+ * NULL when it cannot (a --device for a backend that takes none, as the
+ * backend registry says, among others). */
 rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a);
 
-/* Applies --accel (if given) to the scene's static meshes; prints the error
- * and returns 0 on failure. */
-int cli_apply_accel(const char *command, const cli_renderer_args *a, rt_scene *scene);
+/* 1 when the backend named by spec (NAME or NAME:DEVICE) takes a device,
+ * by the backend registry (rt_backend_describe). */
+int cli_backend_takes_device(const char *spec);
+
 /* Prints the renderer's last kernel build messages (rt_renderer_build_log)
- * on stderr, "rtcl COMMAND: opencl build log:" and the lines, if there are
+ * on stderr, "rtcl COMMAND: BACKEND build log:" and the lines, if there are
  * any. For --verbose; a failed build's error carries them already. */
 void cli_print_build_log(const char *command, const rt_renderer *renderer);
 

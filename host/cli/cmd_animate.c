@@ -1,61 +1,85 @@
 /* cmd_animate.c - 'rtcl animate': the frames of an animated scene, one image
  * each, with the BVHs kept and updated from frame to frame by the meshes'
  * update policies (the way a real-time loop renders). */
+#include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/clock.h"
 #include "cli_anim.h"
 #include "cli_util.h"
 #include "commands.h"
-#include "formats/image.h"
 #include "video_out.h"
 
-static const char usage_head[] =
-    "usage: rtcl animate SCENE --fps F (--duration S | --frames N) [--frame-range A:B]\n"
-    "                    -o DIR/frame_%04d.png|VIDEO.mp4 [--update P] [--backend B] [--width W]\n"
-    "                    [--height H] [--direct] [--stats] [--help]\n"
-    "\n"
+typedef struct animate_args {
+    const char *out, *range;
+    double fps, duration;
+    int frames, stats;
+    cli_frame_args frame;
+    cli_scene_args scene;
+    cli_renderer_args renderer;
+} animate_args;
+
+static const cli_option animate_options[] = {
+    {"--fps", 0, CLI_FLOAT, "F", offsetof(animate_args, fps), 0.0, INFINITY,
+     CLI_MIN_OPEN | CLI_REQUIRED, .help = "frames per second: frame k shows time k / F",
+     .fallback = "required"},
+    {"--duration", 0, CLI_FLOAT, "S", offsetof(animate_args, duration), 0.0, INFINITY, CLI_MIN_OPEN,
+     .help = "seconds to render: ceil(S * F) frames; give this or --frames", .fallback = "none"},
+    {"--frames", 0, CLI_INT, "N", offsetof(animate_args, frames), 1, 100000000,
+     .help = "frames to render (0..N-1); give this or --duration", .fallback = "none"},
+    {"--frame-range", 0, CLI_STRING, "A:B", offsetof(animate_args, range),
+     .help = "only frames A to B (both included) of those: for splitting a long animation over "
+             "machines",
+     .fallback = "all"},
+    {"--output", 'o', CLI_STRING, "PATTERN|VIDEO", offsetof(animate_args, out),
+     .flags = CLI_NONEMPTY | CLI_REQUIRED,
+     .help = "output images: a path with one %d conversion (%04d: 4 digits, zero-padded) that "
+             "the frame number replaces, format by extension (.png, .ppm, .exr, .pfm); or a path "
+             "ending in .mp4, .mkv or .webm: one video of the frames at F frames per second, "
+             "encoded by ffmpeg (which must be on PATH; Debian: apt-get install ffmpeg): H.264 "
+             "(libx264, CRF 18) in .mp4 and .mkv, else MPEG-4 part 2; VP9 in .webm; 8 bits, "
+             "4:2:0 chroma (lossy: use images for exact frames); an odd width or height gets one "
+             "black column or row. ffmpeg's messages show only on failure",
+     .fallback = "required"},
+    {"--stats", 0, CLI_FLAG, NULL, offsetof(animate_args, stats),
+     .help = "one JSON line per frame on stdout: the frame, its time, what each updated mesh's "
+             "BVH did (action, ms, SAH cost), object-BVH ms, layout ms and bytes rewritten, "
+             "camera_only (true when only the camera moved: no BVH touched, the layout's header "
+             "alone rewritten and uploaded), upload bytes (device backends), build ms (all host "
+             "work of the frame), render ms, write ms, SAH and backend"},
+    {NULL}};
+
+static const cli_group animate_groups[] = {
+    {NULL, animate_options, 0},
+    {CLI_FRAME_TITLE, cli_frame_options, offsetof(animate_args, frame)},
+    {CLI_SCENE_TITLE, cli_scene_options, offsetof(animate_args, scene)},
+    {CLI_SCENE_TITLE, cli_update_options, offsetof(animate_args, scene)},
+    {CLI_RENDERER_TITLE, cli_renderer_options, offsetof(animate_args, renderer)},
+    {CLI_KERNEL_TITLE, cli_kernel_options, offsetof(animate_args, renderer)},
+    {CLI_TEST_TITLE, cli_test_options, offsetof(animate_args, renderer)},
+    {NULL}};
+
+const cli_command cmd_animate_spec = {
+    "animate",
+    "render the frames of an animated scene to images or a video",
+    "SCENE",
+    "scene",
+    1,
+    1,
     "Renders the frames of an animated scene (docs/SCENE_FORMAT.md, \"Time\"): frame k\n"
     "shows time k / F seconds. One renderer renders them in order, so each frame only\n"
     "updates what moved: the BVHs of meshes whose vertices changed, by their update\n"
     "policy, the object BVH, and the layout in place; a frame where only the camera\n"
     "moved rewrites the camera alone. Every frame is the image that\n"
-    "'rtcl render SCENE --time k/F' gives, bit for bit, whatever the policy.\n"
-    "\n"
-    "  --fps F        frames per second (> 0)\n"
-    "  --duration S   seconds to render: ceil(S * F) frames\n"
-    "  --frames N     frames to render (0..N-1)\n"
-    "  --frame-range A:B\n"
-    "                 only frames A to B (both included) of those: for splitting a long\n"
-    "                 animation over machines [all]\n"
-    "  -o PATTERN     output images, a path with one %d conversion (%04d: 4 digits,\n"
-    "                 zero-padded) that the frame number replaces; format by extension\n"
-    "  -o VIDEO       a path ending in .mp4, .mkv or .webm: one video of the frames at\n"
-    "                 F frames per second, encoded by ffmpeg (which must be on PATH;\n"
-    "                 Debian: apt-get install ffmpeg): H.264 (libx264, CRF 18) in .mp4\n"
-    "                 and .mkv, else MPEG-4 part 2; VP9 in .webm; 8 bits, 4:2:0 chroma\n"
-    "                 (lossy: use images for exact frames); an odd width or height gets\n"
-    "                 one black column or row. ffmpeg's messages show only on failure\n"
-    "  --update P     every mesh's BVH update policy: rebuild, refit, fast, auto\n"
-    "                 [the scene's, rebuild where it says none]\n"
-    "  --width W, --height H\n"
-    "                 resolution, overriding the scene's camera\n"
-    "  --direct       primary and shadow rays only, no reflection or refraction\n"
-    "  --stats        one JSON line per frame on stdout: the frame, its time, what\n"
-    "                 each updated mesh's BVH did (action, ms, SAH cost), object-BVH ms,\n"
-    "                 layout ms and bytes rewritten, camera_only (true when only the\n"
-    "                 camera moved: no BVH touched, the layout's header alone rewritten\n"
-    "                 and uploaded), upload bytes (device backends), build ms (all host\n"
-    "                 work of the frame), render ms\n"
+    "'rtcl render SCENE --time k/F' gives, bit for bit, whatever the policy. A scene\n"
+    "without animation is refused (every frame would be the same image).\n"
     "A progress bar appears on stderr when it is a terminal; nothing else is printed\n"
-    "unless something fails.\n";
-
-static void print_usage(FILE *f) {
-    fputs(usage_head, f);
-    fputs(cli_renderer_usage, f);
-}
+    "unless something fails.\n",
+    animate_groups,
+    NULL,
+    NULL};
 
 /* Checks that pattern has exactly one %d conversion (with an optional 0 flag
  * and width) and no other conversion but %%. */
@@ -112,93 +136,32 @@ static int parse_range(const char *text, int *a, int *b) {
     return 1;
 }
 
-int cmd_animate(int argc, char **argv) {
-    const char *scene_path = NULL, *pattern = NULL, *v;
-    rt_render_options opt = rt_render_options_default();
-    cli_renderer_args ra;
-    cli_renderer_args_init(&ra);
-    int width = 0, height = 0, stats = 0, frames = -1, first = 0, last = -1, has_update = 0;
-    double fps = 0.0, duration = -1.0;
-    rt_update_policy update = RT_UPDATE_REBUILD;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        int taken = cli_renderer_arg(argc, argv, &i, "animate", &ra);
-        if (taken < 0) return 2;
-        if (taken) continue;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            print_usage(stdout);
-            return 0;
-        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            if (!(pattern = cli_value(argc, argv, &i, "animate"))) return 2;
-        } else if (!strcmp(a, "--fps")) {
-            if (!(v = cli_value(argc, argv, &i, "animate")) || !cli_float("animate", a, v, &fps))
-                return 2;
-            if (!(fps > 0.0)) {
-                cli_error("animate", "--fps: must be > 0, found %s", v);
-                return 2;
-            }
-        } else if (!strcmp(a, "--duration")) {
-            if (!(v = cli_value(argc, argv, &i, "animate")) ||
-                !cli_float("animate", a, v, &duration))
-                return 2;
-            if (!(duration > 0.0)) {
-                cli_error("animate", "--duration: must be > 0, found %s", v);
-                return 2;
-            }
-        } else if (!strcmp(a, "--frames")) {
-            if (!(v = cli_value(argc, argv, &i, "animate")) ||
-                !cli_int("animate", a, v, 1, 100000000, &frames))
-                return 2;
-        } else if (!strcmp(a, "--frame-range")) {
-            if (!(v = cli_value(argc, argv, &i, "animate"))) return 2;
-            if (!parse_range(v, &first, &last)) {
-                cli_error("animate", "--frame-range: '%s' is not A:B with 0 <= A <= B", v);
-                return 2;
-            }
-        } else if (!strcmp(a, "--update")) {
-            if (!(v = cli_value(argc, argv, &i, "animate")) ||
-                !cli_update_policy("animate", v, &update))
-                return 2;
-            has_update = 1;
-        } else if (!strcmp(a, "--width")) {
-            if (!(v = cli_value(argc, argv, &i, "animate")) ||
-                !cli_int("animate", a, v, 1, 32768, &width))
-                return 2;
-        } else if (!strcmp(a, "--height")) {
-            if (!(v = cli_value(argc, argv, &i, "animate")) ||
-                !cli_int("animate", a, v, 1, 32768, &height))
-                return 2;
-        } else if (!strcmp(a, "--direct")) {
-            opt.direct_only = 1;
-        } else if (!strcmp(a, "--stats")) {
-            stats = 1;
-        } else if (a[0] == '-' && a[1]) {
-            cli_error("animate", "unknown option '%s'", a);
-            print_usage(stderr);
-            return 2;
-        } else if (scene_path) {
-            cli_error("animate", "more than one scene given ('%s' and '%s')", scene_path, a);
-            return 2;
-        } else {
-            scene_path = a;
-        }
-    }
-    if (!scene_path) {
-        cli_error("animate", "no scene given");
-        print_usage(stderr);
-        return 2;
+/* The frames to render, from the options: frames 0..count-1 of which
+ * first..last, and whether -o names a video. 0 after printing the error. */
+typedef struct frame_plan {
+    int count, first, last, video;
+} frame_plan;
+
+static int plan_frames(const animate_args *a, frame_plan *p) {
+    const char *pattern = a->out;
+    double fps = a->fps, duration = a->duration > 0.0 ? a->duration : -1.0;
+    int frames = a->frames ? a->frames : -1, first = 0, last = -1;
+    if (a->range && !parse_range(a->range, &first, &last)) {
+        cli_usage_error(&cmd_animate_spec, "--frame-range: '%s' is not A:B with 0 <= A <= B",
+                        a->range);
+        return 0;
     }
     if (!(fps > 0.0)) {
-        cli_error("animate", "--fps F is required");
-        return 2;
+        cli_usage_error(&cmd_animate_spec, "--fps F is required");
+        return 0;
     }
     if ((frames < 0) == (duration < 0.0)) {
-        cli_error("animate", "give one of --duration S and --frames N");
-        return 2;
+        cli_usage_error(&cmd_animate_spec, "give one of --duration S and --frames N");
+        return 0;
     }
     if (!pattern) {
-        cli_error("animate", "-o PATTERN is required (e.g. -o out/frame_%%04d.png)");
-        return 2;
+        cli_usage_error(&cmd_animate_spec, "-o PATTERN is required (e.g. -o out/frame_%%04d.png)");
+        return 0;
     }
     int video = cli_is_video_path(pattern);
     if (video && !cli_have_ffmpeg()) {
@@ -206,14 +169,14 @@ int cmd_animate(int argc, char **argv) {
                   "-o %s: writing a video needs ffmpeg, which is not on PATH (Debian: apt-get "
                   "install ffmpeg); or write the frames as images with -o DIR/frame_%%04d.png",
                   pattern);
-        return 2;
+        return 0;
     }
     if (!video && !check_pattern(pattern)) {
         cli_error("animate",
                   "-o: '%s' must hold exactly one %%d conversion (e.g. frame_%%04d.png) and no "
                   "other %% but %%%%",
                   pattern);
-        return 2;
+        return 0;
     }
     if (frames < 0) {
         double n = duration * fps;
@@ -221,35 +184,57 @@ int cmd_animate(int argc, char **argv) {
         if ((double)frames < n) frames++;
         if (frames > 100000000) {
             cli_error("animate", "--duration %g at %g fps is more than 10^8 frames", duration, fps);
-            return 2;
+            return 0;
         }
     }
     if (last < 0) last = frames - 1;
     if (last >= frames) {
         cli_error("animate", "--frame-range %d:%d: the animation has frames 0..%d", first, last,
                   frames - 1);
-        return 2;
+        return 0;
     }
+    p->count = frames;
+    p->first = first;
+    p->last = last;
+    p->video = video;
+    return 1;
+}
 
-    rt_renderer *renderer = cli_renderer_create("animate", &ra);
+int cmd_animate(int argc, char **argv) {
+    animate_args a;
+    memset(&a, 0, sizeof a);
+    cli_frame_args_init(&a.frame);
+    cli_scene_args_init(&a.scene);
+    cli_renderer_args_init(&a.renderer);
+    int status;
+    if (cli_parse(&cmd_animate_spec, &a, argc, argv, &status) < 0) return status;
+    frame_plan plan;
+    if (!plan_frames(&a, &plan)) return 2;
+    const char *scene_path = argv[0], *pattern = a.out;
+    const double fps = a.fps;
+    const int first = plan.first, last = plan.last, video = plan.video, stats = a.stats;
+
+    rt_renderer *renderer = cli_renderer_create("animate", &a.renderer);
     if (!renderer) return 2;
-    rt_scene *scene;
-    rt_error err;
-    if (cli_load_scene(scene_path, &scene, &err) != RT_OK) {
-        cli_error("animate", "%s", err.message);
+    rt_scene *scene = cli_scene_open("animate", scene_path, &a.scene);
+    if (!scene) {
         rt_renderer_destroy(renderer);
         return 2;
     }
     int code = 0;
-    rt_camera cam;
-    rt_camera_get(scene, &cam);
-    if (width) cam.width = width;
-    if (height) cam.height = height;
-    if (rt_camera_set(scene, &cam) != RT_OK) {
-        cli_error("animate", "%s", rt_scene_error(scene));
+    rt_error err;
+    if (!rt_scene_is_animated(scene)) {
+        cli_error("animate",
+                  "%s has no animation (no keyframe rate, transform keys or camera path: "
+                  "docs/SCENE_FORMAT.md, \"Time\"), so every frame would be the same image; "
+                  "render it once with 'rtcl render'",
+                  scene_path);
+        code = 2;
+    } else if (!cli_apply_frame_size("animate", scene, &a.frame)) {
         code = 2;
     }
-    if (has_update) cli_apply_update(scene, update);
+    rt_render_options opt = rt_render_options_default();
+    opt.direct_only = a.frame.direct;
     rt_render_stats st;
     opt.stats = &st;
     opt.reuse_framebuffer = 1;
@@ -275,7 +260,7 @@ int cmd_animate(int argc, char **argv) {
             fprintf(stderr, "rtcl animate: notice: %s\n", st.notice);
             shown_notice = 1;
         }
-        double w0 = rt_now_ms();
+        double w0 = cli_now_ms();
         if (video) {
             /* The video starts with the first frame, at its size. */
             if (!vid &&
@@ -301,7 +286,7 @@ int cmd_animate(int argc, char **argv) {
             code = 2;
             break;
         }
-        double write_ms = rt_now_ms() - w0;
+        double write_ms = cli_now_ms() - w0;
         if (stats) {
             printf("{\"frame\": %d, \"time\": %.9g, ", k, t);
             cli_print_update_json(renderer, scene);

@@ -3,98 +3,51 @@
  * Prints the figures of rt_image_compare and exits 0 when the largest channel
  * difference is within --max-diff (0 by default: identical), 1 when over,
  * 2 on a usage error or when an image cannot be read, compared or written. */
-#include <errno.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_options.h"
 #include "commands.h"
-#include "formats/image.h"
-
-static const char usage_text[] =
-    "usage: rtcl compare A B [--diff D] [--max-diff X]\n"
-    "\n"
-    "Compares two images of the same size and channel count, in any format\n"
-    "OpenImageIO reads (8-bit files read as values in [0,1]), and prints the\n"
-    "largest absolute channel difference, the RMSE over all channels, the PSNR\n"
-    "(peak 1), the number of pixels with any channel different, and the first\n"
-    "such pixel in row order with its values in A and B.\n"
-    "\n"
-    "options (in any order, before or after the images):\n"
-    "  --diff D       write |A - B| per channel to D (.png, .ppm or .exr; PNG and\n"
-    "                 PPM keep 8 bits, so use .exr to see small differences)\n"
-    "  --max-diff X   largest absolute difference that still passes (default 0)\n"
-    "  --help         show this text\n"
-    "\n"
-    "exit status: 0 when the largest difference is <= X, 1 when it is over,\n"
-    "2 on a usage error or when an image cannot be read, compared (sizes or\n"
-    "channel counts differ) or written.\n";
+#include "rt.h"
 
 typedef struct compare_options {
     const char *paths[2];
-    int path_count;
     const char *diff_path;
     double max_diff;
 } compare_options;
 
-static int usage_error(const char *fmt, const char *detail) {
-    fprintf(stderr, "rtcl compare: ");
-    fprintf(stderr, fmt, detail);
-    fprintf(stderr, "\nusage: rtcl compare A B [--diff D] [--max-diff X] (see --help)\n");
-    return 2;
-}
+static const cli_option compare_table[] = {
+    {"--diff", 0, CLI_STRING, "D", offsetof(compare_options, diff_path), .flags = CLI_NONEMPTY,
+     .help = "write |A - B| per channel to D (.png, .ppm, .exr or .pfm; PNG and PPM keep 8 bits, "
+             "so use .exr to see small differences)",
+     .fallback = "none"},
+    {"--max-diff", 0, CLI_FLOAT, "X", offsetof(compare_options, max_diff), 0.0, INFINITY,
+     .help = "the largest absolute difference that still passes", .fallback = "0: identical"},
+    {NULL}};
 
-/* The value of an option given as "--name VALUE" or "--name=VALUE"; NULL if
- * arg is not this option. *index moves past a separate value. */
-static const char *option_value(const char *name, int argc, char **argv, int *index, int *missing) {
-    const char *arg = argv[*index];
-    size_t length = strlen(name);
-    if (strncmp(arg, name, length) != 0) return NULL;
-    if (arg[length] == '=') return arg + length + 1;
-    if (arg[length] != '\0') return NULL;
-    if (*index + 1 >= argc) {
-        *missing = 1;
-        return NULL;
-    }
-    *index += 1;
-    return argv[*index];
-}
+static const cli_group compare_groups[] = {{NULL, compare_table, 0}, {NULL}};
 
-/* Returns -1 when parsed, else the exit status (0 after --help). */
-static int parse_options(int argc, char **argv, compare_options *options) {
-    memset(options, 0, sizeof *options);
-    int only_paths = 0;
-    for (int i = 1; i < argc; i++) {
-        const char *arg = argv[i];
-        int missing = 0;
-        const char *value;
-        if (only_paths || arg[0] != '-' || arg[1] == '\0') {
-            if (options->path_count == 2) return usage_error("one image too many: %s", arg);
-            options->paths[options->path_count++] = arg;
-        } else if (strcmp(arg, "--") == 0) {
-            only_paths = 1;
-        } else if (strcmp(arg, "--help") == 0 || strcmp(arg, "-h") == 0) {
-            fputs(usage_text, stdout);
-            return 0;
-        } else if ((value = option_value("--diff", argc, argv, &i, &missing)) || missing) {
-            if (missing || !value[0]) return usage_error("%s needs a file name", "--diff");
-            options->diff_path = value;
-        } else if ((value = option_value("--max-diff", argc, argv, &i, &missing)) || missing) {
-            if (missing) return usage_error("%s needs a number", "--max-diff");
-            char *end = NULL;
-            errno = 0;
-            double x = strtod(value, &end);
-            if (end == value || *end != '\0' || errno == ERANGE || !isfinite(x) || x < 0.0)
-                return usage_error("--max-diff needs a number >= 0, not '%s'", value);
-            options->max_diff = x;
-        } else {
-            return usage_error("unknown option %s", arg);
-        }
-    }
-    if (options->path_count < 2) return usage_error("%s", "needs two images, A and B");
-    return -1;
-}
+const cli_command cmd_compare_spec = {
+    "compare",
+    "compare two images (exit 1 when they differ too much)",
+    "A B",
+    "image",
+    2,
+    2,
+    "Compares two images of the same size and channel count, in any format\n"
+    "OpenImageIO reads (8-bit files read as values in [0,1]), and prints the\n"
+    "largest absolute channel difference, the RMSE over all channels, the PSNR\n"
+    "(peak 1), the number of pixels with any channel different, and the first\n"
+    "such pixel in row order with its values in A and B. Options may come before\n"
+    "or after the images.\n",
+    compare_groups,
+    "Exit status: 0 when the largest difference is <= X, 1 when it is over, 2 on a\n"
+    "usage error or when an image cannot be read, compared (sizes or channel counts\n"
+    "differ) or written.\n",
+    NULL};
 
 static void print_pixel(const rt_image *image, int x, int y) {
     const float *p = image->pixels + ((size_t)y * image->width + x) * image->channels;
@@ -129,8 +82,11 @@ static void print_figures(const compare_options *options, const rt_image *a, con
 
 int cmd_compare(int argc, char **argv) {
     compare_options options;
-    int status = parse_options(argc, argv, &options);
-    if (status >= 0) return status;
+    memset(&options, 0, sizeof options);
+    int status;
+    if (cli_parse(&cmd_compare_spec, &options, argc, argv, &status) < 0) return status;
+    options.paths[0] = argv[0];
+    options.paths[1] = argv[1];
 
     rt_image a = {0}, b = {0}, diff = {0};
     rt_error err;

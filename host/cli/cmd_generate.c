@@ -1,49 +1,81 @@
 /* cmd_generate.c - 'rtcl generate DIR': the built-in scenes as JSON + OBJ. */
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli_util.h"
 #include "commands.h"
-#include "scene/scene_builtin.h"
-#include "formats/scene_save.h"
 
-static const char usage[] =
-    "usage: rtcl generate DIR\n"
-    "\n"
-    "Writes every built-in scene (cornell, keyframes) into the existing folder DIR\n"
-    "as NAME.json plus one NAME_MESH.obj per mesh. The files in scenes/ were made\n"
-    "this way; loading them gives the same scene, bit for bit, as builtin:NAME.\n";
+static const cli_group generate_groups[] = {{NULL}};
 
-int cmd_generate(int argc, char **argv) {
-    const char *dir = NULL;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            fputs(usage, stdout);
+const cli_command cmd_generate_spec = {
+    "generate",
+    "write the built-in scenes as JSON + OBJ files",
+    "DIR",
+    "folder",
+    1,
+    1,
+    "Writes every built-in scene (cornell, keyframes) into the folder DIR as\n"
+    "NAME.json plus one NAME_MESH.obj per mesh, making DIR (and the folders above\n"
+    "it) when it does not exist. The files in scenes/ were made this way; loading\n"
+    "them gives the same scene, bit for bit, as builtin:NAME.\n",
+    generate_groups,
+    NULL,
+    NULL};
+
+/* Makes dir and the folders above it where they are missing (mkdir -p);
+ * 0 with the reason printed when one cannot be made. */
+static int make_folders(const char *dir) {
+    char path[4096];
+    if (!dir[0]) {
+        cli_error("generate", "the folder name is empty");
+        return 0;
+    }
+    if (snprintf(path, sizeof path, "%s", dir) >= (int)sizeof path) {
+        cli_error("generate", "%s: the folder name is too long", dir);
+        return 0;
+    }
+    for (char *p = path + 1;; p++) {
+        if (*p != '/' && *p != '\0') continue;
+        char c = *p;
+        *p = '\0';
+        struct stat st;
+        if (stat(path, &st) != 0) {
+            if (errno != ENOENT || (mkdir(path, 0777) != 0 && errno != EEXIST)) {
+                cli_error("generate", "%s: cannot make the folder: %s", path, strerror(errno));
+                return 0;
+            }
+        } else if (!S_ISDIR(st.st_mode)) {
+            cli_error("generate", "%s: not a folder", path);
             return 0;
         }
-        if (argv[i][0] == '-' || dir) {
-            cli_error("generate", "unexpected argument '%s'\n%s", argv[i], usage);
-            return 2;
-        }
-        dir = argv[i];
+        *p = c;
+        if (!c) return 1;
+        while (p[1] == '/') p++;
+        if (!p[1]) return 1;
     }
-    if (!dir) {
-        fputs(usage, stderr);
-        return 2;
-    }
-    for (int k = 0; rt_builtin_scene_names[k]; k++) {
+}
+
+int cmd_generate(int argc, char **argv) {
+    int code;
+    if (cli_parse(&cmd_generate_spec, NULL, argc, argv, &code) < 0) return code;
+    const char *dir = argv[0];
+    if (!make_folders(dir)) return 2;
+    for (int k = 0; rt_builtin_scene_name(k); k++) {
+        const char *name = rt_builtin_scene_name(k);
         rt_scene *scene;
         rt_error err;
-        rt_status st = rt_scene_builtin(rt_builtin_scene_names[k], &scene, &err);
+        rt_status st = rt_scene_builtin(name, &scene, &err);
         if (st == RT_OK) {
-            st = rt_scene_save_json(scene, dir, rt_builtin_scene_names[k], &err);
+            st = rt_scene_save_json(scene, dir, name, &err);
             rt_scene_destroy(scene);
         }
         if (st != RT_OK) {
             cli_error("generate", "%s", err.message);
             return 2;
         }
-        printf("wrote %s/%s.json\n", dir, rt_builtin_scene_names[k]);
+        printf("wrote %s/%s.json\n", dir, name);
     }
     return 0;
 }

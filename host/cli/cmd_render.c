@@ -1,49 +1,62 @@
 /* cmd_render.c - 'rtcl render': a scene to an image or an AOV. */
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli_anim.h"
 #include "cli_util.h"
 #include "commands.h"
 #include "frame_image.h"
 
-static const char usage_head[] =
-    "usage: rtcl render SCENE [-o FILE] [--backend B] [--device D] [--width W] [--height H]\n"
-    "                   [--aov AOV] [--threads N] [--frames N] [--direct] [--time T]\n"
-    "                   [--update P] [--accel A]\n"
-    "                   [--cl-options OPTS] [--packet-isa I] [--stats] [--verbose] [--help]\n"
-    "\n"
+typedef struct render_args {
+    const char *out;
+    int frames, stats;
+    cli_frame_args frame;
+    cli_scene_args scene;
+    cli_renderer_args renderer;
+} render_args;
+
+static const cli_option render_options[] = {
+    {"--output", 'o', CLI_STRING, "FILE", offsetof(render_args, out), .flags = CLI_NONEMPTY,
+     .help = "the image, its format by the extension: .png and .ppm (8-bit, clamped), .exr and "
+             ".pfm (32-bit float, linear)",
+     .fallback = "out.png"},
+    {"--frames", 0, CLI_INT, "N", offsetof(render_args, frames), 1, 1000,
+     .help = "render N frames in one process and print the first frame's time and the min and "
+             "median of the others (a benchmark); the image written is the first frame's",
+     .fallback = "1"},
+    {"--stats", 0, CLI_FLAG, NULL, offsetof(render_args, stats),
+     .help = "print BVH cost, box and triangle tests per ray and render time; for opencl and "
+             "vulkan also the device, kernel specialisation (-D switches, specialization "
+             "constants), compile, upload (bytes), per-kernel (vulkan: timestamp queries) and "
+             "download times"},
+    {NULL}};
+
+static const cli_group render_groups[] = {
+    {NULL, render_options, 0},
+    {CLI_FRAME_TITLE, cli_frame_options, offsetof(render_args, frame)},
+    {CLI_FRAME_TITLE, cli_aov_options, offsetof(render_args, frame)},
+    {CLI_SCENE_TITLE, cli_scene_options, offsetof(render_args, scene)},
+    {CLI_SCENE_TITLE, cli_time_options, offsetof(render_args, scene)},
+    {CLI_SCENE_TITLE, cli_update_options, offsetof(render_args, scene)},
+    {CLI_RENDERER_TITLE, cli_renderer_options, offsetof(render_args, renderer)},
+    {CLI_KERNEL_TITLE, cli_kernel_options, offsetof(render_args, renderer)},
+    {CLI_TEST_TITLE, cli_test_options, offsetof(render_args, renderer)},
+    {NULL}};
+
+const cli_command cmd_render_spec = {
+    "render",
+    "render a scene to an image (PNG, EXR, PPM, PFM) or an AOV",
+    "SCENE",
+    "scene",
+    1,
+    1,
     "Renders SCENE (a .json scene, a bare .obj, or builtin:NAME) with Whitted-style\n"
     "shading (Phong, shadow rays, reflection, refraction). Options may come before or\n"
-    "after SCENE.\n"
-    "\n"
-    "  -o FILE        output image, format by extension: .png, .ppm (8-bit, clamped),\n"
-    "                 .exr (32-bit float, linear) [out.png]\n"
-    "  --width W, --height H\n"
-    "                 resolution, overriding the scene's camera\n"
-    "  --aov AOV      write an arbitrary output variable instead of the image:\n"
-    "                 depth, primid, instid, normal, boxtests, tritests. In EXR the raw\n"
-    "                 values; in PNG/PPM depth and counters scaled to [0,1] by their\n"
-    "                 maximum, ids in false colour, normals as 0.5 + 0.5 n\n"
-    "  --frames N     render N frames in one process and print the first frame's\n"
-    "                 time and the min and median of the others (a benchmark) [1]\n"
-    "  --direct       primary and shadow rays only, no reflection or refraction\n"
-    "                 (the thesis's benchmark set-up)\n"
-    "  --time T       the scene at time T seconds (animation, transform_keys and the\n"
-    "                 camera path, docs/SCENE_FORMAT.md) [0]\n"
-    "  --update P     every mesh's BVH update policy: rebuild, refit, fast, auto\n"
-    "                 (a single frame builds afresh whatever the policy) [the scene's]\n"
-    "  --stats        print BVH cost, box and triangle tests per ray and render time;\n"
-    "                 for opencl and vulkan also the device, kernel specialisation\n"
-    "                 (-D switches, specialization constants), compile, upload\n"
-    "                 (bytes), per-kernel (vulkan: timestamp queries) and download\n"
-    "                 times\n";
-
-static void print_usage(FILE *f) {
-    fputs(usage_head, f);
-    fputs(cli_renderer_usage, f);
-}
+    "after SCENE.\n",
+    render_groups,
+    NULL,
+    NULL};
 
 static void print_stats(const rt_render_stats *s, int width, int height) {
     double rays = (double)(s->rays ? s->rays : 1);
@@ -101,100 +114,32 @@ static void print_stats(const rt_render_stats *s, int width, int height) {
 }
 
 int cmd_render(int argc, char **argv) {
-    const char *scene_path = NULL, *out_path = "out.png";
+    render_args a;
+    memset(&a, 0, sizeof a);
+    a.out = "out.png";
+    a.frames = 1;
+    cli_frame_args_init(&a.frame);
+    cli_scene_args_init(&a.scene);
+    cli_renderer_args_init(&a.renderer);
+    int code;
+    if (cli_parse(&cmd_render_spec, &a, argc, argv, &code) < 0) return code;
+    const char *out_path = a.out;
+    int frames = a.frames, stats = a.stats;
     rt_render_options opt = rt_render_options_default();
-    cli_renderer_args ra;
-    cli_renderer_args_init(&ra);
-    int width = 0, height = 0, stats = 0, frames = 1, has_time = 0, has_update = 0;
-    double time = 0.0;
-    rt_update_policy update = RT_UPDATE_REBUILD;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v;
-        int taken = cli_renderer_arg(argc, argv, &i, "render", &ra);
-        if (taken < 0) return 2;
-        if (taken) continue;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            print_usage(stdout);
-            return 0;
-        } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            if (!(out_path = cli_value(argc, argv, &i, "render"))) return 2;
-        } else if (!strcmp(a, "--width")) {
-            if (!(v = cli_value(argc, argv, &i, "render")) ||
-                !cli_int("render", a, v, 1, 32768, &width))
-                return 2;
-        } else if (!strcmp(a, "--height")) {
-            if (!(v = cli_value(argc, argv, &i, "render")) ||
-                !cli_int("render", a, v, 1, 32768, &height))
-                return 2;
-        } else if (!strcmp(a, "--aov")) {
-            if (!(v = cli_value(argc, argv, &i, "render"))) return 2;
-            if (!cli_parse_aov(v, &opt.aov)) {
-                cli_error("render",
-                          "unknown AOV '%s' (depth, primid, instid, normal, boxtests, "
-                          "tritests)",
-                          v);
-                return 2;
-            }
-        } else if (!strcmp(a, "--frames")) {
-            if (!(v = cli_value(argc, argv, &i, "render")) ||
-                !cli_int("render", a, v, 1, 1000, &frames))
-                return 2;
-        } else if (!strcmp(a, "--stats")) {
-            stats = 1;
-        } else if (!strcmp(a, "--time")) {
-            if (!(v = cli_value(argc, argv, &i, "render")) || !cli_float("render", a, v, &time))
-                return 2;
-            has_time = 1;
-        } else if (!strcmp(a, "--update")) {
-            if (!(v = cli_value(argc, argv, &i, "render")) ||
-                !cli_update_policy("render", v, &update))
-                return 2;
-            has_update = 1;
-        } else if (!strcmp(a, "--direct")) {
-            opt.direct_only = 1;
-        } else if (a[0] == '-' && a[1]) {
-            cli_error("render", "unknown option '%s'", a);
-            print_usage(stderr);
-            return 2;
-        } else if (scene_path) {
-            cli_error("render", "more than one scene given ('%s' and '%s')", scene_path, a);
-            return 2;
-        } else {
-            scene_path = a;
-        }
-    }
-    if (!scene_path) {
-        cli_error("render", "no scene given");
-        print_usage(stderr);
-        return 2;
-    }
-    rt_renderer *renderer = cli_renderer_create("render", &ra);
-    if (!renderer) return 2;
+    opt.aov = (rt_aov)a.frame.aov;
+    opt.direct_only = a.frame.direct;
 
-    rt_scene *scene;
-    rt_error err;
-    if (cli_load_scene(scene_path, &scene, &err) != RT_OK) {
-        cli_error("render", "%s", err.message);
-        rt_renderer_destroy(renderer);
-        return 2;
-    }
-    if (!cli_apply_accel("render", &ra, scene)) {
+    rt_renderer *renderer = cli_renderer_create("render", &a.renderer);
+    if (!renderer) return 2;
+    rt_scene *scene = cli_scene_open("render", argv[0], &a.scene);
+    if (!scene || !cli_apply_frame_size("render", scene, &a.frame)) {
         rt_scene_destroy(scene);
         rt_renderer_destroy(renderer);
         return 2;
     }
+    rt_error err;
     rt_camera cam;
     rt_camera_get(scene, &cam);
-    if (width) cam.width = width;
-    if (height) cam.height = height;
-    if (rt_camera_set(scene, &cam) != RT_OK ||
-        (has_time && rt_scene_set_time(scene, time) != RT_OK)) {
-        cli_error("render", "%s", rt_scene_error(scene));
-        rt_scene_destroy(scene);
-        rt_renderer_destroy(renderer);
-        return 2;
-    }
-    if (has_update) cli_apply_update(scene, update);
     rt_render_stats st;
     memset(&st, 0, sizeof st);
     opt.stats = &st;
@@ -204,7 +149,7 @@ int cmd_render(int argc, char **argv) {
     memset(&fb, 0, sizeof fb);
     rt_status status = rt_render(renderer, scene, &opt, &fb);
     cli_progress_done();
-    if (ra.verbose && status == RT_OK) cli_print_build_log("render", renderer);
+    if (a.renderer.verbose && status == RT_OK) cli_print_build_log("render", renderer);
     if (status != RT_OK) {
         cli_error("render", "%s", rt_renderer_error(renderer));
         rt_scene_destroy(scene);
@@ -230,8 +175,8 @@ int cmd_render(int argc, char **argv) {
             rt_renderer_destroy(renderer);
             return 2;
         }
-        for (int a = 1; a < timed; a++) /* insertion sort: a handful of values */
-            for (int b = a; b > 0 && ms[b] < ms[b - 1]; b--) {
+        for (int i = 1; i < timed; i++) /* insertion sort: a handful of values */
+            for (int b = i; b > 0 && ms[b] < ms[b - 1]; b--) {
                 double t = ms[b];
                 ms[b] = ms[b - 1];
                 ms[b - 1] = t;

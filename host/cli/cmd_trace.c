@@ -1,62 +1,98 @@
 /* cmd_trace.c - 'rtcl trace': rays from a text file through a scene, one hit
  * line per ray (rt_trace_rays). */
 #include <errno.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli_util.h"
 #include "commands.h"
-#include "formats/ray_file.h"
-#include "scene/scene.h"
 
-static const char usage_head[] =
-    "usage: rtcl trace SCENE --rays RAYS.txt --out HITS.txt [--backend B] [--device D]\n"
-    "                  [--tri-test T] [--any-hit] [--offset-origins] [--threads N]\n"
-    "                  [--accel A] [--reps N] [--stats] [--json] [--packet-path P]\n"
-    "                  [--cl-options OPTS] [--packet-isa I] [--verbose] [--help]\n"
-    "\n"
+typedef struct trace_args {
+    const char *rays, *out;
+    int tri_test, any_hit, offset, reps, stats, json, packet_path;
+    cli_scene_args scene;
+    cli_renderer_args renderer;
+} trace_args;
+
+static const cli_choice tri_test_choices[] = {{"watertight", RT_TRI_TEST_WATERTIGHT},
+                                              {"mt", RT_TRI_TEST_MOLLER},
+                                              {"pluecker", RT_TRI_TEST_PLUECKER},
+                                              {"badouel", RT_TRI_TEST_BADOUEL},
+                                              {NULL, 0}};
+static const cli_choice path_choices[] = {{"auto", RT_TRACE_PATH_AUTO},
+                                          {"packets", RT_TRACE_PATH_PACKETS},
+                                          {"single", RT_TRACE_PATH_SINGLE},
+                                          {NULL, 0}};
+
+static const cli_option trace_options[] = {
+    {"--rays", 0, CLI_STRING, "RAYS.txt", offsetof(trace_args, rays),
+     .flags = CLI_NONEMPTY | CLI_REQUIRED,
+     .help = "the rays, one a line: ox oy oz dx dy dz tmin tmax (the ray o + t d for t in "
+             "[tmin, tmax], inclusive; d need not be normalised, t is in its units). Blank lines "
+             "and lines starting with '#' are skipped. A ray with a NaN or infinite component or "
+             "a zero direction is a miss",
+     .fallback = "required"},
+    {"--out", 'o', CLI_STRING, "HITS.txt", offsetof(trace_args, out),
+     .flags = CLI_NONEMPTY | CLI_REQUIRED,
+     .help = "the hits, one line per ray: 'hit t u v prim', plus ' inst' when the scene has "
+             "more than one object. hit is 1 or 0; p = (1-u-v) v0 + u v1 + v v2; prim is the "
+             "0-based triangle index in its mesh's file order; inst the object index. Floats as "
+             "%.9g. A miss is '0 inf 0 0 -1' (plus ' -1')",
+     .fallback = "required unless --stats or --json"},
+    {"--tri-test", 0, CLI_CHOICE, "T", offsetof(trace_args, tri_test), .choices = tri_test_choices,
+     .help = "the ray/triangle test: {choices} (watertight: Woop, Benthin, Wald 2013; mt: "
+             "Moller-Trumbore; pluecker; badouel)",
+     .fallback = "watertight"},
+    {"--any-hit", 0, CLI_FLAG, NULL, offsetof(trace_args, any_hit),
+     .help = "stop at any hit in range (shadow-ray queries): hit is then exact, t u v prim inst "
+             "belong to some hit, not the closest"},
+    {"--offset-origins", 0, CLI_FLAG, NULL, offsetof(trace_args, offset),
+     .help = "each ray line has 3 more numbers, nx ny nz: the origin is a point on a surface "
+             "with that normal, and is moved off it with the engine's offset (as for shadow and "
+             "secondary rays), to the side the direction points to"},
+    {"--reps", 0, CLI_INT, "N", offsetof(trace_args, reps), 1, 100000,
+     .help = "trace the rays N times after one untimed warm-up (the hits written are the last "
+             "run's, the same every time)",
+     .fallback = "1, no warm-up"},
+    {"--stats", 0, CLI_FLAG, NULL, offsetof(trace_args, stats),
+     .help = "print the trace time alone (not reading rays, not writing hits, not BVH builds): "
+             "min and median ms over the runs, Mrays/s at the min, and the path the rays took "
+             "(the packet backend: coherent groups of 64 rays as packets, the others one at a "
+             "time through wide BVHs); --out may then be left out"},
+    {"--json", 0, CLI_FLAG, NULL, offsetof(trace_args, json),
+     .help = "the same as one JSON object on stdout (ms_min, ms_median, mrays, rays, reps, "
+             "threads, backend, isa, packet_rays, single_rays, build_ms, any_hit)"},
+    {"--packet-path", 0, CLI_CHOICE, "P", offsetof(trace_args, packet_path),
+     .choices = path_choices,
+     .help = "the packet backend's path: {choices} (auto: each group of 64 consecutive rays "
+             "that is coherent as a packet, the others one at a time through wide BVHs); the "
+             "same hits on every path",
+     .fallback = "auto"},
+    {NULL}};
+
+static const cli_group trace_groups[] = {
+    {NULL, trace_options, 0},
+    {CLI_SCENE_TITLE, cli_scene_options, offsetof(trace_args, scene)},
+    {CLI_SCENE_TITLE, cli_time_options, offsetof(trace_args, scene)},
+    {CLI_RENDERER_TITLE, cli_renderer_options, offsetof(trace_args, renderer)},
+    {CLI_KERNEL_TITLE, cli_kernel_options, offsetof(trace_args, renderer)},
+    {CLI_TEST_TITLE, cli_test_options, offsetof(trace_args, renderer)},
+    {NULL}};
+
+const cli_command cmd_trace_spec = {
+    "trace",
+    "trace rays from a text file and write their hits",
+    "SCENE",
+    "scene",
+    1,
+    1,
     "Traces the rays of RAYS.txt through SCENE (a .json scene, a bare .obj, or\n"
-    "builtin:NAME) and writes one line per ray to HITS.txt.\n"
-    "\n"
-    "RAYS.txt   one ray per line: ox oy oz dx dy dz tmin tmax (the ray o + t d for\n"
-    "           t in [tmin, tmax], inclusive; d need not be normalised, t is in its\n"
-    "           units). Blank lines and lines starting with '#' are skipped. A ray\n"
-    "           with a NaN or infinite component or a zero direction is a miss.\n"
-    "HITS.txt   per ray: 'hit t u v prim', plus ' inst' when the scene has more\n"
-    "           than one object. hit is 1 or 0; p = (1-u-v) v0 + u v1 + v v2; prim is\n"
-    "           the 0-based triangle index in its mesh's file order; inst the object\n"
-    "           index. Floats as %.9g. A miss is '0 inf 0 0 -1' (plus ' -1').\n"
-    "\n"
-    "  --tri-test T the ray/triangle test: watertight (Woop, Benthin, Wald 2013),\n"
-    "               mt (Moller-Trumbore), pluecker or badouel [watertight]\n"
-    "  --any-hit    stop at any hit in range (shadow-ray queries): hit is then\n"
-    "               exact, t u v prim inst belong to some hit, not the closest\n"
-    "  --offset-origins  each ray line has 3 more numbers, nx ny nz: the origin\n"
-    "               is a point on a surface with that normal, and is moved off it\n"
-    "               with the engine's offset (as for shadow and secondary rays),\n"
-    "               to the side the direction points to\n"
-    "  --reps N     trace the rays N times after one untimed warm-up (the hits\n"
-    "               written are the last run's, the same every time) [1, no warm-up]\n"
-    "  --stats      print the trace time alone (not reading rays, not writing\n"
-    "               hits, not BVH builds): min and median ms over the runs, Mrays/s\n"
-    "               at the min, and the path the rays took (the packet backend:\n"
-    "               coherent groups of 64 rays as packets, the others one at a time\n"
-    "               through wide BVHs); --out may then be left out\n"
-    "  --packet-path P  the packet backend's path: auto (each group of 64\n"
-    "               consecutive rays that is coherent as a packet, the others one\n"
-    "               at a time through wide BVHs), packets, or single; the same hits\n"
-    "               on every path [auto]\n"
-    "  --json       the same as one JSON object on stdout (ms_min, ms_median,\n"
-    "               mrays, rays, reps, threads, backend, isa, packet_rays,\n"
-    "               single_rays, build_ms, any_hit)\n";
-
-static void print_usage(FILE *f) {
-    fputs(usage_head, f);
-    fputs(cli_renderer_usage, f);
-}
-
-static const char *const tri_test_names[] = {"watertight", "mt", "pluecker", "badouel"};
+    "builtin:NAME) and writes one line per ray to HITS.txt.\n",
+    trace_groups,
+    NULL,
+    NULL};
 
 static int cmp_double(const void *a, const void *b) {
     const double x = *(const double *)a, y = *(const double *)b;
@@ -96,97 +132,40 @@ static void print_stats(const rt_trace_stats *ts, double *ms, int reps, double b
 }
 
 int cmd_trace(int argc, char **argv) {
-    const char *scene_path = NULL, *rays_path = NULL, *out_path = NULL;
-    int offset = 0, reps = 1, warm_up = 0, stats = 0, json = 0;
-    rt_trace_options opt;
-    memset(&opt, 0, sizeof opt);
-    cli_renderer_args ra;
-    cli_renderer_args_init(&ra);
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        int taken = cli_renderer_arg(argc, argv, &i, "trace", &ra);
-        if (taken < 0) return 2;
-        if (taken) continue;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            print_usage(stdout);
-            return 0;
-        } else if (!strcmp(a, "--rays")) {
-            if (!(rays_path = cli_value(argc, argv, &i, "trace"))) return 2;
-        } else if (!strcmp(a, "--out") || !strcmp(a, "-o")) {
-            if (!(out_path = cli_value(argc, argv, &i, "trace"))) return 2;
-        } else if (!strcmp(a, "--tri-test")) {
-            const char *name = cli_value(argc, argv, &i, "trace");
-            if (!name) return 2;
-            int found = -1;
-            for (int k = 0; k < 4; k++)
-                if (!strcmp(name, tri_test_names[k])) found = k;
-            if (found < 0) {
-                cli_error("trace", "unknown triangle test '%s' (watertight, mt, pluecker, badouel)",
-                          name);
-                return 2;
-            }
-            opt.tri_test = (rt_triangle_test)found;
-        } else if (!strcmp(a, "--offset-origins")) {
-            offset = 1;
-        } else if (!strcmp(a, "--any-hit")) {
-            opt.any_hit = 1;
-        } else if (!strcmp(a, "--reps")) {
-            const char *v = cli_value(argc, argv, &i, "trace");
-            if (!v || !cli_int("trace", "--reps", v, 1, 100000, &reps)) return 2;
-            warm_up = 1;
-        } else if (!strcmp(a, "--packet-path")) {
-            const char *v = cli_value(argc, argv, &i, "trace");
-            if (!v) return 2;
-            if (!strcmp(v, "auto")) {
-                opt.packet_path = RT_TRACE_PATH_AUTO;
-            } else if (!strcmp(v, "packets")) {
-                opt.packet_path = RT_TRACE_PATH_PACKETS;
-            } else if (!strcmp(v, "single")) {
-                opt.packet_path = RT_TRACE_PATH_SINGLE;
-            } else {
-                cli_error("trace", "unknown packet path '%s' (auto, packets, single)", v);
-                return 2;
-            }
-        } else if (!strcmp(a, "--stats")) {
-            stats = 1;
-        } else if (!strcmp(a, "--json")) {
-            json = 1;
-        } else if (a[0] == '-' && a[1]) {
-            cli_error("trace", "unknown option '%s'", a);
-            print_usage(stderr);
-            return 2;
-        } else if (scene_path) {
-            cli_error("trace", "more than one scene given ('%s' and '%s')", scene_path, a);
-            return 2;
-        } else {
-            scene_path = a;
-        }
-    }
-    if (!scene_path || !rays_path || (!out_path && !stats && !json)) {
-        cli_error("trace", "need SCENE, --rays and --out (or --stats or --json)");
-        print_usage(stderr);
+    trace_args a;
+    memset(&a, 0, sizeof a);
+    cli_scene_args_init(&a.scene);
+    cli_renderer_args_init(&a.renderer);
+    int code;
+    if (cli_parse(&cmd_trace_spec, &a, argc, argv, &code) < 0) return code;
+    if (!a.rays) {
+        cli_usage_error(&cmd_trace_spec, "--rays RAYS.txt is required");
         return 2;
     }
-    rt_renderer *renderer = cli_renderer_create("trace", &ra);
+    if (!a.out && !a.stats && !a.json) {
+        cli_usage_error(&cmd_trace_spec, "--out HITS.txt is required (or --stats or --json)");
+        return 2;
+    }
+    const char *out_path = a.out;
+    /* --reps given (even 1): one untimed warm-up run first. */
+    int reps = a.reps ? a.reps : 1, warm_up = a.reps != 0, stats = a.stats, json = a.json;
+    rt_trace_options opt;
+    memset(&opt, 0, sizeof opt);
+    opt.tri_test = (rt_triangle_test)a.tri_test;
+    opt.any_hit = a.any_hit;
+    opt.packet_path = (rt_trace_path)a.packet_path;
+    rt_renderer *renderer = cli_renderer_create("trace", &a.renderer);
     if (!renderer) return 2;
     rt_ray *rays = NULL;
     size_t n = 0;
     rt_error rerr;
-    if (rt_rays_load(rays_path, offset, &rays, &n, &rerr) != RT_OK) {
+    if (rt_rays_load(a.rays, a.offset, &rays, &n, &rerr) != RT_OK) {
         cli_error("trace", "%s", rerr.message);
         rt_renderer_destroy(renderer);
         return 2;
     }
-    rt_scene *scene;
-    rt_error err;
-    if (cli_load_scene(scene_path, &scene, &err) != RT_OK) {
-        cli_error("trace", "%s", err.message);
-        free(rays);
-        rt_renderer_destroy(renderer);
-        return 2;
-    }
-    if (!cli_apply_accel("trace", &ra, scene)) {
-        rt_scene_destroy(scene);
+    rt_scene *scene = cli_scene_open("trace", argv[0], &a.scene);
+    if (!scene) {
         free(rays);
         rt_renderer_destroy(renderer);
         return 2;
@@ -203,7 +182,7 @@ int cmd_trace(int argc, char **argv) {
         build_ms += ts.build_ms;
         if (run >= 0) ms[run] = ts.trace_ms;
     }
-    if (ra.verbose && st == RT_OK) cli_print_build_log("trace", renderer);
+    if (a.renderer.verbose && st == RT_OK) cli_print_build_log("trace", renderer);
     if (st != RT_OK) {
         cli_error("trace", "%s", hits && ms ? rt_renderer_error(renderer) : "out of memory");
         free(rays);
@@ -213,10 +192,12 @@ int cmd_trace(int argc, char **argv) {
         rt_renderer_destroy(renderer);
         return 2;
     }
-    if (stats || json) print_stats(&ts, ms, reps, build_ms, ra.opt.threads, opt.any_hit, json);
+    if (stats || json) print_stats(&ts, ms, reps, build_ms, a.renderer.threads, opt.any_hit, json);
     free(ms);
     rt_renderer_destroy(renderer);
-    int with_inst = scene->object_count > 1;
+    rt_scene_info info;
+    rt_scene_describe(scene, &info);
+    int with_inst = info.objects > 1;
     if (!out_path) {
         free(rays);
         free(hits);

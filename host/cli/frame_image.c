@@ -7,28 +7,26 @@
 #include <string.h>
 #include <strings.h>
 
-#include "formats/image.h"
-
-static const struct {
-    const char *name;
-    rt_aov aov;
-} aov_names[] = {{"depth", RT_AOV_DEPTH},        {"primid", RT_AOV_PRIMID},
-                 {"instid", RT_AOV_INSTID},      {"normal", RT_AOV_NORMAL},
-                 {"boxtests", RT_AOV_BOX_TESTS}, {"tritests", RT_AOV_TRI_TESTS}};
-#define AOV_NAME_COUNT (sizeof aov_names / sizeof aov_names[0])
+const cli_choice cli_aov_choices[] = {{"depth", RT_AOV_DEPTH},
+                                      {"primid", RT_AOV_PRIMID},
+                                      {"instid", RT_AOV_INSTID},
+                                      {"normal", RT_AOV_NORMAL},
+                                      {"boxtests", RT_AOV_BOX_TESTS},
+                                      {"tritests", RT_AOV_TRI_TESTS},
+                                      {NULL, 0}};
 
 int cli_parse_aov(const char *name, rt_aov *out) {
-    for (size_t i = 0; i < AOV_NAME_COUNT; i++)
-        if (strcmp(name, aov_names[i].name) == 0) {
-            *out = aov_names[i].aov;
+    for (const cli_choice *c = cli_aov_choices; c->name; c++)
+        if (strcmp(name, c->name) == 0) {
+            *out = (rt_aov)c->value;
             return 1;
         }
     return 0;
 }
 
 const char *cli_aov_name(rt_aov aov) {
-    for (size_t i = 0; i < AOV_NAME_COUNT; i++)
-        if (aov_names[i].aov == aov) return aov_names[i].name;
+    for (const cli_choice *c = cli_aov_choices; c->name; c++)
+        if (c->value == (int)aov) return c->name;
     return "shaded";
 }
 

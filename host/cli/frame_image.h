@@ -4,7 +4,12 @@
 #ifndef RTCL_FRAME_IMAGE_H
 #define RTCL_FRAME_IMAGE_H
 
+#include "cli_options.h"
 #include "rt.h"
+
+/* The AOV names (depth, primid, instid, normal, boxtests, tritests) and
+ * their rt_aov values, for --aov. */
+extern const cli_choice cli_aov_choices[];
 
 /* Parses an AOV name (depth, primid, instid, normal, boxtests, tritests);
  * returns 1 and sets *out when known, 0 otherwise. */

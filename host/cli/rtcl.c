@@ -1,32 +1,63 @@
-/* rtcl.c - the command-line tool: one function per command (commands.h). */
+/* rtcl.c - the command-line tool: one function per command (commands.h),
+ * 'rtcl help [COMMAND]' and the list of commands. */
 #include <stdio.h>
 #include <string.h>
 
 #include "commands.h"
 
 static const struct {
-    const char *name;
+    const cli_command *spec;
     int (*run)(int, char **);
-    const char *summary;
 } commands[] = {
-    {"render", cmd_render, "render a scene to an image (PNG, EXR, PPM) or an AOV"},
-    {"trace", cmd_trace, "trace rays from a text file and write their hits"},
-    {"info", cmd_info, "print what a scene holds and which features it uses"},
-    {"compare", cmd_compare, "compare two images (exit 1 when they differ too much)"},
-    {"devices", cmd_devices, "list OpenCL platforms and devices, and which are bit-exact"},
-    {"bench", cmd_bench, "measure BVH builds (and renders) on scenes, beside Embree"},
-    {"generate", cmd_generate, "write the built-in scenes as JSON + OBJ files"},
-    {"animate", cmd_animate, "render the frames of an animated scene to images"},
-    {"view", cmd_view, "fly through a scene in a window, switch backends live (SDL2)"},
+    {&cmd_render_spec, cmd_render},     {&cmd_trace_spec, cmd_trace},
+    {&cmd_info_spec, cmd_info},         {&cmd_compare_spec, cmd_compare},
+    {&cmd_devices_spec, cmd_devices},   {&cmd_bench_spec, cmd_bench},
+    {&cmd_generate_spec, cmd_generate}, {&cmd_animate_spec, cmd_animate},
+    {&cmd_view_spec, cmd_view},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 
 static void usage(FILE *out) {
-    fprintf(out, "usage: rtcl COMMAND [ARGS...]\n\ncommands:\n");
+    fprintf(out, "usage: rtcl COMMAND [ARGS...]\n"
+                 "       rtcl help [COMMAND | --synopsis]\n\ncommands:\n");
     for (size_t i = 0; i < COMMAND_COUNT; i++)
-        fprintf(out, "  %-9s %s\n", commands[i].name, commands[i].summary);
-    fprintf(out, "\n'rtcl COMMAND --help' describes each command. A SCENE is a .json scene file,\n"
-                 "a bare .obj file, or builtin:NAME (cornell, keyframes).\n");
+        fprintf(out, "  %-9s %s\n", commands[i].spec->name, commands[i].spec->summary);
+    fprintf(out, "\n'rtcl COMMAND --help' or 'rtcl help COMMAND' describes each command, and\n"
+                 "'rtcl help --synopsis' lists every command's synopsis. A SCENE is a .json\n"
+                 "scene file, a bare .obj file, or builtin:NAME (cornell, keyframes).\n");
+}
+
+static int find(const char *name) {
+    for (size_t i = 0; i < COMMAND_COUNT; i++)
+        if (strcmp(name, commands[i].spec->name) == 0) return (int)i;
+    return -1;
+}
+
+/* 'rtcl help', 'rtcl help COMMAND', 'rtcl help --synopsis'. */
+static int help(int argc, char **argv) {
+    if (argc < 3) {
+        usage(stdout);
+        return 0;
+    }
+    if (argc > 3) {
+        fprintf(stderr, "rtcl help: one command at a time ('%s' and '%s'); see 'rtcl --help'\n",
+                argv[2], argv[3]);
+        return 2;
+    }
+    if (!strcmp(argv[2], "--synopsis")) { /* README's list of commands */
+        for (size_t i = 0; i < COMMAND_COUNT; i++) {
+            printf("%s# %s\n", i ? "\n" : "", commands[i].spec->summary);
+            cli_print_synopsis(commands[i].spec, stdout, "");
+        }
+        return 0;
+    }
+    int k = find(argv[2]);
+    if (k < 0) {
+        fprintf(stderr, "rtcl help: unknown command '%s'; see 'rtcl --help'\n", argv[2]);
+        return 2;
+    }
+    cli_print_usage(commands[k].spec, stdout);
+    return 0;
 }
 
 int main(int argc, char **argv) {
@@ -34,14 +65,13 @@ int main(int argc, char **argv) {
         usage(stderr);
         return 2;
     }
-    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
-        strcmp(argv[1], "help") == 0) {
+    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
         usage(stdout);
         return 0;
     }
-    for (size_t i = 0; i < COMMAND_COUNT; i++)
-        if (strcmp(argv[1], commands[i].name) == 0) return commands[i].run(argc - 1, argv + 1);
-    fprintf(stderr, "rtcl: unknown command '%s'\n\n", argv[1]);
-    usage(stderr);
+    if (!strcmp(argv[1], "help")) return help(argc, argv);
+    int k = find(argv[1]);
+    if (k >= 0) return commands[k].run(argc - 1, argv + 1);
+    fprintf(stderr, "rtcl: unknown command '%s'; see 'rtcl --help'\n", argv[1]);
     return 2;
 }

@@ -19,9 +19,7 @@
 rt_status rt_rays_parse(const char *text, size_t len, const char *name, int with_normals,
                         rt_ray **rays, size_t *count, rt_error *err);
 
-/* Reads the ray file at path (a regular file of at most
- * RT_MAX_RAY_FILE_BYTES, base/file_read.h) and parses it as above. */
-rt_status rt_rays_load(const char *path, int with_normals, rt_ray **rays, size_t *count,
-                       rt_error *err);
+/* rt_rays_load (public, rt.h) reads the ray file at path (a regular file of
+ * at most RT_MAX_RAY_FILE_BYTES, base/file_read.h) and parses it as above. */
 
 #endif /* RT_RAY_FILE_H */

@@ -234,7 +234,7 @@ rt_status rt_scene_save_json(const rt_scene *s, const char *dir, const char *nam
         const char *mesh = saved_name(s, usable, i, mesh_name);
         fprintf(f, "%s\n    \"%s\": {\"file\": \"%s_%s.obj\"", first ? "" : ",", mesh, name, mesh);
         if (md->accel) fprintf(f, ", \"accel\": \"%s\"", rt_accel_name((rt_accel)md->accel));
-        if (md->update_policy != RT_UPDATE_REBUILD)
+        if (md->update_policy != RT_UPDATE_SAH)
             fprintf(f, ", \"update\": \"%s\"",
                     rt_update_policy_name((rt_update_policy)md->update_policy));
         fputc('}', f);

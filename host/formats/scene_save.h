@@ -4,17 +4,7 @@
 
 #include "rt.h"
 
-/* Writes dir/name.json and dir/name_MESH.obj for each mesh. MESH is the
- * mesh's name when every mesh has a plain name (letters, digits, '_', '-',
- * '.', not starting with '.') and no two are alike, else mesh_INDEX for
- * every mesh. Floats are written with %.9g so that loading the files gives
- * the same bits. Meshes with per-triangle materials are RT_ERROR_UNSUPPORTED.
- * Everything the JSON reader reads about time is written: objects'
- * "animation" and "transform_keys", the camera's "path", meshes' "update"
- * and "accel"; the blend meshes of morphing objects are left out (the loader
- * makes them again), so that the saved scene renders at every time as the
- * scene does. */
-rt_status rt_scene_save_json(const rt_scene *scene, const char *dir, const char *name,
-                             rt_error *err);
+/* rt_scene_save_json, a scene as dir/name.json plus one OBJ file per mesh,
+ * is public: declared (with its contract) in rt.h. */
 
 #endif /* RT_SCENE_SAVE_H */

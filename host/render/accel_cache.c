@@ -107,13 +107,9 @@ static rt_status refit(rt_accel_cache *c, const rt_mesh_data *md, uint32_t m, rt
     return RT_OK;
 }
 
-/* Whether mesh m gets a kd-tree: its accel says so and it is static (a
- * mesh with an update policy other than rebuild keeps a BVH, which can be
- * refitted). rt_mesh_set_positions and rt_mesh_set_update already turn such
- * a mesh's accel back to BVH; this is the cache's own guard. */
+/* Whether mesh m gets a kd-tree (the scene's one rule). */
 static int mesh_is_kd(const rt_mesh_data *md) {
-    return (md->accel == RT_ACCEL_KD || md->accel == RT_ACCEL_KD_BINNED) &&
-           md->update_policy == RT_UPDATE_REBUILD;
+    return rt_mesh_data_structure(md) != RT_ACCEL_BVH;
 }
 
 /* Builds mesh m's kd-tree whole, and a BVH of its one root box for the
@@ -173,20 +169,20 @@ static rt_status update_mesh(rt_accel_cache *c, const rt_scene *scene, uint32_t 
             if (st == RT_OK && policy == RT_UPDATE_AUTO) {
                 /* Refit while the tree stays within the bound of its last
                  * rebuild's cost; past it, rebuild. */
-                sah = rt_bvh_sah(&c->bvhs[m], 1.0f, 2.0f);
+                sah = rt_bvh_sah_cost(&c->bvhs[m], rt_sah_costs_default());
                 if (sah > RT_UPDATE_AUTO_BOUND * c->sah_rebuilt[m]) {
                     st = tri_boxes(c, md, err);
-                    if (st == RT_OK) st = build(c, md, m, RT_BUILDER_FAST, pool, err);
+                    if (st == RT_OK) st = build(c, md, m, RT_BUILDER_SAH, pool, err);
                     action = RT_ACTION_REBUILD;
                 }
             }
         } else {
             st = tri_boxes(c, md, err);
-            if (st == RT_OK && policy == RT_UPDATE_FAST) {
+            if (st == RT_OK && policy == RT_UPDATE_LBVH) {
                 st = build(c, md, m, RT_BUILDER_LBVH, pool, err);
-                action = RT_ACTION_FAST;
+                action = RT_ACTION_LBVH;
             } else if (st == RT_OK) {
-                st = build(c, md, m, RT_BUILDER_FAST, pool, err);
+                st = build(c, md, m, RT_BUILDER_SAH, pool, err);
             }
         }
         if (st != RT_OK) return st;
@@ -198,10 +194,10 @@ static rt_status update_mesh(rt_accel_cache *c, const rt_scene *scene, uint32_t 
     /* Measured outside the update's time (but for "auto", which needs it):
      * one pass over the nodes. */
     if (c->kds[m].node_count)
-        sah = rt_kd_measure(&c->kds[m], 1.0f, 2.0f).sah;
+        sah = rt_kd_measure(&c->kds[m], rt_sah_costs_default()).sah;
     else if (action != RT_ACTION_REFIT || !sah)
-        sah = rt_bvh_sah(&c->bvhs[m], 1.0f, 2.0f);
-    if (action == RT_ACTION_BUILD || action == RT_ACTION_REBUILD || action == RT_ACTION_FAST)
+        sah = rt_bvh_sah_cost(&c->bvhs[m], rt_sah_costs_default());
+    if (action == RT_ACTION_BUILD || action == RT_ACTION_REBUILD || action == RT_ACTION_LBVH)
         c->sah_rebuilt[m] = sah;
     c->sah[m] = sah;
     c->built[m] = 1;

@@ -10,6 +10,7 @@
 
 #include "base/error.h"
 #include "cpu_backends.h"
+#include "render/device_list.h"
 #ifdef RT_HAVE_OPENCL
 #include "opencl/cl_backend.h"
 #endif
@@ -22,27 +23,34 @@ typedef struct registry_entry {
     const rt_backend_ops *ops; /* NULL: not in this build */
     const char *missing;       /* why not */
     int device;                /* a device backend: "auto" tries it, it takes ":DEVICE" */
+    const char *summary;       /* what it is, one line (rt_backend_info) */
+    /* Its devices (rt_devices): device backends that this build has. */
+    rt_status (*devices)(const char *selector, rt_device_info **out, int *count, rt_error *err);
 } registry_entry;
+
+#define OPENCL_SUMMARY "OpenCL kernels on a device"
+#define VULKAN_SUMMARY "Vulkan compute shaders on a device (always the portable maths)"
 
 static const registry_entry registry[] = {
 #ifdef RT_HAVE_OPENCL
-    {"opencl", &rt_backend_opencl, NULL, 1},
+    {"opencl", &rt_backend_opencl, NULL, 1, OPENCL_SUMMARY, rt_opencl_device_list},
 #else
     {"opencl", NULL,
      "this build has no OpenCL backend (configure with -DRT_OPENCL=ON and the OpenCL ICD loader "
      "installed: ocl-icd-opencl-dev, opencl-c-headers)",
-     1},
+     1, OPENCL_SUMMARY, NULL},
 #endif
 #ifdef RT_HAVE_VULKAN
-    {"vulkan", &rt_backend_vulkan, NULL, 1},
+    {"vulkan", &rt_backend_vulkan, NULL, 1, VULKAN_SUMMARY, rt_vulkan_device_list},
 #else
     {"vulkan", NULL,
      "this build has no Vulkan backend (configure with -DRT_VULKAN=ON and the Vulkan loader and "
      "glslang installed: libvulkan-dev, glslang-tools)",
-     1},
+     1, VULKAN_SUMMARY, NULL},
 #endif
-    {"cpu", &rt_backend_cpu, NULL, 0},
-    {"packet", &rt_backend_packet, NULL, 0},
+    {"cpu", &rt_backend_cpu, NULL, 0, "the scalar CPU oracle, one ray at a time", NULL},
+    {"packet", &rt_backend_packet, NULL, 0,
+     "SIMD ray packets (and single rays through wide BVHs) on the CPU", NULL},
 };
 enum { ENTRIES = sizeof registry / sizeof registry[0] };
 
@@ -102,4 +110,62 @@ void rt_backend_names(char *out, size_t size) {
             strncat(out, registry[k].name, size - strlen(out) - 1);
             if (registry[k].device) strncat(out, "[:DEVICE]", size - strlen(out) - 1);
         }
+}
+
+/* "auto" is no backend of its own: it picks the first device backend with a
+ * device (rt_backend_auto), else cpu. It is listed last. */
+static const rt_backend_info auto_info = {
+    "auto", "the first device backend that finds a device (in this order), else cpu with a notice",
+    1,      "",
+    1,      0};
+
+const char *rt_backend_name(int index) {
+    /* As rt_backend_names lists them: the CPU backends first. */
+    for (int pass = 0, i = 0; pass < 2; pass++)
+        for (int k = 0; k < ENTRIES; k++)
+            if (registry[k].device == pass && i++ == index) return registry[k].name;
+    return index == ENTRIES ? auto_info.name : NULL;
+}
+
+rt_status rt_backend_describe(const char *name, rt_backend_info *out, rt_error *err) {
+    if (!name || !out) return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "rt_backend_describe: NULL");
+    if (!strcmp(name, auto_info.name)) {
+        *out = auto_info;
+        return RT_OK;
+    }
+    for (int k = 0; k < ENTRIES; k++) {
+        if (strcmp(registry[k].name, name) != 0) continue;
+        out->name = registry[k].name;
+        out->summary = registry[k].summary;
+        out->built = registry[k].ops != NULL;
+        out->missing = registry[k].ops ? "" : registry[k].missing;
+        out->takes_device = registry[k].device;
+        /* The CPU backends run the oracle's own code; a device backend's
+         * promise depends on the device (rt_devices). */
+        out->exact_always = !registry[k].device;
+        return RT_OK;
+    }
+    char names[160];
+    rt_backend_names(names, sizeof names);
+    return rt_fail(err, RT_ERROR_UNSUPPORTED, "unknown backend '%s' (this build has: %s, auto)",
+                   name, names);
+}
+
+rt_status rt_devices(const char *backend, const char *selector, rt_device_info **out, int *count,
+                     rt_error *err) {
+    rt_error_clear(err);
+    if (!backend || !out || !count)
+        return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "rt_devices: NULL argument");
+    *out = NULL;
+    *count = 0;
+    for (int k = 0; k < ENTRIES; k++) {
+        if (strcmp(registry[k].name, backend) != 0) continue;
+        if (!registry[k].device)
+            return rt_fail(err, RT_ERROR_INVALID_ARGUMENT,
+                           "backend '%s' runs on the CPU: it has no devices", backend);
+        if (!registry[k].ops) return rt_fail(err, RT_ERROR_UNSUPPORTED, "%s", registry[k].missing);
+        return registry[k].devices(selector, out, count, err);
+    }
+    rt_backend_info unused;
+    return rt_backend_describe(backend, &unused, err); /* the unknown-name error */
 }

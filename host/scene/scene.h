@@ -129,12 +129,17 @@ int rt_camera_frame_d(const rt_camera *c, double f[3], double r[3], double u[3])
 /* Total triangles over the selected keyframe of every object. */
 uint64_t rt_scene_triangle_count(const rt_scene *scene);
 
+/* The one rule for a mesh's structure: the kd-tree its accel asks for only
+ * while it is static (update policy sah); any other policy deforms the mesh,
+ * which keeps a BVH (refittable) whatever its accel says. rt_mesh_accel and
+ * the renderer's cache both ask this. */
+rt_accel rt_mesh_data_structure(const rt_mesh_data *m);
+
 /* The default view of a bare OBJ (docs/SCENE_FORMAT.md): camera, one light and
  * ambient 0.1, from the bounding box of all meshes. Fails on an empty scene. */
 rt_status rt_scene_apply_default_view(rt_scene *scene, int width, int height);
 
-/* World-space bounds of the selected keyframes; returns 0 if empty. */
-int rt_scene_bounds(const rt_scene *scene, float bmin[3], float bmax[3]);
+/* rt_scene_bounds, the world-space box of the current frame, is public (rt.h). */
 
 /* Which features the scene uses; backends specialise to these. */
 typedef struct rt_scene_features {

@@ -30,7 +30,7 @@ rt_status rt_scene_set_static_accel(rt_scene *scene, rt_accel accel) {
         /* A morph target's blend and a mesh with a refitting policy deform too. */
         for (uint32_t o = 0; o < scene->object_count && !deforming; o++)
             deforming |= scene->objects[o].morph_mesh == m;
-        deforming |= scene->meshes[m].update_policy != RT_UPDATE_REBUILD;
+        deforming |= scene->meshes[m].update_policy != RT_UPDATE_SAH;
         if (deforming) continue;
         rt_status st = rt_mesh_set_accel(scene, m, accel);
         if (st != RT_OK) return st;
@@ -38,13 +38,14 @@ rt_status rt_scene_set_static_accel(rt_scene *scene, rt_accel accel) {
     return RT_OK;
 }
 
+rt_accel rt_mesh_data_structure(const rt_mesh_data *m) {
+    if (m->update_policy != RT_UPDATE_SAH) return RT_ACCEL_BVH;
+    return (rt_accel)m->accel;
+}
+
 rt_accel rt_mesh_accel(const rt_scene *scene, uint32_t mesh_id) {
     if (!scene || mesh_id >= scene->mesh_count) return RT_ACCEL_BVH;
-    const rt_mesh_data *m = &scene->meshes[mesh_id];
-    /* A mesh with an update policy other than rebuild deforms: it keeps a
-     * BVH whatever was asked (render/accel_cache.c). */
-    if (m->update_policy != RT_UPDATE_REBUILD) return RT_ACCEL_BVH;
-    return (rt_accel)m->accel;
+    return rt_mesh_data_structure(&scene->meshes[mesh_id]);
 }
 
 const char *rt_accel_name(rt_accel accel) {

@@ -10,19 +10,29 @@
 
 #include "scene/scene.h"
 
-static const char *const policy_names[] = {"rebuild", "refit", "fast", "auto"};
+/* Indexed by rt_update_policy; the two building policies are named for
+ * their builder (rt_builder_name). */
+static const char *const policy_names[] = {"sah", "refit", "lbvh", "auto"};
 
 const char *rt_update_policy_name(rt_update_policy policy) {
     return (unsigned)policy < 4 ? policy_names[policy] : "unknown";
 }
 
 int rt_update_policy_parse(const char *name, rt_update_policy *out) {
-    for (int i = 0; name && i < 4; i++)
+    if (!name) return 0;
+    for (int i = 0; i < 4; i++)
         if (strcmp(name, policy_names[i]) == 0) {
             *out = (rt_update_policy)i;
             return 1;
         }
-    return 0;
+    /* The names before 0.2. */
+    if (strcmp(name, "rebuild") == 0)
+        *out = RT_UPDATE_SAH;
+    else if (strcmp(name, "fast") == 0)
+        *out = RT_UPDATE_LBVH;
+    else
+        return 0;
+    return 1;
 }
 
 static int finite3(const float v[3]) {
@@ -73,13 +83,15 @@ rt_status rt_mesh_set_update(rt_scene *scene, uint32_t mesh_id, rt_update_policy
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "unknown update policy %d",
                              (int)policy);
     rt_mesh_data *m = &scene->meshes[mesh_id];
-    /* A kd mesh given a refitting policy becomes a BVH (kd-trees are for
-     * static meshes): its version tells renderers to rebuild it. */
-    if (m->accel != RT_ACCEL_BVH && m->update_policy != (uint32_t)policy) {
+    /* Where the policy changes the mesh's structure (a kd mesh given a
+     * deforming policy becomes a BVH, and back), its version tells renderers
+     * to rebuild it. */
+    const rt_accel before = rt_mesh_data_structure(m);
+    m->update_policy = (uint32_t)policy;
+    if (rt_mesh_data_structure(m) != before) {
         m->version++;
         scene->version++;
     }
-    m->update_policy = (uint32_t)policy;
     return RT_OK;
 }
 

@@ -21,6 +21,11 @@
 
 const char *const rt_builtin_scene_names[] = {"cornell", "keyframes", NULL};
 
+const char *rt_builtin_scene_name(int index) {
+    enum { COUNT = sizeof rt_builtin_scene_names / sizeof rt_builtin_scene_names[0] - 1 };
+    return index >= 0 && index < COUNT ? rt_builtin_scene_names[index] : NULL;
+}
+
 /* A growable triangle list that becomes one mesh. */
 typedef struct mesh_builder {
     float *pos, *nrm;

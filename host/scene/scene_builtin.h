@@ -11,7 +11,6 @@
 /* Names of the built-in scenes, NULL-terminated. */
 extern const char *const rt_builtin_scene_names[];
 
-/* Builds the named scene into a new scene. */
-rt_status rt_scene_builtin(const char *name, rt_scene **out, rt_error *err);
+/* rt_scene_builtin and rt_builtin_scene_name are public (rt.h). */
 
 #endif /* RT_SCENE_BUILTIN_H */

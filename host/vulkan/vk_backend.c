@@ -5,7 +5,7 @@
  * bounded dispatches over tiles of pixels (kernels/vulkan/).
  *
  * The shaders are the GLSL mirror of the shared maths in the portable
- * profile (kernels/vulkan/rt_vk_shared.glsl): every float operation
+ * profile (kernels/vulkan/, file for file): every float operation
  * NoContraction, division and sqrt in software from integer operations, no
  * fp64. The backend adds the float-control execution modes the device
  * supports (round to nearest even, signed zeros/infs/NaNs kept, denormals

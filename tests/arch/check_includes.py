@@ -5,10 +5,14 @@ Files: source file A depends on B when A's object file uses a symbol that
 B's defines (read with nm from the library's objects in BUILD/CMakeFiles/
 rt.dir); the graph must be acyclic, so that no two files call each other.
 Folders: the stage folders of host/ (base, scene, formats, accel, layout,
-backend, render, opencl, cli), cpu_ref and kernels; folder X depends on Y when
-a file in X includes a file in Y; also acyclic, so that data and calls flow
-one way (docs/ARCHITECTURE.md). Also: no library file includes the benchmark
-peer, and backends include no scene header.
+backend, render, opencl, vulkan, cli with its view/), cpu_ref, kernels and
+bench (its programs, engines/ and peer/); folder X depends on Y when a file in
+X includes a file in Y; also acyclic, so that data and calls flow one way
+(docs/ARCHITECTURE.md): rtcl (host/cli) may use the benchmark engines
+(bench/engines), never the other way round. Also: only bench/ includes the
+benchmark peer; backends include no scene header; host/cli includes no header
+of the library but rt.h (the CLI is a program on the public API), and the
+bench/engines headers it includes include nothing of the library but rt.h.
 
 Usage: check_includes.py SOURCE_ROOT BUILD_DIR. Exit 1 with the circle or
 problem found, 0 when there is none."""
@@ -21,8 +25,10 @@ import subprocess
 root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "..")
 root = os.path.abspath(root)
 build = os.path.abspath(sys.argv[2]) if len(sys.argv) > 2 else None
-dirs = ["host", "cpu_ref", "kernels"]
-include_roots = [os.path.join(root, d) for d in dirs]
+dirs = ["host", "cpu_ref", "kernels", "bench"]
+# The include paths the build gives: the library's folders, bench/ (for
+# "peer/..." and "engines/..."), and rtcl's own folders.
+include_roots = [os.path.join(root, d) for d in dirs + ["host/cli", "host/cli/view"]]
 
 files = []
 for d in dirs:
@@ -50,6 +56,25 @@ def unit(path):
     return os.path.splitext(path)[0]
 
 
+def rel(path):
+    return os.path.relpath(path, root)
+
+
+# What a file of rtcl (host/cli) may include: rt.h, its own folder's headers
+# and the benchmark engines' interface (bench/engines/*.h), which in turn may
+# include nothing of the library but rt.h.
+def cli_may_include(target):
+    r = rel(target)
+    return r == os.path.join("host", "rt.h") or r.startswith(os.path.join("host", "cli") + os.sep) or (
+        r.startswith(os.path.join("bench", "engines") + os.sep) and r.endswith(".h"))
+
+
+def library_header(target):
+    r = rel(target)
+    return r.split(os.sep)[0] in ("host", "cpu_ref", "kernels") and not r.startswith(
+        os.path.join("host", "cli") + os.sep)
+
+
 edges_unit, edges_folder, where = {}, {}, {}
 problems = []
 for f in files:
@@ -57,9 +82,18 @@ for f in files:
     for m in re.finditer(r'^\s*#\s*include\s+"([^"]+)"', text, re.M):
         target = resolve(f, m.group(1))
         if target is None:
-            if "peer/" in m.group(1) and not os.path.relpath(f, root).startswith("host/cli/"):
-                problems.append(f"{os.path.relpath(f, root)} includes the benchmark peer {m.group(1)}")
+            if "peer/" in m.group(1) and not rel(f).startswith("bench" + os.sep):
+                problems.append(f"{rel(f)} includes the benchmark peer {m.group(1)}")
             continue
+        if rel(target).startswith(os.path.join("bench", "peer") + os.sep) and not rel(f).startswith(
+                "bench" + os.sep):
+            problems.append(f"{rel(f)} includes the benchmark peer {m.group(1)}: only bench/ may")
+        if rel(f).startswith(os.path.join("host", "cli") + os.sep) and not cli_may_include(target):
+            problems.append(f"{rel(f)} includes {m.group(1)}: host/cli uses only rt.h (and bench/engines/*.h)")
+        if (rel(f).startswith(os.path.join("bench", "engines") + os.sep) and f.endswith(".h")
+                and library_header(target) and rel(target) != os.path.join("host", "rt.h")):
+            problems.append(f"{rel(f)} includes {m.group(1)}: the engines' interface, which rtcl "
+                            f"includes, may use only rt.h")
         fa, fb = folder(f), folder(target)
         if fa != fb:
             edges_folder.setdefault(fa, set()).add(fb)

@@ -7,14 +7,12 @@
 
 typedef struct view_options {
     const char *scene_path;
+    cli_frame_args frame;       /* --width, --height (and the window's size), --aov, --direct */
+    cli_scene_args scene;       /* --accel, --time: scene time at the start */
     cli_renderer_args renderer; /* --backend, --device, --threads, ... */
-    int width, height;          /* 0: the scene's */
-    double time;                /* --time: scene time at the start, seconds */
     int play;                   /* --play: the timeline plays from the start */
     double keyframe_rate;       /* --keyframe-rate: keyframes per second */
-    rt_aov aov;                 /* --aov: the first view */
-    int direct_only;            /* --direct */
-    long frames;                /* --frames: quit after this many (0: never) */
+    int frames;                 /* --frames: quit after this many (0: never) */
     const char *screenshot;     /* --screenshot: the last frame, at full resolution */
     const char *script;         /* --script: timed input */
     double step_ms;             /* --step: fixed clock per frame; 0: real time */

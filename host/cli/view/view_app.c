@@ -8,9 +8,7 @@
 
 #include <SDL.h>
 
-#include "base/clock.h"
 #include "frame_image.h"
-#include "scene/scene.h"
 #include "view.h"
 #include "view_keys.h"
 #include "view_script.h"
@@ -194,7 +192,7 @@ static void print_camera(const app *a) {
 
 static void select_backend(app *a, const char *name) {
     const char *device = a->o->renderer.device;
-    if (device && (!strcmp(name, "opencl") || !strcmp(name, "auto")))
+    if (device && cli_backend_takes_device(name))
         snprintf(a->backend, sizeof a->backend, "%s:%s", name, device);
     else
         snprintf(a->backend, sizeof a->backend, "%s", name);
@@ -354,7 +352,7 @@ static int choose_divisor(const app *a, int moving) {
 /* Composes and posts the next job. final: no input, full resolution (the
  * frame a screenshot at the end needs). */
 static void post_job(app *a, view_worker *w, int final) {
-    double now = rt_now_ms();
+    double now = cli_now_ms();
     if (!final) {
         const view_event *ev;
         if (a->scripted)
@@ -452,7 +450,7 @@ static void describe_device(app *a, const view_result *r) {
 }
 
 static void update_title(app *a) {
-    double now = rt_now_ms();
+    double now = cli_now_ms();
     if (now - a->last_title_ms < 250.0 && a->present_count > 1) return;
     a->last_title_ms = now;
     long n = a->present_count < FPS_WINDOW ? a->present_count : FPS_WINDOW;
@@ -540,12 +538,12 @@ static int show_result(app *a, const view_result *r) {
         }
         snprintf(a->last_backend, sizeof a->last_backend, "%s", r->stats.backend);
     }
-    double t0 = rt_now_ms();
+    double t0 = cli_now_ms();
     if (!present(a, r)) {
         a->status = 2;
         return 0;
     }
-    double t1 = rt_now_ms();
+    double t1 = cli_now_ms();
     a->last = r;
     a->last_update_ms = r->update_ms;
     a->last_render_ms = r->render_ms;
@@ -640,13 +638,10 @@ static int load(app *a, rt_scene **scene, rt_renderer **renderer) {
         }
         a->scripted = 1;
     }
-    if (cli_load_scene(o->scene_path, scene, &err) != RT_OK) {
-        cli_error("view", "%s", err.message);
-        return 0;
-    }
+    if (!(*scene = cli_scene_open("view", o->scene_path, &o->scene))) return 0;
     rt_camera_get(*scene, &a->cam);
-    if (o->width) a->cam.width = o->width;
-    if (o->height) a->cam.height = o->height;
+    if (o->frame.width) a->cam.width = o->frame.width;
+    if (o->frame.height) a->cam.height = o->frame.height;
     if (rt_scene_create(&a->rig) != RT_OK || rt_camera_set(a->rig, &a->cam) != RT_OK) {
         cli_error("view", "%s", a->rig ? rt_scene_error(a->rig) : "out of memory");
         return 0;
@@ -661,10 +656,10 @@ static int load(app *a, rt_scene **scene, rt_renderer **renderer) {
     a->speed = 0.25 * diagonal; /* crosses the scene in four seconds */
     if (!(*renderer = cli_renderer_create("view", &o->renderer))) return 0;
     snprintf(a->backend, sizeof a->backend, "%s", o->renderer.spec);
-    a->time = o->time;
+    a->time = isnan(o->scene.time) ? 0.0 : o->scene.time;
     a->playing = o->play;
-    a->aov = o->aov;
-    a->direct_only = o->direct_only;
+    a->aov = (rt_aov)o->frame.aov;
+    a->direct_only = o->frame.direct;
     return 1;
 }
 

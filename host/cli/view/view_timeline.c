@@ -5,18 +5,20 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "scene/scene.h"
-
 rt_status view_timeline_init(view_timeline *tl, const rt_scene *scene, double rate) {
     memset(tl, 0, sizeof *tl);
     tl->rate = rate;
-    if (!scene->object_count) return RT_OK;
-    tl->base = malloc(sizeof(uint32_t) * scene->object_count);
+    rt_scene_info info;
+    rt_scene_describe(scene, &info);
+    if (!info.objects) return RT_OK;
+    tl->base = malloc(sizeof(uint32_t) * info.objects);
     if (!tl->base) return RT_ERROR_OUT_OF_MEMORY;
-    tl->objects = scene->object_count;
-    for (uint32_t o = 0; o < scene->object_count; o++) {
-        tl->base[o] = scene->objects[o].selected;
-        if (scene->objects[o].mesh_count > 1) tl->animated = 1;
+    tl->objects = info.objects;
+    for (uint32_t o = 0; o < info.objects; o++) {
+        rt_object_info oi;
+        rt_object_describe(scene, o, &oi);
+        tl->base[o] = oi.selected;
+        if (oi.keyframes > 1) tl->animated = 1;
     }
     if (rt_scene_is_animated(scene)) tl->animated = 1;
     return RT_OK;
@@ -38,14 +40,16 @@ rt_status view_timeline_apply(view_timeline *tl, rt_scene *scene, double t) {
     }
     /* Otherwise keyframe objects step at the viewer's rate (--keyframe-rate). */
     double step = floor(t * tl->rate);
-    for (uint32_t o = 0; o < tl->objects && o < scene->object_count; o++) {
-        uint32_t count = scene->objects[o].mesh_count;
+    for (uint32_t o = 0; o < tl->objects; o++) {
+        rt_object_info oi;
+        if (rt_object_describe(scene, o, &oi) != RT_OK) break;
+        uint32_t count = oi.keyframes;
         if (count < 2) continue;
         double k = fmod((double)tl->base[o] + step, (double)count);
         if (k < 0) k += count;
         uint32_t keyframe = (uint32_t)k;
         if (keyframe >= count) keyframe = 0; /* fmod's rounding at the edge */
-        if (keyframe == scene->objects[o].selected) continue;
+        if (keyframe == oi.selected) continue;
         rt_status st = rt_object_select_mesh(scene, o, keyframe);
         if (st != RT_OK) return st;
     }

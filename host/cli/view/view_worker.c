@@ -6,8 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/clock.h"
-#include "scene/scene.h"
+#include "cli_util.h"
 
 enum { IDLE, QUEUED, DONE };
 
@@ -50,7 +49,7 @@ static void render_job(view_worker *w) {
     }
     snprintf(r->backend_spec, sizeof r->backend_spec, "%s", w->spec);
 
-    double t0 = rt_now_ms();
+    double t0 = cli_now_ms();
     rt_status st = view_timeline_apply(w->timeline, w->scene, job->time);
     rt_camera cam = job->camera;
     int d = job->divisor > 1 ? job->divisor : 1;
@@ -67,14 +66,14 @@ static void render_job(view_worker *w) {
         snprintf(r->error, sizeof r->error, "%s", rt_scene_error(w->scene));
         return;
     }
-    double t1 = rt_now_ms();
+    double t1 = cli_now_ms();
     rt_render_options opt = rt_render_options_default();
     opt.stats = &r->stats;
     opt.aov = job->aov;
     opt.direct_only = job->direct_only;
     opt.reuse_framebuffer = 1;
     st = rt_render(w->renderer, w->scene, &opt, &r->fb);
-    double t2 = rt_now_ms();
+    double t2 = cli_now_ms();
     if (st != RT_OK) {
         r->ok = 0;
         snprintf(r->error, sizeof r->error, "%s", rt_renderer_error(w->renderer));
@@ -83,7 +82,9 @@ static void render_job(view_worker *w) {
     r->update_ms = (t1 - t0) + r->stats.build_ms;
     r->render_ms = (t2 - t1) - r->stats.build_ms;
     if (r->render_ms < 0) r->render_ms = 0;
-    r->triangles = rt_scene_triangle_count(w->scene);
+    rt_scene_info info;
+    rt_scene_describe(w->scene, &info);
+    r->triangles = info.triangles;
 }
 
 static void *worker_main(void *arg) {

@@ -1,4 +1,4 @@
-/* cmd_bench_render.c - the render part of 'rtcl bench' (bench_render.h).
+/* bench_render.c - the render part of 'rtcl bench' (bench_render.h).
  *
  * The thesis's set-up (Langr 2016, section 4): 1024x576, one point light,
  * primary plus shadow rays, Phong. Every backend renders the same frame from
@@ -13,23 +13,16 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bench_render.h"
-#include "cli_util.h"
+#include "bench_util.h"
+#include "engines/bench_render.h"
 #include "render/renderer_internal.h"
 #include "rt.h"
 #ifdef RT_HAVE_EMBREE
 #include "peer/embree_peer.h"
 #endif
 
-static int cmp_double(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 static void summarize(render_row *r, double *ms, int n) {
-    qsort(ms, (size_t)n, sizeof *ms, cmp_double);
-    r->ms_min = ms[0];
-    r->ms_median = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
+    bench_min_median(ms, n, &r->ms_min, &r->ms_median);
     r->mrays = r->ms_median > 0 ? (double)r->rays / (r->ms_median * 1000.0) : 0.0;
 }
 
@@ -204,7 +197,7 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
     rt_scene *scene = NULL;
     rt_error e;
     if (su->progress) su->progress(path, "loading for rendering");
-    if (rt_scene_load(path, &scene, &e) != RT_OK) {
+    if (rt_scene_open(path, &scene, &e) != RT_OK) {
         snprintf(err, err_size, "%s", e.message);
         return 0;
     }
@@ -275,8 +268,8 @@ int bench_render(const char *path, const bench_render_setup *su, render_row *row
         for (int k = 0; k < n; k++) {
             if (i >= 0) run_frame(renderer, scene, &peer, &runs[k], -1);
             run_frame(renderer, scene, &peer, &runs[k], i);
-            if (i < 0 && su->verbose && !runs[k].embree_lanes && !runs[k].failed)
-                cli_print_build_log("bench", renderer);
+            if (i < 0 && su->build_log && !runs[k].embree_lanes && !runs[k].failed)
+                su->build_log(runs[k].renderer ? runs[k].renderer : renderer);
         }
     }
     size_t px = (size_t)su->width * (size_t)su->height;

@@ -1,9 +1,13 @@
-/* bench_render.h - the render part of 'rtcl bench': frame times of every
- * backend on one scene in the thesis's set-up, Embree beside them. */
-#ifndef RTCL_BENCH_RENDER_H
-#define RTCL_BENCH_RENDER_H
+/* bench_render.h - the render part of 'rtcl bench' (bench_build.h): frame
+ * times of every backend on one scene in the thesis's set-up, Embree beside
+ * them. */
+#ifndef RT_BENCH_RENDER_H
+#define RT_BENCH_RENDER_H
 
+#include <stddef.h>
 #include <stdint.h>
+
+#include "rt.h"
 
 enum { BENCH_RENDER_MAX_ROWS = 11 };
 
@@ -27,7 +31,9 @@ typedef struct bench_render_setup {
     int denormals;   /* rt_denormals of every row */
     int accel;       /* rt_accel for every static mesh, or -1: the scene's own */
     void (*progress)(const char *scene, const char *what);
-    int verbose; /* print the OpenCL build log on stderr after the warm-up frame */
+    /* Called with the renderer after each backend's warm-up frame (the
+     * device compiler's messages for --verbose), or NULL. */
+    void (*build_log)(const rt_renderer *renderer);
 } bench_render_setup;
 
 /* Renders the scene at setup->width x height with direct_only (primary plus
@@ -45,4 +51,4 @@ typedef struct bench_render_setup {
 int bench_render(const char *path, const bench_render_setup *setup, render_row *rows, char *err,
                  size_t err_size);
 
-#endif /* RTCL_BENCH_RENDER_H */
+#endif /* RT_BENCH_RENDER_H */

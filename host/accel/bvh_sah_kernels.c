@@ -1,6 +1,6 @@
-/* bvh_fast_kernels.c - binning and partitioning loops of the fast builder,
- * scalar and NEON (see bvh_fast_kernels.h for why they agree bit for bit). */
-#include "accel/bvh_fast_kernels.h"
+/* bvh_sah_kernels.c - binning and partitioning loops of the SAH builder,
+ * scalar and NEON (see bvh_sah_kernels.h for why they agree bit for bit). */
+#include "accel/bvh_sah_kernels.h"
 
 #include <float.h>
 #include <stddef.h>
@@ -19,16 +19,16 @@ static inline float fmax_exact(float a, float b) {
     return a > b ? a : b;
 }
 
-static inline float centroid_scalar(const fast_ref *r, int axis) {
+static inline float centroid_scalar(const rt_sah_ref *r, int axis) {
     return r->lo[axis] * 0.5f + r->hi[axis] * 0.5f;
 }
 
-static inline int bin_scalar(float c, const fast_binning *bn, int axis) {
+static inline int bin_scalar(float c, const rt_sah_binning *bn, int axis) {
     int k = (int)((c - bn->cmin[axis]) * bn->scale[axis]);
     return k < bn->bins - 1 ? k : bn->bins - 1;
 }
 
-void fast_bins_clear(fast_bins *bins, int bin_count) {
+void rt_sah_bins_clear(rt_sah_bins *bins, int bin_count) {
     for (int a = 0; a < 3; a++) {
         for (int k = 0; k < bin_count; k++) {
             for (int i = 0; i < 4; i++) {
@@ -63,14 +63,14 @@ static inline float32x4_t areas3(float32x4_t d0, float32x4_t d1, float32x4_t d2)
     return vaddq_f32(vaddq_f32(vmulq_f32(dx, dy), vmulq_f32(dy, dz)), vmulq_f32(dz, dx));
 }
 
-float fast_scaled_area(const float lo[3], const float hi[3], float scale) {
+float rt_sah_scaled_area(const float lo[3], const float hi[3], float scale) {
     float d[3];
     for (int j = 0; j < 3; j++) d[j] = (hi[j] * 0.5f - lo[j] * 0.5f) * scale;
     return (d[0] * d[1] + d[1] * d[2]) + d[2] * d[0];
 }
 
-int fast_sweep(const fast_bins *bins, const fast_binning *bn, float scale, float *best_cost,
-               int *best_axis, int *best_bin) {
+int rt_sah_sweep(const rt_sah_bins *bins, const rt_sah_binning *bn, float scale, float *best_cost,
+                 int *best_axis, int *best_bin) {
     const int B = bn->bins;
     const float32x4_t s = vdupq_n_f32(scale);
     const float32x4_t inf = vdupq_n_f32(__builtin_inff());
@@ -140,22 +140,23 @@ int fast_sweep(const fast_bins *bins, const fast_binning *bn, float scale, float
     return 1;
 }
 
-void fast_cbounds_empty(fast_cbounds *cb) {
+void rt_sah_cbounds_empty(rt_sah_cbounds *cb) {
     for (int i = 0; i < 4; i++) {
         cb->cmin[i] = FLT_MAX;
         cb->cmax[i] = -FLT_MAX;
     }
 }
 
-void fast_cbounds_merge(fast_cbounds *into, const fast_cbounds *from) {
+void rt_sah_cbounds_merge(rt_sah_cbounds *into, const rt_sah_cbounds *from) {
     for (int i = 0; i < 3; i++) {
         into->cmin[i] = fmin_exact(into->cmin[i], from->cmin[i]);
         into->cmax[i] = fmax_exact(into->cmax[i], from->cmax[i]);
     }
 }
 
-void fast_centroid_bounds(const fast_ref *refs, uint32_t begin, uint32_t end, fast_cbounds *cb) {
-    fast_cbounds_empty(cb);
+void rt_sah_centroid_bounds(const rt_sah_ref *refs, uint32_t begin, uint32_t end,
+                            rt_sah_cbounds *cb) {
+    rt_sah_cbounds_empty(cb);
     for (uint32_t i = begin; i < end; i++) {
         for (int a = 0; a < 3; a++) {
             float c = centroid_scalar(&refs[i], a);
@@ -167,13 +168,13 @@ void fast_centroid_bounds(const fast_ref *refs, uint32_t begin, uint32_t end, fa
 
 /* ---- scalar ----------------------------------------------------------- */
 
-static void bin_range_scalar(const fast_ref *refs, uint32_t begin, uint32_t end,
-                             const fast_binning *bn, fast_bins *bins) {
+static void bin_range_scalar(const rt_sah_ref *refs, uint32_t begin, uint32_t end,
+                             const rt_sah_binning *bn, rt_sah_bins *bins) {
     for (uint32_t i = begin; i < end; i++) {
-        const fast_ref *r = &refs[i];
+        const rt_sah_ref *r = &refs[i];
         for (int a = 0; a < 3; a++) {
             int k = bin_scalar(centroid_scalar(r, a), bn, a);
-            fast_box4 *b = &bins->box[a][k];
+            rt_sah_box4 *b = &bins->box[a][k];
             for (int j = 0; j < 3; j++) {
                 b->lo[j] = fmin_exact(b->lo[j], r->lo[j]);
                 b->hi[j] = fmax_exact(b->hi[j], r->hi[j]);
@@ -183,13 +184,14 @@ static void bin_range_scalar(const fast_ref *refs, uint32_t begin, uint32_t end,
     }
 }
 
-static void partition_range_scalar(const fast_ref *src, uint32_t begin, uint32_t end, fast_ref *dst,
-                                   uint32_t left, uint32_t right, const fast_binning *bn, int axis,
-                                   int split, fast_cbounds *lcb, fast_cbounds *rcb) {
+static void partition_range_scalar(const rt_sah_ref *src, uint32_t begin, uint32_t end,
+                                   rt_sah_ref *dst, uint32_t left, uint32_t right,
+                                   const rt_sah_binning *bn, int axis, int split,
+                                   rt_sah_cbounds *lcb, rt_sah_cbounds *rcb) {
     for (uint32_t i = begin; i < end; i++) {
-        const fast_ref *r = &src[i];
+        const rt_sah_ref *r = &src[i];
         float c[3] = {centroid_scalar(r, 0), centroid_scalar(r, 1), centroid_scalar(r, 2)};
-        fast_cbounds *cb;
+        rt_sah_cbounds *cb;
         if (bin_scalar(c[axis], bn, axis) <= split) {
             dst[left++] = *r;
             cb = lcb;
@@ -206,7 +208,7 @@ static void partition_range_scalar(const fast_ref *src, uint32_t begin, uint32_t
 
 /* ---- NEON --------------------------------------------------------------- */
 
-static inline float32x4_t centroid_neon(const fast_ref *r, float32x4_t *lo_out,
+static inline float32x4_t centroid_neon(const rt_sah_ref *r, float32x4_t *lo_out,
                                         float32x4_t *hi_out) {
     /* lo[3] carries the primitive index: clear it so that no lane computes
      * with arbitrary bits (denormals would be slow, and lane 3 must stay 0). */
@@ -220,8 +222,8 @@ static inline float32x4_t centroid_neon(const fast_ref *r, float32x4_t *lo_out,
     return vaddq_f32(vmulq_f32(lo, half), vmulq_f32(hi, half));
 }
 
-static void bin_range_neon(const fast_ref *refs, uint32_t begin, uint32_t end,
-                           const fast_binning *bn, fast_bins *bins) {
+static void bin_range_neon(const rt_sah_ref *refs, uint32_t begin, uint32_t end,
+                           const rt_sah_binning *bn, rt_sah_bins *bins) {
     const float32x4_t cmin = vld1q_f32(bn->cmin);
     const float32x4_t scale = vld1q_f32(bn->scale);
     const float32x4_t last = vdupq_n_f32((float)(bn->bins - 1));
@@ -230,8 +232,8 @@ static void bin_range_neon(const fast_ref *refs, uint32_t begin, uint32_t end,
      * minus a * (FAST_MAX_BINS * 16 - 4). This saves the scalar address
      * arithmetic of each axis (the loop is about 60 instructions a
      * primitive). */
-    enum { BOX_BYTES = (int)sizeof(fast_box4), AXIS_BYTES = FAST_MAX_BINS * BOX_BYTES };
-    _Static_assert(sizeof(fast_box4) == 32, "box offsets are k << 5");
+    enum { BOX_BYTES = (int)sizeof(rt_sah_box4), AXIS_BYTES = FAST_MAX_BINS * BOX_BYTES };
+    _Static_assert(sizeof(rt_sah_box4) == 32, "box offsets are k << 5");
     const int32_t axis_bytes[4] = {0, AXIS_BYTES, 2 * AXIS_BYTES, 0};
     const int32x4_t axis_off = vld1q_s32(axis_bytes);
     char *box_base = (char *)bins->box;
@@ -244,7 +246,7 @@ static void bin_range_neon(const fast_ref *refs, uint32_t begin, uint32_t end,
         vst1q_s32(off, vaddq_s32(vshlq_n_s32(k, 5), axis_off));
         for (int a = 0; a < 3; a++) {
             uint32_t o = (uint32_t)off[a];
-            fast_box4 *b = (fast_box4 *)(box_base + o);
+            rt_sah_box4 *b = (rt_sah_box4 *)(box_base + o);
             vst1q_f32(b->lo, vminq_f32(vld1q_f32(b->lo), lo));
             vst1q_f32(b->hi, vmaxq_f32(vld1q_f32(b->hi), hi));
             uint32_t *count = (uint32_t *)(count_base + (o >> 1) -
@@ -254,9 +256,10 @@ static void bin_range_neon(const fast_ref *refs, uint32_t begin, uint32_t end,
     }
 }
 
-static void partition_range_neon(const fast_ref *src, uint32_t begin, uint32_t end, fast_ref *dst,
-                                 uint32_t left, uint32_t right, const fast_binning *bn, int axis,
-                                 int split, fast_cbounds *lcb, fast_cbounds *rcb) {
+static void partition_range_neon(const rt_sah_ref *src, uint32_t begin, uint32_t end,
+                                 rt_sah_ref *dst, uint32_t left, uint32_t right,
+                                 const rt_sah_binning *bn, int axis, int split, rt_sah_cbounds *lcb,
+                                 rt_sah_cbounds *rcb) {
     /* The side test is on the split axis only, in float: for x >= 0,
      * trunc(x) <= split exactly when x < split + 1 (split < bins - 1, so the
      * clamp to the last bin does not matter; split + 1 is exact). */
@@ -283,17 +286,17 @@ static void partition_range_neon(const fast_ref *src, uint32_t begin, uint32_t e
     vst1q_f32(rcb->cmax, rmax);
 }
 
-void fast_bin_range(const fast_ref *refs, uint32_t begin, uint32_t end, const fast_binning *bn,
-                    fast_bins *bins, int use_neon) {
+void rt_sah_bin_range(const rt_sah_ref *refs, uint32_t begin, uint32_t end,
+                      const rt_sah_binning *bn, rt_sah_bins *bins, int use_neon) {
     if (use_neon)
         bin_range_neon(refs, begin, end, bn, bins);
     else
         bin_range_scalar(refs, begin, end, bn, bins);
 }
 
-void fast_partition_range(const fast_ref *src, uint32_t begin, uint32_t end, fast_ref *dst,
-                          uint32_t left, uint32_t right, const fast_binning *bn, int axis,
-                          int split, fast_cbounds *lcb, fast_cbounds *rcb, int use_neon) {
+void rt_sah_partition_range(const rt_sah_ref *src, uint32_t begin, uint32_t end, rt_sah_ref *dst,
+                            uint32_t left, uint32_t right, const rt_sah_binning *bn, int axis,
+                            int split, rt_sah_cbounds *lcb, rt_sah_cbounds *rcb, int use_neon) {
     if (use_neon)
         partition_range_neon(src, begin, end, dst, left, right, bn, axis, split, lcb, rcb);
     else

@@ -1,12 +1,13 @@
 /* incoherent_bench.c - the incoherent-ray benchmark (incoherent_bench.h). */
-#include "incoherent_bench.h"
-#include "json_out.h"
+#include "engines/incoherent_bench.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "base/clock.h"
+#include "bench_util.h"
+#include "engines/bench_print.h"
 #include "layout/flat.h"
 #include "ray_sets.h"
 #include "render/renderer_internal.h"
@@ -33,17 +34,6 @@ incoh_setup incoh_setup_default(void) {
     s.seed = 7;
     s.whitted = 1;
     return s;
-}
-
-static int cmp_double(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static void min_median(double *v, int n, double *min, double *median) {
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    *min = v[0];
-    *median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 const incoh_row *incoh_find(const incoh_result *res, const incoh_row *r, const char *path) {
@@ -107,7 +97,7 @@ static void whitted(rt_scene *scene, const incoh_setup *su, incoh_result *out) {
         incoh_whitted_row *w = &out->whitted[b];
         w->backend = backends[b];
         w->secondary = b == 0 ? "single-ray" : "oracle";
-        min_median(ms + (size_t)b * (size_t)su->reps, su->reps, &w->ms_min, &w->ms_median);
+        bench_min_median(ms + (size_t)b * (size_t)su->reps, su->reps, &w->ms_min, &w->ms_median);
         w->rays = st[b].rays;
         w->mrays_median = w->ms_median > 0 ? (double)w->rays / (w->ms_median * 1000.0) : 0.0;
     }
@@ -153,7 +143,7 @@ int incoh_bench_scene(const char *path, const incoh_setup *su, incoh_result *out
     rt_scene *scene = NULL;
     rt_error e;
     progress(su, path, "loading");
-    if (rt_scene_load(path, &scene, &e) != RT_OK) {
+    if (rt_scene_open(path, &scene, &e) != RT_OK) {
         snprintf(err, err_size, "%s", e.message);
         return 0;
     }
@@ -262,8 +252,8 @@ int incoh_bench_scene(const char *path, const incoh_setup *su, incoh_result *out
                 r->query = query_names[q];
                 r->engine = t <= T_PACKET ? "rtcl" : "embree";
                 r->path = path_names[q][t];
-                min_median(b.ms + ((size_t)(s * QUERIES + q) * TRACERS + t) * per, su->reps,
-                           &r->ms_min, &r->ms_median);
+                bench_min_median(b.ms + ((size_t)(s * QUERIES + q) * TRACERS + t) * per, su->reps,
+                                 &r->ms_min, &r->ms_median);
                 r->mrays_min = r->ms_min > 0 ? (double)n / (r->ms_min * 1000.0) : 0.0;
                 r->mrays_median = r->ms_median > 0 ? (double)n / (r->ms_median * 1000.0) : 0.0;
                 r->differ = t == T_PACKET ? differ[s][q] : -1;

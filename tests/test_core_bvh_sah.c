@@ -1,4 +1,4 @@
-/* test_core_bvh_fast.c - the fast builder: valid trees, the same bytes for
+/* test_core_bvh_sah.c - the SAH builder: valid trees, the same bytes for
  * every thread count and for the scalar and NEON loops, degenerate inputs,
  * and the parameter ranges of the builder study (bins 2..256, leaf sizes 1 to
  * 16): valid trees within the leaf size, traversal equal to brute force. */
@@ -43,7 +43,7 @@ static rt_build_options opts(int threads) {
 static int build(const rt_aabb *boxes, uint32_t n, int threads, int neon, rt_bvh *out) {
     rt_build_options o = opts(threads);
     rt_pool *pool = threads > 1 ? rt_pool_create(threads) : NULL;
-    rt_status st = rt_bvh_build_fast(boxes, n, &o, pool, neon, out, &lib_err);
+    rt_status st = rt_bvh_build_sah(boxes, n, &o, pool, neon, out, &lib_err);
     rt_pool_destroy(pool);
     CHECK_MSG(st == RT_OK, "build of %u boxes with %d threads: %s", n, threads, lib_err.message);
     return st == RT_OK;
@@ -99,7 +99,7 @@ static void test_sah_leaves(void) {
     rt_build_options o = opts(1);
     o.leaf_size = 64;
     rt_bvh bvh;
-    CHECK(rt_bvh_build_fast(boxes, n, &o, NULL, 1, &bvh, NULL) == RT_OK);
+    CHECK(rt_bvh_build_sah(boxes, n, &o, NULL, 1, &bvh, NULL) == RT_OK);
     check_valid(&bvh, boxes, n, 64, "leaf size 64");
     uint32_t leaves = 0, biggest = 0;
     for (uint32_t i = 0; i < bvh.node_count; i++) {
@@ -170,11 +170,11 @@ static void test_bad_input(void) {
     rt_aabb boxes[3] = {{{0, 0, 0}, {1, 1, 1}}, {{0, NAN, 0}, {1, 1, 1}}, {{0, 0, 0}, {1, 1, 1}}};
     rt_build_options o = opts(1);
     rt_bvh bvh;
-    CHECK(rt_bvh_build_fast(boxes, 3, &o, NULL, 1, &bvh, &lib_err) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK(rt_bvh_build_sah(boxes, 3, &o, NULL, 1, &bvh, &lib_err) == RT_ERROR_INVALID_ARGUMENT);
     CHECK_CONTAINS(lib_err.message, "finite");
     CHECK(bvh.nodes == NULL && bvh.node_count == 0);
     boxes[1] = (rt_aabb){{2, 0, 0}, {1, 1, 1}}; /* min > max */
-    CHECK(rt_bvh_build_fast(boxes, 3, &o, NULL, 0, &bvh, &lib_err) == RT_ERROR_INVALID_ARGUMENT);
+    CHECK(rt_bvh_build_sah(boxes, 3, &o, NULL, 0, &bvh, &lib_err) == RT_ERROR_INVALID_ARGUMENT);
 }
 
 /* The scratch memory kept between builds: a smaller build in between, and a
@@ -183,7 +183,7 @@ static void test_scratch_reuse(void) {
     const uint32_t n = 20000, small = 300;
     rt_aabb *boxes = make_soup(n, 11);
     rt_bvh first, tiny, again, fresh;
-    rt_bvh_fast_release_scratch();
+    rt_bvh_sah_release_scratch();
     if (!build(boxes, n, 2, 1, &first)) return;
     if (build(boxes + 5, small, 1, 0, &tiny)) {
         check_valid(&tiny, boxes + 5, small, 10, "small build on kept scratch");
@@ -193,7 +193,7 @@ static void test_scratch_reuse(void) {
         CHECK_MSG(same_bvh(&first, &again), "rebuild on kept scratch differs");
         rt_bvh_free(&again);
     }
-    rt_bvh_fast_release_scratch();
+    rt_bvh_sah_release_scratch();
     if (build(boxes, n, 2, 1, &fresh)) {
         CHECK_MSG(same_bvh(&first, &fresh), "build after release differs");
         rt_bvh_free(&fresh);
@@ -229,7 +229,7 @@ static void test_parameter_ranges(void) {
             o.bins = bins[b];
             o.leaf_size = leaves[l];
             rt_bvh one, three;
-            rt_status st = rt_bvh_build_fast(boxes, n, &o, NULL, 0, &one, &lib_err);
+            rt_status st = rt_bvh_build_sah(boxes, n, &o, NULL, 0, &one, &lib_err);
             CHECK_MSG(st == RT_OK, "bins %d leaf %d: %s", bins[b], leaves[l], lib_err.message);
             if (st != RT_OK) continue;
             char what[64];
@@ -239,7 +239,7 @@ static void test_parameter_ranges(void) {
                       largest_leaf(&one));
             o.threads = 3;
             rt_pool *pool = rt_pool_create(3);
-            CHECK(rt_bvh_build_fast(boxes, n, &o, pool, 1, &three, &lib_err) == RT_OK);
+            CHECK(rt_bvh_build_sah(boxes, n, &o, pool, 1, &three, &lib_err) == RT_OK);
             rt_pool_destroy(pool);
             CHECK_MSG(same_bvh(&one, &three), "%s: 3 threads NEON differ from 1 thread scalar",
                       what);
@@ -289,7 +289,7 @@ static void test_leaf_sizes_used(void) {
         rt_build_options o = opts(1);
         o.leaf_size = leaf;
         rt_bvh bvh;
-        CHECK(rt_bvh_build_fast(boxes, n, &o, NULL, 1, &bvh, NULL) == RT_OK);
+        CHECK(rt_bvh_build_sah(boxes, n, &o, NULL, 1, &bvh, NULL) == RT_OK);
         char what[64];
         snprintf(what, sizeof what, "clusters, leaf size %d", leaf);
         check_valid(&bvh, boxes, n, (uint32_t)leaf, what);
@@ -327,7 +327,7 @@ static rt_scene *soup_scene(uint32_t tris, uint32_t seed) {
     return s;
 }
 
-/* The traversal over trees of the fast builder at bins 64 and leaf sizes 1
+/* The traversal over trees of the SAH builder at bins 64 and leaf sizes 1
  * and 16 (and bins 4) finds the hits brute force finds, bit for bit. */
 static void test_ranges_traverse(void) {
     rt_scene *s = soup_scene(4000, 9);

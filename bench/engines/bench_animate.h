@@ -3,11 +3,13 @@
  * animated scene played frame by frame with each update policy of ours on
  * the packet backend, beside Embree updating and tracing the same frames at
  * build quality REFIT, LOW (Morton) and MEDIUM (binned SAH). */
-#ifndef RTCL_BENCH_ANIMATE_H
-#define RTCL_BENCH_ANIMATE_H
+#ifndef RT_BENCH_ANIMATE_H
+#define RT_BENCH_ANIMATE_H
 
 #include <stddef.h>
 #include <stdint.h>
+
+#include "rt.h"
 
 enum { BENCH_ANIM_MAX_ROWS = 7 };
 
@@ -75,4 +77,13 @@ void bench_anim_print_json(const char *path, const bench_anim_result *res, int s
 /* The same as a table. */
 void bench_anim_print_text(const char *path, const bench_anim_result *res);
 
-#endif /* RTCL_BENCH_ANIMATE_H */
+/* 'rtcl bench --animate': bench_animate on each scene (a file or
+ * builtin:NAME) with setup, printing its table or (json 1) one JSON object a
+ * line: "scene",
+ * "threads", "width", "height" and bench_anim_print_json's members (series:
+ * the per-frame medians too). Errors go to stderr after who. Returns 0, or 2
+ * when a scene failed. */
+int bench_anim_run(const char *const *scenes, int n_scenes, const bench_anim_setup *setup, int json,
+                   int series, const char *who);
+
+#endif /* RT_BENCH_ANIMATE_H */

@@ -1,5 +1,5 @@
 /* incoherent_bench.h - the incoherent-ray benchmark (issue 20), shared by
- * 'rtcl bench --incoherent' (cmd_bench_incoherent.c) and the standalone
+ * 'rtcl bench --incoherent' (host/cli/cmd_bench.c) and the standalone
  * bench/bench_incoherent.c: reproducible ray sets, interleaved timing of our
  * tracers and Embree's on the same rays, and Whitted frames.
  *
@@ -18,8 +18,8 @@
  * rays and hits included. The packet rows' hits are compared with the
  * oracle's in the warm-up round (closest: every bit of t, u, v, prim and
  * inst; any: the flag). */
-#ifndef RTCL_INCOHERENT_BENCH_H
-#define RTCL_INCOHERENT_BENCH_H
+#ifndef RT_INCOHERENT_BENCH_H
+#define RT_INCOHERENT_BENCH_H
 
 #include <stddef.h>
 #include <stdint.h>
@@ -90,4 +90,4 @@ const incoh_row *incoh_find(const incoh_result *res, const incoh_row *r, const c
 int incoh_run(const char *const *scenes, int n_scenes, const incoh_setup *su, int json,
               const char *who);
 
-#endif /* RTCL_INCOHERENT_BENCH_H */
+#endif /* RT_INCOHERENT_BENCH_H */

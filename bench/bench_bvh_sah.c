@@ -1,8 +1,8 @@
-/* bench_bvh_fast.c - times the fast BVH builder alone on one scene, and
+/* bench_bvh_sah.c - times the fast BVH builder alone on one scene, and
  * prints a checksum of the tree so that variants of the builder can be
  * compared for identical output.
  *
- * usage: bench_bvh_fast SCENE [threads] [reps] [neon 0/1]
+ * usage: bench_bvh_sah SCENE [threads] [reps] [neon 0/1]
  *
  * Built for profiling: with threads 1 and reps 1 under
  * `valgrind --tool=callgrind`, the instruction counts of the builder are
@@ -67,7 +67,7 @@ static rt_aabb *triangle_boxes(const rt_scene *scene, uint32_t *count) {
 
 int main(int argc, char **argv) {
     if (argc < 2) {
-        fprintf(stderr, "usage: bench_bvh_fast SCENE [threads] [reps] [neon 0/1]\n");
+        fprintf(stderr, "usage: bench_bvh_sah SCENE [threads] [reps] [neon 0/1]\n");
         return 2;
     }
     int threads = argc > 2 ? atoi(argv[2]) : 1;
@@ -78,7 +78,7 @@ int main(int argc, char **argv) {
     rt_scene *scene = NULL;
     rt_error err;
     if (rt_scene_load(argv[1], &scene, &err) != RT_OK) {
-        fprintf(stderr, "bench_bvh_fast: %s\n", err.message);
+        fprintf(stderr, "bench_bvh_sah: %s\n", err.message);
         return 1;
     }
     uint32_t count = 0;
@@ -96,15 +96,15 @@ int main(int argc, char **argv) {
         rt_error msg;
         memset(&msg, 0, sizeof msg);
         double t0 = rt_now_ms();
-        rt_status st = rt_bvh_build_fast(boxes, count, &o, pool, neon, &bvh, &msg);
+        rt_status st = rt_bvh_build_sah(boxes, count, &o, pool, neon, &bvh, &msg);
         times[i] = rt_now_ms() - t0;
         if (st != RT_OK) {
-            fprintf(stderr, "bench_bvh_fast: %s\n", msg.message);
+            fprintf(stderr, "bench_bvh_sah: %s\n", msg.message);
             return 1;
         }
         if (i == 0) {
             sum = checksum(&bvh);
-            q = rt_bvh_measure(&bvh, o.cost_box, o.cost_tri);
+            q = rt_bvh_measure(&bvh, o.costs);
         }
         rt_bvh_free(&bvh);
     }

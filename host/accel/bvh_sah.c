@@ -1,4 +1,4 @@
-/* bvh_fast.c - the default BVH builder: binned SAH (Wald 2007) on a
+/* bvh_sah.c - the default BVH builder: binned SAH (Wald 2007) on a
  * persistent thread pool, deterministic for any thread count.
  *
  * Phases
@@ -34,7 +34,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "accel/bvh_fast_kernels.h"
+#include "accel/bvh_sah_kernels.h"
 #include "accel/bvh_internal.h"
 #include "base/error.h"
 #include "base/thread_pool.h"
@@ -61,7 +61,7 @@ enum {
 
 typedef struct scratch {
     uint32_t cap; /* primitives */
-    fast_ref *refs[2];
+    rt_sah_ref *refs[2];
     rt_node *slots; /* 2 * cap - 1 */
 } scratch;
 
@@ -82,8 +82,8 @@ static scratch *scratch_take(uint32_t count) {
     s = calloc(1, sizeof *s);
     if (!s) return NULL;
     s->cap = count;
-    s->refs[0] = malloc((size_t)count * sizeof(fast_ref));
-    s->refs[1] = malloc((size_t)count * sizeof(fast_ref));
+    s->refs[0] = malloc((size_t)count * sizeof(rt_sah_ref));
+    s->refs[1] = malloc((size_t)count * sizeof(rt_sah_ref));
     s->slots = malloc((2 * (size_t)count - 1) * sizeof(rt_node));
     if (!s->refs[0] || !s->refs[1] || !s->slots) {
         scratch_free(s);
@@ -94,14 +94,14 @@ static scratch *scratch_take(uint32_t count) {
 
 static void scratch_give_back(scratch *s) {
     if (!s) return;
-    if ((size_t)s->cap * (2 * sizeof(fast_ref) + 2 * sizeof(rt_node)) > KEEP_LIMIT) {
+    if ((size_t)s->cap * (2 * sizeof(rt_sah_ref) + 2 * sizeof(rt_node)) > KEEP_LIMIT) {
         scratch_free(s);
         return;
     }
     scratch_free(atomic_exchange(&kept_scratch, s));
 }
 
-void rt_bvh_fast_release_scratch(void) {
+void rt_bvh_sah_release_scratch(void) {
     scratch_free(atomic_exchange(&kept_scratch, NULL));
 }
 
@@ -135,16 +135,16 @@ typedef struct build_ctx {
     float cost_box, cost_tri;
     int use_neon;
     int workers;
-    fast_ref *refs[2];
+    rt_sah_ref *refs[2];
     rt_node *slots; /* 2n-1 */
     uint32_t *prim_indices;
-    fast_bins *worker_bins; /* one per worker */
-    fast_bins *merged_bins;
-    fast_cbounds *worker_cb; /* two per worker: left, right */
+    rt_sah_bins *worker_bins; /* one per worker */
+    rt_sah_bins *merged_bins;
+    rt_sah_cbounds *worker_cb; /* two per worker: left, right */
     atomic_int bad_input;
     /* current parallel job */
     const task *job;
-    fast_binning job_bn;
+    rt_sah_binning job_bn;
     split_plan job_plan;
     uint32_t *job_left; /* per-worker left counts, then offsets */
     /* task phase */
@@ -180,7 +180,7 @@ static void chunk_of(const task *t, int w, int n, uint32_t *b, uint32_t *e) {
 /* ---- split decisions (serial, deterministic) ---------------------------- */
 
 /* Sets up binning; returns 0 when no axis can be binned. */
-static int setup_binning(const build_ctx *c, const task *t, fast_binning *bn) {
+static int setup_binning(const build_ctx *c, const task *t, rt_sah_binning *bn) {
     int any = 0;
     /* No more bins than primitives: small nodes are the most numerous, and
      * clearing and sweeping 3 x 16 bins for 3 primitives cost more than the
@@ -202,7 +202,7 @@ static int setup_binning(const build_ctx *c, const task *t, fast_binning *bn) {
 }
 
 /* What to do before binning: a leaf, a median split, or bin (SPLIT_BINNED). */
-static split_kind pre_decide(const build_ctx *c, const task *t, fast_binning *bn) {
+static split_kind pre_decide(const build_ctx *c, const task *t, rt_sah_binning *bn) {
     uint32_t n = t->end - t->begin;
     if (n <= 1) return SPLIT_LEAF;
     int binnable = setup_binning(c, t, bn);
@@ -223,17 +223,17 @@ static float sweep_scale(const task *t) {
 }
 
 /* SAH sweep over the bins of every binnable axis. */
-static void choose_split(const build_ctx *c, const task *t, const fast_binning *bn,
-                         const fast_bins *bins, split_plan *plan) {
+static void choose_split(const build_ctx *c, const task *t, const rt_sah_binning *bn,
+                         const rt_sah_bins *bins, split_plan *plan) {
     const int B = bn->bins;
     uint32_t n = t->end - t->begin;
     float scale = sweep_scale(t), best_f;
     int best_axis, best_bin;
-    if (!fast_sweep(bins, bn, scale, &best_f, &best_axis, &best_bin)) {
+    if (!rt_sah_sweep(bins, bn, scale, &best_f, &best_axis, &best_bin)) {
         plan->kind = n <= (uint32_t)c->leaf_size ? SPLIT_LEAF : SPLIT_MEDIAN;
         return;
     }
-    double area = fast_scaled_area(t->lo, t->hi, scale), best = best_f;
+    double area = rt_sah_scaled_area(t->lo, t->hi, scale), best = best_f;
     double split_cost = c->cost_box * area + c->cost_tri * best;
     double leaf_cost = (double)c->cost_tri * n * area;
     if (n <= (uint32_t)c->leaf_size && leaf_cost <= split_cost) {
@@ -247,7 +247,7 @@ static void choose_split(const build_ctx *c, const task *t, const fast_binning *
     float rlo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, rhi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
     uint32_t nl = 0;
     for (int k = 0; k < B; k++) {
-        const fast_box4 *b = &bins->box[best_axis][k];
+        const rt_sah_box4 *b = &bins->box[best_axis][k];
         float *lo = k <= best_bin ? llo : rlo, *hi = k <= best_bin ? lhi : rhi;
         for (int j = 0; j < 3; j++) {
             lo[j] = fmin_exact(lo[j], b->lo[j]);
@@ -270,7 +270,7 @@ static void write_leaf(build_ctx *c, const task *t) {
     memcpy(node->bmax, t->hi, sizeof t->hi);
     node->a = t->begin;
     node->b = (t->end - t->begin) | RT_NODE_LEAF_FLAG;
-    const fast_ref *refs = c->refs[t->buf];
+    const rt_sah_ref *refs = c->refs[t->buf];
     for (uint32_t i = t->begin; i < t->end; i++) memcpy(&c->prim_indices[i], &refs[i].lo[3], 4);
 }
 
@@ -292,7 +292,7 @@ static void write_inner(build_ctx *c, const task *t, const task *l, const task *
     node->b = r->slot;
 }
 
-static void set_cbounds(task *t, const fast_cbounds *cb) {
+static void set_cbounds(task *t, const rt_sah_cbounds *cb) {
     memcpy(t->cmin, cb->cmin, sizeof t->cmin);
     memcpy(t->cmax, cb->cmax, sizeof t->cmax);
 }
@@ -304,15 +304,15 @@ static void median_split(const build_ctx *c, const task *t, task *l, task *r) {
     task *side[2] = {l, r};
     for (int s = 0; s < 2; s++) {
         task *ch = side[s];
-        fast_cbounds cb;
-        fast_centroid_bounds(c->refs[t->buf], ch->begin, ch->end, &cb);
+        rt_sah_cbounds cb;
+        rt_sah_centroid_bounds(c->refs[t->buf], ch->begin, ch->end, &cb);
         set_cbounds(ch, &cb);
         for (int j = 0; j < 3; j++) {
             ch->lo[j] = FLT_MAX;
             ch->hi[j] = -FLT_MAX;
         }
         for (uint32_t i = ch->begin; i < ch->end; i++) {
-            const fast_ref *ref = &c->refs[t->buf][i];
+            const rt_sah_ref *ref = &c->refs[t->buf][i];
             for (int j = 0; j < 3; j++) {
                 ch->lo[j] = fmin_exact(ch->lo[j], ref->lo[j]);
                 ch->hi[j] = fmax_exact(ch->hi[j], ref->hi[j]);
@@ -321,8 +321,8 @@ static void median_split(const build_ctx *c, const task *t, task *l, task *r) {
     }
 }
 
-static void binned_children(const task *t, const split_plan *p, const fast_cbounds *lcb,
-                            const fast_cbounds *rcb, task *l, task *r) {
+static void binned_children(const task *t, const split_plan *p, const rt_sah_cbounds *lcb,
+                            const rt_sah_cbounds *rcb, task *l, task *r) {
     make_children(t, p->n_left, !t->buf, l, r);
     memcpy(l->lo, p->llo, sizeof l->lo);
     memcpy(l->hi, p->lhi, sizeof l->hi);
@@ -395,9 +395,9 @@ static void small_subtree(build_ctx *c, const task *t) {
     small_item items[SMALL_N];
     subset_table tab;
     int n = (int)(t->end - t->begin);
-    const fast_ref *refs = c->refs[t->buf];
+    const rt_sah_ref *refs = c->refs[t->buf];
     for (int i = 0; i < n; i++) {
-        const fast_ref *r = &refs[t->begin + (uint32_t)i];
+        const rt_sah_ref *r = &refs[t->begin + (uint32_t)i];
         memcpy(items[i].lo, r->lo, sizeof items[i].lo);
         memcpy(items[i].hi, r->hi, sizeof items[i].hi);
         memcpy(&items[i].index, &r->lo[3], 4);
@@ -426,8 +426,8 @@ static void small_subtree(build_ctx *c, const task *t) {
 
 /* Splits t once, serially. Returns 1 with children in l and r, or 0 for a
  * leaf (already written). */
-static int split_serial(build_ctx *c, const task *t, fast_bins *bins, task *l, task *r) {
-    fast_binning bn;
+static int split_serial(build_ctx *c, const task *t, rt_sah_bins *bins, task *l, task *r) {
+    rt_sah_binning bn;
     split_plan plan;
     if (t->end - t->begin <= SMALL_N) {
         small_subtree(c, t);
@@ -435,8 +435,8 @@ static int split_serial(build_ctx *c, const task *t, fast_bins *bins, task *l, t
     }
     plan.kind = pre_decide(c, t, &bn);
     if (plan.kind == SPLIT_BINNED) {
-        fast_bins_clear(bins, bn.bins);
-        fast_bin_range(c->refs[t->buf], t->begin, t->end, &bn, bins, c->use_neon);
+        rt_sah_bins_clear(bins, bn.bins);
+        rt_sah_bin_range(c->refs[t->buf], t->begin, t->end, &bn, bins, c->use_neon);
         choose_split(c, t, &bn, bins, &plan);
     }
     if (plan.kind == SPLIT_LEAF) {
@@ -446,19 +446,19 @@ static int split_serial(build_ctx *c, const task *t, fast_bins *bins, task *l, t
     if (plan.kind == SPLIT_MEDIAN) {
         median_split(c, t, l, r);
     } else {
-        fast_cbounds lcb, rcb;
-        fast_cbounds_empty(&lcb);
-        fast_cbounds_empty(&rcb);
-        fast_partition_range(c->refs[t->buf], t->begin, t->end, c->refs[!t->buf], t->begin,
-                             t->begin + plan.n_left, &bn, plan.axis, plan.bin, &lcb, &rcb,
-                             c->use_neon);
+        rt_sah_cbounds lcb, rcb;
+        rt_sah_cbounds_empty(&lcb);
+        rt_sah_cbounds_empty(&rcb);
+        rt_sah_partition_range(c->refs[t->buf], t->begin, t->end, c->refs[!t->buf], t->begin,
+                               t->begin + plan.n_left, &bn, plan.axis, plan.bin, &lcb, &rcb,
+                               c->use_neon);
         binned_children(t, &plan, &lcb, &rcb, l, r);
     }
     write_inner(c, t, l, r);
     return 1;
 }
 
-static int build_subtree(build_ctx *c, task root, fast_bins *bins) {
+static int build_subtree(build_ctx *c, task root, rt_sah_bins *bins) {
     task stack[STACK_SIZE];
     int top = 0;
     task t = root;
@@ -537,9 +537,9 @@ static void bin_job(void *ctx, int worker, int worker_count) {
     build_ctx *c = ctx;
     uint32_t b, e;
     chunk_of(c->job, worker, worker_count, &b, &e);
-    fast_bins *bins = &c->worker_bins[worker];
-    fast_bins_clear(bins, c->job_bn.bins);
-    fast_bin_range(c->refs[c->job->buf], b, e, &c->job_bn, bins, c->use_neon);
+    rt_sah_bins *bins = &c->worker_bins[worker];
+    rt_sah_bins_clear(bins, c->job_bn.bins);
+    rt_sah_bin_range(c->refs[c->job->buf], b, e, &c->job_bn, bins, c->use_neon);
 }
 
 static void partition_job(void *ctx, int worker, int worker_count) {
@@ -551,12 +551,12 @@ static void partition_job(void *ctx, int worker, int worker_count) {
      * before w follow from the chunk start. */
     uint32_t left_before = c->job_left[worker];
     uint32_t right_before = (b - t->begin) - left_before;
-    fast_cbounds *lcb = &c->worker_cb[2 * worker], *rcb = &c->worker_cb[2 * worker + 1];
-    fast_cbounds_empty(lcb);
-    fast_cbounds_empty(rcb);
-    fast_partition_range(c->refs[t->buf], b, e, c->refs[!t->buf], t->begin + left_before,
-                         t->begin + c->job_plan.n_left + right_before, &c->job_bn, c->job_plan.axis,
-                         c->job_plan.bin, lcb, rcb, c->use_neon);
+    rt_sah_cbounds *lcb = &c->worker_cb[2 * worker], *rcb = &c->worker_cb[2 * worker + 1];
+    rt_sah_cbounds_empty(lcb);
+    rt_sah_cbounds_empty(rcb);
+    rt_sah_partition_range(c->refs[t->buf], b, e, c->refs[!t->buf], t->begin + left_before,
+                           t->begin + c->job_plan.n_left + right_before, &c->job_bn,
+                           c->job_plan.axis, c->job_plan.bin, lcb, rcb, c->use_neon);
 }
 
 /* Splits one big node with all workers; children land in l and r. Returns 0
@@ -564,7 +564,7 @@ static void partition_job(void *ctx, int worker, int worker_count) {
 static int split_parallel(build_ctx *c, rt_pool *pool, const task *t, task *l, task *r) {
     const int W = c->workers;
     split_plan plan;
-    fast_binning bn;
+    rt_sah_binning bn;
     plan.kind = pre_decide(c, t, &bn);
     c->job = t;
     c->job_bn = bn;
@@ -572,10 +572,10 @@ static int split_parallel(build_ctx *c, rt_pool *pool, const task *t, task *l, t
         rt_pool_run(pool, bin_job, c);
         /* Merged into a separate set: each worker's own counts are needed
          * again to place its chunk in the partition. */
-        fast_bins *all = c->merged_bins;
+        rt_sah_bins *all = c->merged_bins;
         *all = c->worker_bins[0];
         for (int w = 1; w < W; w++) {
-            const fast_bins *o = &c->worker_bins[w];
+            const rt_sah_bins *o = &c->worker_bins[w];
             for (int a = 0; a < 3; a++) {
                 for (int k = 0; k < bn.bins; k++) {
                     for (int j = 0; j < 3; j++) {
@@ -606,10 +606,10 @@ static int split_parallel(build_ctx *c, rt_pool *pool, const task *t, task *l, t
     } else {
         c->job_plan = plan;
         rt_pool_run(pool, partition_job, c);
-        fast_cbounds lcb = c->worker_cb[0], rcb = c->worker_cb[1];
+        rt_sah_cbounds lcb = c->worker_cb[0], rcb = c->worker_cb[1];
         for (int w = 1; w < W; w++) {
-            fast_cbounds_merge(&lcb, &c->worker_cb[2 * w]);
-            fast_cbounds_merge(&rcb, &c->worker_cb[2 * w + 1]);
+            rt_sah_cbounds_merge(&lcb, &c->worker_cb[2 * w]);
+            rt_sah_cbounds_merge(&rcb, &c->worker_cb[2 * w + 1]);
         }
         binned_children(t, &plan, &lcb, &rcb, l, r);
     }
@@ -627,15 +627,15 @@ static void setup_job(void *ctx, int worker, int worker_count) {
     chunk_of(&whole, worker, worker_count, &b, &e);
     /* The pair of bounds per worker holds the box (cmin/cmax used as lo/hi)
      * and the centroid bounds of its chunk. */
-    fast_cbounds *box = &c->worker_cb[2 * worker];
-    fast_cbounds *cb = &c->worker_cb[2 * worker + 1];
-    fast_cbounds_empty(box);
-    fast_cbounds_empty(cb);
+    rt_sah_cbounds *box = &c->worker_cb[2 * worker];
+    rt_sah_cbounds *cb = &c->worker_cb[2 * worker + 1];
+    rt_sah_cbounds_empty(box);
+    rt_sah_cbounds_empty(cb);
     int bad = 0;
     for (uint32_t i = b; i < e; i++) {
-        fast_ref *r = &c->refs[0][i];
+        rt_sah_ref *r = &c->refs[0][i];
         for (int j = 0; j < 3; j++) {
-            /* + 0.0f turns -0 into +0 (see bvh_fast_kernels.h). */
+            /* + 0.0f turns -0 into +0 (see bvh_sah_kernels.h). */
             float lo = c->boxes[i].bmin[j] + 0.0f, hi = c->boxes[i].bmax[j] + 0.0f;
             bad |= !(lo >= -FLT_MAX && hi <= FLT_MAX && lo <= hi);
             r->lo[j] = lo;
@@ -746,10 +746,10 @@ static rt_status run_build(build_ctx *c, rt_pool *pool, rt_bvh *out, rt_error *e
     task root = {0};
     root.end = N;
     {
-        fast_cbounds box = c->worker_cb[0], cb = c->worker_cb[1];
+        rt_sah_cbounds box = c->worker_cb[0], cb = c->worker_cb[1];
         for (int w = 1; w < W; w++) {
-            fast_cbounds_merge(&box, &c->worker_cb[2 * w]);
-            fast_cbounds_merge(&cb, &c->worker_cb[2 * w + 1]);
+            rt_sah_cbounds_merge(&box, &c->worker_cb[2 * w]);
+            rt_sah_cbounds_merge(&cb, &c->worker_cb[2 * w + 1]);
         }
         memcpy(root.lo, box.cmin, sizeof root.lo);
         memcpy(root.hi, box.cmax, sizeof root.hi);
@@ -809,8 +809,8 @@ static rt_status run_build(build_ctx *c, rt_pool *pool, rt_bvh *out, rt_error *e
     return RT_OK;
 }
 
-rt_status rt_bvh_build_fast(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
-                            rt_pool *pool, int use_neon, rt_bvh *out, rt_error *err) {
+rt_status rt_bvh_build_sah(const rt_aabb *boxes, uint32_t count, const rt_build_options *options,
+                           rt_pool *pool, int use_neon, rt_bvh *out, rt_error *err) {
     if (!out || !options || (!boxes && count)) return RT_ERROR_INVALID_ARGUMENT;
     memset(out, 0, sizeof *out);
     if (options->bins < 2 || options->bins > FAST_MAX_BINS || options->leaf_size < 1)
@@ -839,8 +839,8 @@ rt_status rt_bvh_build_fast(const rt_aabb *boxes, uint32_t count, const rt_build
     c.count = count;
     c.bins = options->bins;
     c.leaf_size = options->leaf_size;
-    c.cost_box = options->cost_box;
-    c.cost_tri = options->cost_tri;
+    c.cost_box = options->costs.traverse;
+    c.cost_tri = options->costs.intersect;
     c.use_neon = use_neon;
     c.workers = threads;
     atomic_init(&c.bad_input, 0);
@@ -853,9 +853,9 @@ rt_status rt_bvh_build_fast(const rt_aabb *boxes, uint32_t count, const rt_build
         c.slots = mem->slots;
     }
     c.prim_indices = malloc((size_t)count * sizeof(uint32_t));
-    c.worker_bins = malloc((size_t)threads * sizeof(fast_bins));
-    c.merged_bins = malloc(sizeof(fast_bins));
-    c.worker_cb = malloc((size_t)threads * 2 * sizeof(fast_cbounds));
+    c.worker_bins = malloc((size_t)threads * sizeof(rt_sah_bins));
+    c.merged_bins = malloc(sizeof(rt_sah_bins));
+    c.worker_cb = malloc((size_t)threads * 2 * sizeof(rt_sah_cbounds));
     c.job_left = malloc((size_t)threads * sizeof(uint32_t));
     rt_status st;
     if (!c.refs[0] || !c.refs[1] || !c.slots || !c.prim_indices || !c.worker_bins ||

@@ -19,8 +19,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bench_animate.h"
-#include "json_out.h"
+#include "bench_util.h"
+#include "engines/bench_animate.h"
+#include "engines/bench_print.h"
 #include "accel/bvh.h"
 #include "base/clock.h"
 #include "render/renderer_internal.h"
@@ -32,20 +33,8 @@
 #endif
 
 enum { OURS = 4 };
-static const rt_update_policy policies[OURS] = {RT_UPDATE_REBUILD, RT_UPDATE_REFIT, RT_UPDATE_FAST,
+static const rt_update_policy policies[OURS] = {RT_UPDATE_SAH, RT_UPDATE_REFIT, RT_UPDATE_LBVH,
                                                 RT_UPDATE_AUTO};
-
-static int cmp_double(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* Min and median of v[0..n) (sorted in place). */
-static void min_median(double *v, int n, double *mn, double *med) {
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    *mn = v[0];
-    *med = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 /* The first object that morphs between keyframes, or -1. */
 static int morph_object(const rt_scene *s) {
@@ -126,7 +115,7 @@ static int ours_frame(rt_scene *s, bench_anim_result *res, bench_anim_row *row, 
     row->tests[i] = (double)rs->st.box_tests + 2.0 * (double)rs->st.tri_tests;
     if (ref) {
         uint64_t h = image_hash(&rs->fb);
-        if (p == RT_UPDATE_REBUILD)
+        if (p == RT_UPDATE_SAH)
             ref[k] = h;
         else if (h != ref[k])
             row->images_match = 0;
@@ -191,12 +180,12 @@ static double mesh_sah(rt_embree *em, const rt_mesh_data *md, int quality, embre
     rt_bvh *keep = &t->bvh[m];
     if (quality == RT_EMBREE_REFIT && keep->node_count && keep->prim_count == n) {
         rt_bvh_refit(keep, &t->info[m], boxes, NULL);
-        sah = rt_bvh_sah(keep, 1.0f, 2.0f);
+        sah = rt_bvh_sah_cost(keep, rt_sah_costs_default());
     } else {
         rt_bvh b;
         int q = quality == RT_EMBREE_LOW ? RT_EMBREE_LOW : RT_EMBREE_MEDIUM;
         if (rt_embree_build_bvh_quality(em, boxes, n, &o, q, &b, &ms, &e) == RT_OK) {
-            sah = rt_bvh_sah(&b, 1.0f, 2.0f);
+            sah = rt_bvh_sah_cost(&b, rt_sah_costs_default());
             if (quality == RT_EMBREE_REFIT) {
                 rt_bvh_free(keep);
                 rt_bvh_refit_info_free(&t->info[m]);
@@ -307,9 +296,9 @@ static void summarize(bench_anim_result *res, bench_anim_row *row) {
             sah += row->sah_f[i] / ((double)res->frames * res->runs);
         }
     }
-    min_median(u, res->runs, &row->update_ms_min, &row->update_ms_median);
-    min_median(f, res->runs, &row->frame_ms_min, &row->frame_ms_median);
-    min_median(t, res->runs, &row->trace_ms_min, &row->trace_ms_median);
+    bench_min_median(u, res->runs, &row->update_ms_min, &row->update_ms_median);
+    bench_min_median(f, res->runs, &row->frame_ms_min, &row->frame_ms_median);
+    bench_min_median(t, res->runs, &row->trace_ms_min, &row->trace_ms_median);
     row->sah = sah;
     free(u);
 }
@@ -345,7 +334,7 @@ int bench_animate(const char *path, const bench_anim_setup *su, bench_anim_resul
     rt_scene *s = NULL;
     rt_error e;
     if (su->progress) su->progress(path, "loading");
-    if (rt_scene_load(path, &s, &e) != RT_OK) {
+    if (rt_scene_open(path, &s, &e) != RT_OK) {
         snprintf(err, err_size, "%s", e.message);
         return 0;
     }
@@ -491,7 +480,7 @@ static void json_series(const char *key, const bench_anim_result *res, const dou
     for (int k = 1; k <= res->frames; k++) {
         for (int run = 0; run < res->runs; run++) scratch[run] = v[bench_anim_index(res, run, k)];
         double mn, med;
-        min_median(scratch, res->runs, &mn, &med);
+        bench_min_median(scratch, res->runs, &mn, &med);
         if (isfinite(med))
             printf("%s%.4f", k > 1 ? ", " : "", med);
         else
@@ -573,9 +562,37 @@ void bench_anim_print_text(const char *path, const bench_anim_result *res) {
             printf("%8.2f ", r->sah);
         else
             printf("%8s ", "-");
-        printf("%s\n", r->images_match < 0 ? "-"
-                       : r->images_match   ? "= rebuild"
-                                           : "DIFFER from rebuild");
+        printf("%s\n", r->images_match < 0 ? "-" : r->images_match ? "= sah" : "DIFFER from sah");
     }
     if (res->embree_note[0]) printf("  embree: no rows: %s\n", res->embree_note);
+}
+
+int bench_anim_run(const char *const *scenes, int n_scenes, const bench_anim_setup *setup, int json,
+                   int series, const char *who) {
+    const bench_anim_setup su = *setup;
+    int failed = 0;
+    for (int i = 0; i < n_scenes; i++) {
+        bench_anim_result res;
+        char why[400] = "";
+        int ok = bench_animate(scenes[i], &su, &res, why, sizeof why);
+        if (su.progress) fprintf(stderr, "\r\033[K");
+        if (!ok) {
+            fprintf(stderr, "%s: %s\n", who, why);
+            failed = 1;
+            continue;
+        }
+        if (json) {
+            printf("{\"scene\": ");
+            json_out_string(scenes[i]);
+            printf(", \"threads\": %d, \"width\": %d, \"height\": %d", su.threads, su.width,
+                   su.height);
+            bench_anim_print_json(scenes[i], &res, series);
+            printf("}\n");
+        } else {
+            bench_anim_print_text(scenes[i], &res);
+        }
+        fflush(stdout);
+        bench_anim_free(&res);
+    }
+    return failed ? 2 : 0;
 }

@@ -1,5 +1,5 @@
-/* json_out.c - writing JSON by hand on stdout (json_out.h). */
-#include "json_out.h"
+/* bench_print.c - JSON strings and the progress line (bench_print.h). */
+#include "engines/bench_print.h"
 
 #include <stdio.h>
 
@@ -15,4 +15,8 @@ void json_out_string(const char *s) {
             putchar(c);
     }
     putchar('"');
+}
+
+void bench_progress_line(const char *scene, const char *what) {
+    fprintf(stderr, "\r\033[K%s: %s", scene, what);
 }
