@@ -161,7 +161,7 @@ static int trace_frame(bench *b, double *ms, uint64_t *rays, rt_error *msg) {
     rt_bvh_free(&top);
     if (st != RT_OK) return 0;
     flat.hdr.flags &= ~(uint32_t)RT_SCENE_SECONDARY; /* direct_only */
-    rt_cpu_frame frame = {&flat, NULL, NULL, RT_AOV_NONE, b->image, 3, NULL, NULL, 0, NULL, NULL};
+    rt_cpu_frame frame = {&flat, NULL, NULL, RT_AOV_NONE, b->image, 3, NULL, NULL, 0, NULL};
     rt_cpu_counts counts;
     double t0 = rt_now_ms();
     if (rt_cpu_render(&frame, b->pool, &counts) != RT_OK) {

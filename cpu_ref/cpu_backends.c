@@ -10,7 +10,7 @@
 #include "base/clock.h"
 #include "base/error.h"
 #include "cpu_render.h"
-#include "rt_fp_mode.h"
+#include "kernel_maths.h"
 
 /* ---- ray queries, shared by both -------------------------------------- */
 
@@ -64,9 +64,9 @@ static void fill_counts(rt_render_stats *stats, const rt_cpu_counts *counts) {
 /* One frame on the pool: the scalar oracle, or packets through wide (with
  * the build isa) when wide is given. */
 static rt_status render_frame(const rt_backend_layout *layout, const rt_backend_frame *frame,
-                              const rt_pk_wide *wide, const rt_pk_variant *isa,
-                              const rt_sw_bvh *single, const rt_sw_variant *single_isa, int flush,
-                              rt_render_stats *stats, rt_error *err) {
+                              const rt_wide_bvh *wide, const rt_cpu_isa *isa,
+                              const rt_wide_bvh *single, int flush, rt_render_stats *stats,
+                              rt_error *err) {
     rt_cpu_frame f = {layout->flat,
                       wide,
                       isa,
@@ -76,8 +76,7 @@ static rt_status render_frame(const rt_backend_layout *layout, const rt_backend_
                       frame->progress,
                       frame->progress_user,
                       flush,
-                      single,
-                      single_isa};
+                      single};
     rt_cpu_counts counts;
     double t0 = rt_now_ms();
     rt_status st = wide ? rt_packet_render(&f, layout->pool, &counts)
@@ -149,7 +148,7 @@ static rt_status cpu_prepare(void *state, const rt_backend_layout *layout, rt_re
 
 static rt_status cpu_render(void *state, const rt_backend_layout *layout,
                             const rt_backend_frame *frame, rt_render_stats *stats, rt_error *err) {
-    return render_frame(layout, frame, NULL, NULL, NULL, NULL, state != NULL, stats, err);
+    return render_frame(layout, frame, NULL, NULL, NULL, state != NULL, stats, err);
 }
 
 static rt_status cpu_trace(void *state, const rt_backend_layout *layout, const rt_ray *rays,
@@ -174,91 +173,81 @@ const rt_backend_ops rt_backend_cpu = {"cpu",      always_available, cpu_create,
 
 /* ---- packet: ray packets through wide BVHs ------------------------------ */
 
+/* One of the packet backend's wide trees and the layout generation it
+ * was made for. */
+typedef struct wide_copy {
+    rt_wide_bvh bvh;
+    uint32_t generation;
+    int have;
+} wide_copy;
+
 typedef struct packet_state {
-    const rt_pk_variant *isa;
-    rt_pk_wide wide;          /* the wide BVHs of the layout ... */
-    uint32_t wide_generation; /* ... of this generation */
-    int have_wide;
-    /* The single-ray tracer's build and BVHs (cpu_ref/single_trace.h), for
-     * incoherent rays; made when first needed. */
-    const rt_sw_variant *single_isa;
-    rt_sw_bvh single;
-    uint32_t single_generation;
-    int have_single;
+    const rt_cpu_isa *isa; /* the build of both tracers */
+    wide_copy packets;     /* the packet tracer's trees (rt_pk_shape) */
+    /* The single-ray tracer's trees (rt_sw_shape), for incoherent rays;
+     * made when first needed. */
+    wide_copy single;
     int flush; /* denormals */
 } packet_state;
 
 static rt_status packet_create(const rt_backend_config *config, void **state, rt_error *err) {
-    const rt_pk_variant *isa = rt_pk_variant_find(config->packet_isa);
+    const rt_cpu_isa *isa = rt_cpu_isa_find(config->packet_isa);
     if (!isa) {
         char names[128] = "";
-        for (int i = 0; rt_pk_isa_name(i); i++) {
-            if (!rt_pk_variant_find(rt_pk_isa_name(i))) continue;
+        for (int i = 0; rt_cpu_isa_at(i); i++) {
+            if (!rt_cpu_isa_find(rt_cpu_isa_at(i))) continue;
             if (names[0]) strncat(names, ", ", sizeof names - strlen(names) - 1);
-            strncat(names, rt_pk_isa_name(i), sizeof names - strlen(names) - 1);
+            strncat(names, rt_cpu_isa_at(i), sizeof names - strlen(names) - 1);
         }
         return rt_fail(err, RT_ERROR_UNSUPPORTED,
                        "packet: instruction set '%s' is not in this build or not run by this CPU "
                        "(here: %s)",
                        config->packet_isa, names);
     }
-    /* The single-ray tracer of the same instruction set (its builds have
-     * the packet tracer's names). */
-    const rt_sw_variant *single_isa = rt_sw_variant_find(config->packet_isa);
-    if (!single_isa)
-        return rt_fail(err, RT_ERROR_UNSUPPORTED, "packet: no single-ray build '%s'",
-                       config->packet_isa ? config->packet_isa : "");
     rt_status st = check_denormals("packet", config, err);
     if (st != RT_OK) return st;
     packet_state *s = calloc(1, sizeof *s);
     if (!s) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "packet: out of memory");
     s->isa = isa;
     s->flush = config->flush_denormals;
-    s->single_isa = single_isa;
     *state = s;
     return RT_OK;
 }
 
-/* The wide BVHs are made from the layout's nodes: again whenever the layout
- * was remade. Their time counts as build time. */
-static rt_status packet_prepare(void *state, const rt_backend_layout *layout,
-                                rt_render_stats *stats, rt_error *err) {
-    packet_state *s = state;
-    if (s->have_wide && s->wide_generation == layout->layout_generation) return RT_OK;
-    double t0 = rt_now_ms();
-    /* Only refits since the wide BVHs were made: refit them too. */
-    if (s->have_wide && layout->base_generation && s->wide_generation == layout->base_generation &&
-        layout->shapes_kept) {
-        if (rt_pk_wide_refit(layout->flat, &s->wide) == RT_OK) {
-            s->wide_generation = layout->layout_generation;
-            stats->build_ms += rt_now_ms() - t0;
-            return RT_OK;
-        }
+/* Brings c up to date with the layout: refitted when only refits happened
+ * since it was made (the layout rewritten in place from c's generation with
+ * every mesh tree's shape kept), else made anew from the layout's nodes.
+ * The time counts as build time (stats may be NULL). */
+static rt_status wide_update(wide_copy *c, const rt_backend_layout *layout, rt_wide_shape shape,
+                             const char *what, rt_render_stats *stats, rt_error *err) {
+    if (c->have && c->generation == layout->layout_generation) return RT_OK;
+    const double t0 = rt_now_ms();
+    rt_status st = RT_ERROR_OUT_OF_MEMORY;
+    if (c->have && layout->base_generation && c->generation == layout->base_generation &&
+        layout->shapes_kept)
+        st = rt_wide_refit(layout->flat, &c->bvh);
+    if (st != RT_OK) {
+        rt_wide_free(&c->bvh);
+        c->have = 0;
+        if (rt_wide_build(layout->flat, shape, &c->bvh) != RT_OK)
+            return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "packet: out of memory (%s)", what);
     }
-    rt_pk_wide_free(&s->wide);
-    s->have_wide = 0;
-    if (rt_pk_wide_build(layout->flat, &s->wide) != RT_OK)
-        return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "packet: out of memory (wide BVH)");
-    s->have_wide = 1;
-    s->wide_generation = layout->layout_generation;
-    stats->build_ms += rt_now_ms() - t0;
+    c->have = 1;
+    c->generation = layout->layout_generation;
+    if (stats) stats->build_ms += rt_now_ms() - t0;
     return RT_OK;
 }
 
-/* The single-ray BVHs, from the layout's nodes: again whenever the layout
- * was remade; their time counts as build time (stats may be NULL). */
+static rt_status packet_prepare(void *state, const rt_backend_layout *layout,
+                                rt_render_stats *stats, rt_error *err) {
+    packet_state *s = state;
+    return wide_update(&s->packets, layout, rt_pk_shape(), "wide BVH", stats, err);
+}
+
 static rt_status ensure_single(packet_state *s, const rt_backend_layout *layout,
                                rt_render_stats *stats, rt_error *err) {
-    if (s->have_single && s->single_generation == layout->layout_generation) return RT_OK;
-    double t0 = rt_now_ms();
-    rt_sw_free(&s->single);
-    s->have_single = 0;
-    if (rt_sw_build(layout->flat, rt_sw_variant_width(s->single_isa), &s->single) != RT_OK)
-        return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "packet: out of memory (single-ray BVH)");
-    s->have_single = 1;
-    s->single_generation = layout->layout_generation;
-    if (stats) stats->build_ms += rt_now_ms() - t0;
-    return RT_OK;
+    return wide_update(&s->single, layout, rt_sw_shape(rt_cpu_isa_width(s->isa)), "single-ray BVH",
+                       stats, err);
 }
 
 static rt_status packet_render(void *state, const rt_backend_layout *layout,
@@ -272,12 +261,12 @@ static rt_status packet_render(void *state, const rt_backend_layout *layout,
         rt_status st = ensure_single(s, layout, stats, err);
         if (st != RT_OK) return st;
     }
-    rt_status st = render_frame(layout, frame, &s->wide, s->isa, secondary ? &s->single : NULL,
-                                s->single_isa, s->flush, stats, err);
+    rt_status st = render_frame(layout, frame, &s->packets.bvh, s->isa,
+                                secondary ? &s->single.bvh : NULL, s->flush, stats, err);
     if (st != RT_OK) return st;
     stats->packet_rays = RT_PK_LANES;
-    stats->packet_isa = rt_pk_variant_name(s->isa);
-    stats->packet_vector = rt_pk_variant_lanes(s->isa);
+    stats->packet_isa = rt_cpu_isa_name(s->isa);
+    stats->packet_vector = rt_cpu_isa_lanes(s->isa);
     return RT_OK;
 }
 
@@ -292,21 +281,20 @@ static rt_status packet_trace(void *state, const rt_backend_layout *layout, cons
     rt_cpu_frame tracers;
     memset(&tracers, 0, sizeof tracers);
     tracers.flat = layout->flat;
-    tracers.wide = &s->wide;
+    tracers.wide = &s->packets.bvh;
     tracers.isa = s->isa;
-    tracers.single = &s->single;
-    tracers.single_isa = s->single_isa;
+    tracers.single = &s->single.bvh;
     stats->packet_rays = trace_all(layout, &tracers, s->flush, rays, count, hits, any_hit, path);
     stats->single_rays = count - stats->packet_rays;
-    stats->isa = rt_pk_variant_name(s->isa);
+    stats->isa = rt_cpu_isa_name(s->isa);
     return RT_OK;
 }
 
 static void packet_destroy(void *state) {
     packet_state *s = state;
     if (!s) return;
-    rt_pk_wide_free(&s->wide);
-    rt_sw_free(&s->single);
+    rt_wide_free(&s->packets.bvh);
+    rt_wide_free(&s->single.bvh);
     free(s);
 }
 

@@ -8,11 +8,12 @@
 
 #include "base/thread_pool.h"
 #include "layout/flat.h"
+#include "cpu_isa.h"
 #include "packet_trace.h"
-#include "packet_wide.h"
 #include "rt.h"
-#include "rt_shade.h"
+#include "kernel_maths.h"
 #include "single_trace.h"
+#include "wide_bvh.h"
 
 typedef struct rt_cpu_counts {
     uint64_t rays, primary_rays, box_tests, tri_tests;
@@ -21,18 +22,18 @@ typedef struct rt_cpu_counts {
 
 typedef struct rt_cpu_frame {
     const rt_flat *flat;
-    const rt_pk_wide *wide;   /* the packet backend's wide BVHs of flat ... */
-    const rt_pk_variant *isa; /* ... and the build of its tracer that runs */
+    const rt_wide_bvh *wide; /* the packet backend's packet BVHs of flat (rt_pk_shape) ... */
+    const rt_cpu_isa *isa;   /* ... and the build of its tracers that runs */
     rt_aov aov;
     float *pixels; /* width * height * channels */
     int channels;  /* 3 for the image and normals, else 1 */
     void (*progress)(void *user, double done);
     void *progress_user;
     int flush_denormals; /* 1: the workers flush denormals (rt_pool_run_fp) */
-    /* The packet backend's single-ray BVHs of flat, for incoherent rays
-     * (reflections, refractions and their shadow rays), or NULL ... */
-    const rt_sw_bvh *single;
-    const rt_sw_variant *single_isa; /* ... and the build of that tracer */
+    /* The packet backend's single-ray BVHs of flat (rt_sw_shape of the
+     * isa's width), for incoherent rays (reflections, refractions and their
+     * shadow rays), or NULL. */
+    const rt_wide_bvh *single;
 } rt_cpu_frame;
 
 /* Renders with the scalar oracle on the pool's workers (interleaved rows).

@@ -125,7 +125,7 @@ static void pk_kd_group(pk_state *st, const pk_geom *p, rt_u32 root, rt_u32 inst
  * instance's box, one group at a time. */
 static void pk_kd(pk_state *st, const pk_geom *p, rt_u32 root, rt_u32 inst, pk_groups gm) {
     for (pk_groups todo = gm & st->alive_groups; todo; todo &= todo - 1) {
-        const int g = lowest_bit(todo);
+        const int g = rt_lane_first(todo);
         const uint32_t m = st->alive[g] & st->inst_ok[g];
         if (m) pk_kd_group(st, p, root, inst, g, m);
     }

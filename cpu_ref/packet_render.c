@@ -227,7 +227,7 @@ void rt_packet_trace_rays(const rt_cpu_frame *tr, const rt_ray *rays, size_t n, 
             tr->single && path != RT_TRACE_PATH_PACKETS &&
             (path == RT_TRACE_PATH_SINGLE || !rt_rays_coherent(rays + i, count, span));
         if (single) {
-            rt_sw_trace(tr->single_isa, &v, tr->single, rays + i, count, any_hit, hits + i, c);
+            rt_sw_trace(tr->isa, &v, tr->single, rays + i, count, any_hit, hits + i, c);
             continue;
         }
         rt_pk_rays p;
@@ -255,7 +255,7 @@ void rt_single_shade_children(const rt_cpu_frame *f, const rt_scene_view *v,
     while (sp > 0) {
         const rt_shade_entry e = stack[--sp];
         rt_hit_d h;
-        rt_sw_trace(f->single_isa, v, f->single, &e.ray, 1, 0, &h, c);
+        rt_sw_trace(f->isa, v, f->single, &e.ray, 1, 0, &h, c);
         /* rt_shade_step, its shadow rays through the single-ray tracer. */
         rt_shade_node nd;
         if (rt_shade_begin(v, &e, &h, &nd)) {
@@ -264,7 +264,7 @@ void rt_single_shade_children(const rt_cpu_frame *f, const rt_scene_view *v,
                 rt_hit_d sh;
                 float Ln[3], ndl;
                 if (!rt_phong_light(v, &nd.sf, li, &sr, Ln, &ndl)) continue;
-                rt_sw_trace(f->single_isa, v, f->single, &sr, 1, 1, &sh, c);
+                rt_sw_trace(f->isa, v, f->single, &sr, 1, 1, &sh, c);
                 if (sh.prim != RT_NO_HIT) continue;
                 rt_phong_add(v, &nd.sf, li, Ln, ndl, nd.dn, nd.lit);
             }

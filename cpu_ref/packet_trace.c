@@ -1,14 +1,15 @@
 /* packet_trace.c - RT_PK_LANES rays through the two-level BVH together
  * (packet_trace.h), in G groups of RT_VN lanes, one native vector each
- * (host/simd_wide.h: 16 groups of 4 lanes with NEON or SSE2, 8 of 8 with
- * AVX2, 4 of 16 with AVX-512), over the layout's BVHs as four-wide nodes
- * (cpu_ref/packet_wide.h).
+ * (simd.h: 16 groups of 4 lanes with NEON or SSE2, 8 of 8 with AVX2, 4 of
+ * 16 with AVX-512), over the layout's BVHs as four-wide nodes
+ * (wide_bvh.h, rt_pk_shape).
  *
  * Until a node is narrower than the packet where the packet enters it, the
  * whole packet decides each node with one interval test over its four
  * children (pk_bvh_ia); below such nodes, and for packets whose signs differ, each group goes on
  * with its lanes' own box tests (pk_bvh_group); at a leaf each group's lanes that pass its box test
- * test the triangles, a group's lanes in one vector test. Meshes with a
+ * test the triangles, a group's lanes in one vector test
+ * (watertight_lanes.h). Meshes with a
  * kd-tree (RT_INST_KD) are walked by each group in turn (packet_kd.h).
  *
  * Every vector operation below is the scalar oracle's operation on each lane
@@ -16,22 +17,18 @@
  * lane's values are the oracle's bits. Minimum and maximum are the oracle's
  * 'a < b ? a : b', NaN behaviour included (rt_vmin_of, rt_vmax_of).
  *
- * This file is compiled once per instruction set (RT_PK_ISA names the
- * variant; cpu_ref/packet_dispatch.c picks one at run time); the variants
- * differ in register width only, never in results. */
+ * This file is compiled once per instruction set (cpu_isa.h: RT_ISA names
+ * the build, and the run-time choice is made there); the builds differ in
+ * register width only, never in results. */
 #include <assert.h>
 #include <string.h>
 
+#include "cpu_isa.h"
 #include "packet_trace.h"
-#include "packet_wide.h"
-#include "base/simd_wide.h"
+#include "simd.h"
+#include "watertight_lanes.h"
 
-#ifndef RT_PK_ISA
-#define RT_PK_ISA generic
-#endif
-#define RT_PK_CAT_(a, b) a##_##b
-#define RT_PK_CAT(a, b)  RT_PK_CAT_(a, b)
-#define RT_PK_TRACE      RT_PK_CAT(rt_pk_trace, RT_PK_ISA)
+#define RT_PK_TRACE RT_ISA_SYMBOL(rt_pk_trace)
 
 enum { L = RT_PK_LANES, N = RT_VN, G = RT_PK_LANES / RT_VN };
 _Static_assert(RT_PK_LANES % RT_VN == 0, "a packet is whole vectors");
@@ -60,7 +57,7 @@ typedef struct pk_geom {
 
 typedef struct pk_state {
     const rt_scene_view *s;
-    const rt_pk_wide *w;
+    const rt_wide_bvh *w;
     rt_vf t[G];  /* the best hit's t (the ray's tmax at first) */
     rt_vf hi[G]; /* rt_box_hi(t) */
     /* The best hit's edge functions (u = V / det, v = W / det once the
@@ -82,30 +79,14 @@ typedef struct pk_state {
     rt_u32 method;
 } pk_state;
 
-static inline int lowest_bit(uint32_t m) {
-    return __builtin_ctz(m);
-}
-
 /* rt_box_hi per lane. */
 static inline rt_vf box_hi(rt_vf t) {
     return t + rt_vabs(t) * rt_vsplat(RT_BOX_T_MARGIN);
 }
 
-/* The number of lanes in m (baseline x86-64 has no popcount instruction). */
-static inline uint32_t lanes_in(uint32_t m) {
-#if defined(__POPCNT__) || defined(__aarch64__)
-    return (uint32_t)__builtin_popcount(m);
-#else
-    static const uint8_t n[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
-    uint32_t c = 0;
-    for (int i = 0; i < N; i += 4) c += n[(m >> i) & 15u];
-    return c;
-#endif
-}
-
 /* Counts one test for each lane of m in group g. */
 static inline void count(const pk_state *st, uint64_t *total, rt_vi *per_lane, int g, uint32_t m) {
-    *total += lanes_in(m);
+    *total += rt_lane_count(m);
     if (st->per_lane) per_lane[g] -= rt_vmask(m);
 }
 
@@ -253,21 +234,12 @@ static void lane_ray(const pk_geom *p, int g, int i, rt_ray *r) {
 }
 
 /* One lane per child of a wide node. */
-#if RT_PK_WIDTH == 4
-typedef rt_v4f ck_f;
-typedef rt_v4i ck_i;
-#define ck_splat rt_v4splat
-#define ck_min   rt_v4min
-#define ck_max   rt_v4max
-#define ck_bits  rt_v4bits
-#elif RT_PK_WIDTH == 8
-typedef rt_v8f ck_f;
-typedef rt_v8i ck_i;
-#define ck_splat rt_v8splat
-#define ck_min   rt_v8min
-#define ck_max   rt_v8max
-#define ck_bits  rt_v8bits
-#endif
+typedef RT_VF(RT_PK_WIDTH) ck_f;
+typedef RT_VI(RT_PK_WIDTH) ck_i;
+#define ck_splat RT_VOP(RT_PK_WIDTH, splat)
+#define ck_min   RT_VOP(RT_PK_WIDTH, min_of)
+#define ck_max   RT_VOP(RT_PK_WIDTH, max_of)
+#define ck_bits  RT_VOP(RT_PK_WIDTH, bits)
 
 /* The slots of n that hold a child. An empty slot's inverted box is missed
  * by every ray with numbers in it, but a NaN (a NaN ray, or 0 * inf where a
@@ -275,7 +247,7 @@ typedef rt_v8i ck_i;
  * the slot itself must never be entered (its ref is no node). */
 static inline uint32_t real_children(const rt_pk_node *n) {
     uint32_t m = 0;
-    for (int s = 0; s < RT_PK_WIDTH; s++) m |= (uint32_t)(n->ref[s] != RT_PK_NO_CHILD) << s;
+    for (int s = 0; s < RT_PK_WIDTH; s++) m |= (uint32_t)(n->ref[s] != RT_WIDE_EMPTY) << s;
     return m;
 }
 
@@ -428,7 +400,7 @@ static void pk_tri_lanes(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u
     const rt_tri *tri = &st->s->tris[e];
     const rt_u32 prim = st->s->tri_ids[e];
     for (m &= st->inst_ok[g]; m; m &= m - 1) {
-        const int i = lowest_bit(m);
+        const int i = rt_lane_first(m);
         rt_ray lr;
         lane_ray(p, g, i, &lr);
         const rt_ray *r = &lr;
@@ -459,55 +431,40 @@ static void pk_tri(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u32 e, 
         return;
     }
     const rt_tri *tri = &st->s->tris[e];
-    /* The oracle's A[i] = v0[i] - org[i], taken at kx, ky and kz (A[kz] is
-     * named Az here), ... */
-    rt_vf Ax, Ay, Az, Bx, By, Bz, Cx, Cy, Cz;
+    /* The oracle's A[i] = v0[i] - org[i] (and B, C), taken at kx, ky, kz. */
+    rt_vf A[3], B[3], C[3];
     const int kx = p->perm[g][0], ky = p->perm[g][1], kz = p->perm[g][2];
     if (kx >= 0) {
         const rt_vf ox = p->org[kx][g], oy = p->org[ky][g], oz = p->org[kz][g];
-        Ax = rt_vsplat(tri->v0[kx]) - ox, Ay = rt_vsplat(tri->v0[ky]) - oy;
-        Az = rt_vsplat(tri->v0[kz]) - oz;
-        Bx = rt_vsplat(tri->v1[kx]) - ox, By = rt_vsplat(tri->v1[ky]) - oy;
-        Bz = rt_vsplat(tri->v1[kz]) - oz;
-        Cx = rt_vsplat(tri->v2[kx]) - ox, Cy = rt_vsplat(tri->v2[ky]) - oy;
-        Cz = rt_vsplat(tri->v2[kz]) - oz;
+        A[0] = rt_vsplat(tri->v0[kx]) - ox, A[1] = rt_vsplat(tri->v0[ky]) - oy;
+        A[2] = rt_vsplat(tri->v0[kz]) - oz;
+        B[0] = rt_vsplat(tri->v1[kx]) - ox, B[1] = rt_vsplat(tri->v1[ky]) - oy;
+        B[2] = rt_vsplat(tri->v1[kz]) - oz;
+        C[0] = rt_vsplat(tri->v2[kx]) - ox, C[1] = rt_vsplat(tri->v2[ky]) - oy;
+        C[2] = rt_vsplat(tri->v2[kz]) - oz;
     } else { /* lanes disagree on the axes: each picks its own */
-        rt_vf A[3], B[3], C[3];
+        rt_vf a[3], b[3], c[3];
         for (int k = 0; k < 3; k++) {
-            A[k] = rt_vsplat(tri->v0[k]) - p->org[k][g];
-            B[k] = rt_vsplat(tri->v1[k]) - p->org[k][g];
-            C[k] = rt_vsplat(tri->v2[k]) - p->org[k][g];
+            a[k] = rt_vsplat(tri->v0[k]) - p->org[k][g];
+            b[k] = rt_vsplat(tri->v1[k]) - p->org[k][g];
+            c[k] = rt_vsplat(tri->v2[k]) - p->org[k][g];
         }
         const rt_vi x0 = p->kx0[g], x1 = p->kx1[g], y0 = p->ky0[g], y1 = p->ky1[g];
         const rt_vi z0 = p->kz0[g], z1 = p->kz1[g];
-        Ax = pick(x0, x1, A), Ay = pick(y0, y1, A), Az = pick(z0, z1, A);
-        Bx = pick(x0, x1, B), By = pick(y0, y1, B), Bz = pick(z0, z1, B);
-        Cx = pick(x0, x1, C), Cy = pick(y0, y1, C), Cz = pick(z0, z1, C);
+        A[0] = pick(x0, x1, a), A[1] = pick(y0, y1, a), A[2] = pick(z0, z1, a);
+        B[0] = pick(x0, x1, b), B[1] = pick(y0, y1, b), B[2] = pick(z0, z1, b);
+        C[0] = pick(x0, x1, c), C[1] = pick(y0, y1, c), C[2] = pick(z0, z1, c);
     }
-    /* ... A[kx] - sx A[kz], A[ky] - sy A[kz], ... */
-    const rt_vf sx = p->sx[g], sy = p->sy[g];
-    Ax = Ax - sx * Az, Ay = Ay - sy * Az;
-    Bx = Bx - sx * Bz, By = By - sy * Bz;
-    Cx = Cx - sx * Cz, Cy = Cy - sy * Cz;
-    rt_vf U = Cx * By - Cy * Bx;
-    rt_vf V = Ax * Cy - Ay * Cx;
-    rt_vf W = Bx * Ay - By * Ax;
-    const rt_vf zero = rt_vsplat(0.0f);
+    rt_vwt x;
     /* An edge function of exactly zero takes the oracle's exact re-check. */
-    uint32_t z = rt_vbits((U == zero) | (V == zero) | (W == zero)) & m;
+    const uint32_t z = rt_vwt_edges(A, B, C, p->sx[g], p->sy[g], &x) & m;
     if (z) {
         pk_tri_lanes(st, p, g, z, e, inst);
         m &= ~z;
     }
-    rt_vf det = (U + V) + W;
-    rt_vi out = (((U < zero) | (V < zero) | (W < zero)) & ((U > zero) | (V > zero) | (W > zero))) |
-                (det == zero);
-    uint32_t inside = ~rt_vbits(out) & m;
+    const uint32_t inside = rt_vwt_inside(&x, m);
     if (!inside) return;
-    /* The oracle's Az = sz A[kz], its T and its t. */
-    const rt_vf sz = p->sz[g];
-    rt_vf T = (U * (sz * Az) + V * (sz * Bz)) + W * (sz * Cz);
-    rt_vf t = T / det;
+    const rt_vf t = rt_vwt_t(&x, p->sz[g]);
     uint32_t hit = rt_vbits((t >= p->tmin[g]) & (t <= st->t[g])) & inside;
     if (!hit) return;
     hit &= pk_hit_accepted(st, p, g, tri, t);
@@ -520,16 +477,16 @@ static void pk_tri(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u32 e, 
     /* rt_hit_before: a smaller t wins at once; an equal t goes by the names. */
     uint32_t closer = rt_vbits(t < st->t[g]) & hit;
     for (uint32_t tie = hit & ~closer; tie; tie &= tie - 1) {
-        int i = lowest_bit(tie);
+        int i = rt_lane_first(tie);
         if (tie_before(st, g, i, inst, prim)) closer |= 1u << i;
     }
     if (!closer) return;
     const rt_vi take = rt_vmask(closer);
     st->t[g] = rt_vsel(take, t, st->t[g]);
     st->hi[g] = rt_vsel(take, box_hi(t), st->hi[g]);
-    st->V[g] = rt_vsel(take, V, st->V[g]);
-    st->W[g] = rt_vsel(take, W, st->W[g]);
-    st->det[g] = rt_vsel(take, det, st->det[g]);
+    st->V[g] = rt_vsel(take, x.V, st->V[g]);
+    st->W[g] = rt_vsel(take, x.W, st->W[g]);
+    st->det[g] = rt_vsel(take, x.det, st->det[g]);
     st->prim[g] = rt_vsel_i(take, rt_vsplat_i((int32_t)prim), st->prim[g]);
     st->inst[g] = rt_vsel_i(take, rt_vsplat_i((int32_t)inst), st->inst[g]);
     st->entry[g] = rt_vsel_i(take, rt_vsplat_i((int32_t)e), st->entry[g]);
@@ -581,7 +538,7 @@ static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, pk_grou
 /* Counts the box tests of lanes m of group g, n_boxes of them each. */
 static inline void count_boxes(pk_state *st, int g, uint32_t m, int n_boxes) {
     st->counts->group_box_tests += (uint64_t)n_boxes;
-    st->counts->box_tests += (uint64_t)n_boxes * lanes_in(m);
+    st->counts->box_tests += (uint64_t)n_boxes * rt_lane_count(m);
     if (st->per_lane) st->box[g] -= rt_vmask(m) * n_boxes;
 }
 
@@ -604,7 +561,7 @@ static void pk_bvh_group(pk_state *st, const pk_geom *p, rt_u32 entry, int slot,
         int slot;
         uint32_t mask;
     } item;
-    const rt_pk_node *nodes = st->w->nodes;
+    const rt_pk_node *nodes = (const rt_pk_node *)st->w->nodes;
     item stack[(RT_PK_WIDTH - 1) * RT_STACK_SIZE + 1];
     int sp = 0;
     item cur = {rt_vsplat(0.0f), entry, slot, st->alive[g]};
@@ -630,7 +587,7 @@ static void pk_bvh_group(pk_state *st, const pk_geom *p, rt_u32 entry, int slot,
             rt_vf ts[RT_PK_WIDTH];
             int kids = 0;
             for (int s = 0; s < RT_PK_WIDTH; s++) {
-                const int real = ch->ref[s] != RT_PK_NO_CHILD;
+                const int real = ch->ref[s] != RT_WIDE_EMPTY;
                 kids += real;
                 ms[s] = real ? pk_box(ch, s, p, st, g, &ts[s]) & lanes : 0u;
                 entered |= (uint32_t)(ms[s] != 0) << s;
@@ -640,9 +597,9 @@ static void pk_bvh_group(pk_state *st, const pk_geom *p, rt_u32 entry, int slot,
             float key[RT_PK_WIDTH];
             int hits = 0;
             for (; entered; entered &= entered - 1) {
-                const int s = lowest_bit(entered);
+                const int s = rt_lane_first(entered);
                 prefetch_child(nodes, ch, s);
-                const float k = ts[s][lowest_bit(ms[s])];
+                const float k = ts[s][rt_lane_first(ms[s])];
                 int i = hits++;
                 while (i > 0 && key[i - 1] > k) {
                     hit[i] = hit[i - 1];
@@ -681,7 +638,7 @@ static void pk_leaf_all(pk_state *st, const pk_geom *p, const rt_pk_node *n, int
         return;
     }
     for (pk_groups todo = gm & st->alive_groups; todo; todo &= todo - 1) {
-        const int g = lowest_bit(todo);
+        const int g = rt_lane_first(todo);
         rt_vf tn;
         count_boxes(st, g, st->alive[g], 1);
         pk_leaf(st, p, n, c, inst, g, pk_box(n, c, p, st, g, &tn));
@@ -722,7 +679,7 @@ static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst,
         rt_u32 node;
         int slot;
     } item;
-    const rt_pk_node *nodes = st->w->nodes;
+    const rt_pk_node *nodes = (const rt_pk_node *)st->w->nodes;
     item stack[(RT_PK_WIDTH - 1) * RT_STACK_SIZE + 1];
     int sp = 0;
     ck_f en;
@@ -736,7 +693,7 @@ static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst,
             pk_leaf_all(st, p, n, c, inst, gm);
         } else if (narrower(n, c, p, cur.enter)) {
             for (pk_groups todo = gm & st->alive_groups; todo; todo &= todo - 1)
-                pk_bvh_group(st, p, cur.node, c, inst, lowest_bit(todo));
+                pk_bvh_group(st, p, cur.node, c, inst, rt_lane_first(todo));
         } else {
             const rt_u32 child = n->ref[c];
             const rt_pk_node *ch = &nodes[child];
@@ -745,7 +702,7 @@ static void pk_bvh_ia(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst,
             item hit[RT_PK_WIDTH];
             int hits = 0;
             for (; entered; entered &= entered - 1) {
-                const int s = lowest_bit(entered);
+                const int s = rt_lane_first(entered);
                 prefetch_child(nodes, ch, s);
                 int i = hits++;
                 while (i > 0 && hit[i - 1].enter > en[s]) {
@@ -777,7 +734,7 @@ static void pk_bvh(pk_state *st, const pk_geom *p, rt_u32 entry, rt_u32 inst, pk
         return;
     }
     for (pk_groups todo = gm & st->alive_groups; todo; todo &= todo - 1)
-        pk_bvh_group(st, p, entry, 0, inst, lowest_bit(todo));
+        pk_bvh_group(st, p, entry, 0, inst, rt_lane_first(todo));
 }
 
 #include "packet_kd.h" /* pk_kd: kd-tree meshes, a group of lanes at a time */
@@ -788,7 +745,7 @@ static pk_groups pk_inst_enter(pk_state *st, const pk_geom *p, const rt_instance
                                pk_groups gm) {
     pk_groups out = 0;
     for (pk_groups todo = gm; todo; todo &= todo - 1) {
-        const int g = lowest_bit(todo);
+        const int g = rt_lane_first(todo);
         if (st->s->hdr->flags & RT_SCENE_SINGLE) {
             st->inst_lo[g] = rt_vsplat(-RT_INF);
             st->inst_ok[g] = (1u << N) - 1u;
@@ -828,7 +785,10 @@ static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, pk_grou
         pk_bvh(st, &obj, entry, inst, gm);
 }
 
-void RT_PK_TRACE(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *rays, int any_hit,
+/* This build's entry point (rt_pk_tracer.trace). */
+void RT_PK_TRACE(const rt_scene_view *s, const rt_wide_bvh *w, const rt_pk_rays *rays, int any_hit,
+                 rt_pk_hits *hits, rt_pk_counts *counts);
+void RT_PK_TRACE(const rt_scene_view *s, const rt_wide_bvh *w, const rt_pk_rays *rays, int any_hit,
                  rt_pk_hits *hits, rt_pk_counts *counts) {
     pk_state st;
     st.s = s;
@@ -851,7 +811,7 @@ void RT_PK_TRACE(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *
         memcpy(&tmax, &rays->tmax[N * g], sizeof tmax);
         st.t[g] = rt_vsel(rt_vmask(st.alive[g]), tmax, rt_vsplat(RT_INF));
         st.hi[g] = box_hi(st.t[g]);
-        counts->rays += lanes_in(st.alive[g]);
+        counts->rays += rt_lane_count(st.alive[g]);
     }
     const rt_pk_mask valid = rays->valid & RT_PK_ALL;
     if (st.alive_groups && s->hdr->instance_count != 0) {
@@ -880,3 +840,6 @@ void RT_PK_TRACE(const rt_scene_view *s, const rt_pk_wide *w, const rt_pk_rays *
             counts->c[l].tri_tests += (rt_u32)st.tri[l / N][l % N];
         }
 }
+
+extern const rt_pk_tracer RT_ISA_SYMBOL(rt_pk_tracer);
+const rt_pk_tracer RT_ISA_SYMBOL(rt_pk_tracer) = {RT_VN, RT_PK_TRACE};

@@ -2,11 +2,11 @@
  * at once (an 8x8-pixel tile of the renderer, or 64 consecutive rays of a
  * query).
  *
- * The packet's lanes sit in vectors of the machine's width (host/simd_wide.h)
- * and traverse four-wide copies of the layout's BVHs (packet_wide.h): the
- * packet's bounds cull inner nodes for all its rays at once, and near the
- * leaves each vector of lanes goes on with its own box tests
- * (packet_trace.c says how).
+ * The packet's lanes sit in vectors of the machine's width (simd.h) and
+ * traverse four-wide copies of the layout's BVHs (wide_bvh.h, shaped by
+ * rt_pk_shape): the packet's bounds cull inner nodes for all its rays at
+ * once, and near the leaves each vector of lanes goes on with its own box
+ * tests (packet_trace.c says how).
  *
  * Each lane performs exactly the scalar oracle's box and triangle arithmetic
  * (kernels/rt_shared.h: the same operations in the same order, no FMA), and
@@ -21,10 +21,45 @@
 
 #include <stdint.h>
 
-#include "packet_wide.h"
-#include "rt_shared.h"
+#include "cpu_isa.h"
+#include "kernel_maths.h"
+#include "wide_bvh.h"
 
 enum { RT_PK_LANES = 64 };
+
+/* Children per node of the packet tracer's trees. */
+#ifndef RT_PK_WIDTH
+#define RT_PK_WIDTH 4
+#endif
+
+/* Subtrees of at most this many primitives (one run of entries) become one
+ * leaf of the packet tracer's trees. */
+#ifndef RT_PK_LEAF_MERGE
+#define RT_PK_LEAF_MERGE 4
+#endif
+
+/* The packet tracer's trees: RT_PK_WIDTH children, leaves that are entry
+ * ranges, subtrees of up to RT_PK_LEAF_MERGE triangles (or instances) as
+ * one leaf, opened when there is room. A packet tests a few triangles at
+ * the cost of a box, and every box test saved is a node load saved. */
+static inline rt_wide_shape rt_pk_shape(void) {
+    const rt_wide_shape s = {RT_PK_WIDTH, RT_PK_LEAF_MERGE, 1, 0, 0};
+    return s;
+}
+
+/* A node of those trees, field by field (wide_bvh.h's node layout at width
+ * RT_PK_WIDTH): up to RT_PK_WIDTH children in the binary tree's
+ * left-to-right order; slots past the last child have ref RT_WIDE_EMPTY. A
+ * child is a leaf when its count has RT_NODE_LEAF_FLAG: ref and count are
+ * then its first entry and count | flag; else ref is the child's node index
+ * and count 0. */
+typedef struct rt_pk_node {
+    float bmin[3][RT_PK_WIDTH];
+    float bmax[3][RT_PK_WIDTH];
+    uint32_t ref[RT_PK_WIDTH];
+    uint32_t count[RT_PK_WIDTH];
+} rt_pk_node; /* 32 bytes a child, allocated on 64-byte lines */
+_Static_assert(sizeof(rt_pk_node) == 4 * RT_WIDE_NODE_WORDS(RT_PK_WIDTH), "wide_bvh.h's node");
 
 /* A set of a packet's lanes: bit l is lane l. */
 typedef uint64_t rt_pk_mask;
@@ -85,22 +120,19 @@ typedef struct rt_pk_counts {
     uint64_t group_box_tests, group_tri_tests;
 } rt_pk_counts;
 
-/* The packet tracer is built for several instruction sets where the target
- * has them (cpu_ref/packet_dispatch.c). rt_pk_variant_find returns the build
- * named name ("generic", "avx2", "avx512"), or the widest the CPU runs for
- * NULL or "", and NULL when this build or CPU lacks it; rt_pk_isa_name(i)
- * names the build's i-th one (NULL past the last). */
-typedef struct rt_pk_variant rt_pk_variant;
-const rt_pk_variant *rt_pk_variant_find(const char *name);
-const char *rt_pk_variant_name(const rt_pk_variant *isa);
-int rt_pk_variant_lanes(const rt_pk_variant *isa); /* lanes per vector of that build */
-const char *rt_pk_isa_name(int i);
+/* One instruction-set build of the packet tracer (cpu_isa.h): its lanes
+ * per vector and its entry point. */
+typedef struct rt_pk_tracer {
+    int lanes;
+    void (*trace)(const rt_scene_view *s, const rt_wide_bvh *w, const rt_pk_rays *rays, int any_hit,
+                  rt_pk_hits *hits, rt_pk_counts *counts);
+} rt_pk_tracer;
 
 /* Traces the valid lanes (closest hit, or any hit when any_hit is set)
- * through the layout s with its wide BVHs w (rt_pk_wide_build of the same
- * layout) into *hits, with the build isa; invalid lanes get a miss at
- * t = inf. The tests are added to *counts. */
-void rt_pk_trace(const rt_pk_variant *isa, const rt_scene_view *s, const rt_pk_wide *w,
+ * through the layout s with its wide BVHs w (rt_wide_build of the same
+ * layout with rt_pk_shape()) into *hits, with the build isa; invalid lanes
+ * get a miss at t = inf. The tests are added to *counts. */
+void rt_pk_trace(const rt_cpu_isa *isa, const rt_scene_view *s, const rt_wide_bvh *w,
                  const rt_pk_rays *rays, int any_hit, rt_pk_hits *hits, rt_pk_counts *counts);
 
 #endif /* RT_PACKET_TRACE_H */

@@ -7,7 +7,7 @@
 
 #include <stddef.h>
 
-#include "rt_shared.h"
+#include "kernel_maths.h"
 
 /* The widest spread of the group's unit directions over the axes above
  * which a group counts as incoherent (see rt_rays_coherent). */

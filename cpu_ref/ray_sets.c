@@ -4,7 +4,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "rt_shade.h"
+#include "kernel_maths.h"
 
 /* xorshift32, uniform in [0, 1). */
 static float rnd(uint32_t *s) {

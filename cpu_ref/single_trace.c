@@ -1,142 +1,37 @@
 /* single_trace.c - one ray at a time through 4- or 8-wide BVHs
- * (single_trace.h), W lanes per vector: W = 8 in the AVX2 and AVX-512 builds,
- * 4 in the baseline one (SSE2 on x86-64, NEON on aarch64).
+ * (single_trace.h), W lanes per vector (simd.h's RT_VN): W = 8 in the AVX2
+ * and AVX-512 builds, 4 in the baseline one (SSE2 on x86-64, NEON on
+ * aarch64).
  *
  * Every vector operation below is the scalar oracle's operation on each lane
  * (kernels/rt_shared.h, named at each function), in the same order, so each
  * lane's values are the oracle's bits; minimum and maximum are the oracle's
- * 'a < b ? a : b' and 'a > b ? a : b', NaN behaviour included (vmin_of,
- * vmax_of).
+ * 'a < b ? a : b' and 'a > b ? a : b', NaN behaviour included (rt_vmin_of,
+ * rt_vmax_of).
  *
- * Compiled once per instruction set (RT_PK_ISA names the variant, as for
- * the packet tracer; cpu_ref/single_dispatch.c picks one at run time). */
+ * Compiled once per instruction set (cpu_isa.h: RT_ISA names the build, and
+ * the run-time choice is made there). */
 #include <assert.h>
 #include <string.h>
 
+#include "cpu_isa.h"
 #include "single_trace.h"
-#include "single_wide.h"
 
-#if defined(__AVX2__) || defined(__AVX512F__)
-#include <immintrin.h>
-#define W 8
-#elif defined(__SSE2__)
-#include <emmintrin.h>
-#define W 4
-#elif defined(__aarch64__)
-#include <arm_neon.h>
-#define W 4
+/* The width of the nodes and blocks: 8 where 8-lane vectors are native (in
+ * the AVX-512 build too, where 16-wide nodes would be mostly empty), else
+ * 4. simd.h's vectors then have W lanes. */
+#if defined(__AVX2__)
+#define RT_VN 8
 #else
-#define W 4
+#define RT_VN 4
 #endif
 
-#ifndef RT_PK_ISA
-#define RT_PK_ISA generic
-#endif
-#define RT_SW_CAT_(a, b) a##_##b
-#define RT_SW_CAT(a, b)  RT_SW_CAT_(a, b)
-#define RT_SW_TRACE      RT_SW_CAT(rt_sw_trace, RT_PK_ISA)
-#define RT_SW_WIDTH      RT_SW_CAT(rt_sw_width, RT_PK_ISA)
+#include "simd.h"
+#include "watertight_lanes.h"
 
-typedef float vf __attribute__((vector_size(4 * W)));
-typedef int32_t vi __attribute__((vector_size(4 * W)));
+#define RT_SW_TRACE RT_ISA_SYMBOL(rt_sw_trace)
 
-enum { NODE_WORDS = 8 * W, BLOCK_WORDS = 10 * W };
-
-static inline vf ld(const uint32_t *p) {
-    vf v;
-    memcpy(&v, p, sizeof v);
-    return v;
-}
-
-static inline vi ldi(const uint32_t *p) {
-    vi v;
-    memcpy(&v, p, sizeof v);
-    return v;
-}
-
-/* x in every lane (bit for bit: -0 stays -0). */
-static inline vf splat(float x) {
-#if W == 8
-    return (vf)_mm256_set1_ps(x);
-#elif defined(__SSE2__)
-    return (vf)_mm_set1_ps(x);
-#elif defined(__aarch64__)
-    return (vf)vdupq_n_f32(x);
-#else
-    vf v;
-    for (int i = 0; i < W; i++) v[i] = x;
-    return v;
-#endif
-}
-
-static inline vi splat_i(int32_t x) {
-    vi v;
-    for (int i = 0; i < W; i++) v[i] = x;
-    return v;
-}
-
-/* m ? a : b per lane (m a comparison result). Unused in some instruction-set
- * builds (clang warns on an unused static inline function). */
-__attribute__((unused)) static inline vf sel(vi m, vf a, vf b) {
-    return (vf)((m & (vi)a) | (~m & (vi)b));
-}
-
-/* Per lane: a where the sign bit of m is set, else b. */
-static inline vf sign_sel(vf m, vf a, vf b) {
-#if W == 8
-    return (vf)_mm256_blendv_ps((__m256)b, (__m256)a, (__m256)m);
-#else
-    return sel((vi)m < splat_i(0), a, b);
-#endif
-}
-
-/* 'a < b ? a : b' and 'a > b ? a : b' per lane (b where either is NaN):
- * exactly what x86's min and max instructions compute. */
-static inline vf vmin_of(vf a, vf b) {
-#if W == 8
-    return (vf)_mm256_min_ps((__m256)a, (__m256)b);
-#elif defined(__SSE2__)
-    return (vf)_mm_min_ps((__m128)a, (__m128)b);
-#else
-    return sel(a < b, a, b);
-#endif
-}
-
-static inline vf vmax_of(vf a, vf b) {
-#if W == 8
-    return (vf)_mm256_max_ps((__m256)a, (__m256)b);
-#elif defined(__SSE2__)
-    return (vf)_mm_max_ps((__m128)a, (__m128)b);
-#else
-    return sel(a > b, a, b);
-#endif
-}
-
-/* Bit l set where lane l of m (a comparison result) is. */
-static inline uint32_t bits(vi m) {
-#if W == 8
-    return (uint32_t)_mm256_movemask_ps((__m256)m);
-#elif defined(__SSE2__)
-    return (uint32_t)_mm_movemask_ps((__m128)m);
-#elif defined(__aarch64__)
-    static const uint32_t bit[4] = {1, 2, 4, 8};
-    return vaddvq_u32(vandq_u32((uint32x4_t)m, vld1q_u32(bit)));
-#else
-    uint32_t b = 0;
-    for (int i = 0; i < W; i++) b |= (uint32_t)(m[i] & 1) << i;
-    return b;
-#endif
-}
-
-static inline int lowest_bit(uint32_t m) {
-    return __builtin_ctz(m);
-}
-
-/* The lanes of a mask whose set bits are the lowest ones (children and
- * block lanes fill the first slots). */
-static inline uint32_t low_run(uint32_t m) {
-    return (uint32_t)__builtin_ctz(~m);
-}
+enum { W = RT_VN, NODE_WORDS = RT_WIDE_NODE_WORDS(W), BLOCK_WORDS = RT_WIDE_BLOCK_WORDS(W) };
 
 typedef struct sw_ctx {
     const rt_scene_view *s;
@@ -150,15 +45,15 @@ typedef struct sw_ctx {
  * offsets of each axis's near and far planes in a node (rt_box_test's a and
  * b: bmax first where inv < 0), and rt_box_lo(tmin). */
 typedef struct sw_ray {
-    vf org[3], inv[3];
+    rt_vf org[3], inv[3];
     size_t near[3], far[3];
     float lo;
 } sw_ray;
 
 static inline void sw_ray_setup(const rt_ray *r, const rt_ray_pre *p, sw_ray *rv) {
     for (int k = 0; k < 3; k++) {
-        rv->org[k] = splat(r->org[k]);
-        rv->inv[k] = splat(p->inv[k]);
+        rv->org[k] = rt_vsplat(r->org[k]);
+        rv->inv[k] = rt_vsplat(p->inv[k]);
         rv->near[k] = (size_t)(p->sign[k] ? 3 + k : k) * W * 4;
         rv->far[k] = (size_t)(p->sign[k] ? k : 3 + k) * W * 4;
     }
@@ -176,33 +71,32 @@ static inline void sw_ray_setup(const rt_ray *r, const rt_ray_pre *p, sw_ray *rv
  * unless the start value is NaN, which then stays NaN either way) and the
  * result is the greatest (least) of the rest: the same number, up to the
  * sign of a zero, which no comparison below can tell. */
-static inline uint32_t node_test(const uint32_t *n, const sw_ray *rv, vf hi, vf *tnear,
+static inline uint32_t node_test(const uint32_t *n, const sw_ray *rv, rt_vf hi, rt_vf *tnear,
                                  uint32_t *real) {
     const char *base = (const char *)n;
-    const vf lo0 = splat(rv->lo), inf = splat(RT_INF);
-    vf lo[3], h[3];
+    const rt_vf lo0 = rt_vsplat(rv->lo), inf = rt_vsplat(RT_INF);
+    rt_vf lo[3], h[3];
     for (int k = 0; k < 3; k++) {
-        vf a, b;
-        memcpy(&a, base + rv->near[k], sizeof a);
-        memcpy(&b, base + rv->far[k], sizeof b);
-        const vf t0 = (a - rv->org[k]) * rv->inv[k];
-        const vf t1 = (b - rv->org[k]) * rv->inv[k];
-        lo[k] = vmax_of(t0, lo0);
-        h[k] = vmin_of(t1, inf);
+        const rt_vf a = rt_vload(base + rv->near[k]), b = rt_vload(base + rv->far[k]);
+        const rt_vf t0 = (a - rv->org[k]) * rv->inv[k];
+        const rt_vf t1 = (b - rv->org[k]) * rv->inv[k];
+        lo[k] = rt_vmax_of(t0, lo0);
+        h[k] = rt_vmin_of(t1, inf);
     }
-    const vf l = vmax_of(lo[0], vmax_of(lo[1], lo[2]));
-    const vf hh = vmin_of(h[0], vmin_of(h[1], h[2]));
+    const rt_vf l = rt_vmax_of(lo[0], rt_vmax_of(lo[1], lo[2]));
+    const rt_vf hh = rt_vmin_of(h[0], rt_vmin_of(h[1], h[2]));
     /* hi * (hi < 0 ? RT_BOX_FAR_SCALE_NEG : RT_BOX_FAR_SCALE), both
      * products at once and chosen by the sign bit: -0 and a NaN come out
      * the same either way. */
-    const vf far = sign_sel(hh, hh * splat(RT_BOX_FAR_SCALE_NEG), hh * splat(RT_BOX_FAR_SCALE));
+    const rt_vf far =
+        rt_vsel_sign(hh, hh * rt_vsplat(RT_BOX_FAR_SCALE_NEG), hh * rt_vsplat(RT_BOX_FAR_SCALE));
     *tnear = l;
     /* A NaN lane passes the oracle's test as it passes this one; an empty
      * slot must still never be entered. */
-    *real = bits(ldi(n + 6 * W) != splat_i(-1));
+    *real = rt_vbits(rt_vload_i(n + 6 * W) != rt_vsplat_i(-1));
     /* lo <= (hi < far ? hi : far) as lo <= hi and lo <= far, hi never NaN
      * here (see range_hi): the same for every lo and far, NaN included. */
-    return bits((l <= hi) & (l <= far)) & *real;
+    return rt_vbits((l <= hi) & (l <= far)) & *real;
 }
 
 /* The float at word i of a node or block. */
@@ -215,9 +109,9 @@ static inline float fl(const uint32_t *words, int i) {
 /* rt_box_hi(t) in every lane, as the box test's upper range end; a NaN
  * (which limits nothing in rt_box_test's 'tmax < hi ? tmax : hi') as +inf,
  * which limits nothing either. */
-static inline vf range_hi(float t) {
+static inline rt_vf range_hi(float t) {
     const float h = rt_box_hi(t);
-    return splat(h == h ? h : RT_INF);
+    return rt_vsplat(h == h ? h : RT_INF);
 }
 
 /* Records a hit as rt_leaf_test accepts it: returns 1 when the ray is an
@@ -254,7 +148,7 @@ static int leaf_test(sw_ctx *x, rt_u32 first, rt_u32 count, rt_u32 inst, const r
     if (x->method != RT_TRI_WATERTIGHT) {
         for (rt_u32 j = first; j < first + count; j++) {
             const uint32_t *ent = x->blocks + (size_t)BLOCK_WORDS * j + 9 * W;
-            for (int l = 0; l < W && ent[l] != RT_SW_EMPTY; l++) {
+            for (int l = 0; l < W && ent[l] != RT_WIDE_EMPTY; l++) {
                 x->tri_tests++;
                 if (tri_scalar(x, ent[l], inst, r, p, best)) return 1;
             }
@@ -262,45 +156,34 @@ static int leaf_test(sw_ctx *x, rt_u32 first, rt_u32 count, rt_u32 inst, const r
         return 0;
     }
     const int kx = p->kx, ky = p->ky, kz = p->kz;
-    const vf ox = splat(r->org[kx]), oy = splat(r->org[ky]), oz = splat(r->org[kz]);
-    const vf sx = splat(p->sx), sy = splat(p->sy), sz = splat(p->sz);
-    const vf tmin = splat(r->tmin), zero = splat(0.0f);
+    const rt_vf ox = rt_vsplat(r->org[kx]), oy = rt_vsplat(r->org[ky]), oz = rt_vsplat(r->org[kz]);
+    const rt_vf sx = rt_vsplat(p->sx), sy = rt_vsplat(p->sy), sz = rt_vsplat(p->sz);
+    const rt_vf tmin = rt_vsplat(r->tmin);
     for (rt_u32 j = first; j < first + count; j++) {
         const uint32_t *blk = x->blocks + (size_t)BLOCK_WORDS * j;
-        /* The oracle's A[i] = v0[i] - org[i] at kx, ky and kz (A[kz] named
-         * Az), likewise B and C, ... */
-        const vf Az = ld(blk + kz * W) - oz, Bz = ld(blk + (3 + kz) * W) - oz;
-        const vf Cz = ld(blk + (6 + kz) * W) - oz;
-        /* ... then A[kx] - sx A[kz] and A[ky] - sy A[kz], ... */
-        const vf Ax = (ld(blk + kx * W) - ox) - sx * Az, Ay = (ld(blk + ky * W) - oy) - sy * Az;
-        const vf Bx = (ld(blk + (3 + kx) * W) - ox) - sx * Bz;
-        const vf By = (ld(blk + (3 + ky) * W) - oy) - sy * Bz;
-        const vf Cx = (ld(blk + (6 + kx) * W) - ox) - sx * Cz;
-        const vf Cy = (ld(blk + (6 + ky) * W) - oy) - sy * Cz;
-        /* ... and the edge functions. */
-        const vf U = Cx * By - Cy * Bx;
-        const vf V = Ax * Cy - Ay * Cx;
-        const vf Wf = Bx * Ay - By * Ax;
+        /* The oracle's A[i] = v0[i] - org[i] (and B, C) at kx, ky, kz. */
+        const rt_vf A[3] = {rt_vload(blk + kx * W) - ox, rt_vload(blk + ky * W) - oy,
+                            rt_vload(blk + kz * W) - oz};
+        const rt_vf B[3] = {rt_vload(blk + (3 + kx) * W) - ox, rt_vload(blk + (3 + ky) * W) - oy,
+                            rt_vload(blk + (3 + kz) * W) - oz};
+        const rt_vf C[3] = {rt_vload(blk + (6 + kx) * W) - ox, rt_vload(blk + (6 + ky) * W) - oy,
+                            rt_vload(blk + (6 + kz) * W) - oz};
+        rt_vwt wt;
+        const uint32_t z = rt_vwt_edges(A, B, C, sx, sy, &wt);
         const uint32_t *ent = blk + 9 * W;
-        uint32_t valid = bits(ldi(ent) != splat_i(-1));
-        x->tri_tests += low_run(valid);
-        const uint32_t z = bits((U == zero) | (V == zero) | (Wf == zero)) & valid;
-        if (z) {
-            for (uint32_t m = z; m; m &= m - 1)
-                if (tri_scalar(x, ent[lowest_bit(m)], inst, r, p, best)) return 1;
+        uint32_t valid = rt_vbits(rt_vload_i(ent) != rt_vsplat_i(-1));
+        x->tri_tests += rt_lane_run(valid);
+        if (z & valid) {
+            for (uint32_t m = z & valid; m; m &= m - 1)
+                if (tri_scalar(x, ent[rt_lane_first(m)], inst, r, p, best)) return 1;
             valid &= ~z;
         }
-        const vf det = (U + V) + Wf;
-        const vi out =
-            (((U < zero) | (V < zero) | (Wf < zero)) & ((U > zero) | (V > zero) | (Wf > zero))) |
-            (det == zero);
-        const uint32_t inside = ~bits(out) & valid;
+        const uint32_t inside = rt_vwt_inside(&wt, valid);
         if (!inside) continue;
-        const vf T = (U * (sz * Az) + V * (sz * Bz)) + Wf * (sz * Cz);
-        const vf t = T / det;
-        uint32_t hit = bits((t >= tmin) & (t <= splat(best->t))) & inside;
+        const rt_vf t = rt_vwt_t(&wt, sz), V = wt.V, Wf = wt.W, det = wt.det;
+        uint32_t hit = rt_vbits((t >= tmin) & (t <= rt_vsplat(best->t))) & inside;
         for (; hit; hit &= hit - 1) {
-            const int l = lowest_bit(hit);
+            const int l = rt_lane_first(hit);
             /* rt_hit_accepted, from the block's copies of the vertices
              * (the layout's triangle is not in cache). */
             float mn[3], mx[3];
@@ -358,7 +241,7 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
     uint64_t stack[(W - 1) * RT_STACK_SIZE + 1];
     float stack_t[(W - 1) * RT_STACK_SIZE + 1];
     int sp = 0;
-    vf hi = range_hi(best->t);
+    rt_vf hi = range_hi(best->t);
     /* The entry node only tests the root's box: skipping a box test lets
      * a ray test more, never fewer, so the traversal starts at the root. */
     const uint32_t *en = x->nodes + (size_t)NODE_WORDS * entry;
@@ -385,15 +268,15 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
             hi = range_hi(best->t);
         } else {
             const uint32_t *n = x->nodes + (size_t)NODE_WORDS * ref;
-            vf tn;
+            rt_vf tn;
             uint32_t real, m = node_test(n, &rv, hi, &tn, &real);
-            boxes += low_run(real);
+            boxes += rt_lane_run(real);
             if (m) {
                 const uint32_t *child = n + 6 * W, *info = n + 7 * W;
                 /* Every entered child's lines are fetched now, while the
                  * nearest is traversed (the others are probably next). */
-                for (uint32_t f = m; f; f &= f - 1) prefetch(x, child, info, lowest_bit(f), top);
-                const int s0 = lowest_bit(m);
+                for (uint32_t f = m; f; f &= f - 1) prefetch(x, child, info, rt_lane_first(f), top);
+                const int s0 = rt_lane_first(m);
                 if (!(m & (m - 1))) { /* one child: on with it */
                     cur = RT_SW_REF(s0);
                     continue;
@@ -409,13 +292,13 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
                      * hold what occludes it: about a third fewer box tests
                      * than slot order and half of nearest first on the
                      * shared scenes' diffuse bounces). */
-                    const uint32_t leaves = m & bits(ldi(info) < splat_i(0));
+                    const uint32_t leaves = m & rt_vbits(rt_vload_i(info) < rt_vsplat_i(0));
                     const uint32_t inner = m & ~leaves;
                     int order[W], k = 0;
-                    for (uint32_t q = leaves; q; q &= q - 1) order[k++] = lowest_bit(q);
+                    for (uint32_t q = leaves; q; q &= q - 1) order[k++] = rt_lane_first(q);
                     const int k0 = k;
                     for (uint32_t q = inner; q; q &= q - 1) {
-                        const int c = lowest_bit(q);
+                        const int c = rt_lane_first(q);
                         int i = k++;
                         while (i > k0 && d[order[i - 1]] < d[c]) {
                             order[i] = order[i - 1];
@@ -428,7 +311,7 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
                     continue;
                 }
                 m &= m - 1;
-                const int s1 = lowest_bit(m);
+                const int s1 = rt_lane_first(m);
                 m &= m - 1;
                 if (!m) { /* two: the nearer first */
                     const int near = !(d[s1] < d[s0]) ? s0 : s1;
@@ -442,7 +325,7 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
                 order[0] = d[s1] < d[s0] ? s1 : s0;
                 order[1] = order[0] == s0 ? s1 : s0;
                 for (; m; m &= m - 1) {
-                    const int s = lowest_bit(m);
+                    const int s = rt_lane_first(m);
                     int i = h++;
                     while (i > 0 && d[order[i - 1]] > d[s]) {
                         order[i] = order[i - 1];
@@ -510,7 +393,7 @@ static int trace_instance(sw_ctx *x, rt_u32 inst, const rt_ray *r, const rt_ray_
 }
 
 /* rt_trace. */
-static void trace_one(sw_ctx *x, const rt_sw_bvh *b, const rt_ray *r, rt_hit_d *best) {
+static void trace_one(sw_ctx *x, const rt_wide_bvh *b, const rt_ray *r, rt_hit_d *best) {
     rt_ray_pre p;
     rt_ray_prepare(r, &p);
     rt_hit_init(best, r);
@@ -522,19 +405,18 @@ static void trace_one(sw_ctx *x, const rt_sw_bvh *b, const rt_ray *r, rt_hit_d *
     traverse(x, b->top, RT_NO_HIT, r, &p, best, 1);
 }
 
-int RT_SW_WIDTH(void);
-int RT_SW_WIDTH(void) {
-    return W;
-}
-
-void RT_SW_TRACE(const rt_scene_view *s, const rt_sw_bvh *b, const rt_ray *rays, size_t n,
+/* This build's entry point (rt_sw_tracer.trace). */
+void RT_SW_TRACE(const rt_scene_view *s, const rt_wide_bvh *b, const rt_ray *rays, size_t n,
                  int any_hit, rt_hit_d *hits, rt_counters *c);
-void RT_SW_TRACE(const rt_scene_view *s, const rt_sw_bvh *b, const rt_ray *rays, size_t n,
+void RT_SW_TRACE(const rt_scene_view *s, const rt_wide_bvh *b, const rt_ray *rays, size_t n,
                  int any_hit, rt_hit_d *hits, rt_counters *c) {
-    assert(b->width == W);
+    assert(b->shape.width == W && b->shape.blocks);
     sw_ctx x = {s, b->nodes, b->blocks, b->inst_root, s->hdr->tri_method, any_hit, 0, 0};
     for (size_t i = 0; i < n; i++) trace_one(&x, b, &rays[i], &hits[i]);
     c->rays += (rt_u32)n;
     c->box_tests += (rt_u32)x.box_tests;
     c->tri_tests += (rt_u32)x.tri_tests;
 }
+
+extern const rt_sw_tracer RT_ISA_SYMBOL(rt_sw_tracer);
+const rt_sw_tracer RT_ISA_SYMBOL(rt_sw_tracer) = {W, RT_SW_TRACE};

@@ -93,6 +93,12 @@ rt_status rt_scene_load(const char *path, rt_scene **out, rt_error *err);
 /* The last error's message, "" when none. */
 const char *rt_scene_error(const rt_scene *scene);
 
+/* How many meshes and objects the scene holds (ids are 0 .. count - 1; the
+ * meshes include the blend meshes it made for morphing objects); 0 for a
+ * NULL scene. */
+uint32_t rt_scene_mesh_count(const rt_scene *scene);
+uint32_t rt_scene_object_count(const rt_scene *scene);
+
 /* ---- meshes ------------------------------------------------------------ */
 
 rt_status rt_mesh_create(rt_scene *scene, uint32_t *mesh_id);
@@ -353,12 +359,36 @@ typedef struct rt_ray {
 
 /* The closest hit (smaller t wins; equal t: lower inst, then lower prim) or,
  * for any-hit queries, some hit in range. p = (1 - u - v) v0 + u v1 + v v2.
- * A miss: hit 0, t inf, u = v = 0, prim = inst = UINT32_MAX. */
+ * A miss: hit 0, t inf, u = v = 0, prim = inst = mesh = UINT32_MAX, normal 0.
+ *
+ * normal is the hit triangle's geometric normal in world space, unit length,
+ * on the side of the triangle's winding (v0, v1, v2 counter-clockwise seen
+ * from where it points), whichever side the ray came from. rt_trace_rays
+ * computes it on the host after any backend's trace, from the scene's vertices
+ * and the layout's inverse instance matrix, so every backend gives the same
+ * bits. In double precision, each step rounded once, in this order:
+ *   e1 = v1 - v0, e2 = v2 - v0 (componentwise);
+ *   n = e1 x e2: n.x = e1.y e2.z - e1.z e2.y, n.y = e1.z e2.x - e1.x e2.z,
+ *                n.z = e1.x e2.y - e1.y e2.x;
+ *   an object that is not the identity: n'_j = (W_0j n.x + W_1j n.y) + W_2j n.z
+ *     with W the 3x3 part of the inverse object-to-world matrix (normals
+ *     transform by its transpose, so a scaled or mirrored object keeps its
+ *     normals on the surface's side);
+ *   m = max(|n.x|, |n.y|, |n.z|); n = n / m (componentwise); n = n / sqrt(n.n);
+ *   each component rounded to float.
+ * Scaling by m first keeps huge and tiny triangles from overflowing or
+ * underflowing. mesh is the scene mesh the object shows (its selected
+ * keyframe, or the blend mesh the scene made for a morphing object). An
+ * any-hit answer has the normal and mesh of the triangle it names; the
+ * packet backend's packets name none (inst UINT32_MAX): normal 0, mesh
+ * UINT32_MAX. */
 typedef struct rt_hit {
     float t, u, v;
     uint32_t prim; /* 0-based triangle index in the mesh's file order */
     uint32_t inst; /* object index */
     int hit;
+    float normal[3]; /* unit geometric normal in world space (see above) */
+    uint32_t mesh;   /* the scene mesh id of the hit triangle */
 } rt_hit;
 
 /* What one rt_trace_rays call did (rt_trace_options.stats). */
@@ -398,6 +428,29 @@ typedef struct rt_trace_options {
  * NULL: closest hits, watertight test. */
 rt_status rt_trace_rays(rt_renderer *renderer, rt_scene *scene, const rt_ray *rays, size_t count,
                         rt_hit *hits, const rt_trace_options *options);
+
+/* Counts, per ray, the triangles it crosses for t in [tmin, tmax]
+ * (inclusive), each triangle once (a triangle a kd-tree keeps in several
+ * leaves too), into counts[i]: the basis of inside/outside tests (an odd
+ * count from a point to infinity: inside a closed mesh). A crossing is a
+ * hit of the watertight test that rt_trace_rays would accept (its default
+ * test and its acceptance rule), with one more rule where the ray passes
+ * exactly through an edge or a vertex (an edge
+ * function exactly zero, after the test's exact re-check): there the ray
+ * counts as if it were moved by an infinitesimal (e, e*e) in the test's
+ * sheared 2D frame, so that of the triangles around a shared edge or vertex
+ * that the ray crosses exactly one counts, and a ray that only touches a
+ * mesh's silhouette edge or vertex counts 0 or 2 crossings there. Grazing
+ * rays in a triangle's plane cross nothing. A closed mesh's inside/outside
+ * parity is then exact for every ray whose crossings' t (a few ulps) lie
+ * clear of tmin and tmax, with denormals preserved (RT_DENORMALS_PRESERVE;
+ * flushing may lose a crossing of edges shorter than the smallest normal
+ * float) and coordinates whose products neither overflow nor underflow.
+ * Runs on the CPU, the scalar oracle's code on the renderer's threads,
+ * whatever the renderer's backend. A ray with a NaN or infinite component,
+ * or a zero direction, counts 0. */
+rt_status rt_count_intersections(rt_renderer *renderer, rt_scene *scene, const rt_ray *rays,
+                                 size_t count, uint32_t *counts);
 
 /* ---- acceleration structure per mesh ------------------------------------ */
 

@@ -120,8 +120,8 @@ static void hard_ray(const float lo[3], const float hi[3], rt_ray *r) {
  * that differ. */
 static long pk_step_lanes;
 static int compare_packets(const char *name, const rt_flat *f, const rt_ray *rays, int n) {
-    rt_pk_wide w;
-    if (rt_pk_wide_build(f, &w) != RT_OK) {
+    rt_wide_bvh w;
+    if (rt_wide_build(f, rt_pk_shape(), &w) != RT_OK) {
         CHECK_MSG(0, "%s: wide BVH", name);
         return 1;
     }
@@ -130,8 +130,8 @@ static int compare_packets(const char *name, const rt_flat *f, const rt_ray *ray
     one.hdr.flags |= RT_SCENE_SINGLE;
     const int single = f->hdr.instance_count > 0 && (f->instances[0].flags & RT_INST_IDENTITY);
     int bad = 0, builds = 0;
-    for (int k = 0; rt_pk_isa_name(k); k++) {
-        const rt_pk_variant *isa = rt_pk_variant_find(rt_pk_isa_name(k));
+    for (int k = 0; rt_cpu_isa_at(k); k++) {
+        const rt_cpu_isa *isa = rt_cpu_isa_find(rt_cpu_isa_at(k));
         if (!isa) continue;
         builds++;
         for (int steps = 0; steps < 1 + single; steps++) {
@@ -166,12 +166,11 @@ static int compare_packets(const char *name, const rt_flat *f, const rt_ray *ray
                             fprintf(stderr,
                                     "%s packet %s%s ray %d any %d org (%a %a %a) dir (%a %a %a): "
                                     "packet t %a prim %u (tests %u %u), cpu t %a prim %u (%u %u)\n",
-                                    name, rt_pk_variant_name(isa), steps ? " one mesh" : "",
-                                    first + l, any, (double)r->org[0], (double)r->org[1],
-                                    (double)r->org[2], (double)r->dir[0], (double)r->dir[1],
-                                    (double)r->dir[2], (double)got.t, got.prim, pc.c[l].box_tests,
-                                    pc.c[l].tri_tests, (double)want.t, want.prim, c.box_tests,
-                                    c.tri_tests);
+                                    name, rt_cpu_isa_name(isa), steps ? " one mesh" : "", first + l,
+                                    any, (double)r->org[0], (double)r->org[1], (double)r->org[2],
+                                    (double)r->dir[0], (double)r->dir[1], (double)r->dir[2],
+                                    (double)got.t, got.prim, pc.c[l].box_tests, pc.c[l].tri_tests,
+                                    (double)want.t, want.prim, c.box_tests, c.tri_tests);
                         }
                         bad += !ok;
                     }
@@ -180,7 +179,7 @@ static int compare_packets(const char *name, const rt_flat *f, const rt_ray *ray
         }
     }
     CHECK_MSG(builds > 0, "%s: no packet build runs on this CPU", name);
-    rt_pk_wide_free(&w);
+    rt_wide_free(&w);
     return bad;
 }
 

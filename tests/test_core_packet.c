@@ -31,7 +31,7 @@
 #include "scene/scene_builtin.h"
 
 /* The instruction-set build under test, and its packet renderers. */
-static const rt_pk_variant *cur_isa;
+static const rt_cpu_isa *cur_isa;
 static rt_renderer *packet_renderer[2]; /* 3 threads, 2 threads */
 
 /* "cpu" on threads threads, or "packet" of the build under test. */
@@ -120,7 +120,7 @@ static void check_scenes(const char *isa, rt_accel accel) {
 
 /* Every lane of the packet against rt_trace on the same ray, closest hit and
  * any hit; returns the number of lanes that differ. */
-static int compare_packet(const rt_scene_view *v, const rt_pk_wide *w, const rt_pk_rays *rays,
+static int compare_packet(const rt_scene_view *v, const rt_wide_bvh *w, const rt_pk_rays *rays,
                           const char *what) {
     int bad = 0;
     for (int any = 0; any < 2; any++) {
@@ -142,7 +142,7 @@ static int compare_packet(const rt_scene_view *v, const rt_pk_wide *w, const rt_
                 fprintf(stderr,
                         "%s (%s, %s): lane %d org %g %g %g dir %g %g %g t [%g, %g]: packet t %.9g "
                         "prim %d, cpu t %.9g prim %d\n",
-                        what, rt_pk_variant_name(cur_isa), any ? "any hit" : "closest", l,
+                        what, rt_cpu_isa_name(cur_isa), any ? "any hit" : "closest", l,
                         (double)r.org[0], (double)r.org[1], (double)r.org[2], (double)r.dir[0],
                         (double)r.dir[1], (double)r.dir[2], (double)r.tmin, (double)r.tmax,
                         (double)got.t, (int)got.prim, (double)want.t, (int)want.prim);
@@ -204,7 +204,7 @@ static void odd_ray(int k, const rt_ray *valid, rt_ray *r) {
 /* Packets of coherent valid rays (one origin, directions of one sign per
  * axis: the packet-wide interval test runs) with 1, 2 or many odd lanes at
  * every position, lane 0 included. */
-static void check_odd_lanes(const rt_scene_view *v, const rt_pk_wide *w, const char *name) {
+static void check_odd_lanes(const rt_scene_view *v, const rt_wide_bvh *w, const char *name) {
     int bad = 0, packets = 0;
     oracle_rng = 777;
     for (int pkt = 0; pkt < 48 && !bad; pkt++) {
@@ -234,7 +234,7 @@ static void check_odd_lanes(const rt_scene_view *v, const rt_pk_wide *w, const c
         packets++;
     }
     CHECK_MSG(bad == 0, "%s: %d lanes differ from cpu in packets with odd lanes (%s)", name, bad,
-              rt_pk_variant_name(cur_isa));
+              rt_cpu_isa_name(cur_isa));
     CHECK(packets > 0);
 }
 
@@ -243,7 +243,7 @@ static void check_odd_lanes(const rt_scene_view *v, const rt_pk_wide *w, const c
  * denormals kept and flushed: a hit whose t lies outside its triangle's box
  * must be refused by the packets exactly as by the oracle, whose trees and
  * order differ (rt_hit_accepted). */
-static void check_vertex_rays(const rt_flat *flat, const rt_pk_wide *w, const float lo[3],
+static void check_vertex_rays(const rt_flat *flat, const rt_wide_bvh *w, const float lo[3],
                               const float hi[3], const char *name) {
     for (int flush = 0; flush < 2; flush++) {
         if (flush && !rt_fp_can_flush()) {
@@ -270,7 +270,7 @@ static void check_vertex_rays(const rt_flat *flat, const rt_pk_wide *w, const fl
         }
         rt_fp_restore(saved);
         CHECK_MSG(bad == 0, "%s: %d lanes of vertex rays differ from cpu (%s, %s)", name, bad,
-                  rt_pk_variant_name(cur_isa), flush ? "flush" : "preserve");
+                  rt_cpu_isa_name(cur_isa), flush ? "flush" : "preserve");
     }
 }
 
@@ -278,7 +278,7 @@ static void check_vertex_rays(const rt_flat *flat, const rt_pk_wide *w, const fl
  * some packets, rays between random points of the grown bounds in the
  * others (every lane its own origin and direction signs), some with short
  * ranges or tmin > 0. */
-static void check_random_packets(const rt_scene_view *v, const rt_pk_wide *w, const float lo[3],
+static void check_random_packets(const rt_scene_view *v, const rt_wide_bvh *w, const float lo[3],
                                  const float hi[3], const char *name) {
     int bad = 0;
     oracle_rng = 9001;
@@ -293,7 +293,7 @@ static void check_random_packets(const rt_scene_view *v, const rt_pk_wide *w, co
         bad += compare_packet(v, w, &rays, name);
     }
     CHECK_MSG(bad == 0, "%s: %d lanes of random rays differ from cpu (%s)", name, bad,
-              rt_pk_variant_name(cur_isa));
+              rt_cpu_isa_name(cur_isa));
 }
 
 /* Instances of the layout with a kd-tree mesh. */
@@ -308,8 +308,8 @@ static void check_odd_lanes_scene(rt_scene *s, const char *name, rt_accel accel)
     set_accel(s, accel);
     const rt_flat *flat = test_layout(s, 1);
     if (!flat) return;
-    rt_pk_wide w;
-    CHECK(rt_pk_wide_build(flat, &w) == RT_OK);
+    rt_wide_bvh w;
+    CHECK(rt_wide_build(flat, rt_pk_shape(), &w) == RT_OK);
     rt_scene_view v = rt_flat_view(flat);
     /* The kd pass must trace kd meshes (and the BVH pass none). */
     CHECK_MSG((kd_instances(&v) > 0) == (accel != RT_ACCEL_BVH), "%s: %d kd instances with %s",
@@ -319,7 +319,7 @@ static void check_odd_lanes_scene(rt_scene *s, const char *name, rt_accel accel)
     rt_scene_bounds(s, lo, hi);
     check_random_packets(&v, &w, lo, hi, name);
     check_vertex_rays(flat, &w, lo, hi, name);
-    rt_pk_wide_free(&w);
+    rt_wide_free(&w);
 }
 
 /* A finely tessellated bumpy surface about 1500 units from the origin, and
@@ -339,8 +339,8 @@ static void check_far_surface(rt_accel accel) {
         free(pos);
         return;
     }
-    rt_pk_wide w;
-    CHECK(rt_pk_wide_build(flat, &w) == RT_OK);
+    rt_wide_bvh w;
+    CHECK(rt_wide_build(flat, rt_pk_shape(), &w) == RT_OK);
     rt_scene_view v = rt_flat_view(flat);
     CHECK((kd_instances(&v) > 0) == (accel != RT_ACCEL_BVH));
     int bad = 0, tiny = 0;
@@ -375,10 +375,10 @@ static void check_far_surface(rt_accel accel) {
         for (int l = 0; l < RT_PK_LANES; l++) tiny += ph.prim[l] != RT_NO_HIT && ph.t[l] < 0.1f;
     }
     CHECK_MSG(bad == 0, "far surface: %d lanes differ from cpu (%s)", bad,
-              rt_pk_variant_name(cur_isa));
+              rt_cpu_isa_name(cur_isa));
     CHECK_MSG(tiny > 1000, "far surface: only %d hits at t < 0.1", tiny);
     check_odd_lanes(&v, &w, "far surface");
-    rt_pk_wide_free(&w);
+    rt_wide_free(&w);
     rt_scene_destroy(s);
     free(pos);
 }
@@ -386,15 +386,15 @@ static void check_far_surface(rt_accel accel) {
 int main(void) {
     /* Each instruction-set build of the packet tracer this CPU runs. */
     int tested = 0;
-    for (int k = 0; rt_pk_isa_name(k); k++) {
-        if (!rt_pk_variant_find(rt_pk_isa_name(k))) {
-            printf("packet build %s: not run, this CPU lacks it\n", rt_pk_isa_name(k));
+    for (int k = 0; rt_cpu_isa_at(k); k++) {
+        if (!rt_cpu_isa_find(rt_cpu_isa_at(k))) {
+            printf("packet build %s: not run, this CPU lacks it\n", rt_cpu_isa_at(k));
             continue;
         }
         rt_renderer_options ro = rt_renderer_options_default();
         ro.backend = "packet";
-        ro.packet_isa = rt_pk_isa_name(k);
-        cur_isa = rt_pk_variant_find(ro.packet_isa);
+        ro.packet_isa = rt_cpu_isa_at(k);
+        cur_isa = rt_cpu_isa_find(ro.packet_isa);
         rt_error err;
         for (int t = 0; t < 2; t++) {
             ro.threads = t == 0 ? 3 : 2;
@@ -404,8 +404,8 @@ int main(void) {
         if (!packet_renderer[0] || !packet_renderer[1]) continue;
         const rt_accel accels[] = {RT_ACCEL_BVH, RT_ACCEL_KD};
         for (int a = 0; a < 2; a++) {
-            printf("packet build %s, %s meshes\n", rt_pk_isa_name(k), rt_accel_name(accels[a]));
-            check_scenes(rt_pk_isa_name(k), accels[a]);
+            printf("packet build %s, %s meshes\n", rt_cpu_isa_at(k), rt_accel_name(accels[a]));
+            check_scenes(rt_cpu_isa_at(k), accels[a]);
             for (int i = 0; rt_builtin_scene_names[i]; i++) {
                 rt_scene *s = test_builtin_scene(rt_builtin_scene_names[i], 64, 48);
                 if (!s) continue;

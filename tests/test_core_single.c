@@ -65,11 +65,11 @@ static int compare_all(const rt_flat *flat, const rt_ray *rays, size_t n, const 
     rt_scene_view v = rt_flat_view(flat);
     const char *isas[] = {"generic", "avx2", "avx512"};
     for (int k = 0; k < 3; k++) {
-        const rt_sw_variant *isa = rt_sw_variant_find(isas[k]);
+        const rt_cpu_isa *isa = rt_cpu_isa_find(isas[k]);
         if (!isa) continue;
-        rt_sw_bvh b;
-        if (rt_sw_build(flat, rt_sw_variant_width(isa), &b) != RT_OK) {
-            CHECK_MSG(0, "%s: rt_sw_build failed", what);
+        rt_wide_bvh b;
+        if (rt_wide_build(flat, rt_sw_shape(rt_cpu_isa_width(isa)), &b) != RT_OK) {
+            CHECK_MSG(0, "%s: rt_wide_build failed", what);
             bad++;
             continue;
         }
@@ -96,7 +96,7 @@ static int compare_all(const rt_flat *flat, const rt_ray *rays, size_t n, const 
                 }
             }
         }
-        rt_sw_free(&b);
+        rt_wide_free(&b);
     }
     free(got);
     return bad;
@@ -314,21 +314,22 @@ int main(void) {
     int runs = 0;
     const char *isas[] = {"generic", "avx2", "avx512"};
     for (int k = 0; k < 3; k++) {
-        const rt_sw_variant *v = rt_sw_variant_find(isas[k]);
+        const rt_cpu_isa *v = rt_cpu_isa_find(isas[k]);
         if (!v) {
             printf("single build %s: not run (not in this build or not run by this CPU)\n",
                    isas[k]);
             continue;
         }
-        printf("single build %s: width %d\n", rt_sw_variant_name(v), rt_sw_variant_width(v));
-        CHECK(rt_sw_variant_width(v) == (k == 0 ? 4 : 8));
+        printf("single build %s: width %d\n", rt_cpu_isa_name(v), rt_cpu_isa_width(v));
+        CHECK(rt_cpu_isa_width(v) == (k == 0 ? 4 : 8));
         runs++;
     }
-    CHECK(runs > 0 && rt_sw_variant_find(NULL) != NULL && rt_sw_variant_find("mmx") == NULL);
+    CHECK(runs > 0 && rt_cpu_isa_find(NULL) != NULL && rt_cpu_isa_find("mmx") == NULL);
     rt_scene *small = test_builtin_scene("cornell", 8, 8);
     const rt_flat *small_flat = small ? test_layout(small, 1) : NULL;
-    rt_sw_bvh none;
-    if (small_flat) CHECK(rt_sw_build(small_flat, 5, &none) == RT_ERROR_INVALID_ARGUMENT);
+    rt_wide_bvh none;
+    if (small_flat)
+        CHECK(rt_wide_build(small_flat, rt_sw_shape(5), &none) == RT_ERROR_INVALID_ARGUMENT);
     rt_scene_destroy(small);
 
     for (int i = 0; rt_builtin_scene_names[i]; i++) {

@@ -38,8 +38,8 @@ static void check_scene(const char *name, rt_scene *scene) {
     rt_hit_d *packet = malloc(sizeof(rt_hit_d) * (size_t)rays);
     rt_hit_d *any = malloc(sizeof(rt_hit_d) * (size_t)rays);
     for (int i = 0; i < rays; i++) oracle_ray(&flat->hdr, lo, hi, i, &r[i]);
-    rt_pk_wide wide;
-    CHECK(rt_pk_wide_build(flat, &wide) == RT_OK);
+    rt_wide_bvh wide;
+    CHECK(rt_wide_build(flat, rt_pk_shape(), &wide) == RT_OK);
     rt_counters c = {0, 0, 0};
     rt_cpu_trace_rays(flat, r, (size_t)rays, scalar, 0, &c);
     rt_hit_d *b = malloc(sizeof(rt_hit_d) * (size_t)rays);
@@ -59,15 +59,14 @@ static void check_scene(const char *name, rt_scene *scene) {
     printf("%s: %d rays, %d hits, %u triangles\n", name, rays, hits, flat->tri_count);
     CHECK_MSG(bad == 0, "%s: %d of %d scalar hits differ from brute force", name, bad, rays);
     CHECK_MSG(hits > 0, "%s: no ray hit anything", name);
-    for (int k = 0; rt_pk_isa_name(k); k++) {
-        const char *isa = rt_pk_isa_name(k);
-        const rt_pk_variant *variant = rt_pk_variant_find(isa);
+    for (int k = 0; rt_cpu_isa_at(k); k++) {
+        const char *isa = rt_cpu_isa_at(k);
+        const rt_cpu_isa *variant = rt_cpu_isa_find(isa);
         if (!variant) continue;
         /* Every group in packets, then each as the coherence measure
          * decides (packets or the single-ray tracer of the same build). */
-        const rt_sw_variant *single_isa = rt_sw_variant_find(isa);
-        rt_sw_bvh single;
-        CHECK(single_isa && rt_sw_build(flat, rt_sw_variant_width(single_isa), &single) == RT_OK);
+        rt_wide_bvh single;
+        CHECK(rt_wide_build(flat, rt_sw_shape(rt_cpu_isa_width(variant)), &single) == RT_OK);
         for (int mixed = 0; mixed < 2; mixed++) {
             rt_cpu_frame tracers;
             memset(&tracers, 0, sizeof tracers);
@@ -75,7 +74,6 @@ static void check_scene(const char *name, rt_scene *scene) {
             tracers.wide = &wide;
             tracers.isa = variant;
             tracers.single = mixed ? &single : NULL;
-            tracers.single_isa = single_isa;
             uint64_t in_packets = 0;
             rt_packet_trace_rays(&tracers, r, (size_t)rays, packet, 0, RT_TRACE_PATH_AUTO, &c,
                                  &in_packets);
@@ -92,9 +90,9 @@ static void check_scene(const char *name, rt_scene *scene) {
             CHECK_MSG(bad_any == 0, "%s: %d of %d any-hit (%s%s) results differ", name, bad_any,
                       rays, isa, mixed ? ", mixed" : "");
         }
-        rt_sw_free(&single);
+        rt_wide_free(&single);
     }
-    rt_pk_wide_free(&wide);
+    rt_wide_free(&wide);
     free(b);
     free(r);
     free(scalar);

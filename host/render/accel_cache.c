@@ -309,7 +309,7 @@ rt_status rt_accel_cache_update(rt_accel_cache *c, const rt_scene *scene, rt_poo
             if (st != RT_OK) return rt_fail(err, st, "out of memory");
             c->layout_bytes = rt_flat_bytes(&c->flat);
         }
-        memset(c->dirty, 0, c->mesh_count);
+        if (c->mesh_count) memset(c->dirty, 0, c->mesh_count); /* dirty is NULL without meshes */
         c->layout_ms = rt_now_ms() - t2;
         c->flat_valid = 1;
         c->flat_scene_version = scene->version;

@@ -20,4 +20,12 @@ typedef struct rt_frame_state {
 rt_status rt_frame_layout(rt_renderer *r, rt_scene *scene, rt_triangle_test test, int direct_only,
                           rt_frame_state *out);
 
+/* The rays a frame's query traces: *in is rays itself when every ray is
+ * valid, else a copy (*copy, for the caller to free) in which each ray with
+ * a NaN or infinite component, a NaN end or a zero direction is an empty
+ * range (tmin 1 > tmax 0), which every backend misses. Errors go to
+ * r->error. */
+rt_status rt_frame_rays(rt_renderer *r, const rt_ray *rays, size_t count, const rt_ray **in,
+                        rt_ray **copy);
+
 #endif /* RT_RENDER_FRAME_H */

@@ -32,7 +32,6 @@
 #include "layout/flat.h"
 #include "oracle_util.h"
 #include "packet_trace.h"
-#include "packet_wide.h"
 #include "render/renderer_internal.h"
 #include "scene/scene_builtin.h"
 
@@ -41,7 +40,7 @@ enum { MAX_RAYS = 128, MAX_ISAS = 3 };
 static rt_scene *scene;
 static rt_renderer *oracle, *oracle_flush;
 static rt_renderer *packet[MAX_ISAS], *packet_flush[MAX_ISAS];
-static const rt_pk_variant *isa[MAX_ISAS];
+static const rt_cpu_isa *isa[MAX_ISAS];
 static int isa_count;
 
 static void must(rt_status st, const char *what) {
@@ -113,11 +112,11 @@ static void set_up(void) {
     must(rt_renderer_create(&o, &oracle, &err), "the cpu renderer");
     o.denormals = RT_DENORMALS_FLUSH;
     must(rt_renderer_create(&o, &oracle_flush, &err), "the flushing cpu renderer");
-    for (int i = 0; rt_pk_isa_name(i) && isa_count < MAX_ISAS; i++) {
-        const rt_pk_variant *v = rt_pk_variant_find(rt_pk_isa_name(i));
+    for (int i = 0; rt_cpu_isa_at(i) && isa_count < MAX_ISAS; i++) {
+        const rt_cpu_isa *v = rt_cpu_isa_find(rt_cpu_isa_at(i));
         if (!v) continue; /* this CPU lacks it */
         o.backend = "packet";
-        o.packet_isa = rt_pk_isa_name(i);
+        o.packet_isa = rt_cpu_isa_at(i);
         o.denormals = RT_DENORMALS_PRESERVE;
         must(rt_renderer_create(&o, &packet[isa_count], &err), "a packet renderer");
         o.denormals = RT_DENORMALS_FLUSH;
@@ -163,7 +162,7 @@ static void check_api(const rt_ray *rays, int n, const rt_trace_options *opt, in
                 ok = same_bits(a->t, b->t) && same_bits(a->u, b->u) && same_bits(a->v, b->v) &&
                      a->prim == b->prim && a->inst == b->inst;
             if (!ok) {
-                report("rt_trace_rays: packet differs from cpu", rt_pk_variant_name(isa[k]), i,
+                report("rt_trace_rays: packet differs from cpu", rt_cpu_isa_name(isa[k]), i,
                        &rays[i]);
                 fprintf(stderr, "cpu: hit %d t %a u %a v %a prim %u inst %u\n", a->hit,
                         (double)a->t, (double)a->u, (double)a->v, a->prim, a->inst);
@@ -183,10 +182,10 @@ static void check_kernel(const rt_ray *rays, int n, int any_hit, rt_triangle_tes
     rt_backend_layout layout;
     double build_ms, sah;
     must(rt_renderer_layout(oracle, scene, &layout, &build_ms, &sah), "rt_renderer_layout");
-    static rt_pk_wide wide;
+    static rt_wide_bvh wide;
     static int have_wide;
     if (!have_wide) { /* the scene never changes, nor does its layout */
-        must(rt_pk_wide_build(layout.flat, &wide), "rt_pk_wide_build");
+        must(rt_wide_build(layout.flat, rt_pk_shape(), &wide), "rt_wide_build");
         have_wide = 1;
     }
     rt_scene_view v = rt_flat_view(layout.flat);
@@ -227,8 +226,8 @@ static void check_kernel(const rt_ray *rays, int n, int any_hit, rt_triangle_tes
                 int ok = any_hit ? (got.prim == RT_NO_HIT) == (w->prim == RT_NO_HIT)
                                  : oracle_same_hit(&got, w);
                 if (!ok) {
-                    report("rt_pk_trace differs from rt_trace", rt_pk_variant_name(isa[k]),
-                           base + l, &rays[base + l]);
+                    report("rt_pk_trace differs from rt_trace", rt_cpu_isa_name(isa[k]), base + l,
+                           &rays[base + l]);
                     fprintf(stderr, "rt_trace: t %a u %a v %a prim %u inst %u\n", (double)w->t,
                             (double)w->u, (double)w->v, w->prim, w->inst);
                     fprintf(stderr, "rt_pk_trace: t %a u %a v %a prim %u inst %u\n", (double)got.t,

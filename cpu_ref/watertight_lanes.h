@@ -1,0 +1,71 @@
+/* watertight_lanes.h - rt_tri_watertight (kernels/rt_shared.h) on the RT_VN
+ * lanes of rt_vf (simd.h): the one vector copy of the oracle's watertight
+ * arithmetic, shared by the packet tracer (one triangle, a vector of rays)
+ * and the single-ray tracer (one ray, a vector of triangles). Each lane does
+ * the oracle's operations in the oracle's order, so its values are the
+ * oracle's bits; a change to rt_tri_watertight's arithmetic is made here,
+ * once, for both tracers.
+ *
+ * In steps, because a lane with an edge function of exactly zero takes the
+ * oracle's exact re-check (through the shared scalar test, in the tracer)
+ * after the first, and the tracer returns early where no lane is inside:
+ *   rt_vwt_edges:  the sheared vertices and the edge functions U, V, W;
+ *   rt_vwt_inside: the sign test and det;
+ *   rt_vwt_t:      T and t.
+ * The range test of t and u = V / det, v = W / det are left to the tracer,
+ * which divides only for the hit it keeps. */
+#ifndef RT_WATERTIGHT_LANES_H
+#define RT_WATERTIGHT_LANES_H
+
+#include "simd.h"
+
+/* One triangle test's values per lane, named as in rt_tri_watertight. */
+typedef struct rt_vwt {
+    rt_vf Az, Bz, Cz; /* A[kz], B[kz], C[kz] (before the scale sz) */
+    rt_vf U, V, W;    /* the edge functions */
+    rt_vf det, t;     /* (U + V) + W and T / det (rt_vwt_inside, rt_vwt_t) */
+} rt_vwt;
+
+/* rt_tri_watertight up to the edge functions. a, b and c are the vertices
+ * v0, v1, v2 less the ray's origin on the ray's axes kx, ky, kz (the
+ * oracle's A[kx], A[ky], A[kz], ...); sx and sy the ray's shear. Returns
+ * the lanes (bit l = lane l) with an edge function of exactly zero: the
+ * oracle re-checks those exactly, and so must the caller (the shared scalar
+ * test) before it drops them from rt_vwt_inside's lanes. */
+static inline uint32_t rt_vwt_edges(const rt_vf a[3], const rt_vf b[3], const rt_vf c[3], rt_vf sx,
+                                    rt_vf sy, rt_vwt *x) {
+    const rt_vf Ax = a[0] - sx * a[2], Ay = a[1] - sy * a[2];
+    const rt_vf Bx = b[0] - sx * b[2], By = b[1] - sy * b[2];
+    const rt_vf Cx = c[0] - sx * c[2], Cy = c[1] - sy * c[2];
+    x->Az = a[2];
+    x->Bz = b[2];
+    x->Cz = c[2];
+    x->U = Cx * By - Cy * Bx;
+    x->V = Ax * Cy - Ay * Cx;
+    x->W = Bx * Ay - By * Ax;
+    const rt_vf zero = rt_vsplat(0.0f);
+    return rt_vbits((x->U == zero) | (x->V == zero) | (x->W == zero));
+}
+
+/* The sign test for the lanes of m (none with a zero edge function): the
+ * lanes whose ray meets the triangle (the edge functions of one sign, det
+ * not 0), with x->det set. */
+static inline uint32_t rt_vwt_inside(rt_vwt *x, uint32_t m) {
+    const rt_vf zero = rt_vsplat(0.0f);
+    x->det = (x->U + x->V) + x->W;
+    const rt_vi out = (((x->U < zero) | (x->V < zero) | (x->W < zero)) &
+                       ((x->U > zero) | (x->V > zero) | (x->W > zero))) |
+                      (x->det == zero);
+    return ~rt_vbits(out) & m;
+}
+
+/* The hit distance T / det per lane, sz the ray's scale (after
+ * rt_vwt_inside: where some lane is inside). The oracle's range test, t in
+ * [tmin, tmax], is the caller's, with the range it has at that moment. */
+static inline rt_vf rt_vwt_t(rt_vwt *x, rt_vf sz) {
+    const rt_vf T = (x->U * (sz * x->Az) + x->V * (sz * x->Bz)) + x->W * (sz * x->Cz);
+    x->t = T / x->det;
+    return x->t;
+}
+
+#endif /* RT_WATERTIGHT_LANES_H */
