@@ -10,7 +10,7 @@
 # stay (the shared headers use them only in their C branch).
 
 function(inline_includes path depth out_var)
-  if(depth GREATER 8)
+  if(depth GREATER 16)
     message(FATAL_ERROR "embed_kernels: includes nested too deeply at ${path}")
   endif()
   file(READ "${path}" text)

@@ -214,7 +214,7 @@ typedef struct rt_render_stats {
     uint32_t wave_tiles;      /* tiles shaded as wavefront passes (secondary rays) */
     uint32_t wave_fallbacks;  /* of those, redone with rt_k_shade (a queue overflowed) */
     /* Which kernels rendered: "packet 4x4" (CPU devices: a block of rays per
-     * work-item, kernels/rt_packet.cl) or "one ray per work-item". */
+     * work-item, kernels/rt_ray_packet.cl) or "one ray per work-item". */
     char kernels[48];
 } rt_render_stats;
 

@@ -1,7 +1,8 @@
 /* rt_kd.h - kd-tree traversal of one mesh (the layout of rt_layout.h,
- * RT_INST_KD), shared by the C oracle and the OpenCL kernels. rt_shared.h
- * includes it after the triangle and leaf tests it uses; valid C99 and
- * OpenCL C under the same rules as rt_shared.h.
+ * RT_INST_KD), shared by the C oracle and the OpenCL kernels; rt_trace.h
+ * calls it for kd meshes beside rt_bvh.h's BVH walk. Valid C99 and OpenCL C
+ * under the rules of rt_math_profile.h; the GLSL mirror is
+ * kernels/vulkan/rt_vk_kd.glsl.
  *
  * Front to back with an explicit stack of (node, entry t, exit t) cells
  * (Havran's recursive traversal without recursion). Exactness against the
@@ -25,28 +26,17 @@
 #ifndef RT_KD_TRAVERSE_H
 #define RT_KD_TRAVERSE_H
 
+#include "rt_hit.h"
+
 /* Stack entries; host/layout/flatten.c rejects deeper trees. */
 #define RT_KD_STACK 64
 
 /* The ray's interval [*tn, *tf] in the root cell (the box of the mesh's
- * rt_node), intersected with [lo, hi]: the slab test of rt_box_test, which
- * also returns the far end. 0 when the ray misses. */
+ * rt_node), intersected with [lo, hi]: rt_box_test's slab test, which also
+ * gives the far end (rt_box_interval). 0 when the ray misses. */
 RT_FN int rt_kd_root_interval(RT_GLOBAL const rt_node *n, const rt_ray *r, const rt_ray_pre *p,
                               float lo, float hi, float *tn, float *tf) {
-    float near = lo, far = RT_INF;
-    for (int i = 0; i < 3; i++) {
-        float a = p->sign[i] ? n->bmax[i] : n->bmin[i];
-        float b = p->sign[i] ? n->bmin[i] : n->bmax[i];
-        float t0 = (a - r->org[i]) * p->inv[i];
-        float t1 = (b - r->org[i]) * p->inv[i];
-        near = t0 > near ? t0 : near;
-        far = t1 < far ? t1 : far;
-    }
-    far = far * (far < 0.0f ? RT_BOX_FAR_SCALE_NEG : RT_BOX_FAR_SCALE);
-    far = hi < far ? hi : far;
-    *tn = near;
-    *tf = far;
-    return near <= far;
+    return rt_box_interval(n->bmin, n->bmax, r, p, lo, hi, tn, tf);
 }
 
 /* Traverses the kd-tree of the mesh whose bounding rt_node is 'root', with a

@@ -1,10 +1,14 @@
-/* rt_kernel_args.h - what the OpenCL kernel files (rt_render.cl, rt_packet.cl)
- * share besides the maths: the scene-view arguments every tracing kernel
- * takes (in this order: host/cl_backend.c sets them as arguments 0..10) and
- * the AOV codes of rt.h. OpenCL C only. */
+/* rt_kernel_args.h - what the OpenCL kernel files (rt_single_ray.cl,
+ * rt_ray_packet.cl) share besides the maths: the scene-view arguments every
+ * tracing kernel takes (in the order of the view rows of rt_interface.def,
+ * which host/opencl/cl_backend.c sets as arguments RT_ARG_*;
+ * test_opencl_kernel_args holds their names and types to the table) and,
+ * through rt_interface.h, the AOV codes. OpenCL C only. */
 #ifndef RT_KERNEL_ARGS_H
 #define RT_KERNEL_ARGS_H
 
+#include "rt_camera.h"
+#include "rt_interface.h"
 #include "rt_shade.h"
 
 /* The view arguments every tracing kernel takes, in this order. */
@@ -21,14 +25,5 @@
         hdr, nodes, tris, tri_ids, tri_normals, tri_mats, instances, inst_ids, materials, lights,  \
             kd_nodes                                                                               \
     }
-
-/* AOV codes (rt_aov in rt.h). */
-#define AOV_NONE      0
-#define AOV_DEPTH     1
-#define AOV_PRIMID    2
-#define AOV_INSTID    3
-#define AOV_NORMAL    4
-#define AOV_BOX_TESTS 5
-#define AOV_TRI_TESTS 6
 
 #endif /* RT_KERNEL_ARGS_H */

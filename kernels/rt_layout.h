@@ -120,7 +120,12 @@ typedef struct rt_light_d {
  * with forward the unit view direction, right = unit right * tan(hfov / 2) and
  * up = unit up * tan(hfov / 2) * height / width; org = position; the ray's
  * t range is [0, inf]. Every backend evaluates exactly this (rt_camera_ray in
- * rt_shared.h). */
+ * rt_camera.h). */
+/* The most reflection/refraction bounces (rt_scene_header.max_depth):
+ * host/layout/flatten.c caps a scene's at this, and the shading stack
+ * (RT_SHADE_STACK, rt_shade.h) is sized for it. */
+#define RT_MAX_DEPTH 8
+
 typedef struct rt_scene_header {
     rt_u32 flags;
     rt_u32 top_root; /* root node of the object BVH */

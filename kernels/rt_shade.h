@@ -2,14 +2,23 @@
  * sections 3.2.5 and 3.2.6): Phong (ambient + diffuse + specular), one shadow
  * ray per light, reflection and refraction through an explicit stack.
  *
- * Valid C99 and OpenCL C, under the rules of rt_shared.h. The packet path
+ * Valid C99 and OpenCL C, under the rules of rt_math_profile.h. The packet path
  * traces primary rays in packets and then calls rt_shade_hit per lane, so its
  * images are bit-identical to the scalar renderer's.
  */
 #ifndef RT_SHADE_H
 #define RT_SHADE_H
 
-#include "rt_shared.h"
+#include "rt_trace.h"
+
+/* Shadow rays run from the offset surface point (t = 0) to the light (t = 1),
+ * excluding the light itself. */
+#define RT_SHADOW_TMAX 0.999999940395355224609375f /* 1 - 2^-24 */
+
+/* Shading stack: depth-first, each bounce pushes at most two rays, so
+ * max_depth + 2 entries suffice; flatten caps max_depth at RT_MAX_DEPTH
+ * (rt_layout.h). */
+#define RT_SHADE_STACK 12
 
 /* The surface at a hit, in world space. */
 typedef struct rt_surface {
@@ -309,7 +318,7 @@ RT_FN void rt_shade_hit(const rt_scene_view *s, const rt_ray *primary, const rt_
 }
 
 /* The OpenCL wavefront's queue entry and per-node record (see
- * kernels/rt_render.cl); here so the host sizes their buffers with the
+ * kernels/rt_single_ray.cl); here so the host sizes their buffers with the
  * device's layout (4-byte fields only, so no padding differs). */
 typedef struct rt_wave_entry {
     rt_shade_entry e;

@@ -16,7 +16,7 @@ for c in clang-15 clang-16 clang-14 clang; do command -v "$c" >/dev/null && { cc
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 # One program, as the backend builds it on CPU devices.
-cat "$src/kernels/rt_render.cl" "$src/kernels/rt_packet.cl" > "$dir/program.cl"
+cat "$src/kernels/rt_single_ray.cl" "$src/kernels/rt_ray_packet.cl" > "$dir/program.cl"
 fail=0 runs=0
 for cpu in x86-64 haswell skylake-avx512; do
     for lanes in 16 8 4; do

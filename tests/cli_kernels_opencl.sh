@@ -1,10 +1,11 @@
-# cli_kernels_opencl.sh - kernels/rt_shared.h and rt_shade.h are valid OpenCL C
+# cli_kernels_opencl.sh - the shared maths (kernels/rt_*.h up to rt_shade.h) are valid OpenCL C
 # (checked with clang's OpenCL front end; skipped without clang).
 command -v clang >/dev/null || { echo "skipped: clang not installed"; exit 77; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cat > "$tmp/k.cl" <<'K'
 #pragma OPENCL FP_CONTRACT OFF
+#include "rt_camera.h"
 #include "rt_shade.h"
 __kernel void render(__global const rt_scene_header *h, __global const rt_node *nodes,
                      __global const rt_tri *tris, __global const uint *tri_ids,
@@ -29,11 +30,11 @@ for std in CL1.2 CL2.0; do
         echo "FAIL: the shared headers are not valid OpenCL C ($std)"; exit 1
     fi
 done
-# The kernel files as the backend builds them (rt_render.cl, plus rt_packet.cl
+# The kernel files as the backend builds them (rt_single_ray.cl, plus rt_ray_packet.cl
 # on CPU devices, in one program): every block size, triangle test, and the
 # specialisations of a one-object scene and of a two-level one with normals
 # and secondary rays.
-printf '#include "rt_render.cl"\n#include "rt_packet.cl"\n' > "$tmp/both.cl"
+printf '#include "rt_single_ray.cl"\n#include "rt_ray_packet.cl"\n' > "$tmp/both.cl"
 for lanes in 4 8 16; do
     for tri in 0 1 2 3; do
         for spec in "2u 1u 1u" "13u 0u 3u"; do
@@ -41,7 +42,7 @@ for lanes in 4 8 16; do
             if ! clang -x cl -cl-std=CL1.2 -Werror -fsyntax-only -I"$RT_SOURCE_DIR/kernels" \
                 -DRT_PK_LANES=$lanes -DRT_STATIC_TRI_METHOD=${tri}u -DRT_STATIC_FLAGS=$1 \
                 -DRT_STATIC_INST_SET=$2 -DRT_STATIC_INST_MASK=$3 "$tmp/both.cl"; then
-                echo "FAIL: rt_render.cl + rt_packet.cl (lanes $lanes, triangle test $tri, flags $1)"
+                echo "FAIL: rt_single_ray.cl + rt_ray_packet.cl (lanes $lanes, triangle test $tri, flags $1)"
                 exit 1
             fi
         done

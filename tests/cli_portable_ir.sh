@@ -26,7 +26,7 @@ ir() { # ir OUT SOURCE OPTIONS...: the kernel source's LLVM IR
 # are mangled _Z<len><name>) or LLVM's intrinsic; any double.
 forbidden='fdiv |@(_Z[0-9]+(sqrt|rsqrt|native_sqrt|native_rsqrt|half_sqrt|half_rsqrt|native_divide|half_divide)[a-zA-Z0-9_]*|llvm\.sqrt\.[a-z0-9.]*)\(|\bdouble\b|fpext '
 
-for src in rt_render.cl rt_packet.cl; do
+for src in rt_single_ray.cl rt_ray_packet.cl; do
     for flush in "" -DRT_FLUSH_DENORMALS; do
         name="$src portable ${flush:-preserve}"
         checks=$((checks + 1))

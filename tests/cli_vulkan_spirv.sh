@@ -16,7 +16,7 @@ if ! command -v spirv-dis >/dev/null; then
 fi
 check="python3 $RT_SOURCE_DIR/tests/vulkan_spirv_check.py"
 
-for m in rt_vk_main rt_vk_soft_test; do
+for m in rt_vk_main rt_vk_soft_test rt_vk_interface_test; do
     checks=$((checks + 1))
     if ! out=$(spirv-dis --raw-id "$spv/$m.spv" | $check "$m"); then
         echo "FAIL: $m.spv:"; echo "$out"; fails=$((fails + 1))

@@ -1,5 +1,5 @@
 /* test_core_traverse.c - single- and two-level BVH traversal of
- * kernels/rt_shared.h against brute force over all triangles: identical hits
+ * kernels/rt_trace.h against brute force over all triangles: identical hits
  * (t bits, u, v, prim, inst) on random rays over the built-in scenes, for every
  * triangle test and two different trees; any-hit agrees on occlusion; ties go
  * to the lower instance, then the lower triangle. The trees come from a small

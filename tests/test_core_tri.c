@@ -1,4 +1,4 @@
-/* test_core_tri.c - the ray/box and ray/triangle tests of kernels/rt_shared.h
+/* test_core_tri.c - the ray/box and ray/triangle tests of kernels/rt_box.h and rt_tri.h
  * on hand-made cases: hit, miss, edge, vertex, parallel, degenerate, the
  * inclusive [tmin, tmax], both faces, and watertightness on a shared edge. */
 #include <math.h>

@@ -12,7 +12,7 @@
  * the default build after a variant is the oracle's bits again.
  *
  * On a CPU device frames and closest-hit ray queries run the packet kernels
- * (kernels/rt_packet.cl; the hit buffers above check rt_k_packet_trace): its
+ * (kernels/rt_ray_packet.cl; the hit buffers above check rt_k_packet_trace): its
  * images and AOVs are checked in Whitted and direct mode, at an odd size
  * (partial blocks), with every triangle test and every block size; its test
  * counters count per lane (they differ from the oracle's), so they are

@@ -1,7 +1,7 @@
 /* cl_backend.c - the OpenCL backend (host/backend/backend.h): device state
  * kept by the renderer, uploads of what changed, the kernel program
  * specialised to the scene, and frames rendered in bounded tiles
- * (kernels/rt_render.cl).
+ * (kernels/rt_single_ray.cl).
  *
  * The kernels compute with the CPU oracle's header, built with no contraction
  * and correctly rounded division and sqrt, so on a device that promises both
@@ -24,8 +24,8 @@
 #include "rt_shade.h" /* rt_wave_entry, rt_wave_record: the wavefront's buffers */
 
 /* Generated from kernels/ at build time. */
-extern const char rt_cl_source_rt_render[];
-extern const char rt_cl_source_rt_packet[];
+extern const char rt_cl_source_rt_single_ray[];
+extern const char rt_cl_source_rt_ray_packet[];
 
 /* Tile sizes in pixels: adapted per frame so that one launch stays near
  * RT_CL_TARGET_MS (a GPU watchdog fires after a few seconds; we keep far from
@@ -41,36 +41,12 @@ extern const char rt_cl_source_rt_packet[];
 
 /* ---- device state ------------------------------------------------------- */
 
-enum {
-    B_HDR,
-    B_NODES,
-    B_TRIS,
-    B_TRI_IDS,
-    B_NORMALS,
-    B_TRI_MATS,
-    B_INST,
-    B_INST_IDS,
-    B_MATS,
-    B_LIGHTS,
-    B_KD_NODES,
-    B_RAYS,
-    B_HITS,
-    B_COUNTERS,
-    B_FB,
-    B_QUEUE_A, /* the wavefront's ray queues (rt_wave_entry), alternating */
-    B_QUEUE_B,
-    B_WAVE_HITS,
-    B_RECORDS, /* per pixel of the tile: one rt_wave_record per tree slot */
-    B_QUEUE_COUNT,
-    B_COUNT
-};
-static const char *const buffer_names[B_COUNT] = {
-    "header",      "nodes",     "tris",    "tri_ids",   "tri_normals", "tri_mats",   "instances",
-    "inst_ids",    "materials", "lights",  "kd_nodes",  "rays",        "hits",       "counters",
-    "framebuffer", "queue_a",   "queue_b", "wave_hits", "records",     "queue_count"};
-
-_Static_assert((int)B_HDR == (int)RT_ARG_HDR && (int)B_LIGHTS == (int)RT_ARG_LIGHTS &&
-                   (int)B_KD_NODES == (int)RT_ARG_KD_NODES,
+/* The buffers are RT_CL_BUF_* of the GPU interface table
+ * (kernels/rt_interface.def): the view's first, in the order of their
+ * kernel arguments (RT_ARG_*) and of the upload plan's arrays. */
+_Static_assert((int)RT_CL_BUF_HDR == (int)RT_ARG_HDR &&
+                   (int)RT_CL_BUF_LIGHTS == (int)RT_ARG_LIGHTS &&
+                   (int)RT_CL_BUF_KD_NODES == (int)RT_ARG_KD_NODES,
                "the view buffers are the view arguments, in order");
 
 typedef struct cl_state {
@@ -91,8 +67,8 @@ typedef struct cl_state {
     cl_kernel k_wcam, k_wtrace, k_wshade, k_wsum; /* the wavefront */
     cl_kernel k_packet, k_ptrace;                 /* CPU devices: rt_k_packet, rt_k_packet_trace */
     int lanes; /* the program's packet lanes (RT_PK_LANES); 0: no packet kernel */
-    cl_mem buf[B_COUNT];
-    size_t cap[B_COUNT];
+    cl_mem buf[RT_CL_BUF_COUNT];
+    size_t cap[RT_CL_BUF_COUNT];
     rt_upload_memo memo; /* what the device holds of the layout */
     uint32_t tile;
     /* The last program build's messages: the compiler's log, then what the
@@ -112,7 +88,7 @@ static void release_wave_kernels(cl_state *s) {
 static void cl_destroy(void *p) {
     cl_state *s = p;
     if (!s) return;
-    for (int i = 0; i < B_COUNT; i++)
+    for (int i = 0; i < RT_CL_BUF_COUNT; i++)
         if (s->buf[i]) clReleaseMemObject(s->buf[i]);
     if (s->k_camera) clReleaseKernel(s->k_camera);
     if (s->k_trace) clReleaseKernel(s->k_trace);
@@ -337,7 +313,7 @@ static void append_log(rt_error *err, const char *log) {
 static rt_status compile(cl_state *s, const rt_flat *f, const char *options, const char *defines,
                          int lanes, char **log, rt_error *err) {
     /* CPU devices get the packet kernel in the same program. */
-    const char *src[2] = {rt_cl_source_rt_render, rt_cl_source_rt_packet};
+    const char *src[2] = {rt_cl_source_rt_single_ray, rt_cl_source_rt_ray_packet};
     cl_int ce;
     s->program = clCreateProgramWithSource(s->ctx, lanes ? 2 : 1, src, NULL, &ce);
     if (!s->program)
@@ -389,14 +365,15 @@ static rt_status ensure(cl_state *s, int b, size_t bytes, int *remade, rt_error 
         return rt_fail(err, RT_ERROR_OUT_OF_MEMORY,
                        "out of device memory: buffer '%s' needs %zu bytes, more than the largest "
                        "allocation of '%s' (%llu bytes)",
-                       buffer_names[b], bytes, s->dev.name, (unsigned long long)s->dev.max_alloc);
+                       rt_cl_buffer_what(b), bytes, s->dev.name,
+                       (unsigned long long)s->dev.max_alloc);
     cl_int ce;
     s->buf[b] = clCreateBuffer(s->ctx, CL_MEM_READ_WRITE, bytes, NULL, &ce);
     if (!s->buf[b])
         return rt_fail(err, out_of_memory(ce) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
                        "%s: buffer '%s' of %zu bytes on '%s' (%s)",
                        out_of_memory(ce) ? "out of device memory" : "cannot allocate",
-                       buffer_names[b], bytes, s->dev.name, rt_cl_error_name(ce));
+                       rt_cl_buffer_what(b), bytes, s->dev.name, rt_cl_error_name(ce));
     s->cap[b] = bytes;
     *remade = 1;
     return RT_OK;
@@ -411,14 +388,14 @@ static rt_status write_buf(cl_state *s, int b, size_t offset, const void *data, 
         return rt_fail(err, out_of_memory(ce) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
                        "%s: writing buffer '%s' (%zu bytes) on '%s' (%s)",
                        out_of_memory(ce) ? "out of device memory" : "upload failed",
-                       buffer_names[b], bytes, s->dev.name, rt_cl_error_name(ce));
+                       rt_cl_buffer_what(b), bytes, s->dev.name, rt_cl_error_name(ce));
     *uploaded += bytes;
     return RT_OK;
 }
 
 /* One copy of an upload plan (upload_plan.h): array i is buffer i here. */
-_Static_assert((int)B_HDR == (int)RT_UP_HDR && (int)B_LIGHTS == (int)RT_UP_LIGHTS &&
-                   (int)B_KD_NODES == (int)RT_UP_KD_NODES,
+_Static_assert((int)RT_CL_BUF_HDR == (int)RT_UP_HDR && (int)RT_CL_BUF_LIGHTS == (int)RT_UP_LIGHTS &&
+                   (int)RT_CL_BUF_KD_NODES == (int)RT_UP_KD_NODES,
                "the layout's buffers are the upload plan's arrays");
 typedef struct cl_upload {
     cl_state *s;
@@ -467,9 +444,9 @@ static rt_status set_arg(cl_kernel k, cl_uint i, size_t n, const void *v, rt_err
 
 /* The scene arrays, the view arguments of every tracing kernel. */
 static rt_status set_view(cl_state *s, cl_kernel k, rt_error *err) {
-    for (int b = B_HDR; b <= B_KD_NODES; b++) {
-        rt_status st =
-            set_arg(k, (cl_uint)(RT_ARG_HDR + (b - B_HDR)), sizeof(cl_mem), &s->buf[b], err);
+    for (int b = RT_CL_BUF_HDR; b <= RT_CL_BUF_KD_NODES; b++) {
+        rt_status st = set_arg(k, (cl_uint)(RT_ARG_HDR + (b - RT_CL_BUF_HDR)), sizeof(cl_mem),
+                               &s->buf[b], err);
         if (st != RT_OK) return st;
     }
     return RT_OK;
@@ -608,16 +585,16 @@ static rt_status read_buf(cl_state *s, int b, size_t bytes, void *dst, rt_error 
     cl_int ce = clEnqueueReadBuffer(s->queue, s->buf[b], CL_TRUE, 0, bytes, dst, 0, NULL, NULL);
     if (ce != CL_SUCCESS)
         return rt_fail(err, RT_ERROR_BACKEND, "reading buffer '%s' (%zu bytes) from '%s': %s",
-                       buffer_names[b], bytes, s->dev.name, rt_cl_error_name(ce));
+                       rt_cl_buffer_what(b), bytes, s->dev.name, rt_cl_error_name(ce));
     return RT_OK;
 }
 
 /* Per-ray buffers for tiles of up to 'tile' rays. */
 static rt_status ensure_ray_buffers(cl_state *s, uint32_t tile, rt_error *err) {
     int remade;
-    rt_status st = ensure(s, B_RAYS, sizeof(rt_ray) * tile, &remade, err);
-    if (st == RT_OK) st = ensure(s, B_HITS, sizeof(rt_hit_d) * tile, &remade, err);
-    if (st == RT_OK) st = ensure(s, B_COUNTERS, sizeof(rt_counters) * tile, &remade, err);
+    rt_status st = ensure(s, RT_CL_BUF_RAYS, sizeof(rt_ray) * tile, &remade, err);
+    if (st == RT_OK) st = ensure(s, RT_CL_BUF_HITS, sizeof(rt_hit_d) * tile, &remade, err);
+    if (st == RT_OK) st = ensure(s, RT_CL_BUF_COUNTERS, sizeof(rt_counters) * tile, &remade, err);
     return st;
 }
 
@@ -730,13 +707,13 @@ static rt_status zero_buf(cl_state *s, int b, size_t bytes, rt_error *err) {
     cl_int ce =
         clEnqueueFillBuffer(s->queue, s->buf[b], &zero, sizeof zero, 0, bytes, 0, NULL, NULL);
     if (ce != CL_SUCCESS)
-        return rt_fail(err, RT_ERROR_BACKEND, "clearing buffer '%s' on '%s': %s", buffer_names[b],
-                       s->dev.name, rt_cl_error_name(ce));
+        return rt_fail(err, RT_ERROR_BACKEND, "clearing buffer '%s' on '%s': %s",
+                       rt_cl_buffer_what(b), s->dev.name, rt_cl_error_name(ce));
     return RT_OK;
 }
 
 /* One tile of an image with secondary rays as wavefront passes (see
- * kernels/rt_render.cl): the primary rays' queue, then per level a trace and
+ * kernels/rt_single_ray.cl): the primary rays' queue, then per level a trace and
  * a shade launch whose secondary rays make the next queue (its length read
  * back between the launches), until the queue is empty; then the per-pixel
  * sum in rt_shade_hit's order. *overflow is set (and the tile left
@@ -746,14 +723,15 @@ static rt_status wave_tile(cl_state *s, cl_uint slots, cl_uint cap, cl_uint f, c
     cl_kernel kc = s->k_wcam, kt = s->k_wtrace, ks = s->k_wshade;
     *longest = 0.0;
     *overflow = 0;
-    rt_status st = zero_buf(s, B_COUNTERS, sizeof(rt_counters) * n, err);
+    rt_status st = zero_buf(s, RT_CL_BUF_COUNTERS, sizeof(rt_counters) * n, err);
     if (st == RT_OK) st = set_arg(kc, RT_K_WCAM_FIRST, sizeof f, &f, err);
     if (st == RT_OK) st = set_arg(kc, RT_K_WCAM_COUNT, sizeof n, &n, err);
-    if (st == RT_OK) st = set_arg(kc, RT_K_WCAM_QUEUE, sizeof(cl_mem), &s->buf[B_QUEUE_A], err);
+    if (st == RT_OK)
+        st = set_arg(kc, RT_K_WCAM_QUEUE, sizeof(cl_mem), &s->buf[RT_CL_BUF_QUEUE_A], err);
     if (st == RT_OK) st = timed(s, kc, n, "rt_k_wave_camera", &stats->kernel_ms[0], longest, err);
     if (st == RT_OK) stats->launches++;
     cl_uint count = n;
-    int in = B_QUEUE_A, out = B_QUEUE_B;
+    int in = RT_CL_BUF_QUEUE_A, out = RT_CL_BUF_QUEUE_B;
     while (st == RT_OK && count > 0) {
         st = set_arg(kt, RT_K_WTRACE_COUNT, sizeof count, &count, err);
         if (st == RT_OK) st = set_arg(kt, RT_K_WTRACE_QUEUE, sizeof(cl_mem), &s->buf[in], err);
@@ -762,11 +740,11 @@ static rt_status wave_tile(cl_state *s, cl_uint slots, cl_uint cap, cl_uint f, c
         if (st == RT_OK) st = set_arg(ks, RT_K_WSHADE_NEXT, sizeof(cl_mem), &s->buf[out], err);
         if (st == RT_OK)
             st = timed(s, kt, count, "rt_k_wave_trace", &stats->kernel_ms[1], longest, err);
-        if (st == RT_OK) st = zero_buf(s, B_QUEUE_COUNT, sizeof(cl_uint), err);
+        if (st == RT_OK) st = zero_buf(s, RT_CL_BUF_QUEUE_COUNT, sizeof(cl_uint), err);
         if (st == RT_OK)
             st = timed(s, ks, count, "rt_k_wave_shade", &stats->kernel_ms[2], longest, err);
         cl_uint next = 0;
-        if (st == RT_OK) st = read_buf(s, B_QUEUE_COUNT, sizeof next, &next, err);
+        if (st == RT_OK) st = read_buf(s, RT_CL_BUF_QUEUE_COUNT, sizeof next, &next, err);
         if (st != RT_OK) return st;
         stats->launches += 2;
         if (next > cap) {
@@ -803,33 +781,40 @@ static rt_status wave_setup(cl_state *s, cl_uint slots, uint32_t tile_max, cl_ui
     /* A queue holds a tile's primary rays or up to cap secondary rays. */
     size_t entries = cap > tile_max ? cap : tile_max;
     int remade;
-    rt_status st = ensure(s, B_QUEUE_A, sizeof(rt_wave_entry) * entries, &remade, err);
-    if (st == RT_OK) st = ensure(s, B_QUEUE_B, sizeof(rt_wave_entry) * entries, &remade, err);
-    if (st == RT_OK) st = ensure(s, B_WAVE_HITS, sizeof(rt_hit_d) * entries, &remade, err);
+    rt_status st = ensure(s, RT_CL_BUF_QUEUE_A, sizeof(rt_wave_entry) * entries, &remade, err);
     if (st == RT_OK)
-        st = ensure(s, B_RECORDS, sizeof(rt_wave_record) * (size_t)slots * tile_max, &remade, err);
-    if (st == RT_OK) st = ensure(s, B_QUEUE_COUNT, sizeof(cl_uint), &remade, err);
+        st = ensure(s, RT_CL_BUF_QUEUE_B, sizeof(rt_wave_entry) * entries, &remade, err);
+    if (st == RT_OK) st = ensure(s, RT_CL_BUF_WAVE_HITS, sizeof(rt_hit_d) * entries, &remade, err);
+    if (st == RT_OK)
+        st = ensure(s, RT_CL_BUF_RECORDS, sizeof(rt_wave_record) * (size_t)slots * tile_max,
+                    &remade, err);
+    if (st == RT_OK) st = ensure(s, RT_CL_BUF_QUEUE_COUNT, sizeof(cl_uint), &remade, err);
     if (st == RT_OK) st = set_view(s, s->k_wtrace, err);
     if (st == RT_OK) st = set_view(s, s->k_wshade, err);
     cl_kernel kc = s->k_wcam, kt = s->k_wtrace, ks = s->k_wshade, ksum = s->k_wsum;
-    if (st == RT_OK) st = set_arg(kc, RT_K_WCAM_HDR, sizeof(cl_mem), &s->buf[B_HDR], err);
-    if (st == RT_OK) st = set_arg(kt, RT_K_WTRACE_HITS, sizeof(cl_mem), &s->buf[B_WAVE_HITS], err);
+    if (st == RT_OK) st = set_arg(kc, RT_K_WCAM_HDR, sizeof(cl_mem), &s->buf[RT_CL_BUF_HDR], err);
     if (st == RT_OK)
-        st = set_arg(kt, RT_K_WTRACE_COUNTERS, sizeof(cl_mem), &s->buf[B_COUNTERS], err);
-    if (st == RT_OK) st = set_arg(ks, RT_K_WSHADE_HITS, sizeof(cl_mem), &s->buf[B_WAVE_HITS], err);
+        st = set_arg(kt, RT_K_WTRACE_HITS, sizeof(cl_mem), &s->buf[RT_CL_BUF_WAVE_HITS], err);
     if (st == RT_OK)
-        st = set_arg(ks, RT_K_WSHADE_COUNTERS, sizeof(cl_mem), &s->buf[B_COUNTERS], err);
-    if (st == RT_OK) st = set_arg(ks, RT_K_WSHADE_RECORDS, sizeof(cl_mem), &s->buf[B_RECORDS], err);
+        st = set_arg(kt, RT_K_WTRACE_COUNTERS, sizeof(cl_mem), &s->buf[RT_CL_BUF_COUNTERS], err);
+    if (st == RT_OK)
+        st = set_arg(ks, RT_K_WSHADE_HITS, sizeof(cl_mem), &s->buf[RT_CL_BUF_WAVE_HITS], err);
+    if (st == RT_OK)
+        st = set_arg(ks, RT_K_WSHADE_COUNTERS, sizeof(cl_mem), &s->buf[RT_CL_BUF_COUNTERS], err);
+    if (st == RT_OK)
+        st = set_arg(ks, RT_K_WSHADE_RECORDS, sizeof(cl_mem), &s->buf[RT_CL_BUF_RECORDS], err);
     cl_uint stride = tile_max; /* records are slot-major */
     if (st == RT_OK) st = set_arg(ks, RT_K_WSHADE_STRIDE, sizeof stride, &stride, err);
     if (st == RT_OK)
-        st = set_arg(ks, RT_K_WSHADE_NEXT_COUNT, sizeof(cl_mem), &s->buf[B_QUEUE_COUNT], err);
+        st = set_arg(ks, RT_K_WSHADE_NEXT_COUNT, sizeof(cl_mem), &s->buf[RT_CL_BUF_QUEUE_COUNT],
+                     err);
     if (st == RT_OK) st = set_arg(ks, RT_K_WSHADE_NEXT_CAP, sizeof cap, &cap, err);
-    if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_HDR, sizeof(cl_mem), &s->buf[B_HDR], err);
-    if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_RECORDS, sizeof(cl_mem), &s->buf[B_RECORDS], err);
+    if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_HDR, sizeof(cl_mem), &s->buf[RT_CL_BUF_HDR], err);
+    if (st == RT_OK)
+        st = set_arg(ksum, RT_K_WSUM_RECORDS, sizeof(cl_mem), &s->buf[RT_CL_BUF_RECORDS], err);
     if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_STRIDE, sizeof stride, &stride, err);
     if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_CHANNELS, sizeof channels, &channels, err);
-    if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_FB, sizeof(cl_mem), &s->buf[B_FB], err);
+    if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_FB, sizeof(cl_mem), &s->buf[RT_CL_BUF_FB], err);
     return st;
 }
 
@@ -840,7 +825,7 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
     uint32_t pixels = (uint32_t)h->width * (uint32_t)h->height;
     size_t fb_bytes = sizeof(float) * (size_t)pixels * (size_t)frame->channels;
     int remade;
-    rt_status st = ensure(s, B_FB, fb_bytes, &remade, err);
+    rt_status st = ensure(s, RT_CL_BUF_FB, fb_bytes, &remade, err);
     if (st == RT_OK) st = ensure_ray_buffers(s, RT_CL_TILE_MAX, err);
     if (st != RT_OK) return named(err, st);
 
@@ -848,20 +833,25 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
     st = set_view(s, s->k_trace, err);
     if (st == RT_OK) st = set_view(s, s->k_shade, err);
     cl_kernel kc = s->k_camera, kt = s->k_trace, ks = s->k_shade;
-    if (st == RT_OK) st = set_arg(kc, RT_K_CAMERA_HDR, sizeof(cl_mem), &s->buf[B_HDR], err);
-    if (st == RT_OK) st = set_arg(kc, RT_K_CAMERA_RAYS, sizeof(cl_mem), &s->buf[B_RAYS], err);
-    if (st == RT_OK) st = set_arg(kt, RT_K_TRACE_ANY_HIT, sizeof any, &any, err);
-    if (st == RT_OK) st = set_arg(kt, RT_K_TRACE_RAYS, sizeof(cl_mem), &s->buf[B_RAYS], err);
-    if (st == RT_OK) st = set_arg(kt, RT_K_TRACE_HITS, sizeof(cl_mem), &s->buf[B_HITS], err);
+    if (st == RT_OK) st = set_arg(kc, RT_K_CAMERA_HDR, sizeof(cl_mem), &s->buf[RT_CL_BUF_HDR], err);
     if (st == RT_OK)
-        st = set_arg(kt, RT_K_TRACE_COUNTERS, sizeof(cl_mem), &s->buf[B_COUNTERS], err);
+        st = set_arg(kc, RT_K_CAMERA_RAYS, sizeof(cl_mem), &s->buf[RT_CL_BUF_RAYS], err);
+    if (st == RT_OK) st = set_arg(kt, RT_K_TRACE_ANY_HIT, sizeof any, &any, err);
+    if (st == RT_OK)
+        st = set_arg(kt, RT_K_TRACE_RAYS, sizeof(cl_mem), &s->buf[RT_CL_BUF_RAYS], err);
+    if (st == RT_OK)
+        st = set_arg(kt, RT_K_TRACE_HITS, sizeof(cl_mem), &s->buf[RT_CL_BUF_HITS], err);
+    if (st == RT_OK)
+        st = set_arg(kt, RT_K_TRACE_COUNTERS, sizeof(cl_mem), &s->buf[RT_CL_BUF_COUNTERS], err);
     if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_AOV, sizeof aov, &aov, err);
     if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_CHANNELS, sizeof channels, &channels, err);
-    if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_RAYS, sizeof(cl_mem), &s->buf[B_RAYS], err);
-    if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_HITS, sizeof(cl_mem), &s->buf[B_HITS], err);
     if (st == RT_OK)
-        st = set_arg(ks, RT_K_SHADE_COUNTERS, sizeof(cl_mem), &s->buf[B_COUNTERS], err);
-    if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_FB, sizeof(cl_mem), &s->buf[B_FB], err);
+        st = set_arg(ks, RT_K_SHADE_RAYS, sizeof(cl_mem), &s->buf[RT_CL_BUF_RAYS], err);
+    if (st == RT_OK)
+        st = set_arg(ks, RT_K_SHADE_HITS, sizeof(cl_mem), &s->buf[RT_CL_BUF_HITS], err);
+    if (st == RT_OK)
+        st = set_arg(ks, RT_K_SHADE_COUNTERS, sizeof(cl_mem), &s->buf[RT_CL_BUF_COUNTERS], err);
+    if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_FB, sizeof(cl_mem), &s->buf[RT_CL_BUF_FB], err);
 
     /* Images with reflection or refraction go through the wavefront; AOVs
      * (primary-ray values, or every ray's tests of a pixel) and scenes
@@ -896,8 +886,10 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
         if (st == RT_OK) st = set_arg(kp, RT_K_PACKET_AOV, sizeof aov, &aov, err);
         if (st == RT_OK) st = set_arg(kp, RT_K_PACKET_CHANNELS, sizeof channels, &channels, err);
         if (st == RT_OK)
-            st = set_arg(kp, RT_K_PACKET_COUNTERS, sizeof(cl_mem), &s->buf[B_COUNTERS], err);
-        if (st == RT_OK) st = set_arg(kp, RT_K_PACKET_FB, sizeof(cl_mem), &s->buf[B_FB], err);
+            st =
+                set_arg(kp, RT_K_PACKET_COUNTERS, sizeof(cl_mem), &s->buf[RT_CL_BUF_COUNTERS], err);
+        if (st == RT_OK)
+            st = set_arg(kp, RT_K_PACKET_FB, sizeof(cl_mem), &s->buf[RT_CL_BUF_FB], err);
         if (st != RT_OK) return named(err, st);
     } else {
         snprintf(stats->kernels, sizeof stats->kernels, "one ray per work-item%s",
@@ -933,7 +925,7 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
         if (tile_px > stats->tile_pixels) stats->tile_pixels = tile_px;
         if (counts) {
             double t0 = rt_now_ms();
-            st = read_buf(s, B_COUNTERS, sizeof(rt_counters) * n, counts, err);
+            st = read_buf(s, RT_CL_BUF_COUNTERS, sizeof(rt_counters) * n, counts, err);
             stats->download_ms += rt_now_ms() - t0;
             for (cl_uint i = 0; i < n && st == RT_OK; i++) {
                 stats->rays += counts[i].rays;
@@ -950,7 +942,7 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
     free(counts);
     if (st == RT_OK) {
         double t0 = rt_now_ms();
-        st = read_buf(s, B_FB, fb_bytes, frame->pixels, err);
+        st = read_buf(s, RT_CL_BUF_FB, fb_bytes, frame->pixels, err);
         stats->download_ms += rt_now_ms() - t0;
     }
     if (st != RT_OK) return named(err, st);
@@ -985,20 +977,20 @@ static rt_status cl_trace(void *state, const rt_backend_layout *layout, const rt
     cl_int any = any_hit ? 1 : 0;
     if (st == RT_OK) st = set_view(s, k, err);
     if (st == RT_OK && !packet) st = set_arg(k, RT_K_TRACE_ANY_HIT, sizeof any, &any, err);
-    if (st == RT_OK) st = set_arg(k, a, sizeof(cl_mem), &s->buf[B_RAYS], err);
-    if (st == RT_OK) st = set_arg(k, a + 1, sizeof(cl_mem), &s->buf[B_HITS], err);
-    if (st == RT_OK) st = set_arg(k, a + 2, sizeof(cl_mem), &s->buf[B_COUNTERS], err);
+    if (st == RT_OK) st = set_arg(k, a, sizeof(cl_mem), &s->buf[RT_CL_BUF_RAYS], err);
+    if (st == RT_OK) st = set_arg(k, a + 1, sizeof(cl_mem), &s->buf[RT_CL_BUF_HITS], err);
+    if (st == RT_OK) st = set_arg(k, a + 2, sizeof(cl_mem), &s->buf[RT_CL_BUF_COUNTERS], err);
     for (size_t first = 0; first < count && st == RT_OK;) {
         cl_uint n = (cl_uint)(count - first < s->tile ? count - first : s->tile);
         uint64_t ignored = 0;
         double ms = 0.0;
-        st = write_buf(s, B_RAYS, 0, rays + first, sizeof(rt_ray) * n, &ignored, err);
+        st = write_buf(s, RT_CL_BUF_RAYS, 0, rays + first, sizeof(rt_ray) * n, &ignored, err);
         if (st == RT_OK) st = set_arg(k, RT_K_TRACE_COUNT, sizeof n, &n, err);
         if (st == RT_OK)
             st = launch(s, k, packet ? (n + (cl_uint)s->lanes - 1) / (cl_uint)s->lanes : n,
                         packet ? "rt_k_packet_trace" : "rt_k_trace", &ms, err);
         if (st == RT_OK) {
-            cl_int ce = clEnqueueReadBuffer(s->queue, s->buf[B_HITS], CL_TRUE, 0,
+            cl_int ce = clEnqueueReadBuffer(s->queue, s->buf[RT_CL_BUF_HITS], CL_TRUE, 0,
                                             sizeof(rt_hit_d) * n, hits + first, 0, NULL, NULL);
             if (ce != CL_SUCCESS)
                 st = rt_fail(err, RT_ERROR_BACKEND, "reading hits: %s", rt_cl_error_name(ce));

@@ -202,7 +202,7 @@ const char *rt_cl_denormals_note(const rt_cl_device_info *d) {
 const char *rt_cl_kernels_note(const rt_cl_device_info *d) {
     if (d->cpu)
         return "packet: a CPU device, so each work-item traces a 4x4 block of rays as float16 "
-               "vectors (kernels/rt_packet.cl)";
-    return "one ray per work-item (kernels/rt_render.cl; wavefront passes for reflection and "
+               "vectors (kernels/rt_ray_packet.cl)";
+    return "one ray per work-item (kernels/rt_single_ray.cl; wavefront passes for reflection and "
            "refraction)";
 }

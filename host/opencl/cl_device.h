@@ -64,7 +64,7 @@ rt_cl_math_plan rt_cl_plan_math(const rt_cl_device_info *d, rt_device_math math,
 const char *rt_cl_denormals_note(const rt_cl_device_info *d);
 
 /* Which kernels the backend runs on the device, one line: the packet kernel
- * (kernels/rt_packet.cl) on CPU devices, one ray per work-item elsewhere. */
+ * (kernels/rt_ray_packet.cl) on CPU devices, one ray per work-item elsewhere. */
 const char *rt_cl_kernels_note(const rt_cl_device_info *d);
 
 /* A name for an OpenCL error code ("CL_OUT_OF_RESOURCES"). */

@@ -5,7 +5,7 @@
  * bounded dispatches over tiles of pixels (kernels/vulkan/).
  *
  * The shaders are the GLSL mirror of the shared maths in the portable
- * profile (kernels/vulkan/rt_vk_shared.glsl): every float operation
+ * profile (kernels/vulkan/, file for file): every float operation
  * NoContraction, division and sqrt in software from integer operations, no
  * fp64. The backend adds the float-control execution modes the device
  * supports (round to nearest even, signed zeros/infs/NaNs kept, denormals
@@ -24,12 +24,15 @@
 #include "backend/upload_plan.h"
 #include "base/clock.h"
 #include "base/error.h"
+#include "rt_interface.h"
 #include "rt_shade.h"
 #include "vulkan/vk_internal.h"
 
 /* Generated from kernels/vulkan/ at build time (cmake/embed_spirv.cmake). */
-extern const uint32_t rt_vk_spirv_rt_vk_main[], rt_vk_spirv_rt_vk_soft_test[];
-extern const size_t rt_vk_spirv_rt_vk_main_size, rt_vk_spirv_rt_vk_soft_test_size;
+extern const uint32_t rt_vk_spirv_rt_vk_main[], rt_vk_spirv_rt_vk_soft_test[],
+    rt_vk_spirv_rt_vk_interface_test[];
+extern const size_t rt_vk_spirv_rt_vk_main_size, rt_vk_spirv_rt_vk_soft_test_size,
+    rt_vk_spirv_rt_vk_interface_test_size;
 
 /* Tiles (pixels or rays per dispatch), adapted per frame so that one
  * dispatch stays near RT_VK_TARGET_MS: OpenCL's budget (a GPU watchdog fires
@@ -38,43 +41,14 @@ extern const size_t rt_vk_spirv_rt_vk_main_size, rt_vk_spirv_rt_vk_soft_test_siz
 #define RT_VK_TILE_MAX   (1u << 18)
 #define RT_VK_TILE_FIRST 16384u
 #define RT_VK_TARGET_MS  50.0
-#define RT_VK_LOCAL      64u /* local_size_x of the shaders */
 /* A dispatch that has not finished after this long is reported, not waited
  * for forever. */
 #define RT_VK_FENCE_NS (120ull * 1000000000ull)
 
-enum {
-    B_HDR,
-    B_NODES,
-    B_TRIS,
-    B_TRI_IDS,
-    B_NORMALS,
-    B_TRI_MATS,
-    B_INST,
-    B_INST_IDS,
-    B_MATS,
-    B_LIGHTS,
-    B_RAYS,     /* binding 10: ray queries' rays (the soft-maths test: operands) */
-    B_HITS,     /* 11: their hits (results) */
-    B_COUNTERS, /* 12: per pixel or ray of a tile */
-    B_FB,       /* 13: the tile's pixels */
-    B_KD_NODES, /* 14: kd-tree nodes (kernels/vulkan/rt_vk_kd.glsl) */
-    B_ITEMS,    /* 15: per item of a tile, 1 if the driver's loop limit cut it; re-run lists */
-    B_COUNT
-};
-static const char *const buffer_names[B_COUNT] = {
-    "header",    "nodes",  "tris", "tri_ids", "tri_normals", "tri_mats",    "instances", "inst_ids",
-    "materials", "lights", "rays", "hits",    "counters",    "framebuffer", "kd_nodes",  "items"};
-
-/* The push constants of every shader (Push in kernels/vulkan/rt_vk_io.glsl). */
-typedef struct vk_push {
-    uint32_t first, count;
-    int32_t aov, channels, any_hit, query;
-    uint32_t canary, stride, ballast, list_at;
-} vk_push;
-
-/* The loop-limit canary's iterations (rt_vk_main.comp). */
-#define RT_VK_CANARY 2u
+/* The buffers are RT_VK_BUF_* of the GPU interface table
+ * (kernels/rt_interface.def), numbered by their bindings; the push
+ * constants are its rt_vk_push, the specialization constants its
+ * RT_VK_SPEC_*, the work group size RT_VK_LOCAL. */
 
 /* Fault injection for the tests (rt_vk_test_loop_limit). */
 static uint32_t vk_test_ballast;
@@ -85,23 +59,9 @@ void rt_vk_test_loop_limit(uint32_t ballast, int rerun) {
     vk_test_no_rerun = !rerun;
 }
 
-/* The specialization constants (constant_id 0..4 in rt_vk_shared.glsl, 5
- * in rt_vk_kd.glsl). */
-enum {
-    SPEC_FLAGS,
-    SPEC_INST_SET,
-    SPEC_INST_MASK,
-    SPEC_TRI_METHOD,
-    SPEC_FLUSH,
-    SPEC_KD_SHARED,
-    SPEC_COUNT
-};
-/* kd traversal stack cells in shared memory: the most that fit in the mesh
- * BVH's stack (RT_STACK_SIZE words, 3 per cell). */
-#define RT_VK_KD_SHARED_CELLS 21u
-
-enum { P_MAIN, P_SOFT, P_COUNT };
-static const char *const pipeline_names[P_COUNT] = {"rt_vk_main", "rt_vk_soft_test"};
+enum { P_MAIN, P_SOFT, P_PROBE, P_COUNT };
+static const char *const pipeline_names[P_COUNT] = {"rt_vk_main", "rt_vk_soft_test",
+                                                    "rt_vk_interface_test"};
 
 typedef struct vk_buf {
     VkBuffer buf;
@@ -113,7 +73,7 @@ typedef struct vk_buf {
 typedef struct vk_state {
     char selector[128];
     int flush;          /* the denormal policy: 1 flush (rt_backend_config.flush_denormals) */
-    uint32_t kd_shared; /* SPEC_KD_SHARED: RT_VK_KD_SHARED_CELLS, lower in a test */
+    uint32_t kd_shared; /* RT_VK_SPEC_KD_SHARED: RT_VK_SPEC_DEFAULT_KD_SHARED, lower in a test */
     rt_vk_device_info dev;
     VkInstance inst;
     VkPhysicalDevice phys;
@@ -130,9 +90,9 @@ typedef struct vk_state {
     int set_dirty; /* a buffer was remade: the descriptor set must be rewritten */
     VkShaderModule module[P_COUNT];
     VkPipeline pipe[P_COUNT];
-    uint32_t spec[P_COUNT][SPEC_COUNT]; /* what each pipeline was specialised to */
+    uint32_t spec[P_COUNT][RT_VK_SPEC_COUNT]; /* what each pipeline was specialised to */
     char spec_text[192];
-    vk_buf buf[B_COUNT];
+    vk_buf buf[RT_VK_BUF_COUNT];
     rt_upload_memo memo; /* what the device holds of the layout */
     uint32_t tile;
     int lost; /* the device was lost: every later call fails with the reason */
@@ -146,6 +106,10 @@ const uint32_t *rt_vk_module(const char *name, size_t *bytes) {
     if (!strcmp(name, "rt_vk_soft_test")) {
         *bytes = rt_vk_spirv_rt_vk_soft_test_size;
         return rt_vk_spirv_rt_vk_soft_test;
+    }
+    if (!strcmp(name, "rt_vk_interface_test")) {
+        *bytes = rt_vk_spirv_rt_vk_interface_test_size;
+        return rt_vk_spirv_rt_vk_interface_test;
     }
     *bytes = 0;
     return NULL;
@@ -270,15 +234,17 @@ static void destroy_buffer(vk_state *s, vk_buf *b) {
     memset(b, 0, sizeof *b);
 }
 
-static void vk_destroy(void *p) {
-    vk_state *s = p;
-    if (!s) return;
+/* Destroys what was made on the device, the device and the instance, and
+ * leaves every handle null, so that ready() may open them again. */
+static void close_device(vk_state *s) {
     if (s->device) {
         vkDeviceWaitIdle(s->device);
-        for (int i = 0; i < B_COUNT; i++) destroy_buffer(s, &s->buf[i]);
+        for (int i = 0; i < RT_VK_BUF_COUNT; i++) destroy_buffer(s, &s->buf[i]);
         for (int i = 0; i < P_COUNT; i++) {
             if (s->pipe[i]) vkDestroyPipeline(s->device, s->pipe[i], NULL);
             if (s->module[i]) vkDestroyShaderModule(s->device, s->module[i], NULL);
+            s->pipe[i] = VK_NULL_HANDLE;
+            s->module[i] = VK_NULL_HANDLE;
         }
         if (s->dpool) vkDestroyDescriptorPool(s->device, s->dpool, NULL);
         if (s->layout) vkDestroyPipelineLayout(s->device, s->layout, NULL);
@@ -289,6 +255,22 @@ static void vk_destroy(void *p) {
         vkDestroyDevice(s->device, NULL);
     }
     if (s->inst) vkDestroyInstance(s->inst, NULL);
+    s->inst = VK_NULL_HANDLE;
+    s->device = VK_NULL_HANDLE;
+    s->fence = VK_NULL_HANDLE;
+    s->qpool = VK_NULL_HANDLE;
+    s->cpool = VK_NULL_HANDLE;
+    s->cmd = VK_NULL_HANDLE;
+    s->dpool = VK_NULL_HANDLE;
+    s->set = VK_NULL_HANDLE;
+    s->layout = VK_NULL_HANDLE;
+    s->dsl = VK_NULL_HANDLE;
+}
+
+static void vk_destroy(void *p) {
+    vk_state *s = p;
+    if (!s) return;
+    close_device(s);
     rt_upload_memo_free(&s->memo);
     free(s);
 }
@@ -305,7 +287,7 @@ static rt_status vk_create(const rt_backend_config *config, void **state, rt_err
     }
     snprintf(s->selector, sizeof s->selector, "%s", config->device ? config->device : "");
     s->flush = config->flush_denormals;
-    s->kd_shared = RT_VK_KD_SHARED_CELLS;
+    s->kd_shared = RT_VK_SPEC_DEFAULT_KD_SHARED;
     s->tile = RT_VK_TILE_FIRST;
     *state = s;
     return RT_OK;
@@ -365,8 +347,8 @@ static rt_status open_device(vk_state *s, rt_error *err) {
         if (r != VK_SUCCESS) return vk_fail(s, r, "creating a timestamp query pool", err);
     }
 
-    VkDescriptorSetLayoutBinding b[B_COUNT];
-    for (int i = 0; i < B_COUNT; i++) {
+    VkDescriptorSetLayoutBinding b[RT_VK_BUF_COUNT];
+    for (int i = 0; i < RT_VK_BUF_COUNT; i++) {
         memset(&b[i], 0, sizeof b[i]);
         b[i].binding = (uint32_t)i;
         b[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
@@ -375,11 +357,11 @@ static rt_status open_device(vk_state *s, rt_error *err) {
     }
     VkDescriptorSetLayoutCreateInfo li = {.sType =
                                               VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    li.bindingCount = B_COUNT;
+    li.bindingCount = RT_VK_BUF_COUNT;
     li.pBindings = b;
     r = vkCreateDescriptorSetLayout(s->device, &li, NULL, &s->dsl);
     if (r != VK_SUCCESS) return vk_fail(s, r, "creating the descriptor set layout", err);
-    VkPushConstantRange pr = {VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(vk_push)};
+    VkPushConstantRange pr = {VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(rt_vk_push)};
     VkPipelineLayoutCreateInfo pli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     pli.setLayoutCount = 1;
     pli.pSetLayouts = &s->dsl;
@@ -387,7 +369,7 @@ static rt_status open_device(vk_state *s, rt_error *err) {
     pli.pPushConstantRanges = &pr;
     r = vkCreatePipelineLayout(s->device, &pli, NULL, &s->layout);
     if (r != VK_SUCCESS) return vk_fail(s, r, "creating the pipeline layout", err);
-    VkDescriptorPoolSize ps = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, B_COUNT};
+    VkDescriptorPoolSize ps = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, RT_VK_BUF_COUNT};
     VkDescriptorPoolCreateInfo dpi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     dpi.maxSets = 1;
     dpi.poolSizeCount = 1;
@@ -411,42 +393,18 @@ static rt_status ready(vk_state *s, rt_error *err) {
                        s->dev.name);
     if (s->device) return RT_OK;
     rt_status st = open_device(s, err);
-    if (st != RT_OK) { /* start afresh next time */
-        vk_state keep = *s;
-        s->device = VK_NULL_HANDLE;
-        s->inst = VK_NULL_HANDLE;
-        if (keep.device) {
-            s->device = keep.device;
-            if (s->fence) vkDestroyFence(s->device, s->fence, NULL);
-            if (s->qpool) vkDestroyQueryPool(s->device, s->qpool, NULL);
-            if (s->cpool) vkDestroyCommandPool(s->device, s->cpool, NULL);
-            if (s->dpool) vkDestroyDescriptorPool(s->device, s->dpool, NULL);
-            if (s->layout) vkDestroyPipelineLayout(s->device, s->layout, NULL);
-            if (s->dsl) vkDestroyDescriptorSetLayout(s->device, s->dsl, NULL);
-            vkDestroyDevice(s->device, NULL);
-        }
-        if (keep.inst) vkDestroyInstance(keep.inst, NULL);
-        s->device = VK_NULL_HANDLE;
-        s->fence = VK_NULL_HANDLE;
-        s->qpool = VK_NULL_HANDLE;
-        s->cpool = VK_NULL_HANDLE;
-        s->cmd = VK_NULL_HANDLE;
-        s->dpool = VK_NULL_HANDLE;
-        s->set = VK_NULL_HANDLE;
-        s->layout = VK_NULL_HANDLE;
-        s->dsl = VK_NULL_HANDLE;
-    }
+    if (st != RT_OK) close_device(s); /* start afresh next time */
     return st;
 }
 
 /* ---- pipelines ----------------------------------------------------------------- */
 
 static rt_status bind_all(vk_state *s, rt_error *err);
-static rt_status dispatch(vk_state *s, int p, const vk_push *push, double *ms, rt_error *err);
+static rt_status dispatch(vk_state *s, int p, const rt_vk_push *push, double *ms, rt_error *err);
 
 /* Pipeline p specialised to spec (made again only when spec changed). The
  * module gets the device's float controls first. */
-static rt_status pipeline(vk_state *s, int p, const uint32_t spec[SPEC_COUNT], double *ms,
+static rt_status pipeline(vk_state *s, int p, const uint32_t spec[RT_VK_SPEC_COUNT], double *ms,
                           rt_error *err) {
     if (s->pipe[p] && memcmp(s->spec[p], spec, sizeof s->spec[p]) == 0) return RT_OK;
     double t0 = rt_now_ms();
@@ -471,13 +429,13 @@ static rt_status pipeline(vk_state *s, int p, const uint32_t spec[SPEC_COUNT], d
     }
     if (s->pipe[p]) vkDestroyPipeline(s->device, s->pipe[p], NULL);
     s->pipe[p] = VK_NULL_HANDLE;
-    VkSpecializationMapEntry map[SPEC_COUNT];
-    for (uint32_t i = 0; i < SPEC_COUNT; i++) {
+    VkSpecializationMapEntry map[RT_VK_SPEC_COUNT];
+    for (uint32_t i = 0; i < RT_VK_SPEC_COUNT; i++) {
         map[i].constantID = i;
         map[i].offset = i * 4;
         map[i].size = 4;
     }
-    VkSpecializationInfo si = {SPEC_COUNT, map, SPEC_COUNT * 4, spec};
+    VkSpecializationInfo si = {RT_VK_SPEC_COUNT, map, RT_VK_SPEC_COUNT * 4, spec};
     VkComputePipelineCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
     ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -494,7 +452,7 @@ static rt_status pipeline(vk_state *s, int p, const uint32_t spec[SPEC_COUNT], d
     /* One empty dispatch (count 0: every invocation returns at once): some
      * drivers (lavapipe) compile the shader at its first dispatch, which
      * would otherwise land in the first frame's time. */
-    vk_push none;
+    rt_vk_push none;
     memset(&none, 0, sizeof none);
     double ignored;
     rt_status st = bind_all(s, err);
@@ -505,15 +463,18 @@ static rt_status pipeline(vk_state *s, int p, const uint32_t spec[SPEC_COUNT], d
 
 /* The specialization constants for the scene: its header flags and triangle
  * test, as OpenCL's -D switches (scene_defines in cl_backend.c). */
-static void scene_spec(const rt_flat *f, int flush, uint32_t kd_shared, uint32_t spec[SPEC_COUNT]) {
+static void scene_spec(const rt_flat *f, int flush, uint32_t kd_shared,
+                       uint32_t spec[RT_VK_SPEC_COUNT]) {
     uint32_t flags = f->hdr.flags;
-    spec[SPEC_FLAGS] = flags;
-    spec[SPEC_INST_SET] = (flags & RT_SCENE_SINGLE) ? RT_INST_IDENTITY : 0u;
-    spec[SPEC_INST_MASK] = RT_INST_IDENTITY | ((flags & RT_SCENE_NORMALS) ? RT_INST_NORMALS : 0u) |
-                           (f->kd_node_count ? RT_INST_KD : 0u); /* the kd traversal */
-    spec[SPEC_TRI_METHOD] = f->hdr.tri_method;
-    spec[SPEC_FLUSH] = flush ? 1u : 0u; /* the soft maths' denormal mode, the policy's */
-    spec[SPEC_KD_SHARED] = kd_shared;
+    spec[RT_VK_SPEC_FLAGS] = flags;
+    spec[RT_VK_SPEC_INST_SET] = (flags & RT_SCENE_SINGLE) ? RT_INST_IDENTITY : 0u;
+    spec[RT_VK_SPEC_INST_MASK] = RT_INST_IDENTITY |
+                                 ((flags & RT_SCENE_NORMALS) ? RT_INST_NORMALS : 0u) |
+                                 (f->kd_node_count ? RT_INST_KD : 0u); /* the kd traversal */
+    spec[RT_VK_SPEC_TRI_METHOD] = f->hdr.tri_method;
+    /* The soft maths' denormal mode, the policy's. */
+    spec[RT_VK_SPEC_DENORM_FLUSH] = flush ? 1u : 0u;
+    spec[RT_VK_SPEC_KD_SHARED] = kd_shared;
 }
 
 /* ---- buffers ----------------------------------------------------------------- */
@@ -549,7 +510,8 @@ static rt_status ensure(vk_state *s, int b, size_t bytes, int *remade, rt_error 
         return rt_fail(err, RT_ERROR_OUT_OF_MEMORY,
                        "out of device memory: buffer '%s' needs %zu bytes, more than the largest "
                        "storage buffer of '%s' (%llu bytes)",
-                       buffer_names[b], bytes, s->dev.name, (unsigned long long)s->dev.max_buffer);
+                       rt_vk_buffer_what(b), bytes, s->dev.name,
+                       (unsigned long long)s->dev.max_buffer);
     VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     bi.size = bytes;
     bi.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
@@ -576,7 +538,7 @@ static rt_status ensure(vk_state *s, int b, size_t bytes, int *remade, rt_error 
         return rt_fail(err, out_of_memory(r) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
                        "%s: buffer '%s' of %zu bytes on '%s' (%s)",
                        out_of_memory(r) ? "out of device memory" : "cannot allocate",
-                       buffer_names[b], bytes, s->dev.name,
+                       rt_vk_buffer_what(b), bytes, s->dev.name,
                        type < 0 ? "no host-visible coherent memory" : rt_vk_result_name(r));
     }
     vb->cap = bytes;
@@ -586,15 +548,15 @@ static rt_status ensure(vk_state *s, int b, size_t bytes, int *remade, rt_error 
 /* Every binding has a buffer (stubs for the unused ones), and the set names
  * the current ones. */
 static rt_status bind_all(vk_state *s, rt_error *err) {
-    for (int b = 0; b < B_COUNT; b++) {
+    for (int b = 0; b < RT_VK_BUF_COUNT; b++) {
         int remade;
         rt_status st = ensure(s, b, 16, &remade, err);
         if (st != RT_OK) return st;
     }
     if (!s->set_dirty) return RT_OK;
-    VkDescriptorBufferInfo info[B_COUNT];
-    VkWriteDescriptorSet w[B_COUNT];
-    for (int b = 0; b < B_COUNT; b++) {
+    VkDescriptorBufferInfo info[RT_VK_BUF_COUNT];
+    VkWriteDescriptorSet w[RT_VK_BUF_COUNT];
+    for (int b = 0; b < RT_VK_BUF_COUNT; b++) {
         info[b].buffer = s->buf[b].buf;
         info[b].offset = 0;
         info[b].range = VK_WHOLE_SIZE;
@@ -606,15 +568,16 @@ static rt_status bind_all(vk_state *s, rt_error *err) {
         w[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
         w[b].pBufferInfo = &info[b];
     }
-    vkUpdateDescriptorSets(s->device, B_COUNT, w, 0, NULL);
+    vkUpdateDescriptorSets(s->device, RT_VK_BUF_COUNT, w, 0, NULL);
     s->set_dirty = 0;
     return RT_OK;
 }
 
 /* The buffer of each array of an upload plan (upload_plan.h). */
-static const int upload_buffer[RT_UP_COUNT] = {B_HDR,     B_NODES,    B_TRIS,    B_TRI_IDS,
-                                               B_NORMALS, B_TRI_MATS, B_INST,    B_INST_IDS,
-                                               B_MATS,    B_LIGHTS,   B_KD_NODES};
+static const int upload_buffer[RT_UP_COUNT] = {
+    RT_VK_BUF_HDR,         RT_VK_BUF_NODES,    RT_VK_BUF_TRIS,      RT_VK_BUF_TRI_IDS,
+    RT_VK_BUF_TRI_NORMALS, RT_VK_BUF_TRI_MATS, RT_VK_BUF_INSTANCES, RT_VK_BUF_INST_IDS,
+    RT_VK_BUF_MATERIALS,   RT_VK_BUF_LIGHTS,   RT_VK_BUF_KD_NODES};
 
 typedef struct vk_upload {
     vk_state *s;
@@ -652,11 +615,12 @@ static rt_status upload_scene(vk_state *s, const rt_backend_layout *layout, uint
 
 /* ---- dispatches ---------------------------------------------------------------- */
 
-/* Runs pipeline p over items invocations (rounded up to whole work groups;
- * the shaders skip those past push->count) and waits. *ms gets the device's
- * time between two timestamps around the dispatch (the host's wall time
- * where the queue has no timestamps). */
-static rt_status dispatch(vk_state *s, int p, const vk_push *push, double *ms, rt_error *err) {
+/* Runs pipeline p over groups work groups (at least one) with the push
+ * constants push and waits. *ms gets the device's time between two
+ * timestamps around the dispatch (the host's wall time where the queue has
+ * no timestamps). */
+static rt_status dispatch_groups(vk_state *s, int p, const rt_vk_push *push, uint32_t groups,
+                                 double *ms, rt_error *err) {
     double t0 = rt_now_ms();
     VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -669,8 +633,6 @@ static rt_status dispatch(vk_state *s, int p, const vk_push *push, double *ms, r
                             NULL);
     vkCmdPushConstants(s->cmd, s->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
     if (s->qpool) vkCmdWriteTimestamp(s->cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, s->qpool, 0);
-    uint64_t invocations = (uint64_t)push->count * (push->stride > 1 ? push->stride : 1);
-    uint32_t groups = (uint32_t)((invocations + RT_VK_LOCAL - 1) / RT_VK_LOCAL);
     vkCmdDispatch(s->cmd, groups ? groups : 1, 1, 1);
     if (s->qpool) vkCmdWriteTimestamp(s->cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, s->qpool, 1);
     /* The shader's writes are made visible to the host's reads. */
@@ -704,6 +666,15 @@ static rt_status dispatch(vk_state *s, int p, const vk_push *push, double *ms, r
     return RT_OK;
 }
 
+/* Runs pipeline p over push->count items (push->stride invocations each in
+ * a re-run), rounded up to whole work groups (the shaders skip those past
+ * the count), and waits; *ms as dispatch_groups. */
+static rt_status dispatch(vk_state *s, int p, const rt_vk_push *push, double *ms, rt_error *err) {
+    uint64_t invocations = (uint64_t)push->count * (push->stride > 1 ? push->stride : 1);
+    return dispatch_groups(s, p, push, (uint32_t)((invocations + RT_VK_LOCAL - 1) / RT_VK_LOCAL),
+                           ms, err);
+}
+
 /* The next tile from the last full tile's time: halve above the target,
  * double below a quarter of it (kept in the state for the next frame). */
 static uint32_t next_tile(uint32_t tile, double ms) {
@@ -718,15 +689,15 @@ static uint32_t next_tile(uint32_t tile, double ms) {
  * item's to spend. An item cut even then is an error that names it, never
  * a wrong result. width > 0: the items are pixels of a frame that wide,
  * else rays numbered from base. *reruns counts the items traced again. */
-static rt_status rerun_cut(vk_state *s, const vk_push *push, size_t base, int width,
+static rt_status rerun_cut(vk_state *s, const rt_vk_push *push, size_t base, int width,
                            uint32_t *reruns, rt_error *err) {
-    uint32_t *items = s->buf[B_ITEMS].map;
+    uint32_t *items = s->buf[RT_VK_BUF_ITEMS].map;
     uint32_t m = 0;
     for (uint32_t i = 0; i < push->count; i++)
         if (items[i]) items[push->list_at + m++] = i;
     if (m == 0) return RT_OK;
     if (!vk_test_no_rerun) {
-        vk_push again = *push;
+        rt_vk_push again = *push;
         again.count = m;
         again.stride = RT_VK_LOCAL;
         again.ballast = 0;
@@ -758,7 +729,7 @@ static rt_status vk_prepare(void *state, const rt_backend_layout *layout, rt_ren
                             rt_error *err) {
     vk_state *s = state;
     rt_status st = ready(s, err);
-    uint32_t spec[SPEC_COUNT];
+    uint32_t spec[RT_VK_SPEC_COUNT];
     scene_spec(layout->flat, s->flush, s->kd_shared, spec);
     if (st == RT_OK) st = pipeline(s, P_MAIN, spec, &stats->compile_ms, err);
     if (st == RT_OK) st = upload_scene(s, layout, &stats->upload_bytes, &stats->upload_ms, err);
@@ -766,8 +737,9 @@ static rt_status vk_prepare(void *state, const rt_backend_layout *layout, rt_ren
     snprintf(s->spec_text, sizeof s->spec_text,
              "specialization constants: flags=%u inst_set=%u inst_mask=%u tri_method=%u "
              "denormal_flush=%u kd=%s",
-             spec[SPEC_FLAGS], spec[SPEC_INST_SET], spec[SPEC_INST_MASK], spec[SPEC_TRI_METHOD],
-             spec[SPEC_FLUSH], (spec[SPEC_INST_MASK] & RT_INST_KD) ? "yes" : "no");
+             spec[RT_VK_SPEC_FLAGS], spec[RT_VK_SPEC_INST_SET], spec[RT_VK_SPEC_INST_MASK],
+             spec[RT_VK_SPEC_TRI_METHOD], spec[RT_VK_SPEC_DENORM_FLUSH],
+             (spec[RT_VK_SPEC_INST_MASK] & RT_INST_KD) ? "yes" : "no");
     snprintf(stats->device, sizeof stats->device, "%.127s", s->dev.name);
     snprintf(stats->specialisation, sizeof stats->specialisation, "%s", s->spec_text);
     stats->device_options[0] = 0;
@@ -787,19 +759,21 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
      * large for the device's largest storage buffer. */
     size_t px_bytes = sizeof(float) * (size_t)frame->channels;
     int remade;
-    rt_status st = ensure(s, B_FB, px_bytes * RT_VK_TILE_MAX, &remade, err);
-    if (st == RT_OK) st = ensure(s, B_COUNTERS, sizeof(rt_counters) * RT_VK_TILE_MAX, &remade, err);
-    if (st == RT_OK) st = ensure(s, B_ITEMS, 2 * sizeof(uint32_t) * RT_VK_TILE_MAX, &remade, err);
+    rt_status st = ensure(s, RT_VK_BUF_FB, px_bytes * RT_VK_TILE_MAX, &remade, err);
+    if (st == RT_OK)
+        st = ensure(s, RT_VK_BUF_COUNTERS, sizeof(rt_counters) * RT_VK_TILE_MAX, &remade, err);
+    if (st == RT_OK)
+        st = ensure(s, RT_VK_BUF_ITEMS, 2 * sizeof(uint32_t) * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK) st = bind_all(s, err);
     if (st != RT_OK) return named(err, st);
     uint32_t reruns = 0;
     double t_render = rt_now_ms();
-    const rt_counters *counts = s->buf[B_COUNTERS].map;
+    const rt_counters *counts = s->buf[RT_VK_BUF_COUNTERS].map;
     for (uint32_t first = 0; first < pixels && st == RT_OK;) {
         uint32_t per = s->tile;
         uint32_t n = pixels - first < per ? pixels - first : per;
-        vk_push push = {first,        n, (int32_t)frame->aov, frame->channels, 0, 0,
-                        RT_VK_CANARY, 1, vk_test_ballast,     RT_VK_TILE_MAX};
+        rt_vk_push push = {first,        n, (int32_t)frame->aov, frame->channels, 0, 0,
+                           RT_VK_CANARY, 1, vk_test_ballast,     RT_VK_TILE_MAX};
         double ms = 0.0;
         st = dispatch(s, P_MAIN, &push, &ms, err);
         uint32_t before = reruns;
@@ -810,7 +784,7 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
         stats->launches++;
         if (n > stats->tile_pixels) stats->tile_pixels = n;
         double t0 = rt_now_ms();
-        memcpy(frame->pixels + (size_t)first * (size_t)frame->channels, s->buf[B_FB].map,
+        memcpy(frame->pixels + (size_t)first * (size_t)frame->channels, s->buf[RT_VK_BUF_FB].map,
                px_bytes * n);
         stats->download_ms += rt_now_ms() - t0;
         if (frame->want_counts)
@@ -843,22 +817,25 @@ static rt_status vk_trace(void *state, const rt_backend_layout *layout, const rt
     (void)stats;  /* the renderer times the call */
     (void)layout; /* vk_prepare uploaded it */
     int remade;
-    rt_status st = ensure(s, B_RAYS, sizeof(rt_ray) * RT_VK_TILE_MAX, &remade, err);
-    if (st == RT_OK) st = ensure(s, B_HITS, sizeof(rt_hit_d) * RT_VK_TILE_MAX, &remade, err);
-    if (st == RT_OK) st = ensure(s, B_COUNTERS, sizeof(rt_counters) * RT_VK_TILE_MAX, &remade, err);
-    if (st == RT_OK) st = ensure(s, B_ITEMS, 2 * sizeof(uint32_t) * RT_VK_TILE_MAX, &remade, err);
+    rt_status st = ensure(s, RT_VK_BUF_RAYS, sizeof(rt_ray) * RT_VK_TILE_MAX, &remade, err);
+    if (st == RT_OK)
+        st = ensure(s, RT_VK_BUF_HITS, sizeof(rt_hit_d) * RT_VK_TILE_MAX, &remade, err);
+    if (st == RT_OK)
+        st = ensure(s, RT_VK_BUF_COUNTERS, sizeof(rt_counters) * RT_VK_TILE_MAX, &remade, err);
+    if (st == RT_OK)
+        st = ensure(s, RT_VK_BUF_ITEMS, 2 * sizeof(uint32_t) * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK) st = bind_all(s, err);
     uint32_t reruns = 0;
     for (size_t first = 0; first < count && st == RT_OK;) {
         uint32_t n = (uint32_t)(count - first < s->tile ? count - first : s->tile);
-        memcpy(s->buf[B_RAYS].map, rays + first, sizeof(rt_ray) * n);
-        vk_push push = {
+        memcpy(s->buf[RT_VK_BUF_RAYS].map, rays + first, sizeof(rt_ray) * n);
+        rt_vk_push push = {
             0, n, 0, 0, any_hit ? 1 : 0, 1, RT_VK_CANARY, 1, vk_test_ballast, RT_VK_TILE_MAX};
         double ms = 0.0;
         st = dispatch(s, P_MAIN, &push, &ms, err);
         if (st == RT_OK) st = rerun_cut(s, &push, first, 0, &reruns, err);
         if (st != RT_OK) break;
-        memcpy(hits + first, s->buf[B_HITS].map, sizeof(rt_hit_d) * n);
+        memcpy(hits + first, s->buf[RT_VK_BUF_HITS].map, sizeof(rt_hit_d) * n);
         first += n;
         if (n == s->tile) s->tile = next_tile(s->tile, ms);
     }
@@ -889,23 +866,50 @@ rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size
     vk_state *s;
     rt_status st = create_on(device, &s, err);
     if (st != RT_OK) return st;
-    uint32_t spec[SPEC_COUNT] = {0, 0, 3, 0, ftz ? 1u : 0u, RT_VK_KD_SHARED_CELLS};
+    uint32_t spec[RT_VK_SPEC_COUNT];
+    rt_vk_spec_defaults(spec);
+    spec[RT_VK_SPEC_DENORM_FLUSH] = ftz ? 1u : 0u;
     double ms = 0.0;
     int remade;
     st = ready(s, err);
     if (st == RT_OK) st = pipeline(s, P_SOFT, spec, &ms, err);
     const size_t tile = 1u << 16;
-    if (st == RT_OK) st = ensure(s, B_RAYS, 16 * tile, &remade, err);
-    if (st == RT_OK) st = ensure(s, B_HITS, 12 * tile, &remade, err);
+    if (st == RT_OK) st = ensure(s, RT_VK_BUF_RAYS, 16 * tile, &remade, err);
+    if (st == RT_OK) st = ensure(s, RT_VK_BUF_HITS, 12 * tile, &remade, err);
     if (st == RT_OK) st = bind_all(s, err);
     for (size_t first = 0; first < count && st == RT_OK;) {
         uint32_t n = (uint32_t)(count - first < tile ? count - first : tile);
-        memcpy(s->buf[B_RAYS].map, operands + 4 * first, 16 * (size_t)n);
-        vk_push push = {0, n, 0, 0, 0, 0, 0, 1, 0, 0};
+        memcpy(s->buf[RT_VK_BUF_RAYS].map, operands + 4 * first, 16 * (size_t)n);
+        rt_vk_push push = {0, n, 0, 0, 0, 0, 0, 1, 0, 0};
         st = dispatch(s, P_SOFT, &push, &ms, err);
-        if (st == RT_OK) memcpy(results + 3 * first, s->buf[B_HITS].map, 12 * (size_t)n);
+        if (st == RT_OK) memcpy(results + 3 * first, s->buf[RT_VK_BUF_HITS].map, 12 * (size_t)n);
         first += n;
     }
+    vk_destroy(s);
+    return named(err, st);
+}
+
+rt_status rt_vk_interface_probe(const char *device, const void *const in[RT_VK_BUF_COUNT],
+                                void *const out[RT_VK_BUF_COUNT],
+                                const size_t bytes[RT_VK_BUF_COUNT], const rt_vk_push *push,
+                                rt_error *err) {
+    vk_state *s;
+    rt_status st = create_on(device, &s, err);
+    if (st != RT_OK) return st;
+    uint32_t spec[RT_VK_SPEC_COUNT];
+    rt_vk_spec_defaults(spec);
+    double ms = 0.0;
+    int remade;
+    st = ready(s, err);
+    if (st == RT_OK) st = pipeline(s, P_PROBE, spec, &ms, err);
+    for (int b = 0; b < RT_VK_BUF_COUNT && st == RT_OK; b++)
+        if (bytes[b]) st = ensure(s, b, bytes[b], &remade, err);
+    if (st == RT_OK) st = bind_all(s, err);
+    for (int b = 0; b < RT_VK_BUF_COUNT && st == RT_OK; b++)
+        if (bytes[b] && in[b]) memcpy(s->buf[b].map, in[b], bytes[b]);
+    if (st == RT_OK) st = dispatch_groups(s, P_PROBE, push, 1, &ms, err);
+    for (int b = 0; b < RT_VK_BUF_COUNT && st == RT_OK; b++)
+        if (bytes[b] && out[b]) memcpy(out[b], s->buf[b].map, bytes[b]);
     vk_destroy(s);
     return named(err, st);
 }
@@ -913,9 +917,9 @@ rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size
 rt_status rt_vk_trace_kd_stack(const char *device, const rt_flat *flat, const rt_ray *rays,
                                size_t count, int any_hit, uint32_t kd_shared_cells, rt_hit_d *hits,
                                rt_error *err) {
-    if (kd_shared_cells > RT_VK_KD_SHARED_CELLS)
+    if (kd_shared_cells > RT_VK_SPEC_DEFAULT_KD_SHARED)
         return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "vulkan: at most %u shared kd stack cells",
-                       RT_VK_KD_SHARED_CELLS);
+                       (unsigned)RT_VK_SPEC_DEFAULT_KD_SHARED);
     vk_state *s;
     rt_status st = create_on(device, &s, err);
     if (st != RT_OK) return st;

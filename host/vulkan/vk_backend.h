@@ -8,11 +8,12 @@
 #include <stdint.h>
 
 #include "backend/backend.h"
+#include "rt_interface.h"
 
 extern const rt_backend_ops rt_backend_vulkan;
 
-/* The shipped SPIR-V modules by name ("rt_vk_main", "rt_vk_soft_test"): words and size in bytes;
- * NULL for an unknown name. */
+/* The shipped SPIR-V modules by name ("rt_vk_main", "rt_vk_soft_test",
+ * "rt_vk_interface_test"): words and size in bytes; NULL for an unknown name. */
 const uint32_t *rt_vk_module(const char *name, size_t *bytes);
 
 /* The module words with float-control execution modes for 32-bit floats
@@ -32,6 +33,16 @@ uint32_t *rt_vk_with_float_controls(const uint32_t *words, size_t bytes, int rte
  * maths to rt_soft_math.h. */
 rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size_t count, int ftz,
                               uint32_t *results, rt_error *err);
+
+/* Runs rt_vk_interface_test.comp (one invocation) on device (NULL: the
+ * default), for the test that holds the host's struct offsets to the
+ * shaders': the buffer at binding b gets bytes[b] bytes (0: a stub), filled
+ * from in[b] where it is not NULL, and out[b] where not NULL gets them back
+ * after the dispatch; push is the push constants. */
+rt_status rt_vk_interface_probe(const char *device, const void *const in[RT_VK_BUF_COUNT],
+                                void *const out[RT_VK_BUF_COUNT],
+                                const size_t bytes[RT_VK_BUF_COUNT], const rt_vk_push *push,
+                                rt_error *err);
 
 /* Traces count rays (closest hits, or any hits when any_hit) through the
  * layout flat on device (NULL: the default) with the kd-tree traversal

@@ -1,58 +1,37 @@
 /* rt_vk_kd.glsl - the GLSL mirror of kernels/rt_kd.h: kd-tree traversal of
  * one mesh (instance flag RT_INST_KD) for the Vulkan backend.
- * rt_vk_shared.glsl includes it after rt_leaf_test, which a leaf calls as
- * the C code does: the triangle test and the hit's acceptance are the BVH's
+ * rt_vk_trace.glsl calls it for kd meshes; a leaf calls rt_leaf_test
+ * (rt_vk_hit.glsl) as the C code does: the triangle test and the hit's acceptance are the BVH's
  * own code, so the bits and the closest hit are the oracle's. The same
  * operations in the same order as rt_kd_trace_mesh (every one NoContraction
  * through host/vulkan/spv_precise.c; there is no division here).
  *
- * The kd nodes are storage buffer binding 14 (after the per-dispatch
- * buffers 10..13). Scenes without kd meshes leave RT_INST_KD out of the
+ * The kd nodes are storage buffer binding 14 (rt_vk_view.glsl, after the
+ * per-dispatch buffers 10..13). Scenes without kd meshes leave RT_INST_KD out of the
  * SC_INST_MASK specialization constant, so the driver drops this code.
  *
  * The stack: (node, entry t, exit t) per cell. The workgroup's shared
  * memory is full (the two BVH stacks take 32 KiB, Vulkan's usual limit), so
  * the kd stack takes the mesh BVH's stack (level 1 of STACK_AT), which a kd
  * mesh does not use, three words per cell: SC_KD_SHARED cells (21, the
- * most that fit; specialization constant 5, which test_vulkan_oracle sets
- * lower to run the other path). A tree deep enough to need more
+ * most that fit; the specialization constant SC_KD_SHARED of
+ * kernels/rt_interface.def, which test_vulkan_oracle sets lower to run the
+ * other path). A tree deep enough to need more
  * (host/layout/flatten.c admits depth up to RT_KD_STACK - 2) goes on in a
  * private array, which a driver may keep in slow memory but only such deep
  * paths touch. */
 #ifndef RT_VK_KD_GLSL
 #define RT_VK_KD_GLSL
 
-#define RT_INST_KD   4u
-#define RT_KD_LEAF   3u
+#include "rt_vk_bvh.glsl"
+
 #define RT_KD_STACK  64
-layout(constant_id = 5) const uint SC_KD_SHARED = 21u; /* at most RT_STACK_SIZE / 3 */
 #define RT_VK_KD_SHARED int(SC_KD_SHARED)
 
-struct rt_kd_node {
-    uint a;
-    uint b;
-};
-
-layout(std430, set = 0, binding = 14) readonly buffer B_kd_nodes { rt_kd_node kd_nodes[]; };
-
-/* rt_kd_root_interval: the slab test of rt_box_test, also returning the far
- * end. */
+/* rt_kd_root_interval: rt_box_test's slab test, also giving the far end. */
 bool rt_kd_root_interval(uint node, rt_ray r, rt_ray_pre p, float lo, float hi, out float tn,
                          out float tf) {
-    float near = lo, far = RT_INF;
-    for (int i = 0; i < 3; i++) {
-        float a = p.sign[i] != 0 ? nodes[node].bmax[i] : nodes[node].bmin[i];
-        float b = p.sign[i] != 0 ? nodes[node].bmin[i] : nodes[node].bmax[i];
-        float t0 = (a - r.org[i]) * p.inv[i];
-        float t1 = (b - r.org[i]) * p.inv[i];
-        near = t0 > near ? t0 : near;
-        far = t1 < far ? t1 : far;
-    }
-    far = far * (far < 0.0 ? RT_BOX_FAR_SCALE_NEG : RT_BOX_FAR_SCALE);
-    far = hi < far ? hi : far;
-    tn = near;
-    tf = far;
-    return near <= far;
+    return rt_box_interval(node, r, p, lo, hi, tn, tf);
 }
 
 /* Stack cell k: words 3k .. 3k + 2 of the mesh level's stack while k is

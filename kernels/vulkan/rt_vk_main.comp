@@ -29,9 +29,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
-layout(local_size_x = 64) in;
-
 #include "rt_vk_io.glsl"
+
+layout(local_size_x = RT_VK_LOCAL) in;
 
 /* What the next rt_trace is for. */
 #define STEP_QUERY  0 /* a ray query: write its hit, done */
@@ -72,7 +72,7 @@ void main() {
     if (step == STEP_QUERY) {
         e.ray = rays[i];
     } else {
-        rt_camera_ray(int(pixel % uint(hdr.width)), int(pixel / uint(hdr.width)), e.ray);
+        rt_camera_pixel_ray(pixel, e.ray);
         e.w[0] = 1.0;
         e.w[1] = 1.0;
         e.w[2] = 1.0;

@@ -1,26 +1,18 @@
 /* rt_vk_soft_test.comp - the soft maths of rt_vk_soft_math.glsl on given
  * operands, for test_vulkan_oracle (not used by frames): case i reads the
- * four bit patterns a, b, c, d at rays-buffer words 4i .. 4i + 3 and writes
- * a / b, sqrt(a) and a*b - c*d at words 3i .. 3i + 2 of the hits buffer
- * (the _ftz variants when SC_DENORM_FLUSH is 1). */
+ * four bit patterns a, b, c, d at words 4i .. 4i + 3 of the rays binding and
+ * writes a / b, sqrt(a) and a*b - c*d at words 3i .. 3i + 2 of the hits
+ * binding (the _ftz variants when SC_DENORM_FLUSH is 1). */
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
-layout(local_size_x = 64) in;
-
+#include "rt_vk_interface.glsl"
 #include "rt_vk_soft_math.glsl"
 
-layout(constant_id = 4) const uint SC_DENORM_FLUSH = 0u;
-layout(std430, set = 0, binding = 10) readonly buffer B_in { uint operands[]; };
-layout(std430, set = 0, binding = 11) writeonly buffer B_out { uint results[]; };
-layout(push_constant) uniform Push {
-    uint first;
-    uint count;
-    int aov;
-    int channels;
-    int any_hit;
-    int query;
-} pc;
+layout(local_size_x = RT_VK_LOCAL) in;
+
+layout(std430, set = 0, binding = RT_VK_BUF_RAYS) readonly buffer B_in { uint operands[]; };
+layout(std430, set = 0, binding = RT_VK_BUF_HITS) writeonly buffer B_out { uint results[]; };
 
 void main() {
     uint i = gl_GlobalInvocationID.x;

@@ -1,6 +1,6 @@
-/* rt_packet.cl - the packet kernels for OpenCL CPU devices (issue 7).
+/* rt_ray_packet.cl - the packet kernels for OpenCL CPU devices (issue 7).
  *
- * rt_render.cl runs the shared scalar maths one ray per work-item; a CPU
+ * rt_single_ray.cl runs the shared scalar maths one ray per work-item; a CPU
  * device's compiler (PoCL's LLVM) cannot vectorise the divergent traversal
  * across work-items. Here one work-item traces a block of RT_PK_LANES pixels
  * (4x4 by default) as OpenCL vectors (float16: one AVX-512 register on
@@ -16,7 +16,7 @@
  * consecutive rays.
  *
  * Exactness (the oracle's bits). Every pk_* function below mirrors one
- * function of rt_shared.h or rt_shade.h (named at each): per lane it performs
+ * function of the shared maths (rt_box.h .. rt_shade.h, named at each): per lane it performs
  * the same IEEE operations in the same order (no contraction: the pragma; no
  * -cl-mad-enable option; correctly rounded division and sqrt), choosing between
  * values with select() where the scalar code branches or indexes (the
@@ -39,7 +39,7 @@
  * rt_shade_end's term like the traversal. Only the test counters differ from the scalar kernels:
  * each lane counts the box and triangle tests performed while it was active (docs/OPENCL.md).
  *
- * Built together with rt_render.cl (one program) on CPU devices only.
+ * Built together with rt_single_ray.cl (one program) on CPU devices only.
  */
 #pragma OPENCL FP_CONTRACT OFF
 /* Vectors wider than the target's registers (float16 without AVX-512, float8

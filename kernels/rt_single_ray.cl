@@ -1,10 +1,12 @@
-/* rt_render.cl - the OpenCL backend's kernels over the shared maths.
+/* rt_single_ray.cl - the OpenCL backend's one-ray-per-work-item kernels over
+ * the shared maths (every device; rt_ray_packet.cl adds packets on CPUs).
  *
- * Everything that computes a value comes from rt_shared.h and rt_shade.h, the
- * headers the CPU oracle compiles, so the bits are the oracle's. The host
+ * Everything that computes a value comes from the shared maths headers
+ * (rt_trace.h, rt_shade.h and what they include), the headers the CPU oracle
+ * compiles, so the bits are the oracle's. The host
  * builds this without the options -cl-mad-enable or fast-math and with
  * -cl-fp32-correctly-rounded-divide-sqrt, and specialises it with -D switches
- * (RT_STATIC_FLAGS, ...; see rt_shared.h).
+ * (RT_STATIC_FLAGS, ...; see rt_view.h).
  *
  * A frame is a sequence of bounded launches over tiles of pixels (pixel index
  * first .. first + count - 1, row-major): rt_k_camera writes the tile's primary
@@ -31,9 +33,8 @@ __kernel void rt_k_camera(__global const rt_scene_header *hdr, uint first, uint 
                           __global rt_ray *rays) {
     uint i = (uint)get_global_id(0);
     if (i >= count) return;
-    uint pixel = first + i;
     rt_ray r;
-    rt_camera_ray(hdr, (rt_i32)(pixel % (uint)hdr->width), (rt_i32)(pixel / (uint)hdr->width), &r);
+    rt_camera_pixel_ray(hdr, first + i, &r);
     rays[i] = r;
 }
 
@@ -109,10 +110,8 @@ __kernel void rt_k_wave_camera(__global const rt_scene_header *hdr, uint first, 
                                __global rt_wave_entry *queue) {
     uint i = (uint)get_global_id(0);
     if (i >= count) return;
-    uint pixel = first + i;
     rt_wave_entry q;
-    rt_camera_ray(hdr, (rt_i32)(pixel % (uint)hdr->width), (rt_i32)(pixel / (uint)hdr->width),
-                  &q.e.ray);
+    rt_camera_pixel_ray(hdr, first + i, &q.e.ray);
     q.e.w[0] = q.e.w[1] = q.e.w[2] = 1.0f;
     q.e.depth = 0;
     q.pixel = i;

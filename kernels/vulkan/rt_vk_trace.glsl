@@ -1,0 +1,82 @@
+/* rt_vk_trace.glsl - the GLSL mirror of kernels/rt_trace.h: the two-level
+ * traversal over the object BVH, each instance's mesh by its BVH
+ * (rt_vk_bvh.glsl) or its kd-tree (rt_vk_kd.glsl). */
+#ifndef RT_VK_TRACE_GLSL
+#define RT_VK_TRACE_GLSL
+
+#include "rt_vk_bvh.glsl"
+#include "rt_vk_kd.glsl"
+
+void rt_ray_to_object(uint inst, rt_ray r, out rt_ray o) {
+    for (int i = 0; i < 3; i++) {
+        float m0 = instances[inst].world_to_object[4 * i];
+        float m1 = instances[inst].world_to_object[4 * i + 1];
+        float m2 = instances[inst].world_to_object[4 * i + 2];
+        float m3 = instances[inst].world_to_object[4 * i + 3];
+        o.org[i] = ((m0 * r.org[0] + m1 * r.org[1]) + m2 * r.org[2]) + m3;
+        o.dir[i] = (m0 * r.dir[0] + m1 * r.dir[1]) + m2 * r.dir[2];
+    }
+    o.tmin = r.tmin;
+    o.tmax = r.tmax;
+}
+
+/* One call of rt_trace_mesh (and of rt_kd_trace_mesh) for both cases of the
+ * C function (the ray transformed or not): one inlined copy of each
+ * traversal. */
+bool rt_trace_instance(uint inst, rt_ray r, rt_ray_pre p, bool any_hit, inout rt_hit_d best,
+                       inout rt_counters c) {
+    uint root = instances[inst].root;
+    float inst_lo = -RT_INF;
+    if ((RT_SCENE_FLAGS() & RT_SCENE_SINGLE) == 0u && !rt_inst_enter(inst, r, p, inst_lo))
+        return false;
+    rt_ray o = r;
+    rt_ray_pre op = p;
+    if ((RT_INST_FLAGS(instances[inst].flags) & RT_INST_IDENTITY) == 0u) {
+        rt_ray_to_object(inst, r, o);
+        rt_ray_prepare(o, op);
+    }
+    op.inst_lo = inst_lo;
+    if ((RT_INST_FLAGS(instances[inst].flags) & RT_INST_KD) != 0u)
+        return rt_kd_trace_mesh(root, inst, o, op, any_hit, best, c);
+    return rt_trace_mesh(root, inst, o, op, any_hit, best, c);
+}
+
+bool rt_trace(rt_ray r, bool any_hit, out rt_hit_d best, inout rt_counters c) {
+    rt_ray_pre p;
+    rt_ray_prepare(r, p);
+    rt_hit_init(best, r);
+    c.rays++;
+    if (hdr.instance_count == 0u) return false;
+    if ((RT_SCENE_FLAGS() & RT_SCENE_SINGLE) != 0u) {
+        rt_trace_instance(0u, r, p, any_hit, best, c);
+        return best.prim != RT_NO_HIT;
+    }
+    int sp = 0;
+    float tn;
+    uint node = hdr.top_root;
+    c.box_tests++;
+    if (!rt_box_test(node, r, p, rt_box_lo(r.tmin), rt_box_hi(best.t), tn)) return false;
+    for (;;) {
+        uint nb = nodes[node].b;
+        if ((nb & RT_NODE_LEAF_FLAG) != 0u) {
+            uint count = nb & RT_NODE_COUNT_MASK, na = nodes[node].a;
+            for (uint e = na; e < na + count; e++)
+                if (rt_trace_instance(inst_ids[e], r, p, any_hit, best, c)) return true;
+            if (sp == 0) break;
+            node = STACK_AT(0, --sp);
+            continue;
+        }
+        uint next, push;
+        int d = rt_descend(node, r, p, best, c, next, push);
+        if (d == 0) {
+            if (sp == 0) break;
+            node = STACK_AT(0, --sp);
+        } else {
+            if (d == 2) STACK_AT(0, sp++) = push;
+            node = next;
+        }
+    }
+    return best.prim != RT_NO_HIT;
+}
+
+#endif
