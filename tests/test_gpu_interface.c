@@ -76,6 +76,7 @@ typedef struct probe_row {
 #define RT_FIELDS(dir, buf, type, field, count, kind)                                              \
     {PB_##buf, RT_DIR_##dir, offsetof(type, field), count, sizeof(type), #type "." #field},
 
+#ifdef RT_HAVE_VULKAN
 #define RT_VK_ONLY(rows) rows
 #define RT_CL_ONLY(rows)
 static const probe_row vk_rows[] = {
@@ -83,11 +84,14 @@ static const probe_row vk_rows[] = {
 };
 #undef RT_VK_ONLY
 #undef RT_CL_ONLY
+#endif
+#ifdef RT_HAVE_OPENCL
 #define RT_VK_ONLY(rows)
 #define RT_CL_ONLY(rows) rows
 static const probe_row cl_rows[] = {
 #include "rt_interface_fields.def"
 };
+#endif
 #define ROWS(a) (sizeof a / sizeof a[0])
 
 /* The buffers of one probe run: bytes, contents, and the words written. */
