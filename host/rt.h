@@ -84,11 +84,30 @@ typedef struct rt_camera {
 rt_status rt_scene_create(rt_scene **out);
 void rt_scene_destroy(rt_scene *scene);
 
-/* Loads a scene file: a .json scene or a bare .obj (which gets the default
- * camera, light and material, see docs/SCENE_FORMAT.md). On failure *out is
- * NULL and err describes the first problem; nothing is half-loaded.
- * width/height of 0 keep the file's resolution (or 1024x576 for a bare OBJ). */
+/* Loads the scene file at path into a new scene *out: a .json scene or a
+ * bare .obj (which gets the default camera, light and material, see
+ * docs/SCENE_FORMAT.md; a JSON scene without a camera gets the default
+ * camera and light too). The camera's resolution is the file's (1024x576
+ * for a bare OBJ). On failure *out is NULL and err (which may be NULL)
+ * describes the first problem, naming the file; nothing is half-loaded. */
 rt_status rt_scene_load(const char *path, rt_scene **out, rt_error *err);
+
+/* What rt_scene_load_with may do differently. Zero-initialised (or
+ * rt_scene_load_options_default): rt_scene_load's behaviour. */
+typedef struct rt_scene_load_options {
+    /* 1: a scene that gets the default view (a bare OBJ, a JSON scene
+     * without a camera) gets no default light: its lights are the file's
+     * alone (none for a bare OBJ), for callers that add their own with
+     * rt_light_add. The default camera and ambient are still given. */
+    int no_default_light;
+} rt_scene_load_options;
+
+/* All zero: as rt_scene_load. */
+rt_scene_load_options rt_scene_load_options_default(void);
+
+/* rt_scene_load with options (NULL: the defaults). */
+rt_status rt_scene_load_with(const char *path, const rt_scene_load_options *options, rt_scene **out,
+                             rt_error *err);
 
 /* The last error's message, "" when none. */
 const char *rt_scene_error(const rt_scene *scene);
@@ -120,14 +139,41 @@ rt_status rt_mesh_add_triangles(rt_scene *scene, uint32_t mesh_id, const float *
 /* ---- materials, lights, ambient, background ----------------------------- */
 
 rt_status rt_material_add(rt_scene *scene, const rt_material *material, uint32_t *material_id);
+/* Adds a point light at position (finite) with color (each component in
+ * 0..1e6) and gives its id in *light_id. */
 rt_status rt_light_add(rt_scene *scene, const float position[3], const float color[3],
                        uint32_t *light_id);
+
+/* Moves light light_id to position and gives it color (rt_light_add's
+ * rules). The next frame shows it there; a renderer rewrites only the
+ * layout's per-frame part (the light count is the same). */
+rt_status rt_light_set(rt_scene *scene, uint32_t light_id, const float position[3],
+                       const float color[3]);
+
+/* Removes light light_id; the lights after it move down one id (light_id
+ * + 1 becomes light_id, ...), so the scene is the one built without it. A
+ * scene may have no light (then only ambient light and the background
+ * show). */
+rt_status rt_light_remove(rt_scene *scene, uint32_t light_id);
+
+/* The ambient light's colour (each component in 0..1e6), scaled by each
+ * material's ambient coefficient. */
 rt_status rt_scene_set_ambient(rt_scene *scene, const float color[3]);
+/* The colour of rays that hit nothing (each component in 0..1e6). */
 rt_status rt_scene_set_background(rt_scene *scene, const float color[3]);
 
 /* ---- objects ----------------------------------------------------------- */
 
+/* Creates an object with material material_id, the identity transform and
+ * no mesh yet (rt_object_add_mesh), and gives its id in *object_id. */
 rt_status rt_object_create(rt_scene *scene, uint32_t material_id, uint32_t *object_id);
+
+/* Removes object object_id (its keyframes, queued transforms, animation
+ * and transform keys); the objects after it move down one id, so the scene
+ * renders as the scene built without it, on every backend, and a renderer
+ * that drew it before keeps its meshes' BVHs (meshes are not removed; a
+ * blend mesh the scene made for the object is emptied and keeps its id). */
+rt_status rt_object_remove(rt_scene *scene, uint32_t object_id);
 
 /* Adds a keyframe. The first mesh added is selected. */
 rt_status rt_object_add_mesh(rt_scene *scene, uint32_t object_id, uint32_t mesh_id);
@@ -196,7 +242,7 @@ typedef struct rt_render_stats {
     /* Set when "auto" could not use the device and rendered on the CPU: the
      * reason, for the caller to show (the library never prints). */
     const char *notice;
-    /* Device backends (opencl); zero or empty on the CPU. */
+    /* Device backends (opencl, vulkan); zero or empty on the CPU. */
     char device[128]; /* the device that ran */
     int exact;        /* the backend promises the CPU oracle's bits (0 with device_options); the
                          CPU backends always (they are the oracle, in the denormal mode asked for) */
@@ -261,10 +307,11 @@ typedef enum rt_denormals {
 } rt_denormals;
 
 typedef struct rt_renderer_options {
-    /* "cpu" (the scalar oracle, the default), "packet", "opencl" (or
-     * "opencl:DEVICE", a device index or a part of its name), "auto" (a device
-     * backend when one is built and a device exists, else cpu, with
-     * rt_render_stats.notice saying why). */
+    /* "cpu" (the scalar oracle, the default), "packet" (the SIMD packet
+     * tracer), "opencl" or "vulkan" (or "opencl:DEVICE", "vulkan:DEVICE", a
+     * device index or a part of its name), "auto" (a device backend when one
+     * is built and a device exists, else cpu, with rt_render_stats.notice
+     * saying why). NULL: "cpu". */
     const char *backend;
     int threads; /* worker threads of the CPU backends and builders; <= 0: all cores */
     /* Extra OpenCL C compiler options for the speed-versus-error study
@@ -294,13 +341,14 @@ void rt_renderer_destroy(rt_renderer *renderer);
 /* The last error's message, "" when none. */
 const char *rt_renderer_error(const rt_renderer *renderer);
 
-/* Switches to another backend ("cpu", "packet", "opencl[:DEVICE]", "auto")
+/* Switches to another backend ("cpu", "packet", "opencl[:DEVICE]",
+ * "vulkan[:DEVICE]", "auto")
  * for the next frames. The BVHs and the layout are kept; so is the state of
  * a device backend used before (switching back does not recompile). On
  * failure the renderer keeps its backend. */
 rt_status rt_renderer_set_backend(rt_renderer *renderer, const char *backend);
 
-/* The backend that renders now ("cpu", "packet", "opencl"). */
+/* The backend that renders now ("cpu", "packet", "opencl", "vulkan"). */
 const char *rt_renderer_backend(const rt_renderer *renderer);
 
 /* The device compiler's messages from the current backend's last kernel

@@ -29,7 +29,18 @@ static rt_status load_bare_obj(rt_scene *scene, const char *path, rt_error *err)
     return RT_OK;
 }
 
+rt_scene_load_options rt_scene_load_options_default(void) {
+    rt_scene_load_options o;
+    memset(&o, 0, sizeof o);
+    return o;
+}
+
 rt_status rt_scene_load(const char *path, rt_scene **out, rt_error *err) {
+    return rt_scene_load_with(path, NULL, out, err);
+}
+
+rt_status rt_scene_load_with(const char *path, const rt_scene_load_options *options, rt_scene **out,
+                             rt_error *err) {
     rt_error_clear(err);
     if (!out) return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, NULL, 0, 0, "no output scene");
     *out = NULL;
@@ -37,6 +48,9 @@ rt_status rt_scene_load(const char *path, rt_scene **out, rt_error *err) {
     rt_scene *scene;
     if (rt_scene_create(&scene) != RT_OK)
         return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0, "out of memory");
+    /* The loaders give the default view through rt_scene_apply_default_view,
+     * which reads this. */
+    scene->no_default_light = options && options->no_default_light;
     rt_status st;
     if (has_extension(path, ".json"))
 #ifdef RT_HAVE_JANSSON

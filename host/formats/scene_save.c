@@ -95,15 +95,13 @@ static rt_status names_usable(const rt_scene *s, const uint8_t *blend, int *usab
 }
 
 /* Which meshes are blends of morphing objects (made by rt_scene_set_time,
- * not read from the file): they are not saved, the loader makes them again.
+ * not read from the file, and kept emptied after rt_object_remove): they are
+ * not saved, the loader makes them again.
  * NULL when out of memory. */
 static uint8_t *blend_meshes(const rt_scene *s) {
     uint8_t *blend = calloc(s->mesh_count ? s->mesh_count : 1, 1);
     if (!blend) return NULL;
-    for (uint32_t o = 0; o < s->object_count; o++) {
-        uint32_t m = s->objects[o].morph_mesh;
-        if (m < s->mesh_count) blend[m] = 1;
-    }
+    for (uint32_t m = 0; m < s->mesh_count; m++) blend[m] = s->meshes[m].blend != 0;
     return blend;
 }
 

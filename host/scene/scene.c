@@ -293,12 +293,20 @@ rt_status rt_material_add(rt_scene *scene, const rt_material *mat, uint32_t *mat
     return RT_OK;
 }
 
+/* RT_OK when position and color make a light (rt_light_add's rules), else
+ * the scene's error naming the value. */
+static rt_status check_light(rt_scene *scene, const float position[3], const float color[3]) {
+    if (!finite3(position))
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "light: position (%g, %g, %g) must be finite", (double)position[0],
+                             (double)position[1], (double)position[2]);
+    return check_colour(scene, "light: colour component", color, 3);
+}
+
 rt_status rt_light_add(rt_scene *scene, const float position[3], const float color[3],
                        uint32_t *light_id) {
     if (!scene || !position || !color || !light_id) return RT_ERROR_INVALID_ARGUMENT;
-    if (!finite3(position))
-        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "light: position must be finite");
-    rt_status st = check_colour(scene, "light: colour component", color, 3);
+    rt_status st = check_light(scene, position, color);
     if (st != RT_OK) return st;
     if (!grow((void **)&scene->lights, &scene->light_capacity, scene->light_count + 1,
               sizeof(rt_light_data)))
@@ -307,6 +315,21 @@ rt_status rt_light_add(rt_scene *scene, const float position[3], const float col
     memcpy(l->position, position, sizeof l->position);
     memcpy(l->color, color, sizeof l->color);
     *light_id = scene->light_count++;
+    scene->version++;
+    return RT_OK;
+}
+
+rt_status rt_light_set(rt_scene *scene, uint32_t light_id, const float position[3],
+                       const float color[3]) {
+    if (!scene || !position || !color) return RT_ERROR_INVALID_ARGUMENT;
+    if (light_id >= scene->light_count)
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "light %u does not exist (%u lights)", light_id, scene->light_count);
+    rt_status st = check_light(scene, position, color);
+    if (st != RT_OK) return st;
+    rt_light_data *l = &scene->lights[light_id];
+    memcpy(l->position, position, sizeof l->position);
+    memcpy(l->color, color, sizeof l->color);
     scene->version++;
     return RT_OK;
 }
@@ -664,7 +687,7 @@ rt_status rt_scene_apply_default_view(rt_scene *scene, int width, int height) {
     float light[3];
     for (int k = 0; k < 3; k++) light[k] = c[k] + offset[k] * d;
     uint32_t id;
-    st = rt_light_add(scene, light, white, &id);
+    st = scene->no_default_light ? RT_OK : rt_light_add(scene, light, white, &id);
     if (st != RT_OK) return st;
     const float ambient[3] = {0.1f, 0.1f, 0.1f};
     return rt_scene_set_ambient(scene, ambient);

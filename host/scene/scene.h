@@ -31,6 +31,10 @@ typedef struct rt_mesh_data {
      * same topology version may be refitted. */
     uint32_t topology_version;
     uint32_t update_policy; /* rt_update_policy */
+    /* 1: the blend mesh the scene made for a morphing object (never saved:
+     * the loader makes it again); it stays, emptied, when that object is
+     * removed, so that the other meshes keep their ids. */
+    int blend;
 } rt_mesh_data;
 
 typedef struct rt_object_data {
@@ -77,7 +81,10 @@ struct rt_scene {
     int has_camera;
     rt_camera_key *camera_path; /* rt_camera_set_path, or NULL */
     uint32_t camera_path_count;
-    double time;      /* the last rt_scene_set_time */
+    double time; /* the last rt_scene_set_time */
+    /* rt_scene_load_options.no_default_light: rt_scene_apply_default_view
+     * adds no light. */
+    int no_default_light;
     uint32_t version; /* bumped by every change, so renderers know what to redo */
     /* Bumped by rt_camera_set (and so by the camera path), not version: a
      * camera-only change rewrites the layout's header and nothing else. */
@@ -146,8 +153,9 @@ uint64_t rt_scene_triangle_count(const rt_scene *scene);
  * the renderer's cache both ask this. */
 rt_accel rt_mesh_data_structure(const rt_mesh_data *m);
 
-/* The default view of a bare OBJ (docs/SCENE_FORMAT.md): camera, one light and
- * ambient 0.1, from the bounding box of all meshes. Fails on an empty scene. */
+/* The default view of a bare OBJ (docs/SCENE_FORMAT.md): camera, one light
+ * (none when scene->no_default_light) and ambient 0.1, from the bounding box
+ * of all meshes. Fails on an empty scene. */
 rt_status rt_scene_apply_default_view(rt_scene *scene, int width, int height);
 
 /* rt_scene_bounds, the world-space box of the current frame, is public (rt.h). */

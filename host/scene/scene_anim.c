@@ -300,6 +300,7 @@ static rt_status morph_reset(rt_scene *scene, uint32_t object, uint32_t src) {
         rt_status st = rt_mesh_create(scene, &id);
         if (st != RT_OK) return st;
         scene->objects[object].morph_mesh = id;
+        scene->meshes[id].blend = 1;
         o = &scene->objects[object];
     }
     const rt_mesh_data *s = &scene->meshes[src];
