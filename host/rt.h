@@ -456,6 +456,10 @@ typedef struct rt_trace_stats {
                              incoherent groups, cpu_ref/single_trace.h) */
     const char *backend;  /* the backend that traced */
     const char *isa;      /* the packet backend's instruction set, else "" */
+    char device[128];     /* the device that traced (opencl, vulkan), else "" */
+    /* Set when "auto" could not use a device and traced on the CPU: the
+     * reason (rt_render_stats.notice's), else NULL. */
+    const char *notice;
 } rt_trace_stats;
 
 /* How the packet backend traces a query's rays. AUTO: each group of 64

@@ -158,7 +158,7 @@ fi
     echo "16 screenshot $work/s_direct.exr"
     echo "17 quit"
 } >"$work/switch.txt"
-run_rtcl view "$work/cornell.json" "${size[@]}" --script "$work/switch.txt"
+run_rtcl view "$work/cornell.json" "${size[@]}" --script "$work/switch.txt" --backend cpu
 expect_status 0 "backend switches"
 [ -z "$err" ] || fail "backend switches: stderr is not empty: $err"
 view_out=$out
@@ -184,6 +184,19 @@ same "$work/s_depth.exr" "$work/ref_depth.exr" "the depth view"
 same "$work/s_normal.exr" "$work/ref_normal.exr" "the normal view"
 same "$work/s_direct.exr" "$work/ref_direct.exr" "direct lighting"
 if cmp -s "$work/s_direct.exr" "$work/ref.exr"; then fail "direct lighting changed nothing"; fi
+
+# Without --backend the viewer starts on what --backend auto picks (the
+# device backend rtcl render names, or the CPU when it finds no device).
+run_rtcl render "$work/cornell.json" --width 8 --height 8 --backend auto -o "$work/probe.exr"
+case "$err" in
+*"rtcl render: backend: "*) auto=$(printf '%s\n' "$err" | sed -n 's/^rtcl render: backend: \([a-z]*\) .*/\1/p') ;;
+*"notice: "*"using the CPU"*) auto=cpu ;;
+*) auto=; fail "render --backend auto names no backend: $err" ;;
+esac
+printf '1 screenshot %s\n2 quit\n' "$work/auto.exr" >"$work/auto.txt"
+run_rtcl view "$work/cornell.json" "${size[@]}" --script "$work/auto.txt"
+expect_status 0 "the default backend"
+expect_in "$out" "auto.exr (160x90, frame 1, backend $auto," "the default backend is auto's ($auto)"
 
 # ---- 3. the timeline steps keyframes: (k0 + floor(t rate)) mod count -------
 # keyframes.json selects keyframe 2 of 4. At 10 keyframes/s and 30 steps/s,

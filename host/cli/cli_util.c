@@ -199,6 +199,7 @@ const cli_choice cli_device_math_choices[] = {{"auto", RT_DEVICE_MATH_AUTO},
 const cli_choice cli_denormals_choices[] = {
     {"preserve", RT_DENORMALS_PRESERVE}, {"flush", RT_DENORMALS_FLUSH}, {NULL, 0}};
 
+/* Row 0 is --backend (cli_util.h: rtcl view replaces it). */
 const cli_option cli_renderer_options[] = {
     {"--backend", 0, CLI_STRING, "B", offsetof(cli_renderer_args, backend), .flags = CLI_NONEMPTY,
      .dynamic_help = backend_help, .fallback = "cpu"},
@@ -218,6 +219,11 @@ const cli_option cli_renderer_options[] = {
      .help = "print the device compiler's messages (the build log, and what the driver printed "
              "while building) on stderr; without it they are shown only when the kernels fail "
              "to build"},
+    {NULL}};
+
+const cli_option cli_backend_auto_options[] = {
+    {"--backend", 0, CLI_STRING, "B", offsetof(cli_renderer_args, backend), .flags = CLI_NONEMPTY,
+     .dynamic_help = backend_help, .fallback = "auto"},
     {NULL}};
 
 const cli_option cli_kernel_options[] = {
@@ -328,6 +334,18 @@ rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a) {
         return NULL;
     }
     return r;
+}
+
+void cli_print_backend_choice(const char *command, const cli_renderer_args *a, const char *backend,
+                              const char *device, const char *notice) {
+    char asked[64];
+    backend_of(a->backend, asked, sizeof asked);
+    if (notice) {
+        fprintf(stderr, "rtcl %s: notice: %s\n", command, notice);
+    } else if (!strcmp(asked, "auto") && backend) {
+        fprintf(stderr, "rtcl %s: backend: %s (%s)\n", command, backend,
+                device && device[0] ? device : "the CPU");
+    }
 }
 
 void cli_print_build_log(const char *command, const rt_renderer *renderer) {

@@ -88,8 +88,13 @@ typedef struct cli_renderer_args {
     char spec[256]; /* backend[:device], made by cli_renderer_create */
 } cli_renderer_args;
 
-/* --backend, --device, --threads, --packet-isa, --verbose. */
+/* --backend, --device, --threads, --packet-isa, --verbose. --backend is
+ * row 0, so that a command whose default backend is another (rtcl view:
+ * auto) lists cli_backend_auto_options, then cli_renderer_options + 1. */
 extern const cli_option cli_renderer_options[];
+/* --backend alone, the default auto (the command sets
+ * cli_renderer_args.backend to "auto" after cli_renderer_args_init). */
+extern const cli_option cli_backend_auto_options[];
 #define CLI_RENDERER_TITLE "Renderer options"
 /* --cl-options, --device-math, --denormals: how device kernels are built. */
 extern const cli_option cli_kernel_options[];
@@ -114,6 +119,15 @@ rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a);
 /* 1 when the backend named by spec (NAME or NAME:DEVICE) takes a device,
  * by the backend registry (rt_backend_describe). */
 int cli_backend_takes_device(const char *spec);
+
+/* When the renderer options asked for "auto" (a->backend), the one line
+ * on stderr that says what it chose: "rtcl COMMAND: backend: NAME
+ * (DEVICE)" with the device that ran (rt_render_stats or rt_trace_stats),
+ * or, when auto found no device, the renderer's notice instead ("rtcl
+ * COMMAND: notice: ...: using the CPU"). Without auto, only that notice
+ * (never set then). stdout is left alone (--json). */
+void cli_print_backend_choice(const char *command, const cli_renderer_args *a, const char *backend,
+                              const char *device, const char *notice);
 
 /* Prints the renderer's last kernel build messages (rt_renderer_build_log)
  * on stderr, "rtcl COMMAND: BACKEND build log:" and the lines, if there are

@@ -268,9 +268,9 @@ int cmd_animate(int argc, char **argv) {
             code = 2;
             break;
         }
-        if (st.notice && !shown_notice) {
+        if (!shown_notice) {
             cli_progress_done();
-            fprintf(stderr, "rtcl animate: notice: %s\n", st.notice);
+            cli_print_backend_choice("animate", &a.renderer, st.backend, st.device, st.notice);
             shown_notice = 1;
         }
         double w0 = cli_now_ms();

@@ -213,7 +213,7 @@ int cmd_render(int argc, char **argv) {
                (double)st.rays / (med * 1000.0));
         free(ms);
     }
-    if (st.notice) fprintf(stderr, "rtcl render: notice: %s\n", st.notice);
+    cli_print_backend_choice("render", &a.renderer, st.backend, st.device, st.notice);
     status = cli_frame_write(out_path, &fb, opt.aov, a.metadata, &err);
     rt_framebuffer_free(&fb);
     if (status != RT_OK) {

@@ -197,6 +197,7 @@ int cmd_trace(int argc, char **argv) {
         rt_renderer_destroy(renderer);
         return 2;
     }
+    cli_print_backend_choice("trace", &a.renderer, ts.backend, ts.device, ts.notice);
     if (stats || json) print_stats(&ts, ms, reps, build_ms, a.renderer.threads, opt.any_hit, json);
     free(ms);
     rt_renderer_destroy(renderer);

@@ -166,6 +166,8 @@ rt_status rt_trace_rays(rt_renderer *r, rt_scene *scene, const rt_ray *rays, siz
     ts.trace_ms = rt_now_ms() - t1 - ts.build_ms;
     ts.build_ms += fs.build_ms + prep.build_ms;
     ts.rays = count;
+    memcpy(ts.device, prep.device, sizeof ts.device);
+    ts.notice = r->notice[0] ? r->notice : NULL;
     if (opt.stats) *opt.stats = ts;
     if (st == RT_OK && count) {
         finish_job job;

@@ -47,7 +47,9 @@ static const cli_group view_groups[] = {
     {CLI_FRAME_TITLE, cli_aov_options, offsetof(view_options, frame)},
     {CLI_SCENE_TITLE, cli_scene_options, offsetof(view_options, scene)},
     {CLI_SCENE_TITLE, cli_time_options, offsetof(view_options, scene)},
-    {CLI_RENDERER_TITLE, cli_renderer_options, offsetof(view_options, renderer)},
+    /* The viewer starts on the fastest backend there is: --backend auto. */
+    {CLI_RENDERER_TITLE, cli_backend_auto_options, offsetof(view_options, renderer)},
+    {CLI_RENDERER_TITLE, cli_renderer_options + 1, offsetof(view_options, renderer)},
     {CLI_KERNEL_TITLE, cli_kernel_options, offsetof(view_options, renderer)},
     {CLI_TEST_TITLE, cli_test_options, offsetof(view_options, renderer)},
     {NULL}};
@@ -113,6 +115,7 @@ int cmd_view(int argc, char **argv) {
     cli_frame_args_init(&o.frame);
     cli_scene_args_init(&o.scene);
     cli_renderer_args_init(&o.renderer);
+    o.renderer.backend = "auto";
     o.keyframe_rate = 10.0;
     o.budget_ms = 40.0;
     int status;
