@@ -464,7 +464,16 @@ static void pk_tri(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u32 e, 
     }
     const uint32_t inside = rt_vwt_inside(&x, m);
     if (!inside) return;
-    const rt_vf t = rt_vwt_t(&x, p->sz[g]);
+    rt_vf t = rt_vwt_t(&x, p->sz[g]);
+    /* A t that the oracle takes from the plane (rt_tri_t.h): the shared
+     * scalar function for those lanes (rare). */
+    for (uint32_t un = rt_vwt_unsure(&x, A, B, C, p->sx[g], p->sy[g], p->sz[g], inside); un;
+         un &= un - 1) {
+        const int i = rt_lane_first(un);
+        rt_ray lr;
+        lane_ray(p, g, i, &lr);
+        t[i] = rt_tri_t_plane(tri, &lr, t[i]);
+    }
     uint32_t hit = rt_vbits((t >= p->tmin[g]) & (t <= st->t[g])) & inside;
     if (!hit) return;
     hit &= pk_hit_accepted(st, p, g, tri, t);

@@ -180,7 +180,14 @@ static int leaf_test(sw_ctx *x, rt_u32 first, rt_u32 count, rt_u32 inst, const r
         }
         const uint32_t inside = rt_vwt_inside(&wt, valid);
         if (!inside) continue;
-        const rt_vf t = rt_vwt_t(&wt, sz), V = wt.V, Wf = wt.W, det = wt.det;
+        rt_vf t = rt_vwt_t(&wt, sz);
+        const rt_vf V = wt.V, Wf = wt.W, det = wt.det;
+        /* A t that the oracle takes from the plane (rt_tri_t.h): the shared
+         * scalar function for those lanes (rare). */
+        for (uint32_t un = rt_vwt_unsure(&wt, A, B, C, sx, sy, sz, inside); un; un &= un - 1) {
+            const int l = rt_lane_first(un);
+            t[l] = rt_tri_t_plane(&x->s->tris[ent[l]], r, t[l]);
+        }
         uint32_t hit = rt_vbits((t >= tmin) & (t <= rt_vsplat(best->t))) & inside;
         for (; hit; hit &= hit - 1) {
             const int l = rt_lane_first(hit);

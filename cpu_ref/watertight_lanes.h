@@ -11,7 +11,10 @@
  * after the first, and the tracer returns early where no lane is inside:
  *   rt_vwt_edges:  the sheared vertices and the edge functions U, V, W;
  *   rt_vwt_inside: the sign test and det;
- *   rt_vwt_t:      T and t.
+ *   rt_vwt_t:      T and t;
+ *   rt_vwt_unsure: the lanes whose t may be off by more than RT_T_REL_BOUND,
+ *                  which the oracle recomputes from the plane: the caller
+ *                  replaces their t by rt_tri_t_plane's (rt_tri_t.h).
  * The range test of t and u = V / det, v = W / det are left to the tracer,
  * which divides only for the hit it keeps. */
 #ifndef RT_WATERTIGHT_LANES_H
@@ -21,9 +24,10 @@
 
 /* One triangle test's values per lane, named as in rt_tri_watertight. */
 typedef struct rt_vwt {
-    rt_vf Az, Bz, Cz; /* A[kz], B[kz], C[kz] (before the scale sz) */
-    rt_vf U, V, W;    /* the edge functions */
-    rt_vf det, t;     /* (U + V) + W and T / det (rt_vwt_inside, rt_vwt_t) */
+    rt_vf Ax, Ay, Bx, By, Cx, Cy; /* the sheared vertices */
+    rt_vf Az, Bz, Cz;             /* A[kz], B[kz], C[kz] (before the scale sz) */
+    rt_vf U, V, W;                /* the edge functions */
+    rt_vf det, t;                 /* (U + V) + W and T / det (rt_vwt_inside, rt_vwt_t) */
 } rt_vwt;
 
 /* rt_tri_watertight up to the edge functions. a, b and c are the vertices
@@ -37,6 +41,7 @@ static inline uint32_t rt_vwt_edges(const rt_vf a[3], const rt_vf b[3], const rt
     const rt_vf Ax = a[0] - sx * a[2], Ay = a[1] - sy * a[2];
     const rt_vf Bx = b[0] - sx * b[2], By = b[1] - sy * b[2];
     const rt_vf Cx = c[0] - sx * c[2], Cy = c[1] - sy * c[2];
+    x->Ax = Ax, x->Ay = Ay, x->Bx = Bx, x->By = By, x->Cx = Cx, x->Cy = Cy;
     x->Az = a[2];
     x->Bz = b[2];
     x->Cz = c[2];
@@ -66,6 +71,31 @@ static inline rt_vf rt_vwt_t(rt_vwt *x, rt_vf sz) {
     const rt_vf T = (x->U * (sz * x->Az) + x->V * (sz * x->Bz)) + x->W * (sz * x->Cz);
     x->t = T / x->det;
     return x->t;
+}
+
+/* rt_tri_t_max per lane: a > b ? a : b, as the oracle picks on NaN. */
+static inline rt_vf rt_vwt_max(rt_vf a, rt_vf b) {
+    return rt_vsel(a > b, a, b);
+}
+
+/* rt_tri_t_check per lane (after rt_vwt_t), a, b and c as for rt_vwt_edges,
+ * sx, sy, sz the ray's shear and scale: the lanes of m whose t the oracle
+ * takes from the plane, by the oracle's operations in the oracle's order. */
+static inline uint32_t rt_vwt_unsure(const rt_vwt *x, const rt_vf a[3], const rt_vf b[3],
+                                     const rt_vf c[3], rt_vf sx, rt_vf sy, rt_vf sz, uint32_t m) {
+    const rt_vf S = rt_vwt_max(rt_vabs(sx), rt_vabs(sy));
+    const rt_vf K = rt_vwt_max(rt_vabs(a[2]), rt_vwt_max(rt_vabs(b[2]), rt_vabs(c[2])));
+    const rt_vf P = rt_vwt_max(rt_vwt_max(rt_vabs(x->Ax), rt_vabs(x->Ay)),
+                               rt_vwt_max(rt_vwt_max(rt_vabs(x->Bx), rt_vabs(x->By)),
+                                          rt_vwt_max(rt_vabs(x->Cx), rt_vabs(x->Cy))));
+    const rt_vf Az = sz * x->Az, Bz = sz * x->Bz, Cz = sz * x->Cz;
+    const rt_vf zmax = rt_vwt_max(Az, rt_vwt_max(Bz, Cz));
+    const rt_vf zmin = -rt_vwt_max(-Az, rt_vwt_max(-Bz, -Cz));
+    const rt_vf Z = rt_vwt_max(zmax, -zmin);
+    const rt_vf adet = rt_vabs(x->det);
+    const rt_vf lhs = (((S * K + rt_vsplat(0.75f) * P) * P) * (zmax - zmin)) * rt_vsplat(0.5f) +
+                      (adet * Z) * rt_vsplat(0.0625f);
+    return rt_vbits(lhs > rt_vabs(x->t) * adet) & m;
 }
 
 #endif /* RT_WATERTIGHT_LANES_H */

@@ -58,7 +58,15 @@ RT_FN void rt_hit_init(rt_hit_d *h, const rt_ray *r) {
  * these boxes and is tested with a range that reaches at least as far
  * (rt_box_hi(best t), best t >= t), and the slab test is monotonic in the
  * box: an accepted hit's boxes always pass, so the closest accepted hit is
- * the same whatever the tree, its width, its leaves or the order. */
+ * the same whatever the tree, its width, its leaves or the order.
+ *
+ * The rule never refuses a real crossing of the watertight test: a ray that
+ * crosses the triangle at exact t* > 0 enters its box at an exact t <= t*,
+ * which the float slab test overstates by at most 3 ulps, and the test's t
+ * is at least t* (1 - 2^-17) (rt_tri_t.h), so rt_box_hi(t) >= t* (1 - 2^-17)
+ * (1 + 2^-6) > t* (1 + 2^-7) lies beyond the computed entry (the instance
+ * box the same). docs/ROBUSTNESS.md, "Accurate t", names where this bound's
+ * assumptions end. */
 
 /* The instance box's entry distance for the ray r in world space, into
  * p_obj->inst_lo; returns 0 when the ray misses the box at every t (the

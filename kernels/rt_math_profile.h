@@ -40,6 +40,7 @@
 #ifdef RT_OPENCL
 #define RT_GLOBAL __global
 #define RT_FN
+#define RT_FN_RARE /* a rare path: the kernel compiler decides */
 #if defined(RT_PORTABLE_MATH) && defined(RT_NATIVE_MATH)
 #error "RT_PORTABLE_MATH and RT_NATIVE_MATH exclude each other"
 #endif
@@ -76,6 +77,10 @@
 #include "rt_fp_mode.h"
 #define RT_GLOBAL
 #define RT_FN          static inline
+/* A rare path kept out of line, so that the hot loop that calls it stays
+ * small (rt_tri_t_plane): C compilers otherwise inline it into every
+ * traversal. */
+#define RT_FN_RARE     static __attribute__((noinline))
 #define RT_DIV(a, b)   ((a) / (b))
 #define RT_SQRT(x)     sqrtf(x)
 #define RT_FABS(x)     fabsf(x)

@@ -310,8 +310,55 @@ static void pk_edge_recheck(pk_i m, pk_f Ax, pk_f Ay, pk_f Bx, pk_f By, pk_f Cx,
     *W = pk_vload(0, w);
 }
 
+/* rt_tri_t_max per lane (a > b ? a : b; fmax differs on NaN). */
+static pk_f pk_tmax(pk_f a, pk_f b) {
+    return select(b, a, a > b);
+}
+
+/* rt_tri_t_check per lane: the lanes whose fast t the oracle recomputes. */
+static pk_i pk_tri_t_check(pk_f Akz, pk_f Bkz, pk_f Ckz, pk_f sx, pk_f sy, pk_f Ax, pk_f Ay,
+                           pk_f Bx, pk_f By, pk_f Cx, pk_f Cy, pk_f Az, pk_f Bz, pk_f Cz, pk_f det,
+                           pk_f t) {
+    pk_f S = pk_tmax(fabs(sx), fabs(sy));
+    pk_f K = pk_tmax(fabs(Akz), pk_tmax(fabs(Bkz), fabs(Ckz)));
+    pk_f P = pk_tmax(pk_tmax(fabs(Ax), fabs(Ay)),
+                     pk_tmax(pk_tmax(fabs(Bx), fabs(By)), pk_tmax(fabs(Cx), fabs(Cy))));
+    pk_f zmax = pk_tmax(Az, pk_tmax(Bz, Cz));
+    pk_f zmin = -pk_tmax(-Az, pk_tmax(-Bz, -Cz));
+    pk_f Z = pk_tmax(zmax, -zmin);
+    pk_f adet = fabs(det);
+    pk_f lhs = (((S * K + 0.75f * P) * P) * (zmax - zmin)) * 0.5f + (adet * Z) * 0.0625f;
+    return lhs > fabs(t) * adet;
+}
+
+/* rt_tri_t_plane for the lanes of m (rare): per lane, the shared scalar
+ * function. */
+static pk_f pk_tri_t_plane(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_i m, pk_f t) {
+    float o[3][RT_PK_LANES], d[3][RT_PK_LANES], tt[RT_PK_LANES];
+    int mm[RT_PK_LANES];
+    for (int i = 0; i < 3; i++) {
+        pk_vstore(p->org[i], 0, o[i]);
+        pk_vstore(p->dir[i], 0, d[i]);
+    }
+    pk_vstore(t, 0, tt);
+    pk_vstore(m, 0, mm);
+    for (int l = 0; l < RT_PK_LANES; l++) {
+        if (!mm[l]) continue;
+        rt_ray r;
+        for (int i = 0; i < 3; i++) {
+            r.org[i] = o[i][l];
+            r.dir[i] = d[i][l];
+        }
+        r.tmin = 0.0f;
+        r.tmax = 0.0f;
+        tt[l] = rt_tri_t_plane(tri, &r, tt[l]);
+    }
+    return pk_vload(0, tt);
+}
+
 /* Mirrors rt_tri_watertight; the exact re-check of zero edge functions is
- * done for the lanes that have one. */
+ * done for the lanes that have one, and the plane's t for the lanes whose
+ * fast t may be off (rt_tri_t.h). */
 static pk_i pk_tri_watertight(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f tmin, pk_f tmax,
                               pk_i act, pk_f *t, pk_f *u, pk_f *v) {
     pk_f A[3], B[3], C[3];
@@ -342,6 +389,9 @@ static pk_i pk_tri_watertight(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f
     pk_f Az = p->sz * Akz, Bz = p->sz * Bkz, Cz = p->sz * Ckz;
     pk_f T = (U * Az + V * Bz) + W * Cz;
     pk_f tt = PK_DIV(T, det);
+    pk_i unsure = ok & pk_tri_t_check(Akz, Bkz, Ckz, p->sx, p->sy, Ax, Ay, Bx, By, Cx, Cy, Az, Bz, Cz,
+                                      det, tt);
+    if (pk_any(unsure)) tt = pk_tri_t_plane(tri, p, unsure, tt);
     ok &= (tt >= tmin) & (tt <= tmax);
     if (!pk_any(ok)) return ok;
     *t = tt;

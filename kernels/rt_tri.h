@@ -5,6 +5,7 @@
 #define RT_KERNELS_TRI_H
 
 #include "rt_ray.h"
+#include "rt_tri_t.h"
 #include "rt_vec.h"
 
 /* Each returns 1 and sets t, u, v when the ray hits the triangle with t in
@@ -14,7 +15,8 @@
 /* Woop, Benthin and Wald 2013: shear and scale so the ray is the +z axis, then
  * 2D edge functions. Watertight: a ray through a shared edge or vertex hits at
  * least one of the triangles. Edge functions that come out exactly zero are
- * recomputed exactly (rt_edge_recheck). */
+ * recomputed exactly (rt_edge_recheck); a t whose error bound exceeds
+ * RT_T_REL_BOUND is recomputed from the plane (rt_tri_t.h). */
 /* An edge function of exactly zero may be rounding (two equal products):
  * all three are recomputed as a*b - c*d with exact products, rounded once
  * (rt_soft_math.h: integer operations, no fp64, the same bits on every
@@ -49,6 +51,11 @@ RT_FN int rt_tri_watertight(RT_GLOBAL const rt_tri *tri, const rt_ray *r, const 
     float Az = p->sz * A[kz], Bz = p->sz * B[kz], Cz = p->sz * C[kz];
     float T = (U * Az + V * Bz) + W * Cz;
     float tt = RT_DIV(T, det);
+    /* A t that may be off by more than RT_T_REL_BOUND (long triangles crossed
+     * near the origin) is taken from the plane instead (rt_tri_t.h). */
+    if (rt_tri_t_check(A[kz], B[kz], C[kz], p->sx, p->sy, Ax, Ay, Bx, By, Cx, Cy, Az, Bz, Cz, det,
+                       tt))
+        tt = rt_tri_t_plane(tri, r, tt);
     if (!(tt >= tmin && tt <= tmax)) return 0;
     *t = tt;
     *u = RT_DIV(V, det);

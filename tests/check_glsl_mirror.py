@@ -5,7 +5,7 @@ The shared maths is one header per job in kernels/ (C99 = OpenCL C); the
 Vulkan shaders mirror each header kernels/rt_NAME.h in
 kernels/vulkan/rt_vk_NAME.glsl, function by function, with the C function's
 name (docs/ARCHITECTURE.md, "The shared maths, file by file"). This check
-reads the function definitions of every pair (RT_FN and RT_SM_FN functions,
+reads the function definitions of every pair (RT_FN, RT_FN_RARE and RT_SM_FN functions,
 and the static inline helpers, in C; functions at the start of a line in
 GLSL) and fails when
 - a C function has no function of its name in its twin GLSL file, unless
@@ -95,13 +95,17 @@ GLSL_ONLY = {
         "RT_DOP": "a macro in C: the exact difference of products",
         "RT_FABS": "a macro in C (fabsf / fabs); here the sign bit cleared",
     },
+    "rt_vk_tri_t.glsl": {
+        "rt_tri_coord": "a triangle's coordinate by number, by selects: C indexes the "
+        "struct's nine floats in a row",
+    },
     "rt_vk_vec.glsl": {
         "rt_pick3": "an element by selects: drivers keep run-time indexed local arrays in "
         "scratch memory",
     },
 }
 
-C_FN = re.compile(r"^(?:RT_FN|RT_SM_FN|static\s+inline)\s+[\w\s\*]*?\b(\w+)\s*\(", re.M)
+C_FN = re.compile(r"^(?:RT_FN_RARE|RT_FN|RT_SM_FN|static\s+inline)\s+[\w\s\*]*?\b(\w+)\s*\(", re.M)
 GLSL_FN = re.compile(r"^(?:float|void|bool|int|uint|rt_\w+)\s+(\w+)\s*\(", re.M)
 CONST = re.compile(r"^#define\s+(RT_\w+)\s+([-+0-9.eExXa-fA-FuUf]+)\s*(?:/\*.*)?$", re.M)
 

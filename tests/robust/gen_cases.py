@@ -408,6 +408,118 @@ def invalid_ray_cases():
     return [case]
 
 
+# ---- long triangles (issue 26) ---------------------------------------------
+# The watertight test's fast t = T / det loses accuracy in proportion to the
+# triangle's extent along the ray over t; kernels/rt_tri_t.h takes such t from
+# the plane in float-float. These cases hold every backend to a relative t
+# error of 1e-5 and no miss on triangles up to 1e5 long, near the origin and
+# far from it, closed (rays from inside never leave) and open.
+
+LONG_T_TOL = 1e-5
+
+
+def rotate(p, c):
+    """p (local x along the length, y across, z up) rotated by a fixed
+    rotation that is not axis-aligned, moved to c, rounded to float32."""
+    m = ((0.8, -0.36, 0.48), (0.6, 0.48, -0.64), (0.0, 0.8, 0.6))
+    return tuple(f32(c[i] + sum(m[i][k] * p[k] for k in range(3))) for i in range(3))
+
+
+def lcg(seed):
+    """A small deterministic generator of floats in [0, 1)."""
+    state = [seed]
+
+    def nxt():
+        state[0] = (state[0] * 1103515245 + 12345) % 2**31
+        return state[0] / 2**31
+    return nxt
+
+
+def sliver_quad_case(length, centre, name):
+    """Two triangles forming a quad 0.065 wide and length long; rays from a
+    line parallel to its axis at height 1 to interior points (0.05-0.95 of
+    the length and of the width, never near an edge)."""
+    w = 0.065
+    q = [rotate(p, centre) for p in ((-length / 2, 0, 0), (length / 2, 0, 0),
+                                    (length / 2, w, 0), (-length / 2, w, 0))]
+    case = Case(name, 'long_triangles', [(q[0], q[1], q[2]), (q[0], q[2], q[3])])
+    rnd = lcg(int(length) + 7)
+    for k in range(40):
+        a, b = rnd(), rnd()
+        tx = (-0.45 + 0.9 * a) * length
+        ty = (0.05 + 0.9 * b) * w
+        # Half the rays from far along the axis, half from close by (a hit
+        # at distance ~1 on a triangle up to 1e5 long: the hard ones).
+        ox = (-0.5 + rnd()) * length if k % 2 else tx + 4.0 * (rnd() - 0.5)
+        o = rotate((ox, w / 2, 1.0), centre)
+        tgt = rotate((tx, ty, 0.0), centre)
+        d = tuple(f32(Fr(x) - Fr(y)) for x, y in zip(tgt, o))
+        case.ray(o, d, note='interior', covered=True, t_tol=LONG_T_TOL)
+    return case
+
+
+def cylinder_case(length, sides, centre, name, rays):
+    """A closed capped cylinder of radius 1 and the given length: side quads
+    of two long triangles, caps of fans to their centres. Rays from points
+    on the axis to interior points of the sides must hit with the exact t:
+    from inside a closed mesh no ray may leave."""
+    ring = [(math.cos(2 * math.pi * k / sides), math.sin(2 * math.pi * k / sides))
+            for k in range(sides)]
+    lo = [rotate((-length / 2, y, z), centre) for y, z in ring]
+    hi = [rotate((length / 2, y, z), centre) for y, z in ring]
+    c0, c1 = rotate((-length / 2, 0, 0), centre), rotate((length / 2, 0, 0), centre)
+    tris = []
+    for k in range(sides):
+        n = (k + 1) % sides
+        tris += [(lo[k], lo[n], hi[n]), (lo[k], hi[n], hi[k]), (c0, lo[n], lo[k]),
+                 (c1, hi[k], hi[n])]
+    case = Case(name, 'long_triangles', tris)
+    rnd = lcg(sides + int(length))
+    for k in range(rays):
+        side = int(rnd() * sides)
+        a, b = 0.05 + 0.9 * rnd(), 0.05 + 0.9 * rnd()
+        y0, z0 = ring[side]
+        y1, z1 = ring[(side + 1) % sides]
+        tgt_local = ((-0.5 + a) * length, y0 + b * (y1 - y0), z0 + b * (z1 - z0))
+        ox = (-0.5 + rnd()) * 0.9 * length if k % 2 else tgt_local[0] + 4.0 * (rnd() - 0.5)
+        o = rotate((ox, 0.0, 0.0), centre)
+        tgt = rotate(tgt_local, centre)
+        d = tuple(f32(Fr(x) - Fr(y)) for x, y in zip(tgt, o))
+        case.ray(o, d, note='from inside', covered=True, t_tol=LONG_T_TOL)
+    return case
+
+
+def terrain_strip_case():
+    """A road or terrain strip: 16 quads of 625 x 2 along x with bumpy
+    heights, 1e4 long; rays from 1.7 above it at shallow angles along it."""
+    n, step, w = 16, 625.0, 2.0
+    z = lambda i, j: ((i * 5 + j * 3) % 7) * 0.125
+    pts = lambda i, j: rotate((i * step, j * w, z(i, j)), (0.0, 0.0, 0.0))
+    tris = []
+    for i in range(n):
+        tris += [(pts(i, 0), pts(i + 1, 0), pts(i + 1, 1)), (pts(i, 0), pts(i + 1, 1), pts(i, 1))]
+    case = Case('terrain_strip', 'long_triangles', tris)
+    rnd = lcg(99)
+    for k in range(40):
+        i = int(rnd() * n)
+        a, b = 0.05 + 0.9 * rnd(), 0.1 + 0.8 * rnd()
+        zc = z(i, 0) + a * (z(i + 1, 0) - z(i, 0))  # roughly on the surface
+        tgt = rotate(((i + a) * step, b * w, zc), (0.0, 0.0, 0.0))
+        o = rotate(((i + a) * step - 3000.0 * rnd(), w / 2, 1.7 + zc), (0.0, 0.0, 0.0))
+        d = tuple(f32(Fr(x) - Fr(y)) for x, y in zip(tgt, o))
+        case.ray(o, d, note='shallow', covered=False, t_tol=LONG_T_TOL)
+    return case
+
+
+def long_triangle_cases():
+    out = [sliver_quad_case(L, (0.0, 0.0, 0.0), 'sliver_%g' % L)
+           for L in (1.0, 10.0, 100.0, 1e3, 1e4, 1e5)]
+    out += [sliver_quad_case(L, (1e5, -5e4, 3e4), 'sliver_far_%g' % L) for L in (1e3, 1e5)]
+    out.append(cylinder_case(2e4, 96, (0.0, 0.0, 0.0), 'cylinder_2e4', 60))
+    out.append(terrain_strip_case())
+    return out
+
+
 def main():
     if len(sys.argv) != 2:
         print(__doc__)
@@ -415,7 +527,7 @@ def main():
     outdir = sys.argv[1]
     os.makedirs(outdir, exist_ok=True)
     cases = (closed_cases() + axis_plane_cases() + grazing_cases() + degenerate_cases() +
-             coincident_cases() + t_range_cases() + self_hit_cases() + invalid_ray_cases())
+             coincident_cases() + t_range_cases() + self_hit_cases() + invalid_ray_cases() + long_triangle_cases())
     manifest = [c.write(outdir) for c in cases]
     with open(os.path.join(outdir, 'manifest.json'), 'w') as f:
         json.dump({'band': str(BAND), 'cases': manifest}, f, indent=0)
