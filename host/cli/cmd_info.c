@@ -124,8 +124,7 @@ static void print_json(const char *path, const rt_scene *s, const rt_scene_info 
 int cmd_info(int argc, char **argv) {
     info_args a;
     memset(&a, 0, sizeof a);
-    cli_scene_args_init(&a.scene);
-    cli_renderer_args_init(&a.renderer);
+    cli_args_init(NULL, &a.scene, &a.renderer);
     int code;
     if (cli_parse(&cmd_info_spec, &a, argc, argv, &code) < 0) return code;
     const char *path = argv[0];
