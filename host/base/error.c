@@ -16,6 +16,13 @@ const char *rt_status_string(rt_status status) {
                                                                          : "unknown status";
 }
 
+const char *rt_code_name_find(const rt_code_name *table, size_t count, int code,
+                              const char *fallback) {
+    for (size_t i = 0; i < count; i++)
+        if (table[i].code == code) return table[i].name;
+    return fallback;
+}
+
 void rt_error_clear(rt_error *err) {
     if (!err) return;
     memset(err, 0, sizeof *err);

@@ -20,6 +20,10 @@ void cli_error(const char *command, const char *fmt, ...) {
     va_end(args);
 }
 
+const char *cli_json_bool(int v) {
+    return v ? "true" : "false";
+}
+
 double cli_now_ms(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);

@@ -18,6 +18,9 @@ void cli_error(const char *command, const char *fmt, ...)
 #endif
     ;
 
+/* "true" or "false": v as a JSON value (the --json outputs). */
+const char *cli_json_bool(int v);
+
 /* Milliseconds on a monotonic clock (differences only). */
 double cli_now_ms(void);
 

@@ -11,10 +11,7 @@
 #include "base/error.h"
 
 /* The codes it names and their names (cl_error_names.def). */
-static const struct {
-    int code;
-    const char *name;
-} cl_error_names[] = {
+static const rt_code_name cl_error_names[] = {
 #define RT_CL_ERROR(name) {name, #name},
 #include "opencl/cl_error_names.def"
 #undef RT_CL_ERROR
@@ -22,9 +19,8 @@ static const struct {
 };
 
 const char *rt_cl_error_name(int code) {
-    for (size_t i = 0; i < sizeof cl_error_names / sizeof *cl_error_names; i++)
-        if (cl_error_names[i].code == code) return cl_error_names[i].name;
-    return "an OpenCL error";
+    size_t count = sizeof cl_error_names / sizeof *cl_error_names;
+    return rt_code_name_find(cl_error_names, count, code, "an OpenCL error");
 }
 
 static void get_string(cl_device_id d, cl_device_info what, char *out, size_t size) {

@@ -88,6 +88,19 @@ rt_material rt_material_default(void) {
     return m;
 }
 
+rt_status rt_scene_check_finite(rt_scene *scene, uint32_t mesh_id, const float *positions,
+                                const float *normals, uint32_t vertex_count) {
+    for (uint32_t v = 0; v < vertex_count; v++) {
+        if (!finite3(positions + 3 * (size_t)v))
+            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                                 "mesh %u: vertex %u has a NaN or infinite coordinate", mesh_id, v);
+        if (normals && !finite3(normals + 3 * (size_t)v))
+            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                                 "mesh %u: normal %u has a NaN or infinite component", mesh_id, v);
+    }
+    return RT_OK;
+}
+
 rt_status rt_scene_create(rt_scene **out) {
     if (!out) return RT_ERROR_INVALID_ARGUMENT;
     rt_scene *s = calloc(1, sizeof *s);
@@ -188,14 +201,8 @@ rt_status rt_mesh_add_triangles(rt_scene *scene, uint32_t mesh_id, const float *
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                              "mesh %u: normals must be given for all vertices or for none",
                              mesh_id);
-    for (uint32_t v = 0; v < vertex_count; v++) {
-        if (!finite3(positions + 3 * (size_t)v))
-            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
-                                 "mesh %u: vertex %u has a NaN or infinite coordinate", mesh_id, v);
-        if (normals && !finite3(normals + 3 * (size_t)v))
-            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
-                                 "mesh %u: normal %u has a NaN or infinite component", mesh_id, v);
-    }
+    rt_status finite = rt_scene_check_finite(scene, mesh_id, positions, normals, vertex_count);
+    if (finite != RT_OK) return finite;
     for (uint64_t i = 0; i < 3 * (uint64_t)triangle_count; i++)
         if (indices[i] >= vertex_count)
             return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,

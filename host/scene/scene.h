@@ -117,6 +117,12 @@ __attribute__((format(printf, 3, 4)))
 rt_status
 rt_scene_fail(rt_scene *scene, rt_status status, const char *fmt, ...);
 
+/* RT_OK when the vertex_count positions (and normals, when not NULL) of
+ * mesh mesh_id are finite; else the scene's error naming the first that is
+ * not (rt_mesh_add_triangles, rt_mesh_set_positions). */
+rt_status rt_scene_check_finite(rt_scene *scene, uint32_t mesh_id, const float *positions,
+                                const float *normals, uint32_t vertex_count);
+
 /* Limits on meshes (docs/ROBUSTNESS.md, "Limits"): beyond them
  * rt_mesh_add_triangles fails with RT_ERROR_UNSUPPORTED naming the limit.
  * The layout's indices are 32-bit and a leaf's count has 31 bits; these

@@ -180,6 +180,33 @@ static rt_status add_object(rt_scene *s, uint32_t mesh, uint32_t material, uint3
         if (st_ != RT_OK) return st_;                                                              \
     } while (0)
 
+/* Keyframes 0 .. frames-1 of object obj: twisted columns "column_K"
+ * (mb_twisted_column with twist K * twist_step). */
+static rt_status add_columns(mesh_builder *b, rt_scene *s, uint32_t obj, int frames, float half,
+                             float height, int levels, float twist_step) {
+    for (int k = 0; k < frames; k++) {
+        char name[32];
+        uint32_t mesh;
+        snprintf(name, sizeof name, "column_%d", k);
+        mb_twisted_column(b, half, height, levels, twist_step * (float)k);
+        TRY(mb_commit(b, s, name, &mesh));
+        TRY(rt_object_add_mesh(s, obj, mesh));
+    }
+    return RT_OK;
+}
+
+/* What every built-in scene ends with: one white light at light, ambient
+ * 0.1, the background and the camera. */
+static rt_status finish_scene(rt_scene *s, const float light[3], const float background[3],
+                              const rt_camera *cam) {
+    const float white_light[3] = {1.0f, 1.0f, 1.0f}, ambient[3] = {0.1f, 0.1f, 0.1f};
+    uint32_t id;
+    TRY(rt_light_add(s, light, white_light, &id));
+    TRY(rt_scene_set_ambient(s, ambient));
+    TRY(rt_scene_set_background(s, background));
+    return rt_camera_set(s, cam);
+}
+
 static rt_status build_cornell(rt_scene *s) {
     const float W = 1.6f, H = 1.8f, D = 1.0f; /* half width, height, half depth */
     uint32_t white, red, green, mirror, glass, obj, mesh;
@@ -212,13 +239,7 @@ static rt_status build_cornell(rt_scene *s) {
     /* The animated object: a twisting white column with four keyframes,
      * moved to the back of the room by a rigid transform. */
     TRY(rt_object_create(s, white, &obj));
-    for (int k = 0; k < 4; k++) {
-        char name[32];
-        snprintf(name, sizeof name, "column_%d", k);
-        mb_twisted_column(&b, 0.22f, 0.9f, 12, 0.4f * (float)k);
-        TRY(mb_commit(&b, s, name, &mesh));
-        TRY(rt_object_add_mesh(s, obj, mesh));
-    }
+    TRY(add_columns(&b, s, obj, 4, 0.22f, 0.9f, 12, 0.4f));
     TRY(rt_object_select_mesh(s, obj, 1));
     const float to_back[16] = {1, 0, 0, 0.05f, 0, 1, 0, 0, 0, 0, 1, -0.6f, 0, 0, 0, 1};
     TRY(rt_object_transform(s, obj, to_back));
@@ -236,14 +257,9 @@ static rt_status build_cornell(rt_scene *s) {
     TRY(mb_commit(&b, s, "glass_sphere", &mesh));
     TRY(add_object(s, mesh, glass, &obj));
 
-    const float light[3] = {0.0f, 1.6f, 0.2f}, white_light[3] = {1.0f, 1.0f, 1.0f};
-    uint32_t id;
-    TRY(rt_light_add(s, light, white_light, &id));
-    const float ambient[3] = {0.1f, 0.1f, 0.1f}, black[3] = {0.0f, 0.0f, 0.0f};
-    TRY(rt_scene_set_ambient(s, ambient));
-    TRY(rt_scene_set_background(s, black));
+    const float light[3] = {0.0f, 1.6f, 0.2f}, black[3] = {0.0f, 0.0f, 0.0f};
     rt_camera cam = {{0.0f, 0.9f, 3.0f}, {0.0f, 0.9f, 0.0f}, {0.0f, 1.0f, 0.0f}, 60.0f, 1024, 576};
-    return rt_camera_set(s, &cam);
+    return finish_scene(s, light, black, &cam);
 }
 
 static rt_status build_keyframes(rt_scene *s) {
@@ -257,28 +273,16 @@ static rt_status build_keyframes(rt_scene *s) {
     TRY(add_object(s, mesh, floor_mat, &obj));
 
     TRY(rt_object_create(s, column_mat, &obj));
-    const int frames = 4;
-    for (int k = 0; k < frames; k++) {
-        char name[32];
-        snprintf(name, sizeof name, "column_%d", k);
-        mb_twisted_column(&b, 0.35f, 2.0f, 16, 0.6f * (float)k);
-        TRY(mb_commit(&b, s, name, &mesh));
-        TRY(rt_object_add_mesh(s, obj, mesh));
-    }
+    TRY(add_columns(&b, s, obj, 4, 0.35f, 2.0f, 16, 0.6f));
     TRY(rt_object_select_mesh(s, obj, 2));
     /* A quarter turn about y, then a step to the right: a rigid transform. */
     const float m[16] = {0, 0, 1, 0.5f, 0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 0, 1};
     TRY(rt_object_transform(s, obj, m));
     TRY(rt_scene_commit(s));
 
-    const float light[3] = {2.0f, 4.0f, 3.0f}, white_light[3] = {1.0f, 1.0f, 1.0f};
-    uint32_t id;
-    TRY(rt_light_add(s, light, white_light, &id));
-    const float ambient[3] = {0.1f, 0.1f, 0.1f}, sky[3] = {0.2f, 0.3f, 0.45f};
-    TRY(rt_scene_set_ambient(s, ambient));
-    TRY(rt_scene_set_background(s, sky));
+    const float light[3] = {2.0f, 4.0f, 3.0f}, sky[3] = {0.2f, 0.3f, 0.45f};
     rt_camera cam = {{0.0f, 2.0f, 6.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 60.0f, 1024, 576};
-    return rt_camera_set(s, &cam);
+    return finish_scene(s, light, sky, &cam);
 }
 
 rt_status rt_scene_builtin(const char *name, rt_scene **out, rt_error *err) {

@@ -10,19 +10,15 @@
 #include "vulkan/vk_internal.h"
 
 /* The codes it names and their names (vk_result_names.def). */
-static const struct {
-    int code;
-    const char *name;
-} vk_result_names[] = {
+static const rt_code_name vk_result_names[] = {
 #define RT_VK_RESULT(name) {name, #name},
 #include "vulkan/vk_result_names.def"
 #undef RT_VK_RESULT
 };
 
 const char *rt_vk_result_name(int r) {
-    for (size_t i = 0; i < sizeof vk_result_names / sizeof *vk_result_names; i++)
-        if (vk_result_names[i].code == r) return vk_result_names[i].name;
-    return "VK_ERROR_UNKNOWN";
+    return rt_code_name_find(vk_result_names, sizeof vk_result_names / sizeof *vk_result_names, r,
+                             "VK_ERROR_UNKNOWN");
 }
 
 rt_status rt_vk_instance(VkInstance *out, rt_error *err) {
