@@ -107,6 +107,12 @@ static uint8_t *blend_meshes(const rt_scene *s) {
     return blend;
 }
 
+/* A key's start: the separator before it, then {"time": T (17 digits). */
+static void write_key_time(FILE *f, const char *before, double time) {
+    fprintf(f, "%s{\"time\": ", before);
+    write_num(f, time, 17);
+}
+
 /* The camera: its path (which places the eye and the look-at point at
  * every time) or its position and look-at point; up, fov and size. */
 static void write_camera(FILE *f, const rt_scene *s) {
@@ -116,8 +122,7 @@ static void write_camera(FILE *f, const rt_scene *s) {
         fprintf(f, "\"path\": [");
         for (uint32_t i = 0; i < s->camera_path_count; i++) {
             const rt_camera_key *k = &s->camera_path[i];
-            fprintf(f, "%s{\"time\": ", i ? ",\n                      " : "");
-            write_num(f, k->time, 17);
+            write_key_time(f, i ? ",\n                      " : "", k->time);
             write_vec3(f, ", \"position\": ", k->position);
             write_vec3(f, ", \"look_at\": ", k->look_at);
             fputc('}', f);
@@ -145,8 +150,7 @@ static void write_object_time(FILE *f, const rt_object_data *o) {
     fprintf(f, ",\n     \"transform_keys\": [");
     for (uint32_t i = 0; i < o->transform_key_count; i++) {
         const rt_transform_key *k = &o->transform_keys[i];
-        fprintf(f, "%s{\"time\": ", i ? ",\n                        " : "");
-        write_num(f, k->time, 17);
+        write_key_time(f, i ? ",\n                        " : "", k->time);
         write_vec3(f, ", \"translate\": ", k->translate);
         write_vec3(f, ", \"rotate\": {\"axis\": ", k->axis);
         fprintf(f, ", \"degrees\": ");

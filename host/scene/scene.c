@@ -362,7 +362,9 @@ rt_status rt_scene_set_background(rt_scene *scene, const float color[3]) {
 
 /* ---- objects ------------------------------------------------------------ */
 
+/* Object id, or NULL: no scene, or (the scene's error) no such object. */
 static rt_object_data *object_at(rt_scene *scene, uint32_t id) {
+    if (!scene) return NULL;
     if (id >= scene->object_count) {
         rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "object %u does not exist", id);
         return NULL;
@@ -390,7 +392,6 @@ rt_status rt_object_create(rt_scene *scene, uint32_t material_id, uint32_t *obje
 }
 
 rt_status rt_object_add_mesh(rt_scene *scene, uint32_t object_id, uint32_t mesh_id) {
-    if (!scene) return RT_ERROR_INVALID_ARGUMENT;
     rt_object_data *o = object_at(scene, object_id);
     if (!o) return RT_ERROR_INVALID_ARGUMENT;
     if (mesh_id >= scene->mesh_count)
@@ -403,7 +404,6 @@ rt_status rt_object_add_mesh(rt_scene *scene, uint32_t object_id, uint32_t mesh_
 }
 
 rt_status rt_object_select_mesh(rt_scene *scene, uint32_t object_id, uint32_t keyframe) {
-    if (!scene) return RT_ERROR_INVALID_ARGUMENT;
     rt_object_data *o = object_at(scene, object_id);
     if (!o) return RT_ERROR_INVALID_ARGUMENT;
     if (keyframe >= o->mesh_count)
