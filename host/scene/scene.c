@@ -115,14 +115,18 @@ rt_status rt_scene_create(rt_scene **out) {
     return RT_OK;
 }
 
+void rt_mesh_data_free_arrays(rt_mesh_data *m) {
+    free(m->positions);
+    free(m->normals);
+    free(m->indices);
+    free(m->tri_materials);
+    m->positions = m->normals = NULL;
+    m->indices = m->tri_materials = NULL;
+}
+
 void rt_scene_destroy(rt_scene *scene) {
     if (!scene) return;
-    for (uint32_t i = 0; i < scene->mesh_count; i++) {
-        free(scene->meshes[i].positions);
-        free(scene->meshes[i].normals);
-        free(scene->meshes[i].indices);
-        free(scene->meshes[i].tri_materials);
-    }
+    for (uint32_t i = 0; i < scene->mesh_count; i++) rt_mesh_data_free_arrays(&scene->meshes[i]);
     for (uint32_t i = 0; i < scene->object_count; i++) {
         free(scene->objects[i].meshes);
         free(scene->objects[i].transform_keys);

@@ -110,6 +110,10 @@ int rt_mat4_affine_inverse(const float m[16], float out[16]);
  * of memory (a notice is no failure). */
 void rt_scene_add_notice(rt_scene *scene, const char *text);
 
+/* Frees the arrays a mesh owns (positions, normals, indices, per-triangle
+ * materials) and sets them to NULL; counts and capacities are the caller's. */
+void rt_mesh_data_free_arrays(rt_mesh_data *m);
+
 /* Sets the scene's error and returns status. */
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 4)))

@@ -317,10 +317,7 @@ static rt_status morph_reset(rt_scene *scene, uint32_t object, uint32_t src) {
         free(mats);
         return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory blending keyframes");
     }
-    free(m->positions);
-    free(m->normals);
-    free(m->indices);
-    free(m->tri_materials);
+    rt_mesh_data_free_arrays(m);
     m->positions = pos;
     m->normals = nrm;
     m->indices = idx;
