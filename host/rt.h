@@ -401,7 +401,7 @@ void rt_framebuffer_free(rt_framebuffer *fb);
 
 /* A ray o + t d for t in [tmin, tmax] (inclusive). d need not be normalised;
  * t is in units of its length. */
-#ifndef RT_RAY_DEFINED /* kernels/rt_shared.h defines the same type */
+#ifndef RT_RAY_DEFINED /* kernels/rt_ray.h defines the same type */
 #define RT_RAY_DEFINED
 typedef struct rt_ray {
     float org[3];

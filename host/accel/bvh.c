@@ -23,20 +23,18 @@ rt_sah_costs rt_sah_costs_default(void) {
     return c;
 }
 
+/* One name per rt_builder, by its value. */
+static const char *const builder_names[] = {[RT_BUILDER_THESIS_SCALAR] = "thesis-scalar",
+                                            [RT_BUILDER_THESIS_NEON] = "thesis-neon",
+                                            [RT_BUILDER_THESIS_MT] = "thesis-mt",
+                                            [RT_BUILDER_SAH] = "sah",
+                                            [RT_BUILDER_LBVH] = "lbvh"};
+_Static_assert(sizeof builder_names / sizeof *builder_names == RT_BUILDER_LBVH + 1,
+               "a name for every rt_builder");
+
 const char *rt_builder_name(rt_builder builder) {
-    switch (builder) {
-    case RT_BUILDER_THESIS_SCALAR:
-        return "thesis-scalar";
-    case RT_BUILDER_THESIS_NEON:
-        return "thesis-neon";
-    case RT_BUILDER_THESIS_MT:
-        return "thesis-mt";
-    case RT_BUILDER_SAH:
-        return "sah";
-    case RT_BUILDER_LBVH:
-        return "lbvh";
-    }
-    return "unknown";
+    return (unsigned)builder < sizeof builder_names / sizeof *builder_names ? builder_names[builder]
+                                                                            : "unknown";
 }
 
 rt_status rt_bvh_build_tris(const float *positions, const uint32_t *indices, uint32_t count,

@@ -432,6 +432,20 @@ static void small_subtree(build_ctx *c, const task *t) {
 
 /* ---- serial subtree build (task phase) ---------------------------------- */
 
+/* What a split does before the binned partition, serial or parallel: a
+ * leaf plan writes the leaf (0); a median split writes t with its children
+ * l and r (1); a binned plan is left to the caller (-1). */
+static int leaf_or_median(build_ctx *c, const task *t, const split_plan *plan, task *l, task *r) {
+    if (plan->kind == SPLIT_LEAF) {
+        write_leaf(c, t);
+        return 0;
+    }
+    if (plan->kind != SPLIT_MEDIAN) return -1;
+    median_split(c, t, l, r);
+    write_inner(c, t, l, r);
+    return 1;
+}
+
 /* Splits t once, serially. Returns 1 with children in l and r, or 0 for a
  * leaf (already written). */
 static int split_serial(build_ctx *c, const task *t, rt_sah_bins *bins, task *l, task *r) {
@@ -447,21 +461,15 @@ static int split_serial(build_ctx *c, const task *t, rt_sah_bins *bins, task *l,
         rt_sah_bin_range(c->refs[t->buf], t->begin, t->end, &bn, bins, c->use_neon);
         choose_split(c, t, &bn, bins, &plan);
     }
-    if (plan.kind == SPLIT_LEAF) {
-        write_leaf(c, t);
-        return 0;
-    }
-    if (plan.kind == SPLIT_MEDIAN) {
-        median_split(c, t, l, r);
-    } else {
-        rt_sah_cbounds lcb, rcb;
-        rt_sah_cbounds_empty(&lcb);
-        rt_sah_cbounds_empty(&rcb);
-        rt_sah_partition_range(c->refs[t->buf], t->begin, t->end, c->refs[!t->buf], t->begin,
-                               t->begin + plan.n_left, &bn, plan.axis, plan.bin, &lcb, &rcb,
-                               c->use_neon);
-        binned_children(t, &plan, &lcb, &rcb, l, r);
-    }
+    int done = leaf_or_median(c, t, &plan, l, r);
+    if (done >= 0) return done;
+    rt_sah_cbounds lcb, rcb;
+    rt_sah_cbounds_empty(&lcb);
+    rt_sah_cbounds_empty(&rcb);
+    rt_sah_partition_range(c->refs[t->buf], t->begin, t->end, c->refs[!t->buf], t->begin,
+                           t->begin + plan.n_left, &bn, plan.axis, plan.bin, &lcb, &rcb,
+                           c->use_neon);
+    binned_children(t, &plan, &lcb, &rcb, l, r);
     write_inner(c, t, l, r);
     return 1;
 }
@@ -605,22 +613,16 @@ static int split_parallel(build_ctx *c, rt_pool *pool, const task *t, task *l, t
             }
         }
     }
-    if (plan.kind == SPLIT_LEAF) {
-        write_leaf(c, t);
-        return 0;
+    int done = leaf_or_median(c, t, &plan, l, r);
+    if (done >= 0) return done;
+    c->job_plan = plan;
+    rt_pool_run(pool, partition_job, c);
+    rt_sah_cbounds lcb = c->worker_cb[0], rcb = c->worker_cb[1];
+    for (int w = 1; w < W; w++) {
+        rt_sah_cbounds_merge(&lcb, &c->worker_cb[2 * w]);
+        rt_sah_cbounds_merge(&rcb, &c->worker_cb[2 * w + 1]);
     }
-    if (plan.kind == SPLIT_MEDIAN) {
-        median_split(c, t, l, r);
-    } else {
-        c->job_plan = plan;
-        rt_pool_run(pool, partition_job, c);
-        rt_sah_cbounds lcb = c->worker_cb[0], rcb = c->worker_cb[1];
-        for (int w = 1; w < W; w++) {
-            rt_sah_cbounds_merge(&lcb, &c->worker_cb[2 * w]);
-            rt_sah_cbounds_merge(&rcb, &c->worker_cb[2 * w + 1]);
-        }
-        binned_children(t, &plan, &lcb, &rcb, l, r);
-    }
+    binned_children(t, &plan, &lcb, &rcb, l, r);
     write_inner(c, t, l, r);
     return 1;
 }

@@ -25,21 +25,8 @@ typedef struct cpoly {
     unsigned exact[MAX_VERTS];
 } cpoly;
 
-/* nextafterf(f, -INFINITY) and nextafterf(f, INFINITY) for a float that is
+/* nextafterf(f, INFINITY) and nextafterf(f, -INFINITY) for a float that is
  * not NaN, by its bits. */
-static inline float next_down(float f) {
-    uint32_t u;
-    memcpy(&u, &f, sizeof u);
-    if ((u & 0x7fffffffu) == 0)
-        u = 0x80000001u;
-    else if (u & 0x80000000u)
-        u++;
-    else
-        u--;
-    memcpy(&f, &u, sizeof f);
-    return f;
-}
-
 static inline float next_up(float f) {
     uint32_t u;
     memcpy(&u, &f, sizeof u);
@@ -51,6 +38,11 @@ static inline float next_up(float f) {
         u++;
     memcpy(&f, &u, sizeof f);
     return f;
+}
+
+/* The next float down is the next up of -f, negated (a sign flip, exact). */
+static inline float next_down(float f) {
+    return -next_up(-f);
 }
 
 static inline float round_down(double d, int exact) {

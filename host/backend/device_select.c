@@ -19,12 +19,16 @@ static int contains_nocase(const char *hay, const char *needle) {
     return n == 0;
 }
 
-int rt_device_select(const char *api, const void *devs, int count,
-                     const char *(*name)(const void *devs, int i),
-                     int (*exact)(const void *devs, int i), const char *sel, rt_error *err) {
+/* Entry i's field at offset. */
+static const void *field(const void *devs, rt_device_fields f, int i, size_t offset) {
+    return (const char *)devs + f.stride * (size_t)i + offset;
+}
+
+int rt_device_select(const char *api, const void *devs, int count, rt_device_fields fields,
+                     const char *sel, rt_error *err) {
     if (!sel || !*sel) {
         for (int i = 0; i < count; i++)
-            if (exact(devs, i)) return i;
+            if (*(const int *)field(devs, fields, i, fields.exact)) return i;
         return count > 0 ? 0 : -1;
     }
     char *end;
@@ -37,7 +41,7 @@ int rt_device_select(const char *api, const void *devs, int count,
         return -1;
     }
     for (int i = 0; i < count; i++)
-        if (contains_nocase(name(devs, i), sel)) return i;
+        if (contains_nocase(field(devs, fields, i, fields.name), sel)) return i;
     rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "no %s device named like '%s' (see 'rtcl devices')",
             api, sel);
     return -1;

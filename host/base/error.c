@@ -4,24 +4,23 @@
 #include <stdio.h>
 #include <string.h>
 
+/* One name per rt_status, in the enum's order (RT_OK = 0 upwards). */
+static const char *const status_names[] = {"ok",           "invalid argument", "i/o error",
+                                           "parse error",  "out of memory",    "unsupported",
+                                           "backend error"};
+_Static_assert(sizeof status_names / sizeof *status_names == RT_ERROR_BACKEND + 1,
+               "a name for every rt_status");
+
 const char *rt_status_string(rt_status status) {
-    switch (status) {
-    case RT_OK:
-        return "ok";
-    case RT_ERROR_INVALID_ARGUMENT:
-        return "invalid argument";
-    case RT_ERROR_IO:
-        return "i/o error";
-    case RT_ERROR_PARSE:
-        return "parse error";
-    case RT_ERROR_OUT_OF_MEMORY:
-        return "out of memory";
-    case RT_ERROR_UNSUPPORTED:
-        return "unsupported";
-    case RT_ERROR_BACKEND:
-        return "backend error";
-    }
-    return "unknown status";
+    return (unsigned)status < sizeof status_names / sizeof *status_names ? status_names[status]
+                                                                         : "unknown status";
+}
+
+const char *rt_code_name_find(const rt_code_name *table, size_t count, int code,
+                              const char *fallback) {
+    for (size_t i = 0; i < count; i++)
+        if (table[i].code == code) return table[i].name;
+    return fallback;
 }
 
 void rt_error_clear(rt_error *err) {

@@ -3,6 +3,7 @@
 #define RT_ERROR_H
 
 #include <stdarg.h>
+#include <stddef.h>
 
 #include "rt.h"
 
@@ -31,5 +32,16 @@ rt_status rt_error_copy(rt_error *dst, const rt_error *src);
 
 /* Clears err to RT_OK with an empty message. */
 void rt_error_clear(rt_error *err);
+
+/* A driver's code and its name, for the tables that name an API's error
+ * codes (OpenCL's, Vulkan's). */
+typedef struct rt_code_name {
+    int code;
+    const char *name;
+} rt_code_name;
+
+/* The name of code among the count entries of table, or fallback. */
+const char *rt_code_name_find(const rt_code_name *table, size_t count, int code,
+                              const char *fallback);
 
 #endif /* RT_ERROR_H */

@@ -5,20 +5,13 @@
 
 #include "engines/bench_print.h"
 
+/* One name per rt_update_action, in the enum's order (RT_ACTION_NONE = 0). */
+static const char *const action_names[] = {"none", "build", "refit", "lbvh", "rebuild"};
+_Static_assert(sizeof action_names / sizeof *action_names == RT_ACTION_REBUILD + 1,
+               "a name for every rt_update_action");
+
 static const char *action_name(rt_update_action a) {
-    switch (a) {
-    case RT_ACTION_NONE:
-        return "none";
-    case RT_ACTION_BUILD:
-        return "build";
-    case RT_ACTION_REFIT:
-        return "refit";
-    case RT_ACTION_LBVH:
-        return "lbvh";
-    case RT_ACTION_REBUILD:
-        return "rebuild";
-    }
-    return "?";
+    return (unsigned)a < sizeof action_names / sizeof *action_names ? action_names[a] : "?";
 }
 
 void cli_print_update_json(const rt_renderer *renderer, const rt_scene *scene) {

@@ -74,22 +74,16 @@ cli_number_fault cli_parse_number(const char *text, int integer, double *out) {
     return CLI_NUMBER_OK;
 }
 
+/* What each fault says of the text, by its value. */
+static const char *const fault_texts[] = {[CLI_NUMBER_OK] = "is a number",
+                                          [CLI_NUMBER_EMPTY] = "is empty",
+                                          [CLI_NUMBER_BLANKS] = "has blank space around it",
+                                          [CLI_NUMBER_MALFORMED] = "is not a number",
+                                          [CLI_NUMBER_NOT_INTEGER] = "is not an integer",
+                                          [CLI_NUMBER_NOT_FINITE] = "is not a finite number",
+                                          [CLI_NUMBER_TOO_LARGE] = "is too large"};
+
 const char *cli_number_fault_text(cli_number_fault fault) {
-    switch (fault) {
-    case CLI_NUMBER_OK:
-        return "is a number";
-    case CLI_NUMBER_EMPTY:
-        return "is empty";
-    case CLI_NUMBER_BLANKS:
-        return "has blank space around it";
-    case CLI_NUMBER_MALFORMED:
-        return "is not a number";
-    case CLI_NUMBER_NOT_INTEGER:
-        return "is not an integer";
-    case CLI_NUMBER_NOT_FINITE:
-        return "is not a finite number";
-    case CLI_NUMBER_TOO_LARGE:
-        return "is too large";
-    }
-    return "is not a number";
+    return (unsigned)fault < sizeof fault_texts / sizeof *fault_texts ? fault_texts[fault]
+                                                                      : "is not a number";
 }

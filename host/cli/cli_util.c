@@ -20,6 +20,10 @@ void cli_error(const char *command, const char *fmt, ...) {
     va_end(args);
 }
 
+const char *cli_json_bool(int v) {
+    return v ? "true" : "false";
+}
+
 double cli_now_ms(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -334,6 +338,30 @@ rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a) {
         return NULL;
     }
     return r;
+}
+
+void cli_args_init(cli_frame_args *frame, cli_scene_args *scene, cli_renderer_args *renderer) {
+    if (frame) cli_frame_args_init(frame);
+    if (scene) cli_scene_args_init(scene);
+    if (renderer) cli_renderer_args_init(renderer);
+}
+
+int cli_session_open(cli_session *out, const char *command, const char *source,
+                     cli_renderer_args *renderer, const cli_scene_args *scene,
+                     const cli_frame_args *frame) {
+    out->scene = NULL;
+    out->renderer = cli_renderer_create(command, renderer);
+    if (out->renderer) out->scene = cli_scene_open(command, source, scene);
+    if (out->scene && (!frame || cli_apply_frame_size(command, out->scene, frame))) return 1;
+    cli_session_close(out);
+    return 0;
+}
+
+void cli_session_close(cli_session *out) {
+    rt_scene_destroy(out->scene);
+    rt_renderer_destroy(out->renderer);
+    out->scene = NULL;
+    out->renderer = NULL;
 }
 
 void cli_print_backend_choice(const char *command, const cli_renderer_args *a, const char *backend,

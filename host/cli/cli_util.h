@@ -18,6 +18,9 @@ void cli_error(const char *command, const char *fmt, ...)
 #endif
     ;
 
+/* "true" or "false": v as a JSON value (the --json outputs). */
+const char *cli_json_bool(int v);
+
 /* Milliseconds on a monotonic clock (differences only). */
 double cli_now_ms(void);
 
@@ -128,6 +131,28 @@ int cli_backend_takes_device(const char *spec);
  * (never set then). stdout is left alone (--json). */
 void cli_print_backend_choice(const char *command, const cli_renderer_args *a, const char *backend,
                               const char *device, const char *notice);
+
+/* ---- the renderer and the scene of a command ------------------------------ */
+
+/* Sets each group given (any may be NULL) to its defaults, as its _init. */
+void cli_args_init(cli_frame_args *frame, cli_scene_args *scene, cli_renderer_args *renderer);
+
+/* What a command that renders or traces holds. */
+typedef struct cli_session {
+    rt_renderer *renderer;
+    rt_scene *scene;
+} cli_session;
+
+/* The step render and animate share: makes the renderer (cli_renderer_create),
+ * then opens source (cli_scene_open) and, with frame non-NULL, sizes its
+ * camera (cli_apply_frame_size), in that order. Prints the first error and
+ * returns 0 with nothing held. */
+int cli_session_open(cli_session *out, const char *command, const char *source,
+                     cli_renderer_args *renderer, const cli_scene_args *scene,
+                     const cli_frame_args *frame);
+
+/* Destroys what out holds (either may be NULL) and sets both to NULL. */
+void cli_session_close(cli_session *out);
 
 /* Prints the renderer's last kernel build messages (rt_renderer_build_log)
  * on stderr, "rtcl COMMAND: BACKEND build log:" and the lines, if there are

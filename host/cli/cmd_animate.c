@@ -208,9 +208,7 @@ static int plan_frames(const animate_args *a, frame_plan *p) {
 int cmd_animate(int argc, char **argv) {
     animate_args a;
     memset(&a, 0, sizeof a);
-    cli_frame_args_init(&a.frame);
-    cli_scene_args_init(&a.scene);
-    cli_renderer_args_init(&a.renderer);
+    cli_args_init(&a.frame, &a.scene, &a.renderer);
     int status;
     if (cli_parse(&cmd_animate_spec, &a, argc, argv, &status) < 0) return status;
     frame_plan plan;
@@ -228,13 +226,11 @@ int cmd_animate(int argc, char **argv) {
         cli_error("animate", "-o %s: %s", pattern, video ? why : oerr.message);
         return 2;
     }
-    rt_renderer *renderer = cli_renderer_create("animate", &a.renderer);
-    if (!renderer) return 2;
-    rt_scene *scene = cli_scene_open("animate", scene_path, &a.scene);
-    if (!scene) {
-        rt_renderer_destroy(renderer);
-        return 2;
-    }
+    /* The frame size is set after the check for an animation, below. */
+    cli_session run;
+    if (!cli_session_open(&run, "animate", scene_path, &a.renderer, &a.scene, NULL)) return 2;
+    rt_renderer *renderer = run.renderer;
+    rt_scene *scene = run.scene;
     int code = 0;
     rt_error err;
     if (!rt_scene_is_animated(scene)) {
@@ -320,7 +316,6 @@ int cmd_animate(int argc, char **argv) {
         cli_video_abort(vid);
     }
     rt_framebuffer_free(&fb);
-    rt_scene_destroy(scene);
-    rt_renderer_destroy(renderer);
+    cli_session_close(&run);
     return code;
 }

@@ -81,10 +81,6 @@ static const char *yes_no(int v) {
     return v ? "yes" : "no";
 }
 
-static const char *json_bool(int v) {
-    return v ? "true" : "false";
-}
-
 /* The text listing of one backend's devices (fields the backend does not
  * report are left out). */
 static void print_text(const char *backend, const rt_device_info *devs, int count) {
@@ -159,11 +155,11 @@ static void print_json_device(const rt_device_info *d) {
                  {"denorm_flush", d->float_controls > 0 ? d->denorm_flush : -1},
                  {"signed_zero_inf_nan", d->float_controls > 0 ? d->signed_zero_inf_nan : -1}};
     for (size_t k = 0; k < sizeof flags / sizeof flags[0]; k++)
-        printf(", \"%s\": %s", flags[k].key, flags[k].v < 0 ? "null" : json_bool(flags[k].v));
+        printf(", \"%s\": %s", flags[k].key, flags[k].v < 0 ? "null" : cli_json_bool(flags[k].v));
     json_key_string("maths", d->math_profile);
-    printf(", \"exact\": %s", json_bool(d->exact));
+    printf(", \"exact\": %s", cli_json_bool(d->exact));
     json_key_string("exact_note", d->exact_note);
-    printf(", \"exact_flush\": %s", json_bool(d->exact_flush));
+    printf(", \"exact_flush\": %s", cli_json_bool(d->exact_flush));
     json_key_string("exact_flush_note", d->exact_flush_note);
     json_key_string("denormals_note", d->denormals_note);
     json_key_string("kernels_note", d->kernels_note);

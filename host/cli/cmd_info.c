@@ -53,10 +53,6 @@ static const char *on_off(int v) {
     return v ? "on" : "off";
 }
 
-static const char *json_bool(int v) {
-    return v ? "true" : "false";
-}
-
 static const char *choice_name(const cli_choice *choices, int value) {
     for (; choices->name; choices++)
         if (choices->value == value) return choices->name;
@@ -78,12 +74,12 @@ static void print_json(const char *path, const rt_scene *s, const rt_scene_info 
         json_out_string(m.name);
         printf(", \"triangles\": %u, \"vertices\": %u, \"normals\": %s, \"update\": \"%s\", "
                "\"accel\": \"%s\"}",
-               m.triangles, m.vertices, json_bool(m.normals), rt_update_policy_name(m.update),
+               m.triangles, m.vertices, cli_json_bool(m.normals), rt_update_policy_name(m.update),
                rt_accel_name(m.accel));
     }
     printf("], \"objects\": %u, \"animation\": {\"animated\": %s, \"switched_objects\": %u, "
            "\"blended_objects\": %u, \"keyed_objects\": %u, \"camera_path_keys\": %u}",
-           in->objects, json_bool(in->animated), in->switched_objects, in->blended_objects,
+           in->objects, cli_json_bool(in->animated), in->switched_objects, in->blended_objects,
            in->keyed_objects, in->camera_path_keys);
     printf(", \"materials\": %u, \"lights\": %u", in->materials, in->lights);
     rt_camera c;
@@ -102,14 +98,15 @@ static void print_json(const char *path, const rt_scene *s, const rt_scene_info 
         printf(", \"bounds\": null");
     printf(", \"features\": {\"reflection\": %s, \"refraction\": %s, \"instancing\": %s, "
            "\"normals\": %s, \"keyframes\": %s, \"tri_materials\": %s}",
-           json_bool(in->reflection), json_bool(in->refraction), json_bool(in->instancing),
-           json_bool(in->normals), json_bool(in->keyframes), json_bool(in->tri_materials));
+           cli_json_bool(in->reflection), cli_json_bool(in->refraction),
+           cli_json_bool(in->instancing), cli_json_bool(in->normals), cli_json_bool(in->keyframes),
+           cli_json_bool(in->tri_materials));
     printf(", \"specialised\": {\"secondary_rays\": %s, \"instance_transforms\": %s, "
            "\"normal_interpolation\": %s, \"tri_materials\": %s, \"kd_traversal\": %s}",
-           json_bool(in->reflection || in->refraction), json_bool(in->instancing),
-           json_bool(in->normals), json_bool(in->tri_materials), json_bool(kd));
+           cli_json_bool(in->reflection || in->refraction), cli_json_bool(in->instancing),
+           cli_json_bool(in->normals), cli_json_bool(in->tri_materials), cli_json_bool(kd));
     int extra = r->cl_options && r->cl_options[0];
-    printf(", \"opencl\": {\"exact_build\": %s, \"cl_options\": ", json_bool(!extra));
+    printf(", \"opencl\": {\"exact_build\": %s, \"cl_options\": ", cli_json_bool(!extra));
     json_out_string(extra ? r->cl_options : "");
     printf("}, \"device_math\": \"%s\", \"denormals\": \"%s\"",
            choice_name(cli_device_math_choices, r->device_math),
@@ -124,8 +121,7 @@ static void print_json(const char *path, const rt_scene *s, const rt_scene_info 
 int cmd_info(int argc, char **argv) {
     info_args a;
     memset(&a, 0, sizeof a);
-    cli_scene_args_init(&a.scene);
-    cli_renderer_args_init(&a.renderer);
+    cli_args_init(NULL, &a.scene, &a.renderer);
     int code;
     if (cli_parse(&cmd_info_spec, &a, argc, argv, &code) < 0) return code;
     const char *path = argv[0];

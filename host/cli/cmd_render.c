@@ -137,9 +137,7 @@ int cmd_render(int argc, char **argv) {
     memset(&a, 0, sizeof a);
     a.out = "out.png";
     a.frames = 1;
-    cli_frame_args_init(&a.frame);
-    cli_scene_args_init(&a.scene);
-    cli_renderer_args_init(&a.renderer);
+    cli_args_init(&a.frame, &a.scene, &a.renderer);
     int code;
     if (cli_parse(&cmd_render_spec, &a, argc, argv, &code) < 0) return code;
     const char *out_path = a.out;
@@ -154,14 +152,10 @@ int cmd_render(int argc, char **argv) {
         cli_error("render", "%s", oerr.message);
         return 2;
     }
-    rt_renderer *renderer = cli_renderer_create("render", &a.renderer);
-    if (!renderer) return 2;
-    rt_scene *scene = cli_scene_open("render", argv[0], &a.scene);
-    if (!scene || !cli_apply_frame_size("render", scene, &a.frame)) {
-        rt_scene_destroy(scene);
-        rt_renderer_destroy(renderer);
-        return 2;
-    }
+    cli_session run;
+    if (!cli_session_open(&run, "render", argv[0], &a.renderer, &a.scene, &a.frame)) return 2;
+    rt_renderer *renderer = run.renderer;
+    rt_scene *scene = run.scene;
     rt_error err;
     rt_camera cam;
     rt_camera_get(scene, &cam);
@@ -177,8 +171,7 @@ int cmd_render(int argc, char **argv) {
     if (a.renderer.verbose && status == RT_OK) cli_print_build_log("render", renderer);
     if (status != RT_OK) {
         cli_error("render", "%s", rt_renderer_error(renderer));
-        rt_scene_destroy(scene);
-        rt_renderer_destroy(renderer);
+        cli_session_close(&run);
         return 2;
     }
     if (frames > 1) { /* the same frame again: warm caches, uploads done */
@@ -196,8 +189,7 @@ int cmd_render(int argc, char **argv) {
             cli_error("render", "%s", ms ? rt_renderer_error(renderer) : "out of memory");
             free(ms);
             rt_framebuffer_free(&fb);
-            rt_scene_destroy(scene);
-            rt_renderer_destroy(renderer);
+            cli_session_close(&run);
             return 2;
         }
         for (int i = 1; i < timed; i++) /* insertion sort: a handful of values */
@@ -218,8 +210,7 @@ int cmd_render(int argc, char **argv) {
     rt_framebuffer_free(&fb);
     if (status != RT_OK) {
         cli_error("render", "%s", err.message);
-        rt_scene_destroy(scene);
-        rt_renderer_destroy(renderer);
+        cli_session_close(&run);
         return 2;
     }
     if (stats) {
@@ -227,7 +218,6 @@ int cmd_render(int argc, char **argv) {
         print_memory(renderer, scene);
     }
     fprintf(stderr, "wrote %s (%dx%d)\n", out_path, cam.width, cam.height);
-    rt_scene_destroy(scene);
-    rt_renderer_destroy(renderer);
+    cli_session_close(&run);
     return 0;
 }

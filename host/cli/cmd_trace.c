@@ -133,8 +133,7 @@ static void print_stats(const rt_trace_stats *ts, double *ms, int reps, double b
 int cmd_trace(int argc, char **argv) {
     trace_args a;
     memset(&a, 0, sizeof a);
-    cli_scene_args_init(&a.scene);
-    cli_renderer_args_init(&a.renderer);
+    cli_args_init(NULL, &a.scene, &a.renderer);
     int code;
     if (cli_parse(&cmd_trace_spec, &a, argc, argv, &code) < 0) return code;
     if (!a.rays) {
@@ -159,20 +158,22 @@ int cmd_trace(int argc, char **argv) {
         cli_error("trace", "%s", oerr.message);
         return 2;
     }
-    rt_renderer *renderer = cli_renderer_create("trace", &a.renderer);
+    /* The rays are read between making the renderer and opening the scene. */
+    cli_session held = {cli_renderer_create("trace", &a.renderer), NULL};
+    rt_renderer *renderer = held.renderer;
     if (!renderer) return 2;
     rt_ray *rays = NULL;
     size_t n = 0;
     rt_error rerr;
     if (rt_rays_load(a.rays, a.offset, &rays, &n, &rerr) != RT_OK) {
         cli_error("trace", "%s", rerr.message);
-        rt_renderer_destroy(renderer);
+        cli_session_close(&held);
         return 2;
     }
-    rt_scene *scene = cli_scene_open("trace", argv[0], &a.scene);
+    rt_scene *scene = held.scene = cli_scene_open("trace", argv[0], &a.scene);
     if (!scene) {
         free(rays);
-        rt_renderer_destroy(renderer);
+        cli_session_close(&held);
         return 2;
     }
     rt_hit *hits = malloc((n ? n : 1) * sizeof *hits);
@@ -193,21 +194,21 @@ int cmd_trace(int argc, char **argv) {
         free(rays);
         free(hits);
         free(ms);
-        rt_scene_destroy(scene);
-        rt_renderer_destroy(renderer);
+        cli_session_close(&held);
         return 2;
     }
     cli_print_backend_choice("trace", &a.renderer, ts.backend, ts.device, ts.notice);
     if (stats || json) print_stats(&ts, ms, reps, build_ms, a.renderer.threads, opt.any_hit, json);
     free(ms);
-    rt_renderer_destroy(renderer);
+    rt_renderer_destroy(renderer); /* the scene stays for the hits' columns */
+    held.renderer = NULL;
     rt_scene_info info;
     rt_scene_describe(scene, &info);
     int with_inst = info.objects > 1;
     if (!out_path) {
         free(rays);
         free(hits);
-        rt_scene_destroy(scene);
+        cli_session_close(&held);
         return 0;
     }
     rt_error werr;
@@ -215,6 +216,6 @@ int cmd_trace(int argc, char **argv) {
     if (bad) cli_error("trace", "%s", werr.message);
     free(rays);
     free(hits);
-    rt_scene_destroy(scene);
+    cli_session_close(&held);
     return bad ? 2 : 0;
 }

@@ -103,23 +103,12 @@ static int read_string(scanner *s, const char *key) {
         if (c == '\\') {
             if (at_end(s)) return -1;
             char e = s->text[s->pos++];
-            switch (e) {
-            case 'b':
-                bytes[0] = '\b';
-                break;
-            case 'f':
-                bytes[0] = '\f';
-                break;
-            case 'n':
-                bytes[0] = '\n';
-                break;
-            case 'r':
-                bytes[0] = '\r';
-                break;
-            case 't':
-                bytes[0] = '\t';
-                break;
-            case 'u': {
+            /* The one-letter escapes and what they stand for. */
+            static const char letters[] = "bfnrt", meant[] = "\b\f\n\r\t";
+            const char *letter = e ? strchr(letters, e) : NULL;
+            if (letter) {
+                bytes[0] = meant[letter - letters];
+            } else if (e == 'u') {
                 uint32_t cp, low;
                 if (!hex4(s, &cp)) return -1;
                 /* A surrogate pair spells one character beyond U+FFFF. */
@@ -133,11 +122,8 @@ static int read_string(scanner *s, const char *key) {
                         s->pos = save;
                 }
                 n = utf8_encode(cp, bytes);
-                break;
-            }
-            default:
-                bytes[0] = e;
-                break; /* \" \\ \/ */
+            } else {
+                bytes[0] = e; /* \" \\ \/ */
             }
         }
         if (same) {

@@ -51,14 +51,16 @@ static rt_number_result float_by_strtof(const char *p, const char *q, float *out
     return RT_NUMBER_OK;
 }
 
+/* Past an optional '+' or '-' at s; *negative: it was '-'. */
+static inline const char *skip_sign(const char *s, const char *end, int *negative) {
+    *negative = s < end && *s == '-';
+    return s < end && (*s == '+' || *s == '-') ? s + 1 : s;
+}
+
 rt_number_result rt_parse_float_full(const char *p, const char *end, float *out,
                                      const char **next) {
-    const char *s = p;
-    int negative = 0;
-    if (s < end && (*s == '+' || *s == '-')) {
-        negative = *s == '-';
-        s++;
-    }
+    int negative;
+    const char *s = skip_sign(p, end, &negative);
 
     /* Mantissa: up to 19 significant digits fit in m; more go to strtof. */
     uint64_t m = 0;
@@ -96,12 +98,8 @@ rt_number_result rt_parse_float_full(const char *p, const char *end, float *out,
         return RT_NUMBER_MALFORMED;
     }
     if (s < end && (*s == 'e' || *s == 'E')) {
-        const char *e = s + 1;
-        int exp_negative = 0;
-        if (e < end && (*e == '+' || *e == '-')) {
-            exp_negative = *e == '-';
-            e++;
-        }
+        int exp_negative;
+        const char *e = skip_sign(s + 1, end, &exp_negative);
         if (e >= end || !rt_is_digit(*e)) {
             *next = e;
             return RT_NUMBER_MALFORMED;
@@ -138,12 +136,8 @@ rt_number_result rt_parse_float_full(const char *p, const char *end, float *out,
 
 rt_number_result rt_parse_int64_full(const char *p, const char *end, int64_t *out,
                                      const char **next) {
-    const char *s = p;
-    int negative = 0;
-    if (s < end && (*s == '+' || *s == '-')) {
-        negative = *s == '-';
-        s++;
-    }
+    int negative;
+    const char *s = skip_sign(p, end, &negative);
     if (s >= end || !rt_is_digit(*s)) {
         *next = p;
         return RT_NUMBER_MALFORMED;

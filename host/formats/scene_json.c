@@ -372,17 +372,27 @@ static rt_status read_key_time(loader *L, json_t *key, double prev, size_t i, do
     return st;
 }
 
-/* The camera's path: [{time, position, look_at}, ...]. */
-static rt_status load_camera_path(loader *L, json_t *v, rt_camera *cam) {
-    static const char *const keys[] = {"time", "position", "look_at", NULL};
+/* For an array of keys: its length n (at least 1) and *keys, n zeroed
+ * keys of size bytes, to free. */
+static rt_status new_keys(loader *L, json_t *v, size_t size, void **keys, size_t *n) {
     rt_status st = expect_array(L, v);
     if (st == RT_OK && json_array_size(v) == 0)
         st = fail(L, "expected at least one key, found an empty array");
     if (st == RT_OK && json_array_size(v) > UINT32_MAX) st = fail(L, "too many keys");
     if (st != RT_OK) return st;
-    size_t n = json_array_size(v);
-    rt_camera_key *k = calloc(n, sizeof *k);
-    if (!k) return rt_error_set(L->err, RT_ERROR_OUT_OF_MEMORY, L->path, 0, 0, "out of memory");
+    *n = json_array_size(v);
+    *keys = calloc(*n, size);
+    if (!*keys) return rt_error_set(L->err, RT_ERROR_OUT_OF_MEMORY, L->path, 0, 0, "out of memory");
+    return RT_OK;
+}
+
+/* The camera's path: [{time, position, look_at}, ...]. */
+static rt_status load_camera_path(loader *L, json_t *v, rt_camera *cam) {
+    static const char *const keys[] = {"time", "position", "look_at", NULL};
+    rt_camera_key *k;
+    size_t n;
+    rt_status st = new_keys(L, v, sizeof *k, (void **)&k, &n);
+    if (st != RT_OK) return st;
     for (size_t i = 0; st == RT_OK && i < n; i++) {
         json_t *e = json_array_get(v, i);
         enter_index(L, i);
@@ -539,7 +549,7 @@ static rt_json_bulk *take_bulk(loader *L, const json_t *v) {
 
 /* The numbers of a bulk array: as floats (out_f: jansson's value, then the
  * float cast read_float makes, each checked as read_float does) or as
- * vertex indices below vertex_count (out_i, each checked as read_triangles
+ * vertex indices below vertex_count (out_i, each checked as read_triple_element
  * does). An element that fails is named with its index and place. */
 static rt_status read_bulk(loader *L, const rt_json_bulk *b, float *out_f, uint32_t *out_i,
                            uint32_t vertex_count) {
@@ -573,100 +583,55 @@ static rt_status read_bulk(loader *L, const rt_json_bulk *b, float *out_f, uint3
     return RT_OK;
 }
 
-/* An array of numbers whose length is a multiple of 3, into a new buffer. */
-static rt_status read_float_triples(loader *L, json_t *v, const char *what, float **out,
-                                    size_t *count) {
-    *out = NULL;
-    *count = 0;
-    rt_json_bulk *bulk = take_bulk(L, v);
-    if (bulk) {
-        size_t n = bulk->count;
-        if (n % 3 != 0)
-            return fail(L, "expected 3 numbers per %s, but %zu is not a multiple of 3", what, n);
-        if (n / 3 > UINT32_MAX / 3) return fail(L, "too many values (%zu)", n);
-        float *f = malloc(n * sizeof *f);
-        if (!f) return rt_error_set(L->err, RT_ERROR_OUT_OF_MEMORY, L->path, 0, 0, "out of memory");
-        rt_status st = read_bulk(L, bulk, f, NULL, 0);
-        if (st != RT_OK) {
-            free(f);
-            return st;
-        }
-        *out = f;
-        *count = n;
-        return RT_OK;
-    }
-    if (!json_is_array(v))
-        return fail(L, "expected a flat array of numbers, found %s", type_name(v));
-    size_t n = json_array_size(v);
-    if (n % 3 != 0)
-        return fail(L, "expected 3 numbers per %s, but %zu is not a multiple of 3", what, n);
-    if (n / 3 > UINT32_MAX / 3) return fail(L, "too many values (%zu)", n);
-    float *f = malloc((n ? n : 1) * sizeof *f);
-    if (!f) return rt_error_set(L->err, RT_ERROR_OUT_OF_MEMORY, L->path, 0, 0, "out of memory");
-    for (size_t i = 0; i < n; i++) {
-        enter_index(L, i);
-        rt_status st = read_float(L, json_array_get(v, i), &f[i]);
-        leave(L);
-        if (st != RT_OK) {
-            free(f);
-            return st;
-        }
-    }
-    *out = f;
-    *count = n;
+/* Element i of a JSON array of triples: a float into f[i], or (f NULL) a
+ * vertex index below vertex_count into idx[i]. */
+static rt_status read_triple_element(loader *L, json_t *e, size_t i, float *f, uint32_t *idx,
+                                     uint32_t vertex_count) {
+    if (f) return read_float(L, e, &f[i]);
+    if (!json_is_integer(e))
+        return fail(L, "expected a vertex index (an integer), found %s", type_name(e));
+    if (json_integer_value(e) < 0 || json_integer_value(e) >= (json_int_t)vertex_count)
+        return fail(L, "vertex index %lld is out of range: the mesh has %u vertices (0..%lld)",
+                    (long long)json_integer_value(e), vertex_count, (long long)vertex_count - 1);
+    idx[i] = (uint32_t)json_integer_value(e);
     return RT_OK;
 }
 
-/* Vertex indices, 3 per triangle, each below vertex_count. */
-static rt_status read_triangles(loader *L, json_t *v, uint32_t vertex_count, uint32_t **out,
-                                size_t *count) {
+/* A flat array (or bulk array) whose length is a multiple of 3, into a new
+ * buffer: floats (out_f, 3 per what) or vertex indices below vertex_count
+ * (out_i, 3 per triangle); the other of out_f and out_i is NULL. */
+static rt_status read_triples(loader *L, json_t *v, const char *what, uint32_t vertex_count,
+                              float **out_f, uint32_t **out_i, size_t *count) {
+    void **out = out_f ? (void **)out_f : (void **)out_i;
+    const char *unit = out_f ? "numbers" : "vertex indices";
+    const size_t size = out_f ? sizeof(float) : sizeof(uint32_t);
     *out = NULL;
     *count = 0;
     rt_json_bulk *bulk = take_bulk(L, v);
-    if (bulk) {
-        size_t n = bulk->count;
-        if (n % 3 != 0)
-            return fail(L, "expected 3 vertex indices per triangle, but %zu is not a multiple of 3",
-                        n);
-        if (n / 3 > UINT32_MAX / 3) return fail(L, "too many triangles (%zu)", n / 3);
-        uint32_t *idx = malloc(n * sizeof *idx);
-        if (!idx)
-            return rt_error_set(L->err, RT_ERROR_OUT_OF_MEMORY, L->path, 0, 0, "out of memory");
-        rt_status st = read_bulk(L, bulk, NULL, idx, vertex_count);
-        if (st != RT_OK) {
-            free(idx);
-            return st;
-        }
-        *out = idx;
-        *count = n;
-        return RT_OK;
-    }
-    if (!json_is_array(v))
-        return fail(L, "expected a flat array of vertex indices, found %s", type_name(v));
-    size_t n = json_array_size(v);
+    if (!bulk && !json_is_array(v))
+        return fail(L, "expected a flat array of %s, found %s", unit, type_name(v));
+    size_t n = bulk ? bulk->count : json_array_size(v);
     if (n % 3 != 0)
-        return fail(L, "expected 3 vertex indices per triangle, but %zu is not a multiple of 3", n);
-    if (n / 3 > UINT32_MAX / 3) return fail(L, "too many triangles (%zu)", n / 3);
-    uint32_t *idx = malloc((n ? n : 1) * sizeof *idx);
-    if (!idx) return rt_error_set(L->err, RT_ERROR_OUT_OF_MEMORY, L->path, 0, 0, "out of memory");
-    for (size_t i = 0; i < n; i++) {
-        json_t *e = json_array_get(v, i);
-        rt_status st = RT_OK;
+        return fail(L, "expected 3 %s per %s, but %zu is not a multiple of 3", unit, what, n);
+    if (n / 3 > UINT32_MAX / 3)
+        return out_f ? fail(L, "too many values (%zu)", n)
+                     : fail(L, "too many triangles (%zu)", n / 3);
+    void *buf = malloc((bulk || n ? n : 1) * size);
+    if (!buf) return rt_error_set(L->err, RT_ERROR_OUT_OF_MEMORY, L->path, 0, 0, "out of memory");
+    float *f = out_f ? buf : NULL;
+    uint32_t *idx = out_f ? NULL : buf;
+    rt_status st = RT_OK;
+    if (bulk) st = read_bulk(L, bulk, f, idx, vertex_count);
+    for (size_t i = 0; !bulk && st == RT_OK && i < n; i++) {
         enter_index(L, i);
-        if (!json_is_integer(e))
-            st = fail(L, "expected a vertex index (an integer), found %s", type_name(e));
-        else if (json_integer_value(e) < 0 || json_integer_value(e) >= (json_int_t)vertex_count)
-            st = fail(L, "vertex index %lld is out of range: the mesh has %u vertices (0..%lld)",
-                      (long long)json_integer_value(e), vertex_count, (long long)vertex_count - 1);
-        else
-            idx[i] = (uint32_t)json_integer_value(e);
+        st = read_triple_element(L, json_array_get(v, i), i, f, idx, vertex_count);
         leave(L);
-        if (st != RT_OK) {
-            free(idx);
-            return st;
-        }
     }
-    *out = idx;
+    if (st != RT_OK) {
+        free(buf);
+        return st;
+    }
+    *out = buf;
     *count = n;
     return RT_OK;
 }
@@ -679,13 +644,13 @@ static rt_status load_inline_mesh(loader *L, json_t *v, const char *name, uint32
     if (st == RT_OK) st = require(L, v, "triangles");
     if (st == RT_OK) {
         enter_key(L, "positions");
-        st = read_float_triples(L, json_object_get(v, "positions"), "vertex", &positions, &npos);
+        st = read_triples(L, json_object_get(v, "positions"), "vertex", 0, &positions, NULL, &npos);
         leave(L);
     }
     json_t *nv = json_object_get(v, "normals");
     if (st == RT_OK && nv) {
         enter_key(L, "normals");
-        st = read_float_triples(L, nv, "normal", &normals, &nnorm);
+        st = read_triples(L, nv, "normal", 0, &normals, NULL, &nnorm);
         if (st == RT_OK && nnorm != npos)
             st = fail(L, "expected one normal per vertex (%zu numbers), found %zu numbers", npos,
                       nnorm);
@@ -693,8 +658,8 @@ static rt_status load_inline_mesh(loader *L, json_t *v, const char *name, uint32
     }
     if (st == RT_OK) {
         enter_key(L, "triangles");
-        st = read_triangles(L, json_object_get(v, "triangles"), (uint32_t)(npos / 3), &indices,
-                            &nidx);
+        st = read_triples(L, json_object_get(v, "triangles"), "triangle", (uint32_t)(npos / 3),
+                          NULL, &indices, &nidx);
         leave(L);
     }
     if (st == RT_OK) {
@@ -943,14 +908,10 @@ static rt_status load_animation(loader *L, json_t *v, uint32_t object) {
 /* An object's "transform_keys": [{time, translate, rotate, scale}, ...]. */
 static rt_status load_transform_keys(loader *L, json_t *v, uint32_t object) {
     static const char *const keys[] = {"time", "translate", "rotate", "scale", NULL};
-    rt_status st = expect_array(L, v);
-    if (st == RT_OK && json_array_size(v) == 0)
-        st = fail(L, "expected at least one key, found an empty array");
-    if (st == RT_OK && json_array_size(v) > UINT32_MAX) st = fail(L, "too many keys");
+    rt_transform_key *k;
+    size_t n;
+    rt_status st = new_keys(L, v, sizeof *k, (void **)&k, &n);
     if (st != RT_OK) return st;
-    size_t n = json_array_size(v);
-    rt_transform_key *k = calloc(n, sizeof *k);
-    if (!k) return rt_error_set(L->err, RT_ERROR_OUT_OF_MEMORY, L->path, 0, 0, "out of memory");
     for (size_t i = 0; st == RT_OK && i < n; i++) {
         json_t *e = json_array_get(v, i);
         k[i].axis[1] = 1.0f;

@@ -20,7 +20,9 @@ static void write_num(FILE *f, double x, int digits) {
         fprintf(f, "%.*g", digits, x);
 }
 
-static void write_vec3(FILE *f, const float v[3]) {
+/* The text before, then v as a JSON array of three numbers. */
+static void write_vec3(FILE *f, const char *before, const float v[3]) {
+    fputs(before, f);
     fputc('[', f);
     for (int i = 0; i < 3; i++) {
         if (i) fputs(", ", f);
@@ -105,6 +107,12 @@ static uint8_t *blend_meshes(const rt_scene *s) {
     return blend;
 }
 
+/* A key's start: the separator before it, then {"time": T (17 digits). */
+static void write_key_time(FILE *f, const char *before, double time) {
+    fprintf(f, "%s{\"time\": ", before);
+    write_num(f, time, 17);
+}
+
 /* The camera: its path (which places the eye and the look-at point at
  * every time) or its position and look-at point; up, fov and size. */
 static void write_camera(FILE *f, const rt_scene *s) {
@@ -114,24 +122,18 @@ static void write_camera(FILE *f, const rt_scene *s) {
         fprintf(f, "\"path\": [");
         for (uint32_t i = 0; i < s->camera_path_count; i++) {
             const rt_camera_key *k = &s->camera_path[i];
-            fprintf(f, "%s{\"time\": ", i ? ",\n                      " : "");
-            write_num(f, k->time, 17);
-            fprintf(f, ", \"position\": ");
-            write_vec3(f, k->position);
-            fprintf(f, ", \"look_at\": ");
-            write_vec3(f, k->look_at);
+            write_key_time(f, i ? ",\n                      " : "", k->time);
+            write_vec3(f, ", \"position\": ", k->position);
+            write_vec3(f, ", \"look_at\": ", k->look_at);
             fputc('}', f);
         }
         fprintf(f, "],\n             ");
     } else {
-        fprintf(f, "\"position\": ");
-        write_vec3(f, c->position);
-        fprintf(f, ", \"look_at\": ");
-        write_vec3(f, c->look_at);
+        write_vec3(f, "\"position\": ", c->position);
+        write_vec3(f, ", \"look_at\": ", c->look_at);
         fprintf(f, ", ");
     }
-    fprintf(f, "\"up\": ");
-    write_vec3(f, c->up);
+    write_vec3(f, "\"up\": ", c->up);
     fprintf(f, ",\n             \"fov\": ");
     write_num(f, (double)c->hfov_degrees, 9);
     fprintf(f, ", \"width\": %d, \"height\": %d},\n", c->width, c->height);
@@ -148,12 +150,9 @@ static void write_object_time(FILE *f, const rt_object_data *o) {
     fprintf(f, ",\n     \"transform_keys\": [");
     for (uint32_t i = 0; i < o->transform_key_count; i++) {
         const rt_transform_key *k = &o->transform_keys[i];
-        fprintf(f, "%s{\"time\": ", i ? ",\n                        " : "");
-        write_num(f, k->time, 17);
-        fprintf(f, ", \"translate\": ");
-        write_vec3(f, k->translate);
-        fprintf(f, ", \"rotate\": {\"axis\": ");
-        write_vec3(f, k->axis);
+        write_key_time(f, i ? ",\n                        " : "", k->time);
+        write_vec3(f, ", \"translate\": ", k->translate);
+        write_vec3(f, ", \"rotate\": {\"axis\": ", k->axis);
         fprintf(f, ", \"degrees\": ");
         write_num(f, (double)k->degrees, 9);
         fprintf(f, "}, \"scale\": ");
@@ -230,15 +229,13 @@ rt_status rt_scene_save_json(const rt_scene *s, const char *dir, const char *nam
     }
     FILE *f = out.stream;
     write_camera(f, s);
-    fprintf(f, "  \"background\": ");
-    write_vec3(f, s->background);
-    fprintf(f, ",\n  \"ambient\": ");
-    write_vec3(f, s->ambient);
+    write_vec3(f, "  \"background\": ", s->background);
+    write_vec3(f, ",\n  \"ambient\": ", s->ambient);
     fprintf(f, ",\n  \"materials\": {\n");
     for (uint32_t i = 0; i < s->material_count; i++) {
         const rt_material *m = &s->materials[i];
         fprintf(f, "    \"m%u\": {\"color\": ", i);
-        write_vec3(f, m->color);
+        write_vec3(f, "", m->color);
         fprintf(f,
                 ", \"ambient\": %.9g, \"diffuse\": %.9g, \"specular\": %.9g, \"shininess\": %d,\n"
                 "          \"reflectivity\": %.9g, \"transparency\": %.9g, \"ior\": %.9g}%s\n",
@@ -248,10 +245,8 @@ rt_status rt_scene_save_json(const rt_scene *s, const char *dir, const char *nam
     }
     fprintf(f, "  },\n  \"lights\": [\n");
     for (uint32_t i = 0; i < s->light_count; i++) {
-        fprintf(f, "    {\"position\": ");
-        write_vec3(f, s->lights[i].position);
-        fprintf(f, ", \"color\": ");
-        write_vec3(f, s->lights[i].color);
+        write_vec3(f, "    {\"position\": ", s->lights[i].position);
+        write_vec3(f, ", \"color\": ", s->lights[i].color);
         fprintf(f, "}%s\n", i + 1 < s->light_count ? "," : "");
     }
     fprintf(f, "  ],\n  \"meshes\": {");

@@ -240,6 +240,7 @@ static rt_status flatten(const rt_scene *scene, rt_bvh *mesh_bvhs, const uint8_t
         return RT_ERROR_INVALID_ARGUMENT;
     }
     uint32_t nmesh = scene->mesh_count, nobj = scene->object_count;
+    rt_status failed = RT_ERROR_INVALID_ARGUMENT; /* what fail: returns */
 
     /* Which meshes are shown, and where each goes. */
     uint32_t *node_base = calloc(nmesh ? nmesh : 1, sizeof(uint32_t));
@@ -403,7 +404,8 @@ static rt_status flatten(const rt_scene *scene, rt_bvh *mesh_bvhs, const uint8_t
     free(used);
     return RT_OK;
 oom:
-    rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory flattening the scene");
+    failed = rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory flattening the scene");
+fail:
     /* A tree given to the layout went with it: that BVH is empty now. */
     for (uint32_t m = 0; take && m < nmesh; m++)
         if (take[m] && !mesh_bvhs[m].nodes) rt_bvh_free(&mesh_bvhs[m]);
@@ -413,17 +415,7 @@ oom:
     free(kd_base);
     free(used);
     rt_flat_free(out);
-    return RT_ERROR_OUT_OF_MEMORY;
-fail:
-    for (uint32_t m = 0; take && m < nmesh; m++)
-        if (take[m] && !mesh_bvhs[m].nodes) rt_bvh_free(&mesh_bvhs[m]);
-    free(node_base);
-    free(tri_base);
-    free(tri_span);
-    free(kd_base);
-    free(used);
-    rt_flat_free(out);
-    return RT_ERROR_INVALID_ARGUMENT;
+    return failed;
 }
 
 /* Writes a mesh's BVH nodes and triangles at its place in the layout;

@@ -442,6 +442,22 @@ static rt_status set_arg(cl_kernel k, cl_uint i, size_t n, const void *v, rt_err
     return RT_OK;
 }
 
+/* A kernel argument and the buffer (RT_CL_BUF_...) bound to it. */
+typedef struct buf_arg {
+    cl_uint arg;
+    int buf;
+} buf_arg;
+
+/* Binds the buffers of args (n of them) to their arguments of k, in order;
+ * the first failure stops it. */
+static rt_status set_bufs(cl_state *s, cl_kernel k, const buf_arg *args, size_t n, rt_error *err) {
+    rt_status st = RT_OK;
+    for (size_t i = 0; i < n && st == RT_OK; i++)
+        st = set_arg(k, args[i].arg, sizeof(cl_mem), &s->buf[args[i].buf], err);
+    return st;
+}
+#define SET_BUFS(s, k, args, err) set_bufs(s, k, args, sizeof args / sizeof *args, err)
+
 /* The scene arrays, the view arguments of every tracing kernel. */
 static rt_status set_view(cl_state *s, cl_kernel k, rt_error *err) {
     for (int b = RT_CL_BUF_HDR; b <= RT_CL_BUF_KD_NODES; b++) {
@@ -793,25 +809,22 @@ static rt_status wave_setup(cl_state *s, cl_uint slots, uint32_t tile_max, cl_ui
     if (st == RT_OK) st = set_view(s, s->k_wshade, err);
     cl_kernel kc = s->k_wcam, kt = s->k_wtrace, ks = s->k_wshade, ksum = s->k_wsum;
     if (st == RT_OK) st = set_arg(kc, RT_K_WCAM_HDR, sizeof(cl_mem), &s->buf[RT_CL_BUF_HDR], err);
-    if (st == RT_OK)
-        st = set_arg(kt, RT_K_WTRACE_HITS, sizeof(cl_mem), &s->buf[RT_CL_BUF_WAVE_HITS], err);
-    if (st == RT_OK)
-        st = set_arg(kt, RT_K_WTRACE_COUNTERS, sizeof(cl_mem), &s->buf[RT_CL_BUF_COUNTERS], err);
-    if (st == RT_OK)
-        st = set_arg(ks, RT_K_WSHADE_HITS, sizeof(cl_mem), &s->buf[RT_CL_BUF_WAVE_HITS], err);
-    if (st == RT_OK)
-        st = set_arg(ks, RT_K_WSHADE_COUNTERS, sizeof(cl_mem), &s->buf[RT_CL_BUF_COUNTERS], err);
-    if (st == RT_OK)
-        st = set_arg(ks, RT_K_WSHADE_RECORDS, sizeof(cl_mem), &s->buf[RT_CL_BUF_RECORDS], err);
+    static const buf_arg trace_bufs[] = {{RT_K_WTRACE_HITS, RT_CL_BUF_WAVE_HITS},
+                                         {RT_K_WTRACE_COUNTERS, RT_CL_BUF_COUNTERS}};
+    if (st == RT_OK) st = SET_BUFS(s, kt, trace_bufs, err);
+    static const buf_arg shade_bufs[] = {{RT_K_WSHADE_HITS, RT_CL_BUF_WAVE_HITS},
+                                         {RT_K_WSHADE_COUNTERS, RT_CL_BUF_COUNTERS},
+                                         {RT_K_WSHADE_RECORDS, RT_CL_BUF_RECORDS}};
+    if (st == RT_OK) st = SET_BUFS(s, ks, shade_bufs, err);
     cl_uint stride = tile_max; /* records are slot-major */
     if (st == RT_OK) st = set_arg(ks, RT_K_WSHADE_STRIDE, sizeof stride, &stride, err);
     if (st == RT_OK)
         st = set_arg(ks, RT_K_WSHADE_NEXT_COUNT, sizeof(cl_mem), &s->buf[RT_CL_BUF_QUEUE_COUNT],
                      err);
     if (st == RT_OK) st = set_arg(ks, RT_K_WSHADE_NEXT_CAP, sizeof cap, &cap, err);
-    if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_HDR, sizeof(cl_mem), &s->buf[RT_CL_BUF_HDR], err);
-    if (st == RT_OK)
-        st = set_arg(ksum, RT_K_WSUM_RECORDS, sizeof(cl_mem), &s->buf[RT_CL_BUF_RECORDS], err);
+    static const buf_arg sum_bufs[] = {{RT_K_WSUM_HDR, RT_CL_BUF_HDR},
+                                       {RT_K_WSUM_RECORDS, RT_CL_BUF_RECORDS}};
+    if (st == RT_OK) st = SET_BUFS(s, ksum, sum_bufs, err);
     if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_STRIDE, sizeof stride, &stride, err);
     if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_CHANNELS, sizeof channels, &channels, err);
     if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_FB, sizeof(cl_mem), &s->buf[RT_CL_BUF_FB], err);
@@ -833,25 +846,21 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
     st = set_view(s, s->k_trace, err);
     if (st == RT_OK) st = set_view(s, s->k_shade, err);
     cl_kernel kc = s->k_camera, kt = s->k_trace, ks = s->k_shade;
-    if (st == RT_OK) st = set_arg(kc, RT_K_CAMERA_HDR, sizeof(cl_mem), &s->buf[RT_CL_BUF_HDR], err);
-    if (st == RT_OK)
-        st = set_arg(kc, RT_K_CAMERA_RAYS, sizeof(cl_mem), &s->buf[RT_CL_BUF_RAYS], err);
+    static const buf_arg camera_bufs[] = {{RT_K_CAMERA_HDR, RT_CL_BUF_HDR},
+                                          {RT_K_CAMERA_RAYS, RT_CL_BUF_RAYS}};
+    if (st == RT_OK) st = SET_BUFS(s, kc, camera_bufs, err);
     if (st == RT_OK) st = set_arg(kt, RT_K_TRACE_ANY_HIT, sizeof any, &any, err);
-    if (st == RT_OK)
-        st = set_arg(kt, RT_K_TRACE_RAYS, sizeof(cl_mem), &s->buf[RT_CL_BUF_RAYS], err);
-    if (st == RT_OK)
-        st = set_arg(kt, RT_K_TRACE_HITS, sizeof(cl_mem), &s->buf[RT_CL_BUF_HITS], err);
-    if (st == RT_OK)
-        st = set_arg(kt, RT_K_TRACE_COUNTERS, sizeof(cl_mem), &s->buf[RT_CL_BUF_COUNTERS], err);
+    static const buf_arg trace_bufs[] = {{RT_K_TRACE_RAYS, RT_CL_BUF_RAYS},
+                                         {RT_K_TRACE_HITS, RT_CL_BUF_HITS},
+                                         {RT_K_TRACE_COUNTERS, RT_CL_BUF_COUNTERS}};
+    if (st == RT_OK) st = SET_BUFS(s, kt, trace_bufs, err);
     if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_AOV, sizeof aov, &aov, err);
     if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_CHANNELS, sizeof channels, &channels, err);
-    if (st == RT_OK)
-        st = set_arg(ks, RT_K_SHADE_RAYS, sizeof(cl_mem), &s->buf[RT_CL_BUF_RAYS], err);
-    if (st == RT_OK)
-        st = set_arg(ks, RT_K_SHADE_HITS, sizeof(cl_mem), &s->buf[RT_CL_BUF_HITS], err);
-    if (st == RT_OK)
-        st = set_arg(ks, RT_K_SHADE_COUNTERS, sizeof(cl_mem), &s->buf[RT_CL_BUF_COUNTERS], err);
-    if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_FB, sizeof(cl_mem), &s->buf[RT_CL_BUF_FB], err);
+    static const buf_arg shade_bufs[] = {{RT_K_SHADE_RAYS, RT_CL_BUF_RAYS},
+                                         {RT_K_SHADE_HITS, RT_CL_BUF_HITS},
+                                         {RT_K_SHADE_COUNTERS, RT_CL_BUF_COUNTERS},
+                                         {RT_K_SHADE_FB, RT_CL_BUF_FB}};
+    if (st == RT_OK) st = SET_BUFS(s, ks, shade_bufs, err);
 
     /* Images with reflection or refraction go through the wavefront; AOVs
      * (primary-ray values, or every ray's tests of a pixel) and scenes
@@ -885,11 +894,9 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
         if (st == RT_OK) st = set_view(s, kp, err);
         if (st == RT_OK) st = set_arg(kp, RT_K_PACKET_AOV, sizeof aov, &aov, err);
         if (st == RT_OK) st = set_arg(kp, RT_K_PACKET_CHANNELS, sizeof channels, &channels, err);
-        if (st == RT_OK)
-            st =
-                set_arg(kp, RT_K_PACKET_COUNTERS, sizeof(cl_mem), &s->buf[RT_CL_BUF_COUNTERS], err);
-        if (st == RT_OK)
-            st = set_arg(kp, RT_K_PACKET_FB, sizeof(cl_mem), &s->buf[RT_CL_BUF_FB], err);
+        static const buf_arg packet_bufs[] = {{RT_K_PACKET_COUNTERS, RT_CL_BUF_COUNTERS},
+                                              {RT_K_PACKET_FB, RT_CL_BUF_FB}};
+        if (st == RT_OK) st = SET_BUFS(s, kp, packet_bufs, err);
         if (st != RT_OK) return named(err, st);
     } else {
         snprintf(stats->kernels, sizeof stats->kernels, "one ray per work-item%s",

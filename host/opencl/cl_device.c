@@ -2,6 +2,7 @@
 #include "opencl/cl_device.h"
 
 #include <CL/cl.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,43 +10,17 @@
 #include "backend/device_select.h"
 #include "base/error.h"
 
+/* The codes it names and their names (cl_error_names.def). */
+static const rt_code_name cl_error_names[] = {
+#define RT_CL_ERROR(name) {name, #name},
+#include "opencl/cl_error_names.def"
+#undef RT_CL_ERROR
+    {-1001, "CL_PLATFORM_NOT_FOUND_KHR"}, /* cl_ext.h's code, not in every cl.h */
+};
+
 const char *rt_cl_error_name(int code) {
-    switch (code) {
-    case CL_SUCCESS:
-        return "CL_SUCCESS";
-    case CL_DEVICE_NOT_FOUND:
-        return "CL_DEVICE_NOT_FOUND";
-    case CL_DEVICE_NOT_AVAILABLE:
-        return "CL_DEVICE_NOT_AVAILABLE";
-    case CL_COMPILER_NOT_AVAILABLE:
-        return "CL_COMPILER_NOT_AVAILABLE";
-    case CL_MEM_OBJECT_ALLOCATION_FAILURE:
-        return "CL_MEM_OBJECT_ALLOCATION_FAILURE";
-    case CL_OUT_OF_RESOURCES:
-        return "CL_OUT_OF_RESOURCES";
-    case CL_OUT_OF_HOST_MEMORY:
-        return "CL_OUT_OF_HOST_MEMORY";
-    case CL_BUILD_PROGRAM_FAILURE:
-        return "CL_BUILD_PROGRAM_FAILURE";
-    case CL_INVALID_VALUE:
-        return "CL_INVALID_VALUE";
-    case CL_INVALID_BUFFER_SIZE:
-        return "CL_INVALID_BUFFER_SIZE";
-    case CL_INVALID_BUILD_OPTIONS:
-        return "CL_INVALID_BUILD_OPTIONS";
-    case CL_INVALID_KERNEL_ARGS:
-        return "CL_INVALID_KERNEL_ARGS";
-    case CL_INVALID_WORK_GROUP_SIZE:
-        return "CL_INVALID_WORK_GROUP_SIZE";
-    case CL_INVALID_ARG_SIZE:
-        return "CL_INVALID_ARG_SIZE";
-    case CL_INVALID_ARG_VALUE:
-        return "CL_INVALID_ARG_VALUE";
-    case -1001:
-        return "CL_PLATFORM_NOT_FOUND_KHR";
-    default:
-        return "an OpenCL error";
-    }
+    size_t count = sizeof cl_error_names / sizeof *cl_error_names;
+    return rt_code_name_find(cl_error_names, count, code, "an OpenCL error");
 }
 
 static void get_string(cl_device_id d, cl_device_info what, char *out, size_t size) {
@@ -151,15 +126,10 @@ rt_status rt_cl_devices(rt_cl_device_info **out, int *count, rt_error *err) {
     return RT_OK;
 }
 
-static const char *device_name(const void *devs, int i) {
-    return ((const rt_cl_device_info *)devs)[i].name;
-}
-static int device_exact(const void *devs, int i) {
-    return ((const rt_cl_device_info *)devs)[i].exact;
-}
-
 int rt_cl_select(const rt_cl_device_info *devs, int count, const char *sel, rt_error *err) {
-    return rt_device_select("OpenCL", devs, count, device_name, device_exact, sel, err);
+    const rt_device_fields fields = {sizeof *devs, offsetof(rt_cl_device_info, name),
+                                     offsetof(rt_cl_device_info, exact)};
+    return rt_device_select("OpenCL", devs, count, fields, sel, err);
 }
 
 rt_cl_math_plan rt_cl_plan_math(const rt_cl_device_info *d, rt_device_math math, int flush) {

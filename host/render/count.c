@@ -9,12 +9,11 @@
 rt_status rt_count_intersections(rt_renderer *r, rt_scene *scene, const rt_ray *rays, size_t count,
                                  uint32_t *counts) {
     if (!r) return RT_ERROR_INVALID_ARGUMENT;
-    rt_error_clear(&r->error);
-    if (!scene || (count && (!rays || !counts)))
-        return rt_fail(&r->error, RT_ERROR_INVALID_ARGUMENT,
-                       "rt_count_intersections: scene, rays or counts is NULL");
+    rt_status st =
+        rt_frame_query_begin(r, "rt_count_intersections", scene, rays, count, counts, "counts");
+    if (st != RT_OK) return st;
     rt_frame_state fs;
-    rt_status st = rt_frame_layout(r, scene, RT_TRI_TEST_WATERTIGHT, 0, &fs);
+    st = rt_frame_layout(r, scene, RT_TRI_TEST_WATERTIGHT, 0, &fs);
     if (st != RT_OK) return st;
     const rt_ray *in;
     rt_ray *copy;

@@ -20,6 +20,13 @@ typedef struct rt_frame_state {
 rt_status rt_frame_layout(rt_renderer *r, rt_scene *scene, rt_triangle_test test, int direct_only,
                           rt_frame_state *out);
 
+/* The start of a ray query (rt_trace_rays, rt_count_intersections): clears
+ * r->error and checks that scene is given, and rays and out (named
+ * out_name in the message) when count > 0. what names the call. */
+rt_status rt_frame_query_begin(rt_renderer *r, const char *what, const rt_scene *scene,
+                               const rt_ray *rays, size_t count, const void *out,
+                               const char *out_name);
+
 /* The rays a frame's query traces: *in is rays itself when every ray is
  * valid, else a copy (*copy, for the caller to free) in which each ray with
  * a NaN or infinite component, a NaN end or a zero direction is an empty

@@ -17,6 +17,16 @@ static int ray_valid(const rt_ray *r) {
     return r->dir[0] != 0.0f || r->dir[1] != 0.0f || r->dir[2] != 0.0f;
 }
 
+rt_status rt_frame_query_begin(rt_renderer *r, const char *what, const rt_scene *scene,
+                               const rt_ray *rays, size_t count, const void *out,
+                               const char *out_name) {
+    rt_error_clear(&r->error);
+    if (!scene || (count && (!rays || !out)))
+        return rt_fail(&r->error, RT_ERROR_INVALID_ARGUMENT, "%s: scene, rays or %s is NULL", what,
+                       out_name);
+    return RT_OK;
+}
+
 rt_status rt_frame_rays(rt_renderer *r, const rt_ray *rays, size_t count, const rt_ray **in,
                         rt_ray **copy) {
     *in = rays;
@@ -128,10 +138,8 @@ static void finish_chunk(void *ctx, int worker, int workers) {
 rt_status rt_trace_rays(rt_renderer *r, rt_scene *scene, const rt_ray *rays, size_t count,
                         rt_hit *hits, const rt_trace_options *options) {
     if (!r) return RT_ERROR_INVALID_ARGUMENT;
-    rt_error_clear(&r->error);
-    if (!scene || (count && (!rays || !hits)))
-        return rt_fail(&r->error, RT_ERROR_INVALID_ARGUMENT,
-                       "rt_trace_rays: scene, rays or hits is NULL");
+    rt_status st = rt_frame_query_begin(r, "rt_trace_rays", scene, rays, count, hits, "hits");
+    if (st != RT_OK) return st;
     rt_trace_options opt;
     memset(&opt, 0, sizeof opt);
     if (options) opt = *options;
@@ -140,7 +148,7 @@ rt_status rt_trace_rays(rt_renderer *r, rt_scene *scene, const rt_ray *rays, siz
         return rt_fail(&r->error, RT_ERROR_INVALID_ARGUMENT,
                        "rt_trace_rays: unknown packet path %d", (int)opt.packet_path);
     rt_frame_state fs;
-    rt_status st = rt_frame_layout(r, scene, opt.tri_test, 0, &fs);
+    st = rt_frame_layout(r, scene, opt.tri_test, 0, &fs);
     if (st != RT_OK) return st;
     const rt_ray *in;
     rt_ray *copy;

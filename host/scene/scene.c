@@ -88,6 +88,19 @@ rt_material rt_material_default(void) {
     return m;
 }
 
+rt_status rt_scene_check_finite(rt_scene *scene, uint32_t mesh_id, const float *positions,
+                                const float *normals, uint32_t vertex_count) {
+    for (uint32_t v = 0; v < vertex_count; v++) {
+        if (!finite3(positions + 3 * (size_t)v))
+            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                                 "mesh %u: vertex %u has a NaN or infinite coordinate", mesh_id, v);
+        if (normals && !finite3(normals + 3 * (size_t)v))
+            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                                 "mesh %u: normal %u has a NaN or infinite component", mesh_id, v);
+    }
+    return RT_OK;
+}
+
 rt_status rt_scene_create(rt_scene **out) {
     if (!out) return RT_ERROR_INVALID_ARGUMENT;
     rt_scene *s = calloc(1, sizeof *s);
@@ -102,14 +115,18 @@ rt_status rt_scene_create(rt_scene **out) {
     return RT_OK;
 }
 
+void rt_mesh_data_free_arrays(rt_mesh_data *m) {
+    free(m->positions);
+    free(m->normals);
+    free(m->indices);
+    free(m->tri_materials);
+    m->positions = m->normals = NULL;
+    m->indices = m->tri_materials = NULL;
+}
+
 void rt_scene_destroy(rt_scene *scene) {
     if (!scene) return;
-    for (uint32_t i = 0; i < scene->mesh_count; i++) {
-        free(scene->meshes[i].positions);
-        free(scene->meshes[i].normals);
-        free(scene->meshes[i].indices);
-        free(scene->meshes[i].tri_materials);
-    }
+    for (uint32_t i = 0; i < scene->mesh_count; i++) rt_mesh_data_free_arrays(&scene->meshes[i]);
     for (uint32_t i = 0; i < scene->object_count; i++) {
         free(scene->objects[i].meshes);
         free(scene->objects[i].transform_keys);
@@ -188,14 +205,8 @@ rt_status rt_mesh_add_triangles(rt_scene *scene, uint32_t mesh_id, const float *
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                              "mesh %u: normals must be given for all vertices or for none",
                              mesh_id);
-    for (uint32_t v = 0; v < vertex_count; v++) {
-        if (!finite3(positions + 3 * (size_t)v))
-            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
-                                 "mesh %u: vertex %u has a NaN or infinite coordinate", mesh_id, v);
-        if (normals && !finite3(normals + 3 * (size_t)v))
-            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
-                                 "mesh %u: normal %u has a NaN or infinite component", mesh_id, v);
-    }
+    rt_status finite = rt_scene_check_finite(scene, mesh_id, positions, normals, vertex_count);
+    if (finite != RT_OK) return finite;
     for (uint64_t i = 0; i < 3 * (uint64_t)triangle_count; i++)
         if (indices[i] >= vertex_count)
             return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
@@ -355,7 +366,9 @@ rt_status rt_scene_set_background(rt_scene *scene, const float color[3]) {
 
 /* ---- objects ------------------------------------------------------------ */
 
+/* Object id, or NULL: no scene, or (the scene's error) no such object. */
 static rt_object_data *object_at(rt_scene *scene, uint32_t id) {
+    if (!scene) return NULL;
     if (id >= scene->object_count) {
         rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "object %u does not exist", id);
         return NULL;
@@ -383,7 +396,6 @@ rt_status rt_object_create(rt_scene *scene, uint32_t material_id, uint32_t *obje
 }
 
 rt_status rt_object_add_mesh(rt_scene *scene, uint32_t object_id, uint32_t mesh_id) {
-    if (!scene) return RT_ERROR_INVALID_ARGUMENT;
     rt_object_data *o = object_at(scene, object_id);
     if (!o) return RT_ERROR_INVALID_ARGUMENT;
     if (mesh_id >= scene->mesh_count)
@@ -396,7 +408,6 @@ rt_status rt_object_add_mesh(rt_scene *scene, uint32_t object_id, uint32_t mesh_
 }
 
 rt_status rt_object_select_mesh(rt_scene *scene, uint32_t object_id, uint32_t keyframe) {
-    if (!scene) return RT_ERROR_INVALID_ARGUMENT;
     rt_object_data *o = object_at(scene, object_id);
     if (!o) return RT_ERROR_INVALID_ARGUMENT;
     if (keyframe >= o->mesh_count)

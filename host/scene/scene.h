@@ -110,12 +110,22 @@ int rt_mat4_affine_inverse(const float m[16], float out[16]);
  * of memory (a notice is no failure). */
 void rt_scene_add_notice(rt_scene *scene, const char *text);
 
+/* Frees the arrays a mesh owns (positions, normals, indices, per-triangle
+ * materials) and sets them to NULL; counts and capacities are the caller's. */
+void rt_mesh_data_free_arrays(rt_mesh_data *m);
+
 /* Sets the scene's error and returns status. */
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 4)))
 #endif
 rt_status
 rt_scene_fail(rt_scene *scene, rt_status status, const char *fmt, ...);
+
+/* RT_OK when the vertex_count positions (and normals, when not NULL) of
+ * mesh mesh_id are finite; else the scene's error naming the first that is
+ * not (rt_mesh_add_triangles, rt_mesh_set_positions). */
+rt_status rt_scene_check_finite(rt_scene *scene, uint32_t mesh_id, const float *positions,
+                                const float *normals, uint32_t vertex_count);
 
 /* Limits on meshes (docs/ROBUSTNESS.md, "Limits"): beyond them
  * rt_mesh_add_triangles fails with RT_ERROR_UNSUPPORTED naming the limit.

@@ -39,6 +39,18 @@ static int finite3(const float v[3]) {
     return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
 }
 
+/* *out: a copy of count keys of size bytes each, NULL for none; the
+ * scene's error when out of memory. */
+static rt_status copy_keys(rt_scene *scene, const void *keys, uint32_t count, size_t size,
+                           void **out) {
+    *out = NULL;
+    if (!count) return RT_OK;
+    *out = malloc(size * count);
+    if (!*out) return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    memcpy(*out, keys, size * count);
+    return RT_OK;
+}
+
 /* ---- deforming meshes ------------------------------------------------------ */
 
 rt_status rt_mesh_set_positions(rt_scene *scene, uint32_t mesh_id, const float *positions,
@@ -56,14 +68,8 @@ rt_status rt_mesh_set_positions(rt_scene *scene, uint32_t mesh_id, const float *
     if (normals && !m->normals)
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                              "mesh %u has no normals; none can be set", mesh_id);
-    for (uint32_t v = 0; v < vertex_count; v++) {
-        if (!finite3(positions + 3 * (size_t)v))
-            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
-                                 "mesh %u: vertex %u has a NaN or infinite coordinate", mesh_id, v);
-        if (normals && !finite3(normals + 3 * (size_t)v))
-            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
-                                 "mesh %u: normal %u has a NaN or infinite component", mesh_id, v);
-    }
+    rt_status finite = rt_scene_check_finite(scene, mesh_id, positions, normals, vertex_count);
+    if (finite != RT_OK) return finite;
     if (vertex_count) {
         memmove(m->positions, positions, 3 * sizeof(float) * (size_t)vertex_count);
         if (normals) memmove(m->normals, normals, 3 * sizeof(float) * (size_t)vertex_count);
@@ -134,12 +140,9 @@ rt_status rt_object_set_transform_keys(rt_scene *scene, uint32_t object_id,
             return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                                  "transform key %u: the scale must be finite and > 0", i);
     }
-    rt_transform_key *copy = NULL;
-    if (count) {
-        copy = malloc(sizeof *copy * count);
-        if (!copy) return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory");
-        memcpy(copy, keys, sizeof *copy * count);
-    }
+    void *copy;
+    rt_status st = copy_keys(scene, keys, count, sizeof *keys, &copy);
+    if (st != RT_OK) return st;
     rt_object_data *o = &scene->objects[object_id];
     free(o->transform_keys);
     o->transform_keys = copy;
@@ -161,12 +164,9 @@ rt_status rt_camera_set_path(rt_scene *scene, const rt_camera_key *keys, uint32_
             return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                                  "camera key %u: look_at equals the position", i);
     }
-    rt_camera_key *copy = NULL;
-    if (count) {
-        copy = malloc(sizeof *copy * count);
-        if (!copy) return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory");
-        memcpy(copy, keys, sizeof *copy * count);
-    }
+    void *copy;
+    rt_status st = copy_keys(scene, keys, count, sizeof *keys, &copy);
+    if (st != RT_OK) return st;
     free(scene->camera_path);
     scene->camera_path = copy;
     scene->camera_path_count = count;
@@ -317,10 +317,7 @@ static rt_status morph_reset(rt_scene *scene, uint32_t object, uint32_t src) {
         free(mats);
         return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "out of memory blending keyframes");
     }
-    free(m->positions);
-    free(m->normals);
-    free(m->indices);
-    free(m->tri_materials);
+    rt_mesh_data_free_arrays(m);
     m->positions = pos;
     m->normals = nrm;
     m->indices = idx;

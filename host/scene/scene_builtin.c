@@ -180,9 +180,49 @@ static rt_status add_object(rt_scene *s, uint32_t mesh, uint32_t material, uint3
         if (st_ != RT_OK) return st_;                                                              \
     } while (0)
 
+/* The mesh in b as a new object of its own with material. */
+static rt_status commit_object(mesh_builder *b, rt_scene *s, const char *name, uint32_t material) {
+    uint32_t mesh, obj;
+    TRY(mb_commit(b, s, name, &mesh));
+    return add_object(s, mesh, material, &obj);
+}
+
+/* The animated object of both scenes: four keyframes, twisted columns
+ * "column_K" (mb_twisted_column with twist K * twist_step), showing
+ * keyframe selected, placed by the rigid transform; then a commit. */
+static rt_status add_column_object(mesh_builder *b, rt_scene *s, uint32_t material, float half,
+                                   float height, int levels, float twist_step, uint32_t selected,
+                                   const float transform[16]) {
+    uint32_t obj;
+    TRY(rt_object_create(s, material, &obj));
+    for (int k = 0; k < 4; k++) {
+        char name[32];
+        uint32_t mesh;
+        snprintf(name, sizeof name, "column_%d", k);
+        mb_twisted_column(b, half, height, levels, twist_step * (float)k);
+        TRY(mb_commit(b, s, name, &mesh));
+        TRY(rt_object_add_mesh(s, obj, mesh));
+    }
+    TRY(rt_object_select_mesh(s, obj, selected));
+    TRY(rt_object_transform(s, obj, transform));
+    return rt_scene_commit(s);
+}
+
+/* What every built-in scene ends with: one white light at light, ambient
+ * 0.1, the background and the camera. */
+static rt_status finish_scene(rt_scene *s, const float light[3], const float background[3],
+                              const rt_camera *cam) {
+    const float white_light[3] = {1.0f, 1.0f, 1.0f}, ambient[3] = {0.1f, 0.1f, 0.1f};
+    uint32_t id;
+    TRY(rt_light_add(s, light, white_light, &id));
+    TRY(rt_scene_set_ambient(s, ambient));
+    TRY(rt_scene_set_background(s, background));
+    return rt_camera_set(s, cam);
+}
+
 static rt_status build_cornell(rt_scene *s) {
     const float W = 1.6f, H = 1.8f, D = 1.0f; /* half width, height, half depth */
-    uint32_t white, red, green, mirror, glass, obj, mesh;
+    uint32_t white, red, green, mirror, glass;
     TRY(add_material(s, 0.8f, 0.8f, 0.8f, 0.9f, 0.0f, 1, 0.0f, 0.0f, 1.0f, &white));
     TRY(add_material(s, 0.75f, 0.15f, 0.15f, 0.9f, 0.0f, 1, 0.0f, 0.0f, 1.0f, &red));
     TRY(add_material(s, 0.15f, 0.75f, 0.15f, 0.9f, 0.0f, 1, 0.0f, 0.0f, 1.0f, &green));
@@ -196,89 +236,52 @@ static rt_status build_cornell(rt_scene *s) {
     mb_quad(&b, f0, f1, f2, f3);
     mb_quad(&b, c0, c1, c2, c3);
     mb_quad(&b, f3, f2, c1, c0);
-    TRY(mb_commit(&b, s, "room", &mesh));
-    TRY(add_object(s, mesh, white, &obj));
+    TRY(commit_object(&b, s, "room", white));
 
     const float l0[3] = {-W, 0, D}, l1[3] = {-W, 0, -D}, l2[3] = {-W, H, -D}, l3[3] = {-W, H, D};
     mb_quad(&b, l0, l1, l2, l3);
-    TRY(mb_commit(&b, s, "left_wall", &mesh));
-    TRY(add_object(s, mesh, red, &obj));
+    TRY(commit_object(&b, s, "left_wall", red));
 
     const float r0[3] = {W, 0, -D}, r1[3] = {W, 0, D}, r2[3] = {W, H, D}, r3[3] = {W, H, -D};
     mb_quad(&b, r0, r1, r2, r3);
-    TRY(mb_commit(&b, s, "right_wall", &mesh));
-    TRY(add_object(s, mesh, green, &obj));
+    TRY(commit_object(&b, s, "right_wall", green));
 
     /* The animated object: a twisting white column with four keyframes,
      * moved to the back of the room by a rigid transform. */
-    TRY(rt_object_create(s, white, &obj));
-    for (int k = 0; k < 4; k++) {
-        char name[32];
-        snprintf(name, sizeof name, "column_%d", k);
-        mb_twisted_column(&b, 0.22f, 0.9f, 12, 0.4f * (float)k);
-        TRY(mb_commit(&b, s, name, &mesh));
-        TRY(rt_object_add_mesh(s, obj, mesh));
-    }
-    TRY(rt_object_select_mesh(s, obj, 1));
     const float to_back[16] = {1, 0, 0, 0.05f, 0, 1, 0, 0, 0, 0, 1, -0.6f, 0, 0, 0, 1};
-    TRY(rt_object_transform(s, obj, to_back));
-    TRY(rt_scene_commit(s));
+    TRY(add_column_object(&b, s, white, 0.22f, 0.9f, 12, 0.4f, 1, to_back));
 
     b.with_normals = 1;
     const float ms[3] = {-0.8f, 0.4f, -0.2f};
     mb_sphere(&b, ms, 0.4f, 24, 48);
-    TRY(mb_commit(&b, s, "mirror_sphere", &mesh));
-    TRY(add_object(s, mesh, mirror, &obj));
+    TRY(commit_object(&b, s, "mirror_sphere", mirror));
 
     b.with_normals = 1;
     const float gs[3] = {0.7f, 0.35f, 0.25f};
     mb_sphere(&b, gs, 0.35f, 24, 48);
-    TRY(mb_commit(&b, s, "glass_sphere", &mesh));
-    TRY(add_object(s, mesh, glass, &obj));
+    TRY(commit_object(&b, s, "glass_sphere", glass));
 
-    const float light[3] = {0.0f, 1.6f, 0.2f}, white_light[3] = {1.0f, 1.0f, 1.0f};
-    uint32_t id;
-    TRY(rt_light_add(s, light, white_light, &id));
-    const float ambient[3] = {0.1f, 0.1f, 0.1f}, black[3] = {0.0f, 0.0f, 0.0f};
-    TRY(rt_scene_set_ambient(s, ambient));
-    TRY(rt_scene_set_background(s, black));
+    const float light[3] = {0.0f, 1.6f, 0.2f}, black[3] = {0.0f, 0.0f, 0.0f};
     rt_camera cam = {{0.0f, 0.9f, 3.0f}, {0.0f, 0.9f, 0.0f}, {0.0f, 1.0f, 0.0f}, 60.0f, 1024, 576};
-    return rt_camera_set(s, &cam);
+    return finish_scene(s, light, black, &cam);
 }
 
 static rt_status build_keyframes(rt_scene *s) {
-    uint32_t floor_mat, column_mat, obj, mesh;
+    uint32_t floor_mat, column_mat;
     TRY(add_material(s, 0.7f, 0.7f, 0.75f, 0.9f, 0.0f, 1, 0.2f, 0.0f, 1.0f, &floor_mat));
     TRY(add_material(s, 0.9f, 0.6f, 0.2f, 0.8f, 0.4f, 16, 0.0f, 0.0f, 1.0f, &column_mat));
     mesh_builder b = {0};
     const float f0[3] = {-3, 0, 3}, f1[3] = {3, 0, 3}, f2[3] = {3, 0, -3}, f3[3] = {-3, 0, -3};
     mb_quad(&b, f0, f1, f2, f3);
-    TRY(mb_commit(&b, s, "floor", &mesh));
-    TRY(add_object(s, mesh, floor_mat, &obj));
+    TRY(commit_object(&b, s, "floor", floor_mat));
 
-    TRY(rt_object_create(s, column_mat, &obj));
-    const int frames = 4;
-    for (int k = 0; k < frames; k++) {
-        char name[32];
-        snprintf(name, sizeof name, "column_%d", k);
-        mb_twisted_column(&b, 0.35f, 2.0f, 16, 0.6f * (float)k);
-        TRY(mb_commit(&b, s, name, &mesh));
-        TRY(rt_object_add_mesh(s, obj, mesh));
-    }
-    TRY(rt_object_select_mesh(s, obj, 2));
     /* A quarter turn about y, then a step to the right: a rigid transform. */
     const float m[16] = {0, 0, 1, 0.5f, 0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 0, 1};
-    TRY(rt_object_transform(s, obj, m));
-    TRY(rt_scene_commit(s));
+    TRY(add_column_object(&b, s, column_mat, 0.35f, 2.0f, 16, 0.6f, 2, m));
 
-    const float light[3] = {2.0f, 4.0f, 3.0f}, white_light[3] = {1.0f, 1.0f, 1.0f};
-    uint32_t id;
-    TRY(rt_light_add(s, light, white_light, &id));
-    const float ambient[3] = {0.1f, 0.1f, 0.1f}, sky[3] = {0.2f, 0.3f, 0.45f};
-    TRY(rt_scene_set_ambient(s, ambient));
-    TRY(rt_scene_set_background(s, sky));
+    const float light[3] = {2.0f, 4.0f, 3.0f}, sky[3] = {0.2f, 0.3f, 0.45f};
     rt_camera cam = {{0.0f, 2.0f, 6.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 60.0f, 1024, 576};
-    return rt_camera_set(s, &cam);
+    return finish_scene(s, light, sky, &cam);
 }
 
 rt_status rt_scene_builtin(const char *name, rt_scene **out, rt_error *err) {

@@ -28,12 +28,7 @@ rt_status rt_light_remove(rt_scene *scene, uint32_t light_id) {
  * triangles): shown by no object, it costs nothing, and removing it would
  * move every later mesh's id. */
 static void empty_blend_mesh(rt_mesh_data *m) {
-    free(m->positions);
-    free(m->normals);
-    free(m->indices);
-    free(m->tri_materials);
-    m->positions = m->normals = NULL;
-    m->indices = m->tri_materials = NULL;
+    rt_mesh_data_free_arrays(m);
     m->vertex_count = m->vertex_capacity = 0;
     m->triangle_count = m->triangle_capacity = 0;
     m->version++;

@@ -1,5 +1,6 @@
 /* vk_device.c - Vulkan devices through the loader: listing, float controls,
  * selection (vk_device.h). */
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -8,47 +9,16 @@
 #include "base/error.h"
 #include "vulkan/vk_internal.h"
 
+/* The codes it names and their names (vk_result_names.def). */
+static const rt_code_name vk_result_names[] = {
+#define RT_VK_RESULT(name) {name, #name},
+#include "vulkan/vk_result_names.def"
+#undef RT_VK_RESULT
+};
+
 const char *rt_vk_result_name(int r) {
-    switch (r) {
-    case VK_SUCCESS:
-        return "VK_SUCCESS";
-    case VK_NOT_READY:
-        return "VK_NOT_READY";
-    case VK_TIMEOUT:
-        return "VK_TIMEOUT";
-    case VK_INCOMPLETE:
-        return "VK_INCOMPLETE";
-    case VK_ERROR_OUT_OF_HOST_MEMORY:
-        return "VK_ERROR_OUT_OF_HOST_MEMORY";
-    case VK_ERROR_OUT_OF_DEVICE_MEMORY:
-        return "VK_ERROR_OUT_OF_DEVICE_MEMORY";
-    case VK_ERROR_INITIALIZATION_FAILED:
-        return "VK_ERROR_INITIALIZATION_FAILED";
-    case VK_ERROR_DEVICE_LOST:
-        return "VK_ERROR_DEVICE_LOST";
-    case VK_ERROR_MEMORY_MAP_FAILED:
-        return "VK_ERROR_MEMORY_MAP_FAILED";
-    case VK_ERROR_LAYER_NOT_PRESENT:
-        return "VK_ERROR_LAYER_NOT_PRESENT";
-    case VK_ERROR_EXTENSION_NOT_PRESENT:
-        return "VK_ERROR_EXTENSION_NOT_PRESENT";
-    case VK_ERROR_FEATURE_NOT_PRESENT:
-        return "VK_ERROR_FEATURE_NOT_PRESENT";
-    case VK_ERROR_INCOMPATIBLE_DRIVER:
-        return "VK_ERROR_INCOMPATIBLE_DRIVER";
-    case VK_ERROR_TOO_MANY_OBJECTS:
-        return "VK_ERROR_TOO_MANY_OBJECTS";
-    case VK_ERROR_FORMAT_NOT_SUPPORTED:
-        return "VK_ERROR_FORMAT_NOT_SUPPORTED";
-    case VK_ERROR_FRAGMENTED_POOL:
-        return "VK_ERROR_FRAGMENTED_POOL";
-    case VK_ERROR_OUT_OF_POOL_MEMORY:
-        return "VK_ERROR_OUT_OF_POOL_MEMORY";
-    case VK_ERROR_INVALID_SHADER_NV:
-        return "VK_ERROR_INVALID_SHADER_NV";
-    default:
-        return "VK_ERROR_UNKNOWN";
-    }
+    return rt_code_name_find(vk_result_names, sizeof vk_result_names / sizeof *vk_result_names, r,
+                             "VK_ERROR_UNKNOWN");
 }
 
 rt_status rt_vk_instance(VkInstance *out, rt_error *err) {
@@ -68,19 +38,16 @@ rt_status rt_vk_instance(VkInstance *out, rt_error *err) {
     return RT_OK;
 }
 
+/* What each VkPhysicalDeviceType is, by its value (OTHER = 0 to CPU = 4). */
+static const char *const type_names[] = {[VK_PHYSICAL_DEVICE_TYPE_OTHER] = "other",
+                                         [VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU] =
+                                             "integrated GPU",
+                                         [VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU] = "discrete GPU",
+                                         [VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU] = "virtual GPU",
+                                         [VK_PHYSICAL_DEVICE_TYPE_CPU] = "CPU"};
+
 static const char *type_name(VkPhysicalDeviceType t) {
-    switch (t) {
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
-        return "integrated GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
-        return "discrete GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
-        return "virtual GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_CPU:
-        return "CPU";
-    default:
-        return "other";
-    }
+    return (unsigned)t < sizeof type_names / sizeof *type_names ? type_names[t] : "other";
 }
 
 /* Fills d from p; 0 when the device has no compute queue. */
@@ -188,15 +155,10 @@ rt_status rt_vk_devices(rt_vk_device_info **out, int *count, rt_error *err) {
     return st;
 }
 
-static const char *device_name(const void *devs, int i) {
-    return ((const rt_vk_device_info *)devs)[i].name;
-}
-static int device_exact(const void *devs, int i) {
-    return ((const rt_vk_device_info *)devs)[i].exact;
-}
-
 int rt_vk_select(const rt_vk_device_info *devs, int count, const char *sel, rt_error *err) {
-    return rt_device_select("Vulkan", devs, count, device_name, device_exact, sel, err);
+    const rt_device_fields fields = {sizeof *devs, offsetof(rt_vk_device_info, name),
+                                     offsetof(rt_vk_device_info, exact)};
+    return rt_device_select("Vulkan", devs, count, fields, sel, err);
 }
 
 const char *rt_vk_exactness_note(const rt_vk_device_info *d, int flush) {

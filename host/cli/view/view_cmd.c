@@ -112,9 +112,7 @@ static void print_keys(FILE *f) {
 int cmd_view(int argc, char **argv) {
     view_options o;
     memset(&o, 0, sizeof o);
-    cli_frame_args_init(&o.frame);
-    cli_scene_args_init(&o.scene);
-    cli_renderer_args_init(&o.renderer);
+    cli_args_init(&o.frame, &o.scene, &o.renderer);
     o.renderer.backend = "auto";
     o.keyframe_rate = 10.0;
     o.budget_ms = 40.0;

@@ -25,19 +25,13 @@ view_key view_key_parse(const char *name) {
     return VIEW_KEY_NONE;
 }
 
+/* The backends of keys 1 to 4, in the order of the keys. */
+static const char *const key_backends[] = {"cpu", "packet", "opencl", "vulkan"};
+_Static_assert(VIEW_KEY_4 - VIEW_KEY_1 + 1 == sizeof key_backends / sizeof *key_backends,
+               "keys 1 to 4 follow each other");
+
 const char *view_key_backend(view_key key) {
-    switch (key) {
-    case VIEW_KEY_1:
-        return "cpu";
-    case VIEW_KEY_2:
-        return "packet";
-    case VIEW_KEY_3:
-        return "opencl";
-    case VIEW_KEY_4:
-        return "vulkan";
-    default:
-        return NULL;
-    }
+    return key >= VIEW_KEY_1 && key <= VIEW_KEY_4 ? key_backends[key - VIEW_KEY_1] : NULL;
 }
 
 void view_keys_print(FILE *out, const char *indent) {

@@ -82,27 +82,24 @@ static int parse_line(const char *path, int line_no, const char *line, view_even
         return -1;
     }
     col = (int)(w - line) + 1;
-    int args = 0;
-    if (word_is(w, n, "down")) {
-        ev->kind = VIEW_EVENT_DOWN, args = 1;
-    } else if (word_is(w, n, "up")) {
-        ev->kind = VIEW_EVENT_UP, args = 1;
-    } else if (word_is(w, n, "tap")) {
-        ev->kind = VIEW_EVENT_TAP, args = 1;
-    } else if (word_is(w, n, "drag")) {
-        ev->kind = VIEW_EVENT_DRAG, args = 2;
-    } else if (word_is(w, n, "wheel")) {
-        ev->kind = VIEW_EVENT_WHEEL, args = 1;
-    } else if (word_is(w, n, "screenshot")) {
-        ev->kind = VIEW_EVENT_SCREENSHOT, args = 1;
-    } else if (word_is(w, n, "quit")) {
-        ev->kind = VIEW_EVENT_QUIT, args = 0;
-    } else {
+    static const struct {
+        const char *word;
+        view_event_kind kind;
+        int args;
+    } actions[] = {{"down", VIEW_EVENT_DOWN, 1},   {"up", VIEW_EVENT_UP, 1},
+                   {"tap", VIEW_EVENT_TAP, 1},     {"drag", VIEW_EVENT_DRAG, 2},
+                   {"wheel", VIEW_EVENT_WHEEL, 1}, {"screenshot", VIEW_EVENT_SCREENSHOT, 1},
+                   {"quit", VIEW_EVENT_QUIT, 0}};
+    size_t act = 0;
+    while (act < sizeof actions / sizeof *actions && !word_is(w, n, actions[act].word)) act++;
+    if (act == sizeof actions / sizeof *actions) {
         script_fail(err, path, line_no, col,
                     "unknown action '%.*s' (down, up, tap, drag, wheel, screenshot, quit)", (int)n,
                     w);
         return -1;
     }
+    ev->kind = actions[act].kind;
+    const int args = actions[act].args;
     for (int a = 0; a < args; a++) {
         if (!(w = word(&p, &n))) {
             script_fail(err, path, line_no, (int)(p - line) + 1, "this action needs %d %s", args,
