@@ -1,7 +1,8 @@
 # install.cmake - what `cmake --install` puts where (included from the top
 # CMakeLists.txt once the targets exist):
 #   bin/rtcl                                the tool (library linked in statically)
-#   include/rtcl/rt.h                       the public API (self-contained)
+#   include/rtcl/rt.h, rtcl_version.h       the public API: #include <rtcl/rt.h>
+#                                           (include/ is on the targets' and pkg-config's path)
 #   lib/librtcl.a, lib/librtcl.so*          the library, static and shared
 #   lib/librtcl_image.so                    the image module (PNG, EXR), when built
 #   lib/cmake/rtcl/                         find_package(rtcl): rtcl::rtcl (shared)
@@ -16,19 +17,19 @@ set_target_properties(rt_shared PROPERTIES EXPORT_NAME rtcl)
 install(TARGETS rt rt_shared EXPORT rtclTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rtcl)
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(TARGETS rtcl RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 if(TARGET rtcl_image)
   install(TARGETS rtcl_image LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 endif()
-install(FILES ${CMAKE_SOURCE_DIR}/host/rt.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rtcl)
+install(FILES ${CMAKE_SOURCE_DIR}/host/rt.h ${CMAKE_BINARY_DIR}/version/rtcl_version.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rtcl)
 
 set(rt_cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/rtcl)
 install(EXPORT rtclTargets NAMESPACE rtcl:: DESTINATION ${rt_cmake_dir})
 configure_package_config_file(${CMAKE_SOURCE_DIR}/cmake/rtclConfig.cmake.in
   ${CMAKE_BINARY_DIR}/package/rtclConfig.cmake INSTALL_DESTINATION ${rt_cmake_dir})
 write_basic_package_version_file(${CMAKE_BINARY_DIR}/package/rtclConfigVersion.cmake
-  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
+  VERSION ${PROJECT_VERSION} COMPATIBILITY ${RTCL_COMPATIBILITY}) # the policy in CMakeLists.txt
 install(FILES ${CMAKE_BINARY_DIR}/package/rtclConfig.cmake
               ${CMAKE_BINARY_DIR}/package/rtclConfigVersion.cmake DESTINATION ${rt_cmake_dir})
 

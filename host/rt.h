@@ -21,11 +21,15 @@
  * - Matrices are 4x4, row-major, acting on column vectors: p' = M p, so the
  *   translation is in elements 3, 7 and 11.
  */
-#ifndef RT_H
-#define RT_H
+#ifndef RTCL_RT_H
+#define RTCL_RT_H
 
 #include <stddef.h>
 #include <stdint.h>
+
+/* RTCL_VERSION_MAJOR, _MINOR, _PATCH, RTCL_VERSION_STRING: the version this
+ * header belongs to (installed beside it, written by the build). */
+#include "rtcl_version.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -43,6 +47,10 @@ typedef enum rt_status {
 
 /* A short name for a status ("parse error", ...). */
 const char *rt_status_string(rt_status status);
+
+/* The version of the library that runs, "MAJOR.MINOR.PATCH": the same as
+ * RTCL_VERSION_STRING where the header and the library came together. */
+const char *rt_version(void);
 
 /* An error with the place it came from. line and column are 1-based; 0 means
  * not applicable. message holds the whole text, "file:line:column: reason". */
@@ -963,4 +971,4 @@ rt_status rt_devices(const char *backend, const char *selector, rt_device_info *
 #ifdef __cplusplus
 }
 #endif
-#endif /* RT_H */
+#endif /* RTCL_RT_H */
