@@ -246,6 +246,9 @@ typedef struct rt_render_stats {
     int packet_vector;         /* lanes per vector of the build that ran ... */
     const char *packet_isa;    /* ... and its instruction set */
     const char *backend;       /* the backend that ran */
+    /* What ran the frame at once: the CPU backends' worker threads; opencl:
+     * the device's compute units; vulkan: a CPU device's threads (lavapipe:
+     * llvmpipe's), a GPU's invocations of the frame's largest dispatch. */
     int threads;
     /* Set when "auto" could not use the device and rendered on the CPU: the
      * reason, for the caller to show (the library never prints). */
