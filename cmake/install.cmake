@@ -8,7 +8,7 @@
 #   lib/cmake/rtcl/                         find_package(rtcl): rtcl::rtcl (shared)
 #                                           and rtcl::rtcl_static
 #   lib/pkgconfig/rtcl.pc                   pkg-config rtcl (--static for the archive)
-#   share/man/man1/rtcl*.1                  a manual page per command (help2man, where found)
+#   share/man/man1/rtcl*.1.gz               a manual page per command (help2man, where found)
 #   share/bash-completion/completions/rtcl  bash completion
 #   share/doc/rtcl/examples/                examples/, to build against the install
 # Neither Embree nor TBB is a dependency of any of them: only rtcl bench

@@ -66,8 +66,8 @@ dpkg-deb -f "$dev" Depends | grep -q "rtcl (= $version)" ||
 # A manual page per command (where help2man is installed) and the completion.
 commands=$("$build/rtcl" help --synopsis | awk '/^rtcl [a-z]/ {print $2}')
 if command -v help2man >/dev/null; then
-    has runtime "^usr/share/man/man1/rtcl\.1"
-    for c in $commands; do has runtime "^usr/share/man/man1/rtcl-$c\.1"; done
+    has runtime "^usr/share/man/man1/rtcl\.1\.gz$"
+    for c in $commands; do has runtime "^usr/share/man/man1/rtcl-$c\.1\.gz$"; done
 else
     echo "note: no help2man, the manual pages are not checked"
 fi
@@ -77,7 +77,7 @@ ok "unpack" dpkg-deb -x "$runtime" "$root" && ok "unpack dev" dpkg-deb -x "$dev"
 usr="$root/usr"
 if command -v help2man >/dev/null; then
     checks=$((checks + 1))
-    grep -q -- 'width' "$usr/share/man/man1/rtcl-render.1" ||
+    gzip -dc "$usr/share/man/man1/rtcl-render.1.gz" | grep -q -- 'width' ||
         { echo "FAIL: rtcl-render.1 does not describe --width"; fails=$((fails + 1)); }
 fi
 # The completion: commands, then a command's options.

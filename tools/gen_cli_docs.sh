@@ -2,9 +2,9 @@
 # gen_cli_docs.sh - the manual pages and the bash completion of rtcl, both
 # generated from the program itself, so that they say what its help says:
 #   tools/gen_cli_docs.sh RTCL VERSION OUTDIR
-# OUTDIR/man1/rtcl.1 and OUTDIR/man1/rtcl-COMMAND.1 (one per command, by
-# help2man from 'rtcl --help' and 'rtcl COMMAND --help'; none where help2man
-# is not installed), and OUTDIR/completion/rtcl (bash: the commands and each
+# OUTDIR/man1/rtcl.1.gz and OUTDIR/man1/rtcl-COMMAND.1.gz (one per command,
+# by help2man from 'rtcl --help' and 'rtcl COMMAND --help', compressed with
+# gzip -9n as Debian's policy asks; none where help2man is not installed), and OUTDIR/completion/rtcl (bash: the commands and each
 # command's options, read from 'rtcl help --synopsis'). The build runs it
 # (CMakeLists.txt, target rtcl_cli_docs); cmake --install and the .deb ship
 # the results.
@@ -31,7 +31,7 @@ options_of() {
 }
 
 # Manual pages.
-rm -f "$out"/man1/*.1
+rm -f "$out"/man1/*.1 "$out"/man1/*.1.gz
 if command -v help2man >/dev/null; then
     export SOURCE_DATE_EPOCH=${SOURCE_DATE_EPOCH:-$(git -C "$(dirname "$0")" log -1 --format=%ct 2>/dev/null || echo 0)}
     help2man --no-info --no-discard-stderr --version-string="$version" \
@@ -44,6 +44,7 @@ if command -v help2man >/dev/null; then
         help2man --no-info --no-discard-stderr --version-string="$version" \
             --name="$(summary_of "$c")" --output="$out/man1/rtcl-$c.1" "$out/bin/rtcl-$c"
     done
+    gzip -9n -f "$out"/man1/*.1
 else
     echo "gen_cli_docs.sh: help2man not found, no manual pages (apt-get install help2man)" >&2
 fi
