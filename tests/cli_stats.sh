@@ -16,10 +16,14 @@ for b in cpu packet; do
     expect 0 "backend +$b, 3 threads" -- \
         "$rtcl" render builtin:cornell --width 24 --height 16 --backend $b --threads 3 --stats -o "$tmp/$b.ppm"
 done
-# The device backends, where this build and machine have one.
+# The device backends, where this build and machine have one ('rtcl devices'
+# says so); a device that is listed must render.
 for b in opencl vulkan; do
+    if ! "$rtcl" devices --api $b >"$tmp/devices.txt" 2>&1; then
+        echo "skipped backend $b: $(head -1 "$tmp/devices.txt")"; continue
+    fi
     out=$("$rtcl" render builtin:cornell --width 24 --height 16 --backend $b --stats -o "$tmp/$b.ppm" 2>&1) || {
-        echo "skipped backend $b: $(echo "$out" | head -1)"; continue; }
+        echo "FAIL: --backend $b --stats:"; echo "$out" | head -5; fails=$((fails + 1)); continue; }
     checks=$((checks + 1))
     if ! grep -q -E "^backend +$b, [1-9][0-9]* threads" <<<"$out"; then
         echo "FAIL: $b --stats gives no thread count:"; echo "$out" | head -3; fails=$((fails + 1))
