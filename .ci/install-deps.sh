@@ -13,6 +13,6 @@ $SUDO apt-get install -y -qq --no-install-recommends \
     libopenimageio-dev openimageio-tools \
     libsimde-dev libembree-dev libjansson-dev \
     gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user \
-    clang libclang-rt-14-dev clang-format gnuplot-nox python3 ffmpeg time \
+    clang libclang-rt-14-dev clang-format gnuplot-nox python3 ffmpeg time help2man \
     python3-dev python3-numpy python3-pytest python3-open3d >/dev/null
 echo "dependencies installed"

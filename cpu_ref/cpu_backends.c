@@ -85,6 +85,11 @@ static rt_status render_frame(const rt_backend_layout *layout, const rt_backend_
     stats->render_ms = rt_now_ms() - t0;
     fill_counts(stats, &counts);
     stats->threads = rt_pool_size(layout->pool);
+    /* The CPU backends are the oracle (the packet tracer gives its bits), in
+     * IEEE single precision, in the denormal mode asked for. */
+    stats->exact = 1;
+    stats->math_profile = "ieee";
+    stats->denormals = flush ? "flush" : "preserve";
     return RT_OK;
 }
 

@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <rt.h>
+#include <rtcl/rt.h>
 
 /* Stops with the message when a call fails. */
 static void check(rt_status status, const char *what, const char *message) {

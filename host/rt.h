@@ -21,11 +21,15 @@
  * - Matrices are 4x4, row-major, acting on column vectors: p' = M p, so the
  *   translation is in elements 3, 7 and 11.
  */
-#ifndef RT_H
-#define RT_H
+#ifndef RTCL_RT_H
+#define RTCL_RT_H
 
 #include <stddef.h>
 #include <stdint.h>
+
+/* RTCL_VERSION_MAJOR, _MINOR, _PATCH, RTCL_VERSION_STRING: the version this
+ * header belongs to (installed beside it, written by the build). */
+#include "rtcl_version.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -43,6 +47,10 @@ typedef enum rt_status {
 
 /* A short name for a status ("parse error", ...). */
 const char *rt_status_string(rt_status status);
+
+/* The version of the library that runs, "MAJOR.MINOR.PATCH": the same as
+ * RTCL_VERSION_STRING where the header and the library came together. */
+const char *rt_version(void);
 
 /* An error with the place it came from. line and column are 1-based; 0 means
  * not applicable. message holds the whole text, "file:line:column: reason". */
@@ -238,6 +246,9 @@ typedef struct rt_render_stats {
     int packet_vector;         /* lanes per vector of the build that ran ... */
     const char *packet_isa;    /* ... and its instruction set */
     const char *backend;       /* the backend that ran */
+    /* What ran the frame at once: the CPU backends' worker threads; opencl:
+     * the device's compute units; vulkan: a CPU device's threads (lavapipe:
+     * llvmpipe's), a GPU's invocations of the frame's largest dispatch. */
     int threads;
     /* Set when "auto" could not use the device and rendered on the CPU: the
      * reason, for the caller to show (the library never prints). */
@@ -786,19 +797,41 @@ typedef struct rt_image {
     float *pixels;
 } rt_image;
 
-/* Writes pixels by the file's extension: .png and .ppm (or .pgm) store 8
- * bits per channel (values clamped to [0,1], rounded to nearest), .exr and
- * .pfm store 32-bit floats. err names the file on failure. The extension is
- * case-insensitive; any other is RT_ERROR_UNSUPPORTED, as is a .ppm or .pfm
- * with other than 1 (written as grey, P5 or Pf) or 3 channels. NaN is stored
- * as 0 in 8-bit files. An alpha channel is stored as given, never
+/* An image format rt_image_write writes (one row of the library's table,
+ * formats/image_formats.def). */
+typedef struct rt_image_format {
+    const char *extension; /* ".png": lower case, matched case-insensitively */
+    const char *name;      /* "PNG" */
+    int bits;              /* per channel: 8 or 16 (levels of [0,1], clamped, rounded to nearest,
+                              NaN as 0) or 32 (float, linear) */
+    int lossy;             /* 1: the encoding loses more than that rounding (JPEG, WebP, HDR) */
+    int module;            /* 1: written through the image module (OpenImageIO); 0: in C */
+} rt_image_format;
+
+/* The index-th format (0, 1, ...), NULL past the last. */
+const rt_image_format *rt_image_format_at(int index);
+
+/* The format of path's extension (of the file name, not a folder), NULL
+ * when it names none. */
+const rt_image_format *rt_image_format_of(const char *path);
+
+/* Every format's extension, ".png, .jpg, ..., .pfm", in the table's order:
+ * the list the errors of an unknown extension give. */
+const char *rt_image_format_list(void);
+
+/* Writes pixels in the format of the file's extension (rt_image_format_of:
+ * .png, .jpg, .tif, .exr, .hdr, .ppm, .pfm and the others of
+ * rt_image_format_list), at its bits per channel. err names the file on
+ * failure. Any other extension is RT_ERROR_UNSUPPORTED, as is a .ppm or .pfm
+ * with other than 1 (written as grey, P5 or Pf) or 3 channels, or a channel
+ * count the format cannot hold. An alpha channel is stored as given, never
  * premultiplied. A file that cannot be created or written in full is
- * RT_ERROR_IO with the system's reason. PNG and EXR need the image module
- * (librtcl_image.so, OpenImageIO): without it they are RT_ERROR_UNSUPPORTED
- * saying so. The file is written whole or not at all (a temporary beside
- * it, flushed and renamed once complete): on any failure an existing file at
- * path is left as it was. No time stamp or other varying field is written,
- * so equal pixels give equal files. */
+ * RT_ERROR_IO with the system's reason. The formats written through the
+ * image module (librtcl_image.so, OpenImageIO: all but PPM, PGM and PFM)
+ * need it: without it they are RT_ERROR_UNSUPPORTED saying so. The file is written whole or not at
+ * all (a temporary beside it, flushed and renamed once complete): on any failure an existing file
+ * at path is left as it was. No time stamp or other varying field is written, so equal pixels give
+ * equal files. */
 rt_status rt_image_write(const char *path, const rt_image *image, rt_error *err);
 
 /* What rt_image_write_with may add to a file. */
@@ -814,7 +847,7 @@ rt_status rt_image_write_with(const char *path, const rt_image *image,
                               const rt_image_write_options *options, rt_error *err);
 
 /* Whether rt_image_write could write path, checked before the work that
- * makes the image: a known extension, the image module for PNG and EXR, a
+ * makes the image: a known extension, the image module for its formats, a
  * folder that exists and is writable, a path that is no folder. RT_OK or
  * rt_image_write's error for that fault. Nothing is created. */
 rt_status rt_image_check_output(const char *path, rt_error *err);
@@ -963,4 +996,4 @@ rt_status rt_devices(const char *backend, const char *selector, rt_device_info *
 #ifdef __cplusplus
 }
 #endif
-#endif /* RT_H */
+#endif /* RTCL_RT_H */

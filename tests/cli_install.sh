@@ -27,7 +27,7 @@ ok() {
 ok "install" cmake --install "$build" --prefix "$prefix" || { finish; exit 1; }
 libdir=$(cd "$prefix" && ls -d lib lib64 lib/*-linux-gnu 2>/dev/null | while read -r d; do
     [ -e "$prefix/$d/librtcl.so" ] && echo "$prefix/$d" && break; done)
-for f in bin/rtcl include/rtcl/rt.h; do
+for f in bin/rtcl include/rtcl/rt.h include/rtcl/rtcl_version.h; do
     checks=$((checks + 1))
     [ -e "$prefix/$f" ] || { echo "FAIL: $f not installed"; fails=$((fails + 1)); }
 done
@@ -42,6 +42,65 @@ if [ $has_module = 1 ]; then
     [ -e "$libdir/librtcl_image.so" ] || { echo "FAIL: the image module is not installed"; fails=$((fails + 1)); }
 fi
 
+# Symbol tables (issue 30, item 3): the static archive defines no global
+# symbol without the rt_ prefix (the library's inside included), and the
+# shared library exports only rt_ functions (cli_shared_symbols.sh holds
+# them to rt.h).
+checks=$((checks + 1))
+bad=$(nm -g --defined-only "$libdir/librtcl.a" 2>/dev/null | awk 'NF == 3 && $3 !~ /^rt_/ {print $3}' | sort -u)
+[ -z "$bad" ] || { echo "FAIL: librtcl.a defines unprefixed global symbols:" $bad; fails=$((fails + 1)); }
+checks=$((checks + 1))
+bad=$(nm -D --defined-only "$libdir/librtcl.so" | awk 'NF == 3 && $2 != "A" && $3 !~ /^rt_/ {print $3}' | sort -u)
+[ -z "$bad" ] || { echo "FAIL: librtcl.so exports unprefixed symbols:" $bad; fails=$((fails + 1)); }
+checks=$((checks + 1))
+grep -q '^#ifndef RTCL_RT_H' "$prefix/include/rtcl/rt.h" ||
+    { echo "FAIL: rt.h's include guard is not RTCL_RT_H"; fails=$((fails + 1)); }
+
+# Version (item 2): one version, from CMake's project(); the SONAME follows
+# the policy of CMakeLists.txt and agrees with the package's version file:
+# 0.MINOR.PATCH: SONAME librtcl.so.0.MINOR, only 0.MINOR.* compatible;
+# MAJOR >= 1: SONAME librtcl.so.MAJOR, every MAJOR.* compatible.
+version=$(sed -n 's/^set(PACKAGE_VERSION "\(.*\)")$/\1/p' "$libdir/cmake/rtcl/rtclConfigVersion.cmake")
+soname=$(readelf -d "$libdir/librtcl.so" | sed -n 's/.*Library soname: \[\(.*\)\]/\1/p')
+IFS=. read -r major minor patch <<<"$version"
+checks=$((checks + 1))
+if [ -z "$version" ] || [ -z "$patch" ]; then
+    echo "FAIL: rtclConfigVersion.cmake gives no MAJOR.MINOR.PATCH version ('$version')"; fails=$((fails + 1))
+else
+    if [ "$major" = 0 ]; then
+        # an older minor is another ABI (a SameMajorVersion file would take it)
+        want_soname="librtcl.so.0.$minor" pairs="0.$minor.0:TRUE 0.$((minor + 1)).0:FALSE"
+        [ "$minor" = 0 ] || pairs="$pairs 0.$((minor - 1)).0:FALSE"
+    else
+        want_soname="librtcl.so.$major" pairs="$major.0.0:TRUE $((major + 1)).0.0:FALSE"
+    fi
+    [ "$soname" = "$want_soname" ] ||
+        { echo "FAIL: SONAME '$soname' for version $version, the policy says $want_soname"; fails=$((fails + 1)); }
+    checks=$((checks + 1))
+    [ -e "$libdir/$soname" ] || { echo "FAIL: $soname is not installed"; fails=$((fails + 1)); }
+    # compatible VERSION: what the installed version file answers for find_package(rtcl VERSION)
+    compatible() {
+        printf 'set(PACKAGE_FIND_VERSION %s)\nstring(REPLACE . ";" v %s)\nlist(GET v 0 PACKAGE_FIND_VERSION_MAJOR)\nlist(GET v 1 PACKAGE_FIND_VERSION_MINOR)\nset(CMAKE_SIZEOF_VOID_P 8)\ninclude(%s)\nmessage("${PACKAGE_VERSION_COMPATIBLE}")\n' \
+            "$1" "$1" "$libdir/cmake/rtcl/rtclConfigVersion.cmake" >"$tmp/compat.cmake"
+        cmake -P "$tmp/compat.cmake" 2>&1
+    }
+    for pair in $pairs; do
+        checks=$((checks + 1))
+        got=$(compatible "${pair%%:*}")
+        [ "$got" = "${pair#*:}" ] || { echo "FAIL: the package $version says compatible=$got for" \
+            "find_package(rtcl ${pair%%:*}), the SONAME policy says ${pair#*:}"; fails=$((fails + 1)); }
+    done
+    checks=$((checks + 1))
+    cmake_version=$(sed -n 's/^CMAKE_PROJECT_VERSION:STATIC=//p' "$build/CMakeCache.txt")
+    [ "$version" = "$cmake_version" ] ||
+        { echo "FAIL: the package says $version, CMake's project() $cmake_version"; fails=$((fails + 1)); }
+    expect 0 "^rtcl $version\$" -- "$prefix/bin/rtcl" --version
+    expect 0 "^rtcl $version\$" -- "$prefix/bin/rtcl" version
+    checks=$((checks + 1))
+    grep -q "^Version: $version\$" "$libdir/pkgconfig/rtcl.pc" ||
+        { echo "FAIL: rtcl.pc's Version is not $version"; fails=$((fails + 1)); }
+fi
+
 # The example through the CMake package (shared library).
 ok "example: cmake configure" cmake -S "$RT_SOURCE_DIR/examples" -B "$tmp/ex-cmake" \
     -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release &&
@@ -53,6 +112,20 @@ if command -v pkg-config >/dev/null; then
     ok "example: pkg-config shared" sh -c "cc '$RT_SOURCE_DIR/examples/orbit.c' -o '$tmp/orbit-pc' \
         \$(pkg-config --cflags --libs rtcl) -lm -Wl,-rpath,'$libdir'" &&
         ok "example (pkg-config) runs" "$tmp/orbit-pc" "$tmp"
+    # <rtcl/rt.h> from pkg-config's flags, and its version is the library's; the
+    # include folder is include/, not include/rtcl (so <rt.h> is not found).
+    checks=$((checks + 1))
+    pkg-config --cflags rtcl | grep -q -E -- "-I[^ ]*/include( |\$)" ||
+        { echo "FAIL: pkg-config --cflags rtcl is '$(pkg-config --cflags rtcl)'"; fails=$((fails + 1)); }
+    printf '#include <stdio.h>\n#include <string.h>\n#include <rtcl/rt.h>\nint main(void) {\n printf("%%d.%%d.%%d %%s\\n", RTCL_VERSION_MAJOR, RTCL_VERSION_MINOR, RTCL_VERSION_PATCH, rt_version());\n return strcmp(RTCL_VERSION_STRING, rt_version()) != 0;\n}\n' >"$tmp/ver.c"
+    ok "<rtcl/rt.h> through pkg-config" sh -c "cc -std=c11 -Wall -Werror '$tmp/ver.c' -o '$tmp/ver' \
+        \$(pkg-config --cflags --libs rtcl) -Wl,-rpath,'$libdir'" &&
+        expect 0 "^$version $version\$" -- "$tmp/ver"
+    printf '#include <rt.h>\n' >"$tmp/bare.c"
+    checks=$((checks + 1))
+    if sh -c "cc -c '$tmp/bare.c' -o '$tmp/bare.o' \$(pkg-config --cflags rtcl)" 2>/dev/null; then
+        echo "FAIL: <rt.h> is on pkg-config's include path (include/rtcl)"; fails=$((fails + 1))
+    fi
     ok "example: pkg-config static" sh -c "cc '$RT_SOURCE_DIR/examples/orbit.c' -o '$tmp/orbit-static' \
         \$(pkg-config --cflags rtcl) '$libdir/librtcl.a' \$(pkg-config --static --libs rtcl | sed 's/-lrtcl\\b//') -lm" &&
         ok "example (static) runs" "$tmp/orbit-static" "$tmp"

@@ -23,8 +23,8 @@ T="timeout 20"
 big=(--width 8192 --height 8192)
 expect 2 'nodir/o.ppm: cannot write the image file: folder .*nodir: No such file' -- \
     $T "$RTCL" render builtin:cornell "${big[@]}" -o "$tmp/nodir/o.ppm"
-expect 2 'o.jpg: unknown image file extension' -- \
-    $T "$RTCL" render builtin:cornell "${big[@]}" -o "$tmp/o.jpg"
+expect 2 'o.gif: unknown image file extension' -- \
+    $T "$RTCL" render builtin:cornell "${big[@]}" -o "$tmp/o.gif"
 : > "$tmp/plainfile"
 expect 2 'plainfile/o.png: cannot write the image file: .*plainfile is not a folder' -- \
     $T "$RTCL" render builtin:cornell "${big[@]}" -o "$tmp/plainfile/o.png"
@@ -33,8 +33,8 @@ expect 2 'adir.png: cannot write the image file: it is a folder' -- \
     $T "$RTCL" render builtin:cornell "${big[@]}" -o "$tmp/adir.png"
 expect 2 'nodir/f_%04d.png: .*nodir/f_0000.png: cannot write the image file: folder' -- \
     $T "$RTCL" animate "$anim" --fps 1 --frames 3 "${big[@]}" -o "$tmp/nodir/f_%04d.png"
-expect 2 'f_%04d.tga: .*f_0000.tga: unknown image file extension' -- \
-    $T "$RTCL" animate "$anim" --fps 1 --frames 3 "${big[@]}" -o "$tmp/f_%04d.tga"
+expect 2 'f_%04d.ico: .*f_0000.ico: unknown image file extension' -- \
+    $T "$RTCL" animate "$anim" --fps 1 --frames 3 "${big[@]}" -o "$tmp/f_%04d.ico"
 if command -v ffmpeg > /dev/null; then
     expect 2 'nodir/v.mp4: .*cannot write the video: folder' -- \
         $T "$RTCL" animate "$anim" --fps 1 --frames 3 "${big[@]}" -o "$tmp/nodir/v.mp4"

@@ -1,5 +1,5 @@
 /* test_core_kd_clip.c - perfect-split clipping (host/accel/kd_clip.c) gives
- * the boxes of the plain rule, bit for bit: kd_clip_box and kd_clip_pair
+ * the boxes of the plain rule, bit for bit: rt_kd_clip_box and rt_kd_clip_pair
  * (both children of a split at once, sharing the planes before the split
  * axis, the box taken without branches) against a reference written the
  * plain way (Sutherland-Hodgman against the six planes in order, a plane
@@ -165,20 +165,20 @@ int main(void) {
         lc.bmax[axis] = pos;
         rc.bmin[axis] = pos;
         rt_aabb want, got, want_l, want_r, got_l, got_r;
-        int w = ref_clip(&t, &cell, &want), g = kd_clip_box(&t, &cell, &got);
+        int w = ref_clip(&t, &cell, &want), g = rt_kd_clip_box(&t, &cell, &got);
         if (w != g || (w && !same_box(&want, &got))) bad_single++;
         int wl = ref_clip(&t, &lc, &want_l), wr = ref_clip(&t, &rc, &want_r);
-        int gp = kd_clip_pair(&t, &cell, axis, pos, &got_l, &got_r);
+        int gp = rt_kd_clip_pair(&t, &cell, axis, pos, &got_l, &got_r);
         int gl = (gp & KD_LEFT) != 0, gr = (gp & KD_RIGHT) != 0;
         if (wl != gl || wr != gr || (wl && !same_box(&want_l, &got_l)) ||
             (wr && !same_box(&want_r, &got_r)))
             bad_pair++;
         reached += wl + wr;
     }
-    CHECK_MSG(bad_single == 0, "kd_clip_box differs from the reference in %d of %d cases",
+    CHECK_MSG(bad_single == 0, "rt_kd_clip_box differs from the reference in %d of %d cases",
               bad_single, cases);
-    CHECK_MSG(bad_pair == 0, "kd_clip_pair differs from the reference in %d of %d cases", bad_pair,
-              cases);
+    CHECK_MSG(bad_pair == 0, "rt_kd_clip_pair differs from the reference in %d of %d cases",
+              bad_pair, cases);
     /* The inputs exercise clipping: most children are reached, not all. */
     CHECK_MSG(reached > cases / 4 && reached < 2 * cases, "%d children reached", reached);
     return TEST_END();

@@ -2,7 +2,7 @@
  * bins and two histograms (where boxes begin, where they end) price every bin
  * boundary in one pass (the scanning/binning approximation of Hunt et al.
  * 2006 and Shevtsov et al. 2007). Only the choice of plane is approximate:
- * triangles are then classified by kd_side and clipped exactly, as in the
+ * triangles are then classified by rt_kd_side and clipped exactly, as in the
  * exact builder. */
 #include "accel/kd_internal.h"
 
@@ -29,7 +29,7 @@ static void binned_find(const kd_ctx *c, const kd_node_in *in, kd_split *best) {
     int bins = c->opt.bins;
     kd_cell cell;
     best->cost = INFINITY;
-    if (!kd_cell_init(&cell, &in->cell)) return;
+    if (!rt_kd_cell_init(&cell, &in->cell)) return;
     for (int k = 0; k < 3; k++) {
         float lo = in->cell.bmin[k], hi = in->cell.bmax[k];
         if (!(hi > lo)) continue;
@@ -72,14 +72,14 @@ static int binned_split(const kd_ctx *c, kd_node_in *in, const kd_split *s, kd_s
     uint32_t nl = 0, nr = 0;
     for (uint32_t i = 0; ok && i < n; i++) {
         int side =
-            kd_side(it[i].box.bmin[s->axis], it[i].box.bmax[s->axis], s->pos, s->planar_left);
+            rt_kd_side(it[i].box.bmin[s->axis], it[i].box.bmax[s->axis], s->pos, s->planar_left);
         if (side == KD_LEFT) {
             li[nl++] = it[i];
         } else if (side == KD_RIGHT) {
             ri[nr++] = it[i];
         } else {
             kd_item x = it[i], y = it[i];
-            int got = kd_clip_pair(&c->tris[x.tri], &in->cell, s->axis, s->pos, &x.box, &y.box);
+            int got = rt_kd_clip_pair(&c->tris[x.tri], &in->cell, s->axis, s->pos, &x.box, &y.box);
             if (got & KD_LEFT) li[nl++] = x;
             if (got & KD_RIGHT) ri[nr++] = y;
         }
@@ -106,7 +106,7 @@ static int u32_cmp(const void *pa, const void *pb) {
 static uint32_t binned_leaf(const kd_ctx *c, const kd_node_in *in, kd_scratch *w) {
     (void)c;
     const kd_item *it = in->data;
-    if (!kd_scratch_list(w, in->tris)) return UINT32_MAX;
+    if (!rt_kd_scratch_list(w, in->tris)) return UINT32_MAX;
     for (uint32_t i = 0; i < in->tris; i++) w->list[i] = it[i].tri;
     if (in->tris) qsort(w->list, in->tris, sizeof(uint32_t), u32_cmp);
     return in->tris;
@@ -129,4 +129,4 @@ static int binned_root(const kd_ctx *c, const uint32_t *ids, const rt_aabb *boxe
     return 1;
 }
 
-const kd_finder kd_finder_binned = {binned_find, binned_split, binned_leaf, binned_root};
+const kd_finder rt_kd_finder_binned = {binned_find, binned_split, binned_leaf, binned_root};

@@ -67,7 +67,7 @@ static int grow_nodes(kd_out *o) {
     return 1;
 }
 
-uint32_t kd_out_inner(kd_out *o, int axis, float split) {
+uint32_t rt_kd_out_inner(kd_out *o, int axis, float split) {
     if (!grow_nodes(o)) return 0;
     uint32_t bits;
     memcpy(&bits, &split, sizeof bits);
@@ -76,12 +76,12 @@ uint32_t kd_out_inner(kd_out *o, int axis, float split) {
     return o->node_count++;
 }
 
-void kd_out_set_right(kd_out *o, uint32_t inner, uint32_t right) {
+void rt_kd_out_set_right(kd_out *o, uint32_t inner, uint32_t right) {
     if (o->oom) return;
     o->nodes[inner].b = (right << 2) | (o->nodes[inner].b & 3u);
 }
 
-void kd_out_leaf(kd_out *o, const uint32_t *tris, uint32_t n) {
+void rt_kd_out_leaf(kd_out *o, const uint32_t *tris, uint32_t n) {
     if (!grow_nodes(o)) return;
     if (o->prim_count + n > o->prim_cap) {
         uint32_t cap = o->prim_cap ? o->prim_cap : 64;
@@ -101,7 +101,7 @@ void kd_out_leaf(kd_out *o, const uint32_t *tris, uint32_t n) {
     o->prim_count += n;
 }
 
-void kd_out_placeholder(kd_out *o, uint32_t task) {
+void rt_kd_out_placeholder(kd_out *o, uint32_t task) {
     if (!grow_nodes(o)) return;
     if (o->ph_count == o->ph_cap) {
         uint32_t cap = o->ph_cap ? 2 * o->ph_cap : 8;
@@ -121,7 +121,7 @@ void kd_out_placeholder(kd_out *o, uint32_t task) {
     o->node_count++;
 }
 
-void kd_out_free(kd_out *o) {
+void rt_kd_out_free(kd_out *o) {
     free(o->nodes);
     free(o->prims);
     free(o->ph);
@@ -219,7 +219,7 @@ static void build_rec(const kd_ctx *c, const kd_finder *f, kd_node_in *in, kd_sc
             if (n == UINT32_MAX)
                 o->oom = 1;
             else
-                kd_out_leaf(o, w->list, n);
+                rt_kd_out_leaf(o, w->list, n);
             node_free(in);
             return;
         }
@@ -233,20 +233,20 @@ static void build_rec(const kd_ctx *c, const kd_finder *f, kd_node_in *in, kd_sc
         if (c->work) atomic_fetch_add_explicit(c->work, made, memory_order_relaxed);
         l.allow = made ? left_over * l.tris / made : 0;
         r.allow = left_over - l.allow;
-        uint32_t inner = kd_out_inner(o, sp.axis, sp.pos);
+        uint32_t inner = rt_kd_out_inner(o, sp.axis, sp.pos);
         if (s && r.tris >= KD_TASK_MIN) {
             /* Offered before the left subtree is built, placed after it. */
             uint32_t id = sched_push(s, &r);
             build_rec(c, f, &l, w, o, s);
-            kd_out_set_right(o, inner, o->node_count);
+            rt_kd_out_set_right(o, inner, o->node_count);
             if (id == UINT32_MAX)
                 o->oom = 1;
             else
-                kd_out_placeholder(o, id);
+                rt_kd_out_placeholder(o, id);
             return;
         }
         build_rec(c, f, &l, w, o, s);
-        kd_out_set_right(o, inner, o->node_count);
+        rt_kd_out_set_right(o, inner, o->node_count);
         /* The right child in this frame: no recursion on the longer side. */
         *in = r;
     }
@@ -275,7 +275,7 @@ static void run_tasks(void *ctx, int worker, int workers) {
         if (--s->busy == 0 && s->taken == s->count) pthread_cond_broadcast(&s->wake);
     }
     pthread_mutex_unlock(&s->lock);
-    kd_scratch_free(&w);
+    rt_kd_scratch_free(&w);
 }
 
 /* Sets the nodes and entries of task id's subtree, placeholders expanded,
@@ -396,11 +396,11 @@ static int build_tree(const kd_ctx *c, const kd_finder *f, kd_node_in *root, kd_
         memset(&o, 0, sizeof o);
         build_rec(c, f, root, w, &o, NULL);
         if (!o.oom && over_cap(c)) {
-            kd_out_free(&o);
+            rt_kd_out_free(&o);
             return -1;
         }
         if (o.oom || o.node_count >= (1u << 30) || o.prim_count >= (1u << 30)) {
-            kd_out_free(&o);
+            rt_kd_out_free(&o);
             return 0;
         }
         out->nodes = o.nodes;
@@ -423,7 +423,7 @@ static int build_tree(const kd_ctx *c, const kd_finder *f, kd_node_in *root, kd_
         ok = ok && !s.oom && assemble(&s, pool, out);
     for (uint32_t i = 0; i < s.count; i++) {
         node_free(&s.all[i]->in);
-        kd_out_free(&s.all[i]->out);
+        rt_kd_out_free(&s.all[i]->out);
         free(s.all[i]);
     }
     free(s.all);
@@ -547,7 +547,7 @@ rt_status rt_kd_build(const float *positions, uint32_t vertex_count, const uint3
         out->node_count = 1;
         goto done;
     }
-    const kd_finder *f = opt.builder == RT_KD_BINNED ? &kd_finder_binned : &kd_finder_sweep;
+    const kd_finder *f = opt.builder == RT_KD_BINNED ? &rt_kd_finder_binned : &rt_kd_finder_sweep;
     _Atomic uint64_t work;
     atomic_init(&work, 0);
     if (opt.ref_guard) {
@@ -584,6 +584,6 @@ done:
     free(tris);
     free(ids);
     free(boxes);
-    kd_scratch_free(&w);
+    rt_kd_scratch_free(&w);
     return st;
 }

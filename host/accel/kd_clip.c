@@ -8,7 +8,7 @@
  * The planes are taken in one fixed order (x min, x max, y min, y max, z min,
  * z max) and a plane that keeps every vertex is skipped (clipping by it would
  * return the polygon unchanged), so a box depends only on the triangle and
- * the cell. kd_clip_pair uses that: the two children of a split share the
+ * the cell. rt_kd_clip_pair uses that: the two children of a split share the
  * planes of the axes before the split axis, which it clips by once. */
 #include "accel/kd_internal.h"
 
@@ -180,14 +180,14 @@ static cpoly *clip_from(cpoly *cur, cpoly *buf, const rt_aabb *cell, int k) {
     return cur;
 }
 
-int kd_clip_box(const kd_tri *t, const rt_aabb *cell, rt_aabb *out) {
+int rt_kd_clip_box(const kd_tri *t, const rt_aabb *cell, rt_aabb *out) {
     cpoly a, b;
     tri_poly(t, &a);
     return poly_box(clip_from(&a, &b, cell, 0), cell, out);
 }
 
-int kd_clip_pair(const kd_tri *t, const rt_aabb *cell, int axis, float pos, rt_aabb *left,
-                 rt_aabb *right) {
+int rt_kd_clip_pair(const kd_tri *t, const rt_aabb *cell, int axis, float pos, rt_aabb *left,
+                    rt_aabb *right) {
     cpoly a, b, c, d;
     tri_poly(t, &a);
     /* The planes before the split axis: the same for both children. */

@@ -46,13 +46,13 @@ typedef struct kd_out {
 } kd_out;
 
 /* Appends an inner node and returns its index; the right child is set by
- * kd_out_set_right once the left subtree is complete. */
-uint32_t kd_out_inner(kd_out *o, int axis, float split);
-void kd_out_set_right(kd_out *o, uint32_t inner, uint32_t right);
+ * rt_kd_out_set_right once the left subtree is complete. */
+uint32_t rt_kd_out_inner(kd_out *o, int axis, float split);
+void rt_kd_out_set_right(kd_out *o, uint32_t inner, uint32_t right);
 /* Appends a leaf with n entries (triangle indices, kept in the given order). */
-void kd_out_leaf(kd_out *o, const uint32_t *tris, uint32_t n);
-void kd_out_placeholder(kd_out *o, uint32_t task);
-void kd_out_free(kd_out *o);
+void rt_kd_out_leaf(kd_out *o, const uint32_t *tris, uint32_t n);
+void rt_kd_out_placeholder(kd_out *o, uint32_t task);
+void rt_kd_out_free(kd_out *o);
 
 /* ---- split rules (kd_split.c) ---------------------------------------------- */
 
@@ -70,10 +70,10 @@ typedef struct kd_split {
  * starting at pos goes right; a planar one (lo == hi) by its side, and by
  * planar_left when it lies in the plane. */
 enum { KD_LEFT = 1, KD_RIGHT = 2, KD_BOTH = 3 };
-int kd_side(float lo, float hi, float pos, int planar_left);
+int rt_kd_side(float lo, float hi, float pos, int planar_left);
 
 /* Surface area of a box (double). */
-double kd_area(const rt_aabb *b);
+double rt_kd_area(const rt_aabb *b);
 
 /* What pricing a plane needs of a cell, computed once per node. */
 typedef struct kd_cell {
@@ -85,7 +85,7 @@ typedef struct kd_cell {
 } kd_cell;
 
 /* Fills c for box; returns 0 when the box has no area (a leaf). */
-int kd_cell_init(kd_cell *c, const rt_aabb *box);
+int rt_kd_cell_init(kd_cell *c, const rt_aabb *box);
 
 /* What kd_offer needs of one axis of a cell and of the cost model, set once
  * per axis (kd_axis_init) for a sweep over many planes. */
@@ -159,14 +159,14 @@ static inline void kd_offer(const kd_ctx *c, const kd_cell *v, int k, float pos,
 /* The box of triangle t clipped to cell, rounded outwards to floats (only
  * where the clipped coordinate is not already a float), within cell.
  * Returns 0 when the triangle does not reach the cell. */
-int kd_clip_box(const kd_tri *t, const rt_aabb *cell, rt_aabb *out);
+int rt_kd_clip_box(const kd_tri *t, const rt_aabb *cell, rt_aabb *out);
 
-/* kd_clip_box of t for both children of cell split at pos on axis (the left
+/* rt_kd_clip_box of t for both children of cell split at pos on axis (the left
  * cell ending at pos, the right one starting there), sharing the work of
  * the planes before axis. Returns KD_LEFT | KD_RIGHT for the children t
  * reaches (their boxes set). */
-int kd_clip_pair(const kd_tri *t, const rt_aabb *cell, int axis, float pos, rt_aabb *left,
-                 rt_aabb *right);
+int rt_kd_clip_pair(const kd_tri *t, const rt_aabb *cell, int axis, float pos, rt_aabb *left,
+                    rt_aabb *right);
 
 /* ---- the split finders ----------------------------------------------------------- */
 
@@ -209,19 +209,19 @@ typedef struct kd_finder {
                 const rt_aabb *cell, rt_pool *pool, kd_node_in *out);
 } kd_finder;
 
-extern const kd_finder kd_finder_sweep;  /* kd_sweep.c */
-extern const kd_finder kd_finder_binned; /* kd_binned.c */
+extern const kd_finder rt_kd_finder_sweep;  /* kd_sweep.c */
+extern const kd_finder rt_kd_finder_binned; /* kd_binned.c */
 
 /* Grows w->list to hold n entries (and a spare one); 0 when out of memory. */
-int kd_scratch_list(kd_scratch *w, uint32_t n);
+int rt_kd_scratch_list(kd_scratch *w, uint32_t n);
 
 /* Grows w->buf to hold bytes; 0 when out of memory. */
-int kd_scratch_buf(kd_scratch *w, size_t bytes);
+int rt_kd_scratch_buf(kd_scratch *w, size_t bytes);
 
 /* Frees what w holds. */
-void kd_scratch_free(kd_scratch *w);
+void rt_kd_scratch_free(kd_scratch *w);
 
 /* Sorts v[0..n) ascending (a leaf's entries: insertion sort while short). */
-void kd_sort_u32(uint32_t *v, uint32_t n);
+void rt_kd_sort_u32(uint32_t *v, uint32_t n);
 
 #endif /* RT_KD_INTERNAL_H */

@@ -5,7 +5,7 @@
 
 #include <stdlib.h>
 
-int kd_scratch_list(kd_scratch *w, uint32_t n) {
+int rt_kd_scratch_list(kd_scratch *w, uint32_t n) {
     if (n <= w->list_cap) return 1;
     uint32_t *l = realloc(w->list, sizeof(uint32_t) * (n + 1));
     if (!l) return 0;
@@ -14,7 +14,7 @@ int kd_scratch_list(kd_scratch *w, uint32_t n) {
     return 1;
 }
 
-int kd_scratch_buf(kd_scratch *w, size_t bytes) {
+int rt_kd_scratch_buf(kd_scratch *w, size_t bytes) {
     if (bytes <= w->buf_cap) return 1;
     size_t cap = w->buf_cap ? w->buf_cap : 4096;
     while (cap < bytes) cap *= 2;
@@ -25,7 +25,7 @@ int kd_scratch_buf(kd_scratch *w, size_t bytes) {
     return 1;
 }
 
-void kd_scratch_free(kd_scratch *w) {
+void rt_kd_scratch_free(kd_scratch *w) {
     free(w->flags);
     free(w->list);
     free(w->buf);
@@ -41,7 +41,7 @@ static int u32_cmp(const void *pa, const void *pb) {
     return a < b ? -1 : a > b;
 }
 
-void kd_sort_u32(uint32_t *v, uint32_t n) {
+void rt_kd_sort_u32(uint32_t *v, uint32_t n) {
     if (n > 32) {
         qsort(v, n, sizeof(uint32_t), u32_cmp);
         return;

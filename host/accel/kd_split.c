@@ -4,7 +4,7 @@
 
 #include <math.h>
 
-int kd_side(float lo, float hi, float pos, int planar_left) {
+int rt_kd_side(float lo, float hi, float pos, int planar_left) {
     if (lo == hi) {
         if (lo < pos) return KD_LEFT;
         if (lo > pos) return KD_RIGHT;
@@ -15,14 +15,14 @@ int kd_side(float lo, float hi, float pos, int planar_left) {
     return KD_BOTH;
 }
 
-double kd_area(const rt_aabb *b) {
+double rt_kd_area(const rt_aabb *b) {
     double dx = (double)b->bmax[0] - (double)b->bmin[0];
     double dy = (double)b->bmax[1] - (double)b->bmin[1];
     double dz = (double)b->bmax[2] - (double)b->bmin[2];
     return 2.0 * (dx * dy + dy * dz + dz * dx);
 }
 
-int kd_cell_init(kd_cell *c, const rt_aabb *box) {
+int rt_kd_cell_init(kd_cell *c, const rt_aabb *box) {
     c->box = box;
     for (int k = 0; k < 3; k++) c->ext[k] = (double)box->bmax[k] - (double)box->bmin[k];
     for (int k = 0; k < 3; k++) {
@@ -30,7 +30,7 @@ int kd_cell_init(kd_cell *c, const rt_aabb *box) {
         c->other_sum[k] = a + b;
         c->other_prod[k] = a * b;
     }
-    double area = kd_area(box);
+    double area = rt_kd_area(box);
     c->inv_area = area > 0.0 ? 1.0 / area : 0.0;
     return area > 0.0;
 }

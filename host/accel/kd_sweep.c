@@ -139,7 +139,7 @@ static void sweep_find(const kd_ctx *c, const kd_node_in *in, kd_split *best) {
     const sw_lists *L = in->data;
     kd_cell cell;
     best->cost = INFINITY;
-    if (!kd_cell_init(&cell, &in->cell)) return;
+    if (!rt_kd_cell_init(&cell, &in->cell)) return;
     for (int k = 0; k < 3; k++) sweep_axis(c, &cell, k, L->e[k], L->n[k], in->tris, best);
 }
 
@@ -168,12 +168,12 @@ static int sweep_split(const kd_ctx *c, kd_node_in *in, const kd_split *s, kd_sc
     r->cell = in->cell;
     r->cell.bmin[a] = pos;
     l->depth = r->depth = in->depth + 1;
-    if (!kd_scratch_list(w, in->tris)) {
+    if (!rt_kd_scratch_list(w, in->tris)) {
         free(in->data);
         in->data = NULL;
         return 0;
     }
-    /* Classify by the split axis's events alone (the rule of kd_side): a
+    /* Classify by the split axis's events alone (the rule of rt_kd_side): a
      * triangle's start comes before its end, so the end decides. The
      * straddling triangles go to w->list. */
     const sw_ev *ea = L->e[a];
@@ -193,7 +193,7 @@ static int sweep_split(const kd_ctx *c, kd_node_in *in, const kd_split *s, kd_sc
                 w->list[nb++] = t;
             }
         } else {
-            int sd = kd_side(p, p, pos, s->planar_left);
+            int sd = rt_kd_side(p, p, pos, s->planar_left);
             side[t] = (uint8_t)sd;
             if (sd == KD_LEFT)
                 nl++;
@@ -204,7 +204,7 @@ static int sweep_split(const kd_ctx *c, kd_node_in *in, const kd_split *s, kd_sc
     uint32_t one_l = nl, one_r = nr;
     /* The straddling triangles, clipped to each child: at most 2 events per
      * axis and side each; cl[side][k] counts them. */
-    int ok = kd_scratch_buf(w, sizeof(sw_ev) * (14 * (size_t)nb + 7));
+    int ok = rt_kd_scratch_buf(w, sizeof(sw_ev) * (14 * (size_t)nb + 7));
     sw_ev *clip = w->buf;
     sw_lists *le = NULL, *re = NULL;
     uint32_t cl[2][3] = {{0, 0, 0}, {0, 0, 0}};
@@ -215,7 +215,7 @@ static int sweep_split(const kd_ctx *c, kd_node_in *in, const kd_split *s, kd_sc
         for (uint32_t j = 0; j < nb; j++) {
             uint32_t t = w->list[j];
             rt_aabb lb, rb;
-            int got = kd_clip_pair(&c->tris[t], &in->cell, a, pos, &lb, &rb);
+            int got = rt_kd_clip_pair(&c->tris[t], &in->cell, a, pos, &lb, &rb);
             if (got & KD_LEFT) {
                 for (int k = 0; k < 3; k++) cl[0][k] = box_events(&lb, k, t, cb[0][k], cl[0][k]);
                 nl++;
@@ -307,12 +307,12 @@ static int sweep_split(const kd_ctx *c, kd_node_in *in, const kd_split *s, kd_sc
 static uint32_t sweep_leaf(const kd_ctx *c, const kd_node_in *in, kd_scratch *w) {
     (void)c;
     const sw_lists *L = in->data;
-    if (!kd_scratch_list(w, in->tris)) return UINT32_MAX;
+    if (!rt_kd_scratch_list(w, in->tris)) return UINT32_MAX;
     uint32_t n = 0;
     const sw_ev *e = L->e[0];
     for (uint32_t i = 0; i < L->n[0]; i++)
         if ((e[i].key >> EV_SHIFT) != EV_END) w->list[n++] = e[i].key & EV_TRI;
-    kd_sort_u32(w->list, n);
+    rt_kd_sort_u32(w->list, n);
     return n;
 }
 
@@ -418,4 +418,4 @@ static int sweep_root(const kd_ctx *c, const uint32_t *ids, const rt_aabb *boxes
     return 1;
 }
 
-const kd_finder kd_finder_sweep = {sweep_find, sweep_split, sweep_leaf, sweep_root};
+const kd_finder rt_kd_finder_sweep = {sweep_find, sweep_split, sweep_leaf, sweep_root};

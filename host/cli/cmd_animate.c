@@ -36,7 +36,8 @@ static const cli_option animate_options[] = {
     {"--output", 'o', CLI_STRING, "PATTERN|VIDEO", offsetof(animate_args, out),
      .flags = CLI_NONEMPTY | CLI_REQUIRED,
      .help = "output images: a path with one %d conversion (%04d: 4 digits, zero-padded) that "
-             "the frame number replaces, format by extension (.png, .ppm, .exr, .pfm); or a path "
+             "the frame number replaces, format by extension (those of 'rtcl render --help'); or a "
+             "path "
              "ending in .mp4, .mkv or .webm: one video of the frames at F frames per second, "
              "encoded by ffmpeg (which must be on PATH; Debian: apt-get install ffmpeg): H.264 "
              "(libx264, CRF 18) in .mp4 and .mkv, else MPEG-4 part 2; VP9 in .webm; 8 bits, "

@@ -11,6 +11,7 @@
 
 #include "cli_options.h"
 #include "commands.h"
+#include "frame_image.h"
 #include "rt.h"
 
 typedef struct compare_options {
@@ -19,11 +20,19 @@ typedef struct compare_options {
     double max_diff;
 } compare_options;
 
+/* --diff's help: the formats from the library's one table. */
+static void diff_help(char *buf, size_t cap) {
+    char formats[1024];
+    cli_image_formats_text(formats, sizeof formats);
+    snprintf(buf, cap,
+             "write |A - B| per channel to D, its format by the extension: %s; use a float format "
+             "(.exr) to see small differences",
+             formats);
+}
+
 static const cli_option compare_table[] = {
     {"--diff", 0, CLI_STRING, "D", offsetof(compare_options, diff_path), .flags = CLI_NONEMPTY,
-     .help = "write |A - B| per channel to D (.png, .ppm, .exr or .pfm; PNG and PPM keep 8 bits, "
-             "so use .exr to see small differences)",
-     .fallback = "none"},
+     .dynamic_help = diff_help, .fallback = "none"},
     {"--max-diff", 0, CLI_FLOAT, "X", offsetof(compare_options, max_diff), 0.0, INFINITY,
      .help = "the largest absolute difference that still passes", .fallback = "0: identical"},
     {NULL}};

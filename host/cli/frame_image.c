@@ -31,9 +31,33 @@ const char *cli_aov_name(rt_aov aov) {
 }
 
 int cli_is_float_format(const char *path) {
-    size_t n = strlen(path);
-    return n >= 4 &&
-           (strcasecmp(path + n - 4, ".exr") == 0 || strcasecmp(path + n - 4, ".pfm") == 0);
+    const rt_image_format *f = rt_image_format_of(path);
+    return f && f->bits == 32;
+}
+
+void cli_image_formats_text(char *buf, size_t cap) {
+    static const struct {
+        int bits;
+        const char *what;
+    } groups[] = {{8, "8-bit (clamped)"}, {16, "16-bit (clamped)"}, {32, "32-bit float (linear)"}};
+    size_t n = 0;
+    buf[0] = 0;
+    for (size_t g = 0; g < sizeof groups / sizeof groups[0]; g++) {
+        int first = 1;
+        for (int i = 0; rt_image_format_at(i) && n < cap; i++) {
+            const rt_image_format *f = rt_image_format_at(i);
+            if (f->bits != groups[g].bits) continue;
+            n += (size_t)snprintf(buf + n, cap - n, "%s%s%s%s", first ? (g ? "; " : "") : ", ",
+                                  first ? groups[g].what : "", first ? " " : "", f->extension);
+            first = 0;
+        }
+    }
+    int lossy = 0;
+    for (int i = 0; rt_image_format_at(i) && n < cap; i++)
+        if (rt_image_format_at(i)->lossy)
+            n += (size_t)snprintf(buf + n, cap - n, "%s%s",
+                                  lossy++ ? ", " : " (lossy: ", rt_image_format_at(i)->extension);
+    if (lossy && n < cap) snprintf(buf + n, cap - n, ")");
 }
 
 /* An id as a colour that tells neighbours apart; black for -1 (a miss). */

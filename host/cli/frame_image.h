@@ -18,8 +18,13 @@ int cli_parse_aov(const char *name, rt_aov *out);
 /* The name of an AOV ("shaded" for RT_AOV_NONE). */
 const char *cli_aov_name(rt_aov aov);
 
-/* 1 when path names a float image format (.exr), which stores AOVs raw. */
+/* 1 when path names a float image format (.exr, .pfm, ...: 32 bits in the
+ * library's table), which stores AOVs raw. */
 int cli_is_float_format(const char *path);
+
+/* The formats written by extension, for a help text: the library's table
+ * (rt_image_format_at) grouped by bits, the lossy ones marked, into buf. */
+void cli_image_formats_text(char *buf, size_t cap);
 
 /* Makes an AOV displayable: a new 3-channel image (caller frees with free()),
  * depth and counters scaled to [0,1] by their maximum, ids in false colour,

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "rt.h"
 
 static const struct {
     const cli_command *spec;
@@ -19,7 +20,8 @@ static const struct {
 
 static void usage(FILE *out) {
     fprintf(out, "usage: rtcl COMMAND [ARGS...]\n"
-                 "       rtcl help [COMMAND | --synopsis]\n\ncommands:\n");
+                 "       rtcl help [COMMAND | --synopsis]\n"
+                 "       rtcl --version\n\ncommands:\n");
     for (size_t i = 0; i < COMMAND_COUNT; i++)
         fprintf(out, "  %-9s %s\n", commands[i].spec->name, commands[i].spec->summary);
     fprintf(out, "\n'rtcl COMMAND --help' or 'rtcl help COMMAND' describes each command, and\n"
@@ -67,6 +69,10 @@ int main(int argc, char **argv) {
     }
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
         usage(stdout);
+        return 0;
+    }
+    if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "version")) {
+        printf("rtcl %s\n", rt_version()); /* the library's: rtcl links it statically */
         return 0;
     }
     if (!strcmp(argv[1], "help")) return help(argc, argv);

@@ -1,6 +1,7 @@
-/* image.c - image.h's calls: PPM/PGM and PFM here in C (image_pnm.c), PNG
- * and EXR (and reading whatever OpenImageIO reads) through the image module,
- * loaded on first use (image_load.c). Comparing and freeing need no module. */
+/* image.c - image.h's calls: PPM/PGM and PFM here in C (image_pnm.c), the
+ * other formats of the table (image_formats.def: PNG, JPEG, TIFF, EXR, ...)
+ * and reading whatever OpenImageIO reads through the image module, loaded on
+ * first use (image_load.c). Comparing and freeing need no module. */
 #include "formats/image.h"
 
 #include <errno.h>
@@ -8,7 +9,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 #include <unistd.h>
 
 #include "base/atomic_file.h"
@@ -19,20 +19,6 @@
 
 /* The largest PPM or PFM file read: a 32768 x 32768 RGB float image. */
 #define RT_MAX_PNM_FILE_BYTES ((uint64_t)12 << 30)
-
-typedef enum file_kind { KIND_UNKNOWN, KIND_PNG, KIND_PPM, KIND_PFM, KIND_EXR } file_kind;
-
-/* By the extension of the file name (not of a folder), case-insensitive. */
-static file_kind kind_of(const char *path) {
-    const char *slash = strrchr(path, '/');
-    const char *dot = strrchr(slash ? slash + 1 : path, '.');
-    if (!dot) return KIND_UNKNOWN;
-    if (strcasecmp(dot, ".png") == 0) return KIND_PNG;
-    if (strcasecmp(dot, ".ppm") == 0 || strcasecmp(dot, ".pgm") == 0) return KIND_PPM;
-    if (strcasecmp(dot, ".pfm") == 0) return KIND_PFM;
-    if (strcasecmp(dot, ".exr") == 0) return KIND_EXR;
-    return KIND_UNKNOWN;
-}
 
 static rt_status check_image(const rt_image *image, const char *what, const char *path,
                              size_t *count, rt_error *err) {
@@ -56,22 +42,21 @@ static rt_status check_image(const rt_image *image, const char *what, const char
 }
 
 /* The format of path's extension, checked for writing: RT_OK, or
- * RT_ERROR_UNSUPPORTED naming the known ones (and, for PNG and EXR, why the
- * image module cannot be had). */
-static rt_status check_format(const char *path, file_kind *kind, const rt_image_module **module,
-                              rt_error *err) {
-    *kind = kind_of(path);
+ * RT_ERROR_UNSUPPORTED naming the known ones (the table's list) and, for a
+ * format of the image module, why the module cannot be had. */
+static rt_status check_format(const char *path, const rt_image_format **format,
+                              const rt_image_module **module, rt_error *err) {
+    *format = rt_image_format_of(path);
     *module = NULL;
-    if (*kind == KIND_UNKNOWN)
+    if (!*format)
         return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
-                            "unknown image file extension (supported: .png, .ppm, .pgm, .pfm, "
-                            ".exr)");
-    if (*kind == KIND_PNG || *kind == KIND_EXR) {
+                            "unknown image file extension (supported: %s)", rt_image_format_list());
+    if ((*format)->module) {
         rt_error why;
         *module = rt_image_module_get(&why);
         if (!*module)
-            return rt_error_set(err, why.status, path, 0, 0, "cannot write %s: %s",
-                                *kind == KIND_PNG ? "PNG" : "EXR", why.message);
+            return rt_error_set(err, why.status, path, 0, 0, "cannot write %s: %s", (*format)->name,
+                                why.message);
     }
     return RT_OK;
 }
@@ -79,9 +64,9 @@ static rt_status check_format(const char *path, file_kind *kind, const rt_image_
 rt_status rt_image_check_output(const char *path, rt_error *err) {
     if (!path || !path[0])
         return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, NULL, 0, 0, "no output file name");
-    file_kind kind;
+    const rt_image_format *format;
     const rt_image_module *module;
-    rt_status st = check_format(path, &kind, &module, err);
+    rt_status st = check_format(path, &format, &module, err);
     if (st == RT_OK) st = rt_atomic_file_check(path, "image file", err);
     return st;
 }
@@ -97,15 +82,16 @@ rt_status rt_image_write_with(const char *path, const rt_image *image,
     size_t count = 0;
     rt_status st = check_image(image, "the", path, &count, err);
     if (st != RT_OK) return st;
-    file_kind kind;
+    const rt_image_format *format;
     const rt_image_module *module;
-    st = check_format(path, &kind, &module, err);
+    st = check_format(path, &format, &module, err);
     if (st != RT_OK) return st;
-    if (kind == KIND_PPM || kind == KIND_PFM) {
+    int pfm = !module && format->bits == 32;
+    if (!module) {
         if (image->channels != 1 && image->channels != 3)
             return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
                                 "%s holds 1 or 3 channels, not %d (use .png or .exr)",
-                                kind == KIND_PPM ? "PPM" : "PFM", image->channels);
+                                pfm ? "PFM" : "PPM", image->channels);
     }
     /* The whole file is encoded in memory, then written by the one writer
      * of every output (base/atomic_file.h): complete or not at all. */
@@ -113,7 +99,7 @@ rt_status rt_image_write_with(const char *path, const rt_image *image,
     size_t size = 0;
     if (module)
         st = module->encode(path, image, options && options->metadata, &bytes, &size, err);
-    else if (kind == KIND_PPM)
+    else if (!pfm)
         st = rt_pnm_encode(path, image, &bytes, &size, err);
     else
         st = rt_pfm_encode(path, image, &bytes, &size, err);

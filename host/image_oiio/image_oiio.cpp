@@ -1,9 +1,10 @@
 // image_oiio.cpp - the image module (librtcl_image.so, formats/image_module.h):
-// PNG and EXR encoding, and reading any format, over OpenImageIO 2.4.
+// encoding the formats of formats/image_formats.def that it writes (PNG,
+// JPEG, TIFF, EXR, HDR, ...), and reading any format, over OpenImageIO 2.4.
 //
 // This is the project's only C++: it turns OIIO's C++ interface into plain C
-// calls. It is a module of its own, loaded by the library on the first PNG or
-// EXR (formats/image_load.c), so that programs that read and write no such
+// calls. It is a module of its own, loaded by the library on the first image
+// of those formats (formats/image_load.c), so that programs that read and write no such
 // image never map OpenImageIO. Every entry point catches every exception,
 // because one escaping into C code would terminate the program. OIIO errors
 // are always fetched (and so cleared) and put into the rt_error; nothing is
@@ -34,22 +35,43 @@ extern "C" {
 
 namespace {
 
-const char *const supported_extensions = ".png, .exr";
+// The rows of the one table of formats (formats/image_formats.def) that
+// this module writes: the others are the library's own (PPM, PFM).
+struct format_row {
+    const char *extension;
+    const char *name;
+    int bits; // 8, 16: integer levels; 32: float
+    bool module;
+};
+#define RT_CODER_MODULE true
+#define RT_CODER_PNM    false
+#define RT_CODER_PFM    false
+const format_row format_rows[] = {
+#define RT_IMAGE_FORMAT(ext, name, bits, coder, lossy) {ext, name, bits, RT_CODER_##coder},
+#include "formats/image_formats.def"
+#undef RT_IMAGE_FORMAT
+};
 
-// How a file extension is stored.
-enum class file_kind { unknown, png, exr };
-
-file_kind kind_of(const char *path) {
+// The module's row for path's extension (case-insensitive), or nullptr.
+const format_row *format_of(const char *path) {
     const char *slash = std::strrchr(path, '/');
     const char *name = slash ? slash + 1 : path;
     const char *dot = std::strrchr(name, '.');
-    if (!dot) return file_kind::unknown;
+    if (!dot) return nullptr;
     std::string ext;
-    for (const char *c = dot + 1; *c; c++)
+    for (const char *c = dot; *c; c++)
         ext += static_cast<char>(*c >= 'A' && *c <= 'Z' ? *c - 'A' + 'a' : *c);
-    if (ext == "png") return file_kind::png;
-    if (ext == "exr") return file_kind::exr;
-    return file_kind::unknown;
+    for (const format_row &row : format_rows)
+        if (row.module && ext == row.extension) return &row;
+    return nullptr;
+}
+
+// ".png, .jpg, ...": the extensions this module writes.
+std::string supported_extensions() {
+    std::string text;
+    for (const format_row &row : format_rows)
+        if (row.module) text += (text.empty() ? "" : ", ") + std::string(row.extension);
+    return text;
 }
 
 // OIIO's messages can end in a newline; the rt_error message is one line.
@@ -102,6 +124,63 @@ unsigned char to_8bit(float v) {
     return static_cast<unsigned char>(std::floor(static_cast<double>(v) * 255.0 + 0.5));
 }
 
+// The same for 65536 levels.
+uint16_t to_16bit(float v) {
+    if (!(v > 0.0f)) return 0;
+    if (v >= 1.0f) return 65535;
+    return static_cast<uint16_t>(std::floor(static_cast<double>(v) * 65535.0 + 0.5));
+}
+
+// Encodes through a temporary file, for the writers that cannot write to
+// memory (OIIO's SGI and FITS): written in TMPDIR (or /tmp), read back
+// into encoded, removed. The library still writes the target whole.
+bool encode_via_file(const char *path, const OIIO::ImageSpec &spec, OIIO::TypeDesc type,
+                     const void *pixels, std::vector<unsigned char> &encoded, std::string &error) {
+    const char *dot = std::strrchr(path, '.');
+    const char *dir = std::getenv("TMPDIR");
+    std::string name = std::string(dir && *dir ? dir : "/tmp") + "/rtcl-image-XXXXXX" + dot;
+    std::vector<char> templ(name.begin(), name.end());
+    templ.push_back(0);
+    int fd = mkstemps(templ.data(), static_cast<int>(std::strlen(dot)));
+    if (fd < 0) {
+        error = std::string("cannot create a temporary file in ") + (dir && *dir ? dir : "/tmp") +
+                ": " + std::strerror(errno);
+        return false;
+    }
+    close(fd);
+    bool ok = false;
+    {
+        auto out = OIIO::ImageOutput::create(templ.data());
+        if (!out)
+            error = one_line(OIIO::geterror());
+        else if (!out->open(templ.data(), spec))
+            error = one_line(out->geterror());
+        else {
+            bool written = out->write_image(type, pixels);
+            if (!written) error = one_line(out->geterror());
+            bool closed = out->close();
+            if (written && !closed) error = one_line(out->geterror());
+            ok = written && closed;
+        }
+    }
+    if (ok) {
+        std::FILE *f = std::fopen(templ.data(), "rb");
+        ok = f != nullptr;
+        if (f) {
+            unsigned char chunk[65536];
+            size_t got;
+            while ((got = std::fread(chunk, 1, sizeof chunk, f)) > 0)
+                encoded.insert(encoded.end(), chunk, chunk + got);
+            ok = !std::ferror(f);
+            std::fclose(f);
+        }
+        if (!ok)
+            error = std::string("cannot read the temporary file back: ") + std::strerror(errno);
+    }
+    unlink(templ.data());
+    return ok;
+}
+
 // The time now as OIIO's "DateTime" wants it: "YYYY:MM:DD hh:mm:ss", local.
 std::string time_stamp() {
     std::time_t now = std::time(nullptr);
@@ -117,13 +196,15 @@ rt_status encode_image(const char *path, const rt_image *image, int metadata,
     rt_status status = check_image(image, "the", path, &count, err);
     if (status != RT_OK) return status;
 
-    file_kind kind = kind_of(path);
-    if (kind == file_kind::unknown)
+    const format_row *format = format_of(path);
+    if (!format)
         return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
-                            "unknown image file extension (supported: %s)", supported_extensions);
-    const bool eight_bit = kind != file_kind::exr;
-    OIIO::ImageSpec spec(image->width, image->height, image->channels,
-                         eight_bit ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
+                            "unknown image file extension (supported: %s)",
+                            supported_extensions().c_str());
+    const OIIO::TypeDesc type = format->bits == 8    ? OIIO::TypeDesc::UINT8
+                                : format->bits == 16 ? OIIO::TypeDesc::UINT16
+                                                     : OIIO::TypeDesc::FLOAT;
+    OIIO::ImageSpec spec(image->width, image->height, image->channels, type);
     // The colour channels are stored as given: an alpha channel is not
     // premultiplied into them.
     spec.attribute("oiio:UnassociatedAlpha", 1);
@@ -141,13 +222,19 @@ rt_status encode_image(const char *path, const rt_image *image, int metadata,
         spec.attribute("DateTime", 0);
     }
 
-    std::unique_ptr<unsigned char[]> bytes;
-    if (eight_bit) {
-        bytes.reset(new (std::nothrow) unsigned char[count]);
-        if (!bytes)
-            return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0,
-                                "no memory for %zu bytes of pixels", count);
+    // The levels of an integer format, rounded here (NaN as 0), so that
+    // every format rounds alike; floats are passed as they are.
+    std::vector<unsigned char> bytes;
+    std::vector<uint16_t> words;
+    const void *pixels = image->pixels;
+    if (format->bits == 8) {
+        bytes.resize(count);
         for (size_t i = 0; i < count; i++) bytes[i] = to_8bit(image->pixels[i]);
+        pixels = bytes.data();
+    } else if (format->bits == 16) {
+        words.resize(count);
+        for (size_t i = 0; i < count; i++) words[i] = to_16bit(image->pixels[i]);
+        pixels = words.data();
     }
 
     // OpenImageIO encodes into memory (its IOProxy); the library then writes
@@ -162,22 +249,29 @@ rt_status encode_image(const char *path, const rt_image *image, int metadata,
                             one_line(OIIO::geterror()).c_str());
     std::vector<unsigned char> encoded;
     OIIO::Filesystem::IOVecOutput memory(encoded);
-    if (!out->supports("ioproxy") || !out->set_ioproxy(&memory))
-        return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
-                            "OpenImageIO cannot write this format to memory");
-    if (!out->open(path, spec))
-        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot encode the image: %s",
-                            one_line(out->geterror()).c_str());
-    bool written = eight_bit ? out->write_image(OIIO::TypeDesc::UINT8, bytes.get())
-                             : out->write_image(OIIO::TypeDesc::FLOAT, image->pixels);
-    std::string write_error = written ? std::string() : one_line(out->geterror());
-    bool closed = out->close();
-    if (!written)
-        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot write pixels: %s",
-                            write_error.c_str());
-    if (!closed)
-        return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot finish the file: %s",
-                            one_line(out->geterror()).c_str());
+    if (!out->supports("ioproxy")) {
+        out.reset();
+        std::string error;
+        if (!encode_via_file(path, spec, type, pixels, encoded, error))
+            return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot encode the image as %s: %s",
+                                format->name, error.c_str());
+    } else {
+        if (!out->set_ioproxy(&memory))
+            return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
+                                "OpenImageIO cannot write %s to memory", format->name);
+        if (!out->open(path, spec))
+            return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot encode the image as %s: %s",
+                                format->name, one_line(out->geterror()).c_str());
+        bool written = out->write_image(type, pixels);
+        std::string write_error = written ? std::string() : one_line(out->geterror());
+        bool closed = out->close();
+        if (!written)
+            return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot write pixels: %s",
+                                write_error.c_str());
+        if (!closed)
+            return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot finish the file: %s",
+                                one_line(out->geterror()).c_str());
+    }
     // malloc'ed: the library frees it with free().
     unsigned char *file = static_cast<unsigned char *>(std::malloc(encoded.size() + 1));
     if (!file)

@@ -20,6 +20,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "backend/upload_plan.h"
 #include "base/clock.h"
@@ -749,6 +750,23 @@ static rt_status vk_prepare(void *state, const rt_backend_layout *layout, rt_ren
     return RT_OK;
 }
 
+/* rt_render_stats.threads: what ran the frame's invocations at once. On a
+ * CPU device, its threads: for Mesa's lavapipe (llvmpipe) LP_NUM_THREADS
+ * where set, else one per online CPU (none of its own on one CPU: the
+ * calling thread), at most llvmpipe's LP_MAX_THREADS (32); another CPU
+ * device one per online CPU. On a GPU, the invocations of the frame's
+ * largest dispatch (its largest tile, one invocation per pixel). */
+static int vk_threads(const vk_state *s, uint32_t tile_pixels) {
+    if (strcmp(s->dev.type, "CPU") != 0) return (int)tile_pixels;
+    long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    if (cpus < 1) cpus = 1;
+    if (!strstr(s->dev.name, "llvmpipe")) return (int)cpus;
+    const char *env = getenv("LP_NUM_THREADS");
+    long n = env && *env ? strtol(env, NULL, 10) : (cpus > 1 ? cpus : 0);
+    if (n > 32) n = 32;
+    return n < 1 ? 1 : (int)n;
+}
+
 static rt_status vk_render(void *state, const rt_backend_layout *layout,
                            const rt_backend_frame *frame, rt_render_stats *stats, rt_error *err) {
     vk_state *s = state;
@@ -805,7 +823,7 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
         snprintf(stats->kernels, sizeof stats->kernels, "vulkan rt_vk_main, portable maths");
     stats->render_ms = rt_now_ms() - t_render;
     stats->primary_rays = pixels;
-    stats->threads = 0;
+    stats->threads = vk_threads(s, stats->tile_pixels);
     return RT_OK;
 }
 
