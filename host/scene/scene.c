@@ -104,6 +104,7 @@ rt_status rt_scene_create(rt_scene **out) {
 
 void rt_scene_destroy(rt_scene *scene) {
     if (!scene) return;
+    if (scene->animator.destroy) scene->animator.destroy(scene->animator.state);
     for (uint32_t i = 0; i < scene->mesh_count; i++) {
         free(scene->meshes[i].positions);
         free(scene->meshes[i].normals);
