@@ -100,6 +100,16 @@ static void print_json(const char *path, const rt_scene *s, const rt_scene_info 
                (double)hi[2]);
     else
         printf(", \"bounds\": null");
+    printf(", \"clips\": [");
+    for (uint32_t i = 0; i < rt_scene_clip_count(s); i++) {
+        const char *name;
+        double duration;
+        rt_scene_clip_info(s, i, &name, &duration);
+        printf("%s{\"name\": ", i ? ", " : "");
+        json_out_string(name);
+        printf(", \"duration\": %.9g}", duration);
+    }
+    printf("]");
     printf(", \"features\": {\"reflection\": %s, \"refraction\": %s, \"instancing\": %s, "
            "\"normals\": %s, \"keyframes\": %s, \"tri_materials\": %s}",
            json_bool(in->reflection), json_bool(in->refraction), json_bool(in->instancing),
@@ -163,6 +173,16 @@ int cmd_info(int argc, char **argv) {
                in.switched_objects, in.blended_objects, in.keyed_objects, in.camera_path_keys);
     else
         printf("animation    none (the scene stays still)\n");
+    uint32_t clips = rt_scene_clip_count(s);
+    if (clips) {
+        printf("clips        %u (playing %u)\n", clips, rt_scene_selected_clip(s));
+        for (uint32_t i = 0; i < clips; i++) {
+            const char *name;
+            double duration;
+            rt_scene_clip_info(s, i, &name, &duration);
+            printf("  %-3u %-24s %.6g s\n", i, name[0] ? name : "(unnamed)", duration);
+        }
+    }
     printf("materials    %u\n", in.materials);
     printf("lights       %u\n", in.lights);
     rt_camera cam;
