@@ -4,7 +4,8 @@
 # is bit for bit 'rtcl render --time t' for every update policy; every
 # backend built here (cpu, packet, and opencl and vulkan where a device is
 # found) gives the CPU oracle's image of both shared models at a time; trace
-# takes --time. Skips without the shared scenes.
+# takes --time; a JSON scene takes a .glb as a mesh. Skips without the
+# shared scenes.
 . "$(dirname "$0")/shell_check.sh"
 : "${RTCL:?RTCL must name the rtcl binary}"
 shared="${RT_SHARED_SCENES:-}"
@@ -85,6 +86,20 @@ printf '0 5 0 0 -1 0 0 100\n0.1 5 0.05 0 -1 0 0 100\n' >"$tmp/rays.txt"
 expect 0 "" -- "$RTCL" trace "$brain" --rays "$tmp/rays.txt" --time 0 -o "$tmp/h0.txt"
 expect 0 "" -- "$RTCL" trace "$brain" --rays "$tmp/rays.txt" --time 1.0 -o "$tmp/h1.txt"
 expect 0 "^1 " -- head -1 "$tmp/h0.txt"
+
+# A glTF file as a mesh of a JSON scene: its rest pose (clip 0, time 0) as
+# one mesh with per-triangle materials, twice under two transforms.
+cat >"$tmp/two.json" <<JSON
+{"materials": {"m": {"color": [1, 1, 1]}},
+ "meshes": {"robot": {"file": "$brain"}},
+ "objects": [{"mesh": "robot", "material": "m"},
+             {"mesh": "robot", "material": "m", "transform": {"translate": [2, 0, 0]}}]}
+JSON
+expect 0 "triangles +123332 in the current frame" -- "$RTCL" info "$tmp/two.json"
+expect 0 "per-triangle materials on" -- "$RTCL" info "$tmp/two.json"
+expect 0 "" -- "$RTCL" render "$tmp/two.json" "${size[@]}" -o "$tmp/two.png"
+printf '{"meshes": {"x": {"file": "missing.glb"}}, "objects": [{"mesh": "x"}]}' >"$tmp/missing.json"
+expect 2 "missing.glb.*mesh file named at .*missing.json" -- "$RTCL" info "$tmp/missing.json"
 
 # A file that is not glTF inside refuses with its name.
 printf 'glTF\002\000\000\000' >"$tmp/bad.glb"

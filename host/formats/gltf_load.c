@@ -866,3 +866,76 @@ rt_status rt_scene_load_gltf(rt_scene *scene, const char *path, rt_error *err) {
     scene->animator.animated = animated;
     return RT_OK;
 }
+
+/* ---- one mesh for a JSON scene ---------------------------------------------- */
+
+rt_status rt_gltf_add_mesh(rt_scene *scene, const char *path, uint32_t *mesh_id, rt_error *err) {
+    rt_scene *g;
+    if (rt_scene_create(&g) != RT_OK) return oom(path, err);
+    g->no_default_light = 1;
+    rt_status st = rt_scene_load_gltf(g, path, err);
+    if (st == RT_OK && rt_scene_triangle_count(g) == 0)
+        st = rt_error_set(err, RT_ERROR_PARSE, path, 0, 0, "the file has no triangles");
+    if (st != RT_OK) {
+        rt_scene_destroy(g);
+        return st;
+    }
+    /* The objects' meshes, one after another, each triangle keeping its
+     * object's material (the glTF materials become the scene's). */
+    uint32_t *map = malloc((g->material_count ? g->material_count : 1) * sizeof(uint32_t));
+    uint64_t tris = 0, verts = 0;
+    int normals = 1;
+    for (uint32_t o = 0; o < g->object_count; o++) {
+        const rt_mesh_data *m = &g->meshes[rt_object_shown_mesh(&g->objects[o])];
+        tris += m->triangle_count;
+        verts += m->vertex_count;
+        if (!m->normals) normals = 0;
+    }
+    float *pos = malloc(3 * sizeof(float) * (verts ? verts : 1));
+    float *nrm = normals ? malloc(3 * sizeof(float) * (verts ? verts : 1)) : NULL;
+    uint32_t *idx = malloc(3 * sizeof(uint32_t) * (tris ? tris : 1));
+    uint32_t *tm = malloc(sizeof(uint32_t) * (tris ? tris : 1));
+    if (!map || !pos || (normals && !nrm) || !idx || !tm || verts > UINT32_MAX / 3 ||
+        tris > UINT32_MAX / 3) {
+        st = oom(path, err);
+        goto done;
+    }
+    for (uint32_t k = 0; k < g->material_count && st == RT_OK; k++)
+        st = rt_material_add(scene, &g->materials[k], &map[k]);
+    if (st != RT_OK) {
+        st = rt_error_set(err, st, path, 0, 0, "%s", scene->error.message);
+        goto done;
+    }
+    uint64_t v0 = 0, t0 = 0;
+    for (uint32_t o = 0; o < g->object_count; o++) {
+        const rt_mesh_data *m = &g->meshes[rt_object_shown_mesh(&g->objects[o])];
+        memcpy(pos + 3 * v0, m->positions, 3 * sizeof(float) * m->vertex_count);
+        if (nrm) memcpy(nrm + 3 * v0, m->normals, 3 * sizeof(float) * m->vertex_count);
+        for (uint64_t t = 0; t < m->triangle_count; t++) {
+            for (int c = 0; c < 3; c++)
+                idx[3 * (t0 + t) + c] = (uint32_t)(v0 + m->indices[3 * t + c]);
+            tm[t0 + t] = map[g->objects[o].material];
+        }
+        v0 += m->vertex_count;
+        t0 += m->triangle_count;
+    }
+    st = rt_mesh_create(scene, mesh_id);
+    if (st == RT_OK)
+        st = rt_mesh_add_triangles(scene, *mesh_id, pos, nrm, (uint32_t)verts, idx, (uint32_t)tris);
+    if (st != RT_OK) {
+        st = rt_error_set(err, st, path, 0, 0, "%s", scene->error.message);
+        goto done;
+    }
+    scene->meshes[*mesh_id].tri_materials = tm;
+    tm = NULL;
+    snprintf(scene->meshes[*mesh_id].name, sizeof scene->meshes[*mesh_id].name, "%.120s",
+             strrchr(path, '/') ? strrchr(path, '/') + 1 : path);
+done:
+    free(map);
+    free(pos);
+    free(nrm);
+    free(idx);
+    free(tm);
+    rt_scene_destroy(g);
+    return st;
+}

@@ -45,6 +45,13 @@
 /* Loads the glTF file at path into scene (empty), animation and all. */
 rt_status rt_scene_load_gltf(rt_scene *scene, const char *path, rt_error *err);
 
+/* Adds the glTF file at path to scene as one static mesh (for a JSON
+ * scene's "file" mesh): every triangle primitive of its default scene at
+ * time 0 of clip 0, in world space, each triangle with its primitive's
+ * material (added to scene) as a per-triangle material. No object, camera
+ * or light is added; the file's animation is not played. */
+rt_status rt_gltf_add_mesh(rt_scene *scene, const char *path, uint32_t *mesh_id, rt_error *err);
+
 /* Is path a .gltf or .glb file name? */
 int rt_gltf_is_gltf_path(const char *path);
 
