@@ -4,6 +4,7 @@
 #   include/rtcl/rt.h                       the public API (self-contained)
 #   lib/librtcl.a, lib/librtcl.so*          the library, static and shared
 #   lib/librtcl_image.so                    the image module (PNG, EXR), when built
+#   lib/librtcl_gltf.so                     the glTF module (tinygltf), when built
 #   lib/cmake/rtcl/                         find_package(rtcl): rtcl::rtcl (shared)
 #                                           and rtcl::rtcl_static
 #   lib/pkgconfig/rtcl.pc                   pkg-config rtcl (--static for the archive)
@@ -20,6 +21,9 @@ install(TARGETS rt rt_shared EXPORT rtclTargets
 install(TARGETS rtcl RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 if(TARGET rtcl_image)
   install(TARGETS rtcl_image LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+endif()
+if(TARGET rtcl_gltf)
+  install(TARGETS rtcl_gltf LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 endif()
 install(FILES ${CMAKE_SOURCE_DIR}/host/rt.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/rtcl)
 

@@ -112,7 +112,7 @@ const cli_command cmd_bench_spec = {
     "scene",
     1,
     -1,
-    "Each SCENE is a .json scene, a bare .obj, or builtin:NAME.\n"
+    "Each SCENE is a .json scene, a bare .obj, a .gltf or .glb, or builtin:NAME.\n"
     "\n"
     "Build: one BVH over all triangles of each scene with every builder\n"
     "(thesis-scalar, thesis-neon, thesis-mt, fast, and embree when available):\n"

@@ -38,7 +38,8 @@ const cli_command cmd_info_spec = {
     1,
     1,
     "Prints the triangles, meshes, objects, materials and lights of SCENE (a .json\n"
-    "scene, a bare .obj, or builtin:NAME), its camera, and the features it uses:\n"
+    "scene, a bare .obj, a .gltf or .glb, or builtin:NAME; a glTF file's animation\n"
+    "clips with their durations), its camera, and the features it uses:\n"
     "backends specialise to these (no secondary rays without reflective or\n"
     "refractive materials, no instance transforms for one identity object, no\n"
     "normal interpolation without normals; OpenCL as -D switches, Vulkan as\n"
