@@ -475,10 +475,9 @@ static int eval_inst(gltf_state *s, const gltf_inst *in) {
             }
             xform_point(m, p, out);
             if (pr->normals) {
-                double mm[16] = {m[0], m[1], m[2],  m[3],  m[4], m[5], m[6], m[7],
-                                 m[8], m[9], m[10], m[11], 0,    0,    0,    1};
-                double sn[9];
-                normal_matrix(mm, sn);
+                /* the blended matrix's linear part, as real-time skinning
+                 * does (not its inverse transpose: joints rarely shear) */
+                double sn[9] = {m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10]};
                 put_normal(sn, n, s->nrm + 3 * (size_t)v);
             }
         } else {
