@@ -126,6 +126,25 @@ static rt_scene *load_ok(const char *path) {
     return s;
 }
 
+/* Object o's world-space positions (its mesh under its transform), in a
+ * buffer of its own (4 at a time). */
+static const float *wpos(const rt_scene *s, uint32_t o) {
+    static float buf[4][3 * 64];
+    static int next;
+    float *out = buf[next++ % 4];
+    memset(out, 0, sizeof buf[0]);
+    if (o >= s->object_count) return out;
+    const rt_mesh_data *m = &s->meshes[rt_object_shown_mesh(&s->objects[o])];
+    const float *t = s->objects[o].transform;
+    for (uint32_t v = 0; v < m->vertex_count && v < 64; v++) {
+        const float *q = m->positions + 3 * (size_t)v;
+        for (int r = 0; r < 3; r++)
+            out[3 * v + r] = (float)((double)t[4 * r] * q[0] + (double)t[4 * r + 1] * q[1] +
+                                     (double)t[4 * r + 2] * q[2] + (double)t[4 * r + 3]);
+    }
+    return out;
+}
+
 static int near3(const float *p, double x, double y, double z, double tol) {
     return fabs(p[0] - x) <= tol && fabs(p[1] - y) <= tol && fabs(p[2] - z) <= tol;
 }
@@ -155,7 +174,7 @@ static void test_hierarchy(void) {
     if (!s) return;
     CHECK_EQ_INT(s->mesh_count, 1);
     CHECK_EQ_INT(s->meshes[0].triangle_count, 1);
-    const float *p = s->meshes[0].positions;
+    const float *p = wpos(s, 0);
     /* v = R * 2 * (v + (0,0,5)) + (10,0,0): (1,0,0) -> (0,2,10) + (10,0,0) */
     CHECK_V(p + 0, 10, 0, 10);
     CHECK_V(p + 3, 10, 2, 10);
@@ -250,17 +269,17 @@ static void test_normalized_sparse(void) {
     if (!s) return;
     CHECK_EQ_INT(s->mesh_count, 4);
     if (s->mesh_count == 4) {
-        const float *p = s->meshes[0].positions;
+        const float *p = wpos(s, 0);
         CHECK_V(p + 0, -1, 0, 0);
         CHECK_V(p + 3, 0, 1, 0);
         CHECK_V(p + 6, 0, 0, -1);
-        p = s->meshes[1].positions;
+        p = wpos(s, 1);
         CHECK_V(p + 3, 1, 0, 0);
         CHECK_V(p + 6, 0, 32768.0 / 65535.0, 0);
-        p = s->meshes[2].positions;
+        p = wpos(s, 2);
         CHECK_V(p + 3, 1, 0, 0);
         CHECK_V(p + 6, 5, 6, 7);
-        p = s->meshes[3].positions;
+        p = wpos(s, 3);
         CHECK_V(p + 0, 0, 0, 0);
         CHECK_V(p + 6, 5, 6, 7);
     }
@@ -281,7 +300,7 @@ static rt_scene *animated(const char *name, gb *g, int pos, const char *samplers
 
 static const float *at_time(rt_scene *s, double t) {
     CHECK(rt_scene_set_time(s, t) == RT_OK);
-    return s->meshes[0].positions;
+    return wpos(s, 0);
 }
 
 static void test_samplers(void) {
@@ -356,6 +375,31 @@ static void test_samplers(void) {
     }
 }
 
+/* Rigid animation moves the object, not the mesh; a node scaled to 0 (a
+ * singular matrix) has its world vertices under the identity meanwhile. */
+static void test_rigid(void) {
+    gb g;
+    gb_init(&g);
+    int pos = tri_positions(&g);
+    static const float times[3] = {0, 1, 2}, sc[9] = {1, 1, 1, 0, 0, 0, 1, 1, 1};
+    int in = accf(&g, times, 3, "SCALAR"), out = accf(&g, sc, 3, "VEC3");
+    char smp[128];
+    snprintf(smp, sizeof smp, "{\"input\":%d,\"output\":%d}", in, out);
+    rt_scene *s = animated("rigid.gltf", &g, pos, smp,
+                           "{\"sampler\":0,\"target\":{\"node\":0,\"path\":\"scale\"}}", NULL);
+    if (!s) return;
+    uint32_t v0 = s->meshes[0].version;
+    CHECK_V(at_time(s, 0.5) + 3, 0.5, 0, 0);
+    CHECK_EQ_INT(s->meshes[0].version, v0); /* the mesh did not change */
+    CHECK(s->objects[0].transform[0] == 0.5f);
+    CHECK_V(at_time(s, 1.0) + 3, 0, 0, 0); /* singular: world vertices */
+    CHECK(rt_transform_is_identity(s->objects[0].transform));
+    CHECK(s->meshes[0].version != v0);
+    CHECK_V(at_time(s, 1.5) + 3, 0.5, 0, 0); /* and back */
+    CHECK(s->meshes[0].positions[3] == 1.0f);
+    rt_scene_destroy(s);
+}
+
 static void test_rotation(void) {
     /* keys: identity, then -(90 deg about z) written negated: the shortest
      * path goes through 45 deg, not 135 (slerp's sign flip). Normalized
@@ -412,10 +456,10 @@ static void test_morph(void) {
     CHECK_EQ_INT(s->mesh_count, 3);
     if (s->mesh_count == 3) {
         CHECK(rt_scene_set_time(s, 0.5) == RT_OK);
-        CHECK_V(s->meshes[0].positions, 0, 0, 0.5);
-        CHECK_V(s->meshes[1].positions, 2, 0, 1);
-        CHECK_V(s->meshes[2].positions, 0.5, 0, 0.5);
-        CHECK_V(s->meshes[2].positions + 3, 1, 0, 0.5);
+        CHECK_V(wpos(s, 0), 0, 0, 0.5);
+        CHECK_V(wpos(s, 1), 2, 0, 1);
+        CHECK_V(wpos(s, 2), 0.5, 0, 0.5);
+        CHECK_V(wpos(s, 2) + 3, 1, 0, 0.5);
     }
     rt_scene_destroy(s);
 }
@@ -457,12 +501,12 @@ static void test_skin(void) {
     /* t = 1: joint 1 at (0,4,0), its skin matrix translates by (0,2,0);
      * joint 0 translates by (1,0,0). v' = v + 0.25 (1,0,0) + 0.75 (0,2,0) */
     CHECK(rt_scene_set_time(s, 1.0) == RT_OK);
-    CHECK_V(s->meshes[0].positions, 0.25, 1.5, 0);
-    CHECK_V(s->meshes[0].positions + 3, 1.25, 1.5, 0);
+    CHECK_V(wpos(s, 0), 0.25, 1.5, 0);
+    CHECK_V(wpos(s, 0) + 3, 1.25, 1.5, 0);
     CHECK(rt_scene_select_clip(s, "still") == RT_OK); /* t = 1 again, clip 1: rest pose */
-    CHECK_V(s->meshes[0].positions, 0.25, 0, 0);
+    CHECK_V(wpos(s, 0), 0.25, 0, 0);
     CHECK(rt_scene_select_clip(s, "0") == RT_OK);
-    CHECK_V(s->meshes[0].positions, 0.25, 1.5, 0);
+    CHECK_V(wpos(s, 0), 0.25, 1.5, 0);
     CHECK(rt_scene_select_clip(s, "jump") != RT_OK);
     CHECK_CONTAINS(rt_scene_error(s), "lift, still");
     rt_scene_destroy(s);
@@ -711,6 +755,7 @@ int main(void) {
     test_normalized_sparse();
     test_samplers();
     test_rotation();
+    test_rigid();
     test_morph();
     test_skin();
     test_external_and_glb();

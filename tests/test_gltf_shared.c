@@ -6,7 +6,8 @@
  * 10 s, against robot_walk_k.obj (SOURCES.md: morph targets not applied;
  * the robot has none animated in Walking). Every frame's vertices, in the
  * loader's order (the scene's instances, parents first, their primitives'
- * vertices), must match the OBJ's within 1e-5 of the bounding-box diagonal
+ * vertices, each under its object's transform: rigid parts are objects
+ * moved by their nodes), must match the OBJ's within 1e-5 of the bounding-box diagonal
  * (float32 rounding of an independent evaluation). Skips without the
  * shared scenes or without the glTF module. */
 #include <math.h>
@@ -17,16 +18,24 @@
 #include "check.h"
 #include "scene/scene.h"
 
-/* All the scene's mesh positions, in mesh order. */
+/* Every object's world-space positions (its mesh's under its transform),
+ * in object order. */
 static float *gather(const rt_scene *s, uint32_t *count) {
     uint64_t n = 0;
-    for (uint32_t m = 0; m < s->mesh_count; m++) n += s->meshes[m].vertex_count;
+    for (uint32_t o = 0; o < s->object_count; o++)
+        n += s->meshes[rt_object_shown_mesh(&s->objects[o])].vertex_count;
     float *p = malloc(3 * sizeof(float) * (n ? n : 1));
     if (!p) return NULL;
     uint64_t at = 0;
-    for (uint32_t m = 0; m < s->mesh_count; m++) {
-        memcpy(p + 3 * at, s->meshes[m].positions, 3 * sizeof(float) * s->meshes[m].vertex_count);
-        at += s->meshes[m].vertex_count;
+    for (uint32_t o = 0; o < s->object_count; o++) {
+        const rt_mesh_data *m = &s->meshes[rt_object_shown_mesh(&s->objects[o])];
+        const float *t = s->objects[o].transform;
+        for (uint32_t v = 0; v < m->vertex_count; v++, at++) {
+            const float *q = m->positions + 3 * (size_t)v;
+            for (int r = 0; r < 3; r++)
+                p[3 * at + r] = (float)((double)t[4 * r] * q[0] + (double)t[4 * r + 1] * q[1] +
+                                        (double)t[4 * r + 2] * q[2] + (double)t[4 * r + 3]);
+        }
     }
     *count = (uint32_t)n;
     return p;

@@ -22,8 +22,15 @@ int rt_gltf_is_gltf_path(const char *path) {
 
 typedef struct gltf_inst {
     uint32_t node, mesh, prim; /* what it shows */
-    uint32_t scene_mesh;       /* the scene's mesh holding its world-space vertices */
+    uint32_t scene_mesh;       /* the scene's mesh holding its vertices */
+    uint32_t object;           /* the scene's object showing it */
     int skinned;               /* the node's skin applies */
+    /* Not skinned: the mesh holds the node's local vertices (morphed) and
+     * the object's transform is the node's world matrix, so that a moving
+     * rigid part costs no BVH update. While that matrix is singular (a node
+     * scaled to 0) the mesh holds world vertices under the identity. */
+    int rigid;
+    int local_current; /* the mesh holds the local vertices now */
 } gltf_inst;
 
 typedef struct gltf_state {
@@ -51,6 +58,7 @@ typedef struct gltf_state {
     uint32_t *light_ids;
     double *durations; /* per clip */
     uint32_t clip;
+    int bake_all; /* every instance in world space (rt_gltf_add_mesh) */
 } gltf_state;
 
 static void state_free(void *p) {
@@ -421,9 +429,10 @@ static void put_normal(const double *nm, const double *v, float *out) {
     out[0] = (float)x, out[1] = (float)y, out[2] = (float)z;
 }
 
-/* The instance's world-space vertices at the posed nodes into s->pos (and
- * s->nrm when it has normals). Returns 0 when out of memory. */
-static int eval_inst(gltf_state *s, const gltf_inst *in) {
+/* The instance's vertices at the posed nodes into s->pos (and s->nrm when
+ * it has normals): skinned, or placed by its node's world matrix, or (local
+ * 1, a rigid instance) in the node's space. Returns 0 when out of memory. */
+static int eval_inst(gltf_state *s, const gltf_inst *in, int local) {
     const rt_gltf_doc *d = s->doc;
     const rt_gltf_node *node = &d->nodes[in->node];
     const rt_gltf_prim *pr = &d->meshes[in->mesh].prims[in->prim];
@@ -447,8 +456,10 @@ static int eval_inst(gltf_state *s, const gltf_inst *in) {
             memcpy(s->joints + 12 * (size_t)j, jm, 12 * sizeof(double));
         }
     }
+    static const double identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    const double *place = local ? identity : s->world + 16 * (size_t)in->node;
     double nm[9];
-    if (!skin) normal_matrix(s->world + 16 * (size_t)in->node, nm);
+    if (!skin) normal_matrix(place, nm);
     for (uint32_t v = 0; v < nv; v++) {
         double p[3], n[3] = {0, 0, 1};
         for (int k = 0; k < 3; k++) p[k] = pr->positions[3 * (size_t)v + k];
@@ -481,7 +492,7 @@ static int eval_inst(gltf_state *s, const gltf_inst *in) {
                 put_normal(sn, n, s->nrm + 3 * (size_t)v);
             }
         } else {
-            xform_point(s->world + 16 * (size_t)in->node, p, out);
+            xform_point(place, p, out);
             if (pr->normals) put_normal(nm, n, s->nrm + 3 * (size_t)v);
         }
         for (int k = 0; k < 3; k++) s->pos[3 * (size_t)v + k] = (float)out[k];
@@ -507,12 +518,38 @@ static int camera_of(const gltf_state *s, rt_camera *cam) {
     return 1;
 }
 
+static int d_has_targets(const gltf_state *s, const gltf_inst *in) {
+    return s->doc->meshes[in->mesh].prims[in->prim].target_count > 0;
+}
+
 /* Writes the frame into the scene's meshes, camera and lights. */
 static rt_status apply_frame(rt_scene *scene, gltf_state *s) {
     for (uint32_t i = 0; i < s->inst_count; i++) {
-        const gltf_inst *in = &s->insts[i];
-        if (!eval_inst(s, in))
+        gltf_inst *in = &s->insts[i];
+        int local = 0;
+        if (in->rigid && in->object < scene->object_count) {
+            const double *w = s->world + 16 * (size_t)in->node;
+            float t[16], inv[16];
+            int ok = 1;
+            for (int k = 0; k < 16; k++) {
+                t[k] = k < 12 ? (float)w[k] : (k == 15 ? 1.0f : 0.0f);
+                if (!isfinite(t[k])) ok = 0;
+            }
+            if (!ok || !rt_mat4_affine_inverse(t, inv))
+                rt_mat4_identity(t);
+            else
+                local = 1;
+            rt_object_data *o = &scene->objects[in->object];
+            if (memcmp(t, o->transform, sizeof t) != 0) {
+                memcpy(o->transform, t, sizeof t);
+                scene->version++;
+            }
+            /* Unmorphed local vertices never change. */
+            if (local && in->local_current && !d_has_targets(s, in)) continue;
+        }
+        if (!eval_inst(s, in, local))
             return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "%s: out of memory", s->path);
+        in->local_current = local;
         rt_mesh_data *m = &scene->meshes[in->scene_mesh];
         size_t n = 3 * (size_t)m->vertex_count;
         for (size_t k = 0; k < n; k++)
@@ -531,7 +568,7 @@ static rt_status apply_frame(rt_scene *scene, gltf_state *s) {
             scene->version++;
         }
     }
-    if (s->camera_node != RT_GLTF_NONE) {
+    if (s->camera_node != RT_GLTF_NONE && scene->has_camera) {
         rt_camera cam = scene->camera;
         if (camera_of(s, &cam) && memcmp(&cam, &scene->camera, sizeof cam) != 0) {
             rt_status st = rt_camera_set(scene, &cam);
@@ -681,6 +718,7 @@ static rt_status build(rt_scene *scene, gltf_state *s, rt_error *err) {
             gltf_inst *in = &s->insts[s->inst_count++];
             in->node = i, in->mesh = (uint32_t)n->mesh, in->prim = p;
             in->skinned = n->skin >= 0 && pr->joint_sets > 0;
+            in->rigid = !in->skinned && !s->bake_all;
             if (in->skinned) {
                 uint32_t jc = d->skins[n->skin].joint_count;
                 for (uint64_t k = 0; k < 4ull * pr->joint_sets * pr->vertex_count; k++)
@@ -710,6 +748,7 @@ static rt_status build(rt_scene *scene, gltf_state *s, rt_error *err) {
     s->light_nodes = malloc((nn ? nn : 1) * sizeof(int32_t));
     s->light_ids = malloc((nn ? nn : 1) * sizeof(uint32_t));
     if (!s->light_nodes || !s->light_ids) return oom(path, err);
+    memset(s->light_ids, 0xff, (nn ? nn : 1) * sizeof(uint32_t));
     int other_lights = 0;
     for (uint32_t o = 0; o < scene_nodes; o++) {
         uint32_t i = s->order[o];
@@ -743,7 +782,7 @@ static rt_status build(rt_scene *scene, gltf_state *s, rt_error *err) {
             st = rt_material_add(scene, &m, &mat_ids[slot]);
             if (st != RT_OK) break;
         }
-        if (!eval_inst(s, in)) {
+        if (!eval_inst(s, in, 0)) {
             st = oom(path, err);
             break;
         }
@@ -760,12 +799,16 @@ static rt_status build(rt_scene *scene, gltf_state *s, rt_error *err) {
                                 in->node, in->mesh, in->prim, scene->error.message);
         }
         in->scene_mesh = mesh;
+        in->object = obj;
         const char *mn = d->meshes[in->mesh].name;
         snprintf(scene->meshes[mesh].name, sizeof scene->meshes[mesh].name, "%.60s:%.40s/%u",
                  strrchr(path, '/') ? strrchr(path, '/') + 1 : path, mn[0] ? mn : "mesh", in->prim);
     }
     free(mat_ids);
     if (st != RT_OK) return st;
+    /* Rigid instances into their nodes' space under object transforms. */
+    st = apply_frame(scene, s);
+    if (st != RT_OK) return rt_error_set(err, st, path, 0, 0, "%s", scene->error.message);
     for (uint32_t l = 0; l < s->light_count; l++) {
         const rt_gltf_light *gl = &d->lights[d->nodes[s->light_nodes[l]].light];
         const double *m = s->world + 16 * (size_t)s->light_nodes[l];
@@ -828,7 +871,7 @@ static rt_status build(rt_scene *scene, gltf_state *s, rt_error *err) {
     return RT_OK;
 }
 
-rt_status rt_scene_load_gltf(rt_scene *scene, const char *path, rt_error *err) {
+static rt_status load_gltf(rt_scene *scene, const char *path, int bake_all, rt_error *err) {
     const rt_gltf_module *module = rt_gltf_module_get(err);
     if (!module) {
         char why[sizeof err->message];
@@ -838,6 +881,7 @@ rt_status rt_scene_load_gltf(rt_scene *scene, const char *path, rt_error *err) {
     gltf_state *s = calloc(1, sizeof *s);
     if (!s) return oom(path, err);
     s->module = module;
+    s->bake_all = bake_all;
     snprintf(s->path, sizeof s->path, "%s", path);
     rt_status st = module->read(path, &s->doc, err);
     if (st == RT_OK) st = build(scene, s, err);
@@ -866,13 +910,17 @@ rt_status rt_scene_load_gltf(rt_scene *scene, const char *path, rt_error *err) {
     return RT_OK;
 }
 
+rt_status rt_scene_load_gltf(rt_scene *scene, const char *path, rt_error *err) {
+    return load_gltf(scene, path, 0, err);
+}
+
 /* ---- one mesh for a JSON scene ---------------------------------------------- */
 
 rt_status rt_gltf_add_mesh(rt_scene *scene, const char *path, uint32_t *mesh_id, rt_error *err) {
     rt_scene *g;
     if (rt_scene_create(&g) != RT_OK) return oom(path, err);
     g->no_default_light = 1;
-    rt_status st = rt_scene_load_gltf(g, path, err);
+    rt_status st = load_gltf(g, path, 1, err);
     if (st == RT_OK && rt_scene_triangle_count(g) == 0)
         st = rt_error_set(err, RT_ERROR_PARSE, path, 0, 0, "the file has no triangles");
     if (st != RT_OK) {

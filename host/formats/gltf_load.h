@@ -6,9 +6,13 @@
  * - Geometry: the default scene's node hierarchy (matrix or TRS) is
  *   flattened to world transforms; every triangle primitive (TRIANGLES,
  *   TRIANGLE_STRIP, TRIANGLE_FAN; points and lines are left out with a
- *   notice) of every node with a mesh becomes one object with one mesh
- *   whose vertices are in world space (identity object transform). Skinned
- *   primitives are skinned (linear blend, JOINTS_0/WEIGHTS_0 and _1, joint
+ *   notice) of every node with a mesh becomes one object with one mesh. A
+ *   rigid (unskinned) primitive's mesh holds its node-space vertices and the
+ *   object's transform is the node's world matrix, so that rigid node
+ *   animation moves objects under the object BVH and rebuilds no mesh
+ *   (while that matrix is singular, a node scaled to 0, the mesh holds the
+ *   world-space vertices under the identity). Skinned primitives' meshes
+ *   are in world space under the identity, skinned (linear blend, JOINTS_0/WEIGHTS_0 and _1, joint
  *   matrix = world(joint) * inverseBind; the node's own transform is not
  *   applied, as the specification says); morph targets are blended first
  *   (the node's weights over the mesh's, animated weights over both).
