@@ -101,6 +101,13 @@ expect 0 "" -- "$RTCL" render "$tmp/two.json" "${size[@]}" -o "$tmp/two.png"
 printf '{"meshes": {"x": {"file": "missing.glb"}}, "objects": [{"mesh": "x"}]}' >"$tmp/missing.json"
 expect 2 "missing.glb.*mesh file named at .*missing.json" -- "$RTCL" info "$tmp/missing.json"
 
+# bench --animate plays a glTF clip: every policy's images are the sah policy's.
+expect 0 "rtcl +refit .*= sah" -- "$RTCL" bench --animate "$robot" --animation Walking --frames 2 \
+    --fps 10 --reps 1 --threads 1 --width 64 --height 36
+expect 0 "rtcl +auto .*= sah" -- "$RTCL" bench --animate "$brain" --frames 2 --reps 1 \
+    --threads 1 --width 64 --height 36
+expect 2 "--animation need --animate" -- "$RTCL" bench "$robot" --animation Walking
+
 # A file that is not glTF inside refuses with its name.
 printf 'glTF\002\000\000\000' >"$tmp/bad.glb"
 expect 2 "bad.glb" -- "$RTCL" info "$tmp/bad.glb"

@@ -339,7 +339,13 @@ int bench_animate(const char *path, const bench_anim_setup *su, bench_anim_resul
         return 0;
     }
     int mo = morph_object(s);
-    if (mo < 0) {
+    uint32_t clips = rt_scene_clip_count(s);
+    if (su->animation && rt_scene_select_clip(s, su->animation) != RT_OK) {
+        snprintf(err, err_size, "%s: %s", path, rt_scene_error(s));
+        rt_scene_destroy(s);
+        return 0;
+    }
+    if (mo < 0 && !(clips && rt_scene_is_animated(s))) {
         snprintf(err, err_size,
                  "%s: no object morphs between keyframes (--animate needs an object with "
                  "\"animation\": {\"keyframe_rate\": R, \"interpolate\": true} over keyframes of "
@@ -357,14 +363,25 @@ int bench_animate(const char *path, const bench_anim_setup *su, bench_anim_resul
         rt_scene_destroy(s);
         return 0;
     }
-    const rt_object_data *od = &s->objects[mo];
-    res->keyframes = od->mesh_count;
-    res->morph_triangles = s->meshes[od->morph_mesh].triangle_count;
     for (uint32_t o = 0; o < s->object_count; o++)
         res->triangles += s->meshes[rt_object_shown_mesh(&s->objects[o])].triangle_count;
     res->runs = su->runs;
-    res->frames = su->frames > 0 ? su->frames : (int)od->mesh_count;
-    res->fps = su->fps > 0.0 ? su->fps : (double)od->keyframe_rate;
+    if (mo >= 0) {
+        const rt_object_data *od = &s->objects[mo];
+        res->keyframes = od->mesh_count;
+        res->morph_triangles = s->meshes[od->morph_mesh].triangle_count;
+        res->frames = su->frames > 0 ? su->frames : (int)od->mesh_count;
+        res->fps = su->fps > 0.0 ? su->fps : (double)od->keyframe_rate;
+    } else {
+        /* A glTF clip: skinned meshes deform (world space, identity
+         * transform), rigid parts move as objects. */
+        for (uint32_t o = 0; o < s->object_count; o++)
+            if (rt_transform_is_identity(s->objects[o].transform))
+                res->morph_triangles +=
+                    s->meshes[rt_object_shown_mesh(&s->objects[o])].triangle_count;
+        res->frames = su->frames > 0 ? su->frames : 10;
+        res->fps = su->fps > 0.0 ? su->fps : 5.0;
+    }
     size_t n = (size_t)res->runs * (size_t)(res->frames + 1);
     uint64_t *ref = calloc((size_t)res->frames + 1, sizeof *ref);
     int ok = ref != NULL;

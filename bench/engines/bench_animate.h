@@ -23,6 +23,10 @@ typedef struct bench_anim_setup {
     const char *backend; /* ours (NULL: "packet") */
     int embree;          /* 0: leave the Embree rows out */
     void (*progress)(const char *scene, const char *what);
+    /* A glTF scene's clip (rt_scene_select_clip), or NULL: its first. A
+     * scene with clips and no morphing object plays its clip: every mesh
+     * may deform; frames 0: 10, fps 0: 5. */
+    const char *animation;
 } bench_anim_setup;
 
 /* One engine and policy. Samples are kept per run and frame: index
