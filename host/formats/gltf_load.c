@@ -132,13 +132,26 @@ static rt_status validate_nodes(const rt_gltf_doc *d, const char *path, int32_t 
             parent[ch] = (int32_t)i;
         }
     }
-    /* With one parent each, a cycle is a walk up that never ends. */
+    /* With one parent each, a cycle is a walk up that comes back to itself.
+     * Each walk stops at a node an earlier walk cleared, so that a long
+     * chain costs linear time: mark[] holds the walk's start + 1 while
+     * walking, UINT32_MAX once cleared. */
+    uint32_t *mark = calloc(d->node_count ? d->node_count : 1, sizeof(uint32_t));
+    if (!mark) return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0, "out of memory");
     for (uint32_t i = 0; i < d->node_count; i++) {
-        uint32_t steps = 0;
-        for (int32_t p = parent[i]; p != RT_GLTF_NONE; p = parent[p])
-            if (++steps > d->node_count)
-                return FAIL("/nodes/%u: the node hierarchy has a cycle through this node", i);
+        int32_t p = (int32_t)i;
+        while (p != RT_GLTF_NONE && mark[p] != UINT32_MAX) {
+            if (mark[p] == i + 1) {
+                free(mark);
+                return FAIL("/nodes/%d: the node hierarchy has a cycle through this node", p);
+            }
+            mark[p] = i + 1;
+            p = parent[p];
+        }
+        for (p = (int32_t)i; p != RT_GLTF_NONE && mark[p] != UINT32_MAX; p = parent[p])
+            mark[p] = UINT32_MAX;
     }
+    free(mark);
     for (uint32_t r = 0; r < d->root_count; r++) {
         if (!in_range(d->roots[r], d->node_count))
             return FAIL("/scenes: node %d does not exist", d->roots[r]);
@@ -701,6 +714,7 @@ static rt_status build(rt_scene *scene, gltf_state *s, rt_error *err) {
     if (!s->weights) return oom(path, err);
     /* Instances: the scene's nodes with meshes, in hierarchy order. */
     uint32_t ninst = 0, max_v = 0;
+    uint64_t total_v = 0;
     for (uint32_t o = 0; o < scene_nodes; o++) {
         const rt_gltf_node *n = &d->nodes[s->order[o]];
         if (n->mesh >= 0) ninst += d->meshes[n->mesh].prim_count;
@@ -729,6 +743,12 @@ static rt_status build(rt_scene *scene, gltf_state *s, rt_error *err) {
                                     pr->joints[k], n->skin, jc);
             }
             if (pr->vertex_count > max_v) max_v = pr->vertex_count;
+            total_v += pr->vertex_count;
+            if (total_v > ((uint64_t)1 << 26))
+                return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
+                                    "/nodes/%u: the scene's instances hold more than 2^26 "
+                                    "vertices in all (a limit of this loader)",
+                                    i);
         }
     }
     s->pos = malloc(3 * sizeof(float) * (max_v ? max_v : 1));

@@ -296,6 +296,10 @@ decoded read_accessor(const tinygltf::Model &m, int index, const std::string &us
         read_elements(span, a.byteOffset, a.count, n, a.componentType, a.normalized, where,
                       d.values, false);
     } else {
+        // Zeros (and sparse values): nothing in the file bounds the count.
+        if (a.count * static_cast<uint64_t>(n) > (uint64_t(1) << 24))
+            fail(where, "an accessor without a bufferView of more than 2^24 values",
+                 RT_ERROR_UNSUPPORTED);
         d.values.assign(static_cast<size_t>(a.count * static_cast<uint64_t>(n)), 0.0);
     }
     if (a.sparse.isSparse) {
@@ -492,6 +496,8 @@ void convert_prim(const tinygltf::Model &m, const tinygltf::Primitive &p, const 
         size_t nt = p.targets.size();
         if (nt > 1024)
             fail(where + "/targets", "more than 1024 morph targets", RT_ERROR_UNSUPPORTED);
+        if (static_cast<uint64_t>(nt) * nv > (uint64_t(1) << 26))
+            fail(where + "/targets", "morph targets x vertices above 2^26", RT_ERROR_UNSUPPORTED);
         out->target_count = static_cast<uint32_t>(nt);
         bool any_normal = false;
         for (const auto &t : p.targets)
