@@ -108,6 +108,15 @@ expect 0 "rtcl +auto .*= sah" -- "$RTCL" bench --animate "$brain" --frames 2 --r
     --threads 1 --width 64 --height 36
 expect 2 "--animation need --animate" -- "$RTCL" bench "$robot" --animation Walking
 
+# The viewer plays a chosen clip (under Xvfb, where it is here and the viewer is built).
+if command -v xvfb-run >/dev/null && "$RTCL" view --help 2>/dev/null | grep -q -- "--play"; then
+    expect 0 "view: 6 frames" -- xvfb-run -a -s "-screen 0 640x480x24" \
+        env SDL_RENDER_DRIVER=software "$RTCL" view "$robot" --play --animation Dance --frames 6 \
+        --width 64 --height 36 --backend cpu
+else
+    echo "note: rtcl view skipped (no xvfb-run, or no viewer in this build)"
+fi
+
 # A file that is not glTF inside refuses with its name.
 printf 'glTF\002\000\000\000' >"$tmp/bad.glb"
 expect 2 "bad.glb" -- "$RTCL" info "$tmp/bad.glb"
