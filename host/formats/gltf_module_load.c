@@ -41,8 +41,9 @@ static int try_module(const char *path, int must_exist) {
     if (must_exist && access(path, F_OK) != 0) return 0;
     void *handle = dlopen(path, RTLD_NOW | RTLD_LOCAL);
     if (!handle) {
-        if (!must_exist) return 0; /* by bare name: not found is not an error */
         const char *why = dlerror();
+        /* by bare name: not found is not an error, but found and unloadable is */
+        if (!must_exist && (!why || strstr(why, "cannot open shared object file"))) return 0;
         snprintf(module_reason, sizeof module_reason, "%.400s does not load: %.300s", path,
                  why ? why : "no reason given");
         module_status = RT_ERROR_UNSUPPORTED;

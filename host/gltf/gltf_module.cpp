@@ -593,9 +593,10 @@ void convert(const tinygltf::Model &m, rt_gltf_doc *doc) {
                 o->skipped_prims++;
                 continue;
             }
+            // Counted first, so that a failure part-way is freed with the rest.
+            rt_gltf_prim *pr = &o->prims[o->prim_count++];
             convert_prim(m, me.primitives[p], ptr("meshes", i) + "/primitives/" + std::to_string(p),
-                         &o->prims[o->prim_count]);
-            o->prim_count++;
+                         pr);
         }
     }
     // Skins.

@@ -30,6 +30,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     rt_error err;
     rt_status st = rt_scene_load(path, &scene, &err);
     if (st != RT_OK) {
+        if (getenv("RT_FUZZ_VERBOSE")) fprintf(stderr, "refused: %s\n", err.message);
         fuzz_check(scene == NULL, "a failed load returned a scene");
         fuzz_check(err.status == st, "the error's status is not the one returned");
         fuzz_check(strstr(err.message, binary ? "f.glb" : "f.gltf") != NULL,
