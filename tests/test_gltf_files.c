@@ -593,7 +593,7 @@ static void test_malformed(void) {
     write_glb("cut.glb", json, (const unsigned char *)p, sizeof p,
               12 + 8 + (strlen(json) + 3) / 4 * 4 + 8 + 10);
     snprintf(path, sizeof path, "%s/cut.glb", dir);
-    expect_fail(path, NULL);
+    expect_fail(path, "truncated");
     write_glb("cut2.glb", json, (const unsigned char *)p, sizeof p, 30);
     snprintf(path, sizeof path, "%s/cut2.glb", dir);
     expect_fail(path, NULL);

@@ -753,6 +753,38 @@ bool has_ext(const char *path, const char *ext) {
     return true;
 }
 
+uint32_t le32(const std::vector<unsigned char> &b, size_t at) {
+    return static_cast<uint32_t>(b[at]) | static_cast<uint32_t>(b[at + 1]) << 8 |
+           static_cast<uint32_t>(b[at + 2]) << 16 | static_cast<uint32_t>(b[at + 3]) << 24;
+}
+
+// What is wrong with a .glb container (header, chunk lengths), or "".
+std::string glb_problem(const std::vector<unsigned char> &b) {
+    if (b.size() < 12)
+        return "not a glTF binary: " + std::to_string(b.size()) + " bytes, no header";
+    if (le32(b, 0) != 0x46546C67u) return "not a glTF binary (no 'glTF' magic)";
+    if (le32(b, 4) != 2) return "glTF binary version " + std::to_string(le32(b, 4)) + ", not 2";
+    uint64_t total = le32(b, 8);
+    if (total > b.size())
+        return "truncated glTF binary: its header says " + std::to_string(total) +
+               " bytes, the file has " + std::to_string(b.size());
+    size_t end = static_cast<size_t>(total), at = 12;
+    for (int chunk = 0; at < end; chunk++) {
+        if (end - at < 8)
+            return "glTF binary chunk " + std::to_string(chunk) + " at byte " + std::to_string(at) +
+                   ": its header is cut";
+        uint64_t len = le32(b, at);
+        if (len > end - at - 8)
+            return "glTF binary chunk " + std::to_string(chunk) + " at byte " + std::to_string(at) +
+                   ": " + std::to_string(len) + " bytes announced, " +
+                   std::to_string(end - at - 8) + " left (truncated)";
+        if (chunk == 0 && le32(b, at + 4) != 0x4E4F534Au)
+            return "glTF binary: the first chunk is not JSON";
+        at += 8 + static_cast<size_t>(len);
+    }
+    return "";
+}
+
 rt_status read_doc(const char *path, rt_gltf_doc **out, rt_error *err) {
     *out = nullptr;
     rt_gltf_doc *doc = nullptr;
@@ -795,6 +827,12 @@ rt_status read_doc(const char *path, rt_gltf_doc **out, rt_error *err) {
         any.folder = "/";
         if (!fs_read(&bytes, &rerr, path, &any))
             return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "%s", rerr.c_str());
+        if (has_ext(path, ".glb")) {
+            // The container first, so that a cut or damaged file says how.
+            std::string why = glb_problem(bytes);
+            if (!why.empty())
+                return rt_error_set(err, RT_ERROR_PARSE, path, 0, 0, "%s", why.c_str());
+        }
         bool ok;
         if (has_ext(path, ".glb"))
             ok = loader.LoadBinaryFromMemory(&model, &terr, &twarn, bytes.data(),
