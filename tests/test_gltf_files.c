@@ -512,6 +512,67 @@ static void test_skin(void) {
     rt_scene_destroy(s);
 }
 
+/* A camera (animated with its node), point lights (and a spot light left
+ * out), the metallic-roughness mapping, the textures notice. */
+static void test_camera_lights_materials(void) {
+    gb g;
+    gb_init(&g);
+    int pos = tri_positions(&g);
+    static const float times[2] = {0, 1}, tr[6] = {0, 0, 10, 0, 0, 20};
+    int in = accf(&g, times, 2, "SCALAR"), out = accf(&g, tr, 2, "VEC3");
+    char rest[3000];
+    snprintf(
+        rest, sizeof rest,
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":%d},\"material\":0}]}],"
+        "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.25,2,1],"
+        "\"metallicFactor\":0.75,\"roughnessFactor\":0.5,\"baseColorTexture\":{\"index\":0}}}],"
+        "\"textures\":[{}],"
+        "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.5,\"aspectRatio\":2,"
+        "\"znear\":0.1}}],"
+        "\"extensionsUsed\":[\"KHR_lights_punctual\"],"
+        "\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[{\"type\":\"point\",\"color\":[1,0.5,"
+        "0.25]},"
+        "{\"type\":\"spot\",\"spot\":{}}]}},"
+        "\"nodes\":[{\"mesh\":0},{\"camera\":0,\"translation\":[0,0,10]},"
+        "{\"translation\":[3,4,5],\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}},"
+        "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":1}}}],"
+        "\"scenes\":[{\"nodes\":[0,1,2,3]}],"
+        "\"animations\":[{\"samplers\":[{\"input\":%d,\"output\":%d}],"
+        "\"channels\":[{\"sampler\":0,\"target\":{\"node\":1,\"path\":\"translation\"}}]}]",
+        pos, in, out);
+    rt_scene *s = load_ok(write_gltf("camlight.gltf", &g, NULL, rest));
+    if (!s) return;
+    rt_camera c;
+    rt_camera_get(s, &c);
+    CHECK_V(c.position, 0, 0, 10);
+    CHECK_V(c.look_at, 0, 0, 9);
+    CHECK_V(c.up, 0, 1, 0);
+    CHECK_EQ_INT(c.width, 1024);
+    CHECK_EQ_INT(c.height, 512);
+    double h = 2.0 * atan(tan(0.25) * 2.0) * 180.0 / 3.14159265358979323846;
+    CHECK_MSG(fabs(c.hfov_degrees - h) < 1e-4, "hfov %g, expected %g", (double)c.hfov_degrees, h);
+    CHECK(rt_scene_set_time(s, 0.5) == RT_OK);
+    rt_camera_get(s, &c);
+    CHECK_V(c.position, 0, 0, 15);   /* the camera follows its node */
+    CHECK_EQ_INT(s->light_count, 1); /* the spot light is left out, no default light */
+    if (s->light_count) {
+        CHECK_V(s->lights[0].position, 3, 4, 5);
+        CHECK_V(s->lights[0].color, 1, 0.5, 0.25);
+    }
+    CHECK_CONTAINS(rt_scene_notices(s), "textures are ignored");
+    CHECK_CONTAINS(rt_scene_notices(s), "spot and directional lights");
+    CHECK_EQ_INT(s->material_count, 1);
+    if (s->material_count) {
+        const rt_material *m = &s->materials[0];
+        CHECK_V(m->color, 0.5, 0.25, 1); /* clamped to 1 */
+        CHECK(fabs(m->diffuse - 0.25) < 1e-6);
+        CHECK(fabs(m->specular - 0.5 * (0.04 + 0.96 * 0.75)) < 1e-6);
+        CHECK_EQ_INT(m->shininess, 30); /* 2 / 0.5^4 - 2 */
+        CHECK(fabs(m->reflectivity - 0.75 * 0.25) < 1e-6);
+    }
+    rt_scene_destroy(s);
+}
+
 static void test_external_and_glb(void) {
     gb g;
     gb_init(&g);
@@ -758,6 +819,7 @@ int main(void) {
     test_rigid();
     test_morph();
     test_skin();
+    test_camera_lights_materials();
     test_external_and_glb();
     test_malformed();
     char cmd[300];
