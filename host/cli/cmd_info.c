@@ -168,13 +168,16 @@ int cmd_info(int argc, char **argv) {
                m.update ? rt_update_policy_name(m.update) : "", rt_accel_name(m.accel));
     }
     printf("objects      %u\n", in.objects);
-    if (in.animated)
+    uint32_t clips = rt_scene_clip_count(s);
+    if (clips)
+        printf("animation    a glTF clip at every time (node animation, skins, morph targets); "
+               "rigid parts are objects, skinned meshes deform\n");
+    else if (in.animated)
         printf("animation    keyframes switched on %u objects, blended on %u; transform keys on %u "
                "objects; camera path of %u keys\n",
                in.switched_objects, in.blended_objects, in.keyed_objects, in.camera_path_keys);
     else
         printf("animation    none (the scene stays still)\n");
-    uint32_t clips = rt_scene_clip_count(s);
     if (clips) {
         printf("clips        %u (playing %u)\n", clips, rt_scene_selected_clip(s));
         for (uint32_t i = 0; i < clips; i++) {
