@@ -49,6 +49,7 @@ typedef struct gltf_state {
     uint32_t *weight_offset; /* per node */
     uint32_t *weight_len;    /* per node: the morph targets of its mesh */
     double *joints;          /* scratch: 12 per joint (3x4 row-major) */
+    float *joints_f;         /* the same in float, for the skinning loop */
     uint32_t joint_capacity;
     float *pos, *nrm; /* scratch: 3 per vertex of the largest primitive */
     int32_t camera_node;
@@ -75,6 +76,7 @@ static void state_free(void *p) {
     free(s->weight_offset);
     free(s->weight_len);
     free(s->joints);
+    free(s->joints_f);
     free(s->pos);
     free(s->nrm);
     free(s->light_nodes);
@@ -442,6 +444,40 @@ static void put_normal(const double *nm, const double *v, float *out) {
     out[0] = (float)x, out[1] = (float)y, out[2] = (float)z;
 }
 
+/* Linear-blend skinning in float of an unmorphed primitive: per vertex the
+ * weighted sum of its joints' matrices (jf: 12 floats each), applied to
+ * the position and (its linear part) to the normal, normalized. */
+static void skin_fast(const rt_gltf_prim *pr, const float *jf, float *pos, float *nrm) {
+    uint32_t nv = pr->vertex_count, per = 4 * pr->joint_sets;
+    for (uint32_t v = 0; v < nv; v++) {
+        float m[12] = {0};
+        const float *wv = pr->weights + (size_t)v * per;
+        const uint32_t *jv = pr->joints + (size_t)v * per;
+        for (uint32_t k = 0; k < per; k++) {
+            float wt = wv[k];
+            if (wt == 0.0f) continue; /* an unused slot's joint may be anything */
+            const float *jm = jf + 12 * (size_t)jv[k];
+            for (int e = 0; e < 12; e++) m[e] += wt * jm[e];
+        }
+        const float *p = pr->positions + 3 * (size_t)v;
+        float *o = pos + 3 * (size_t)v;
+        for (int r = 0; r < 3; r++)
+            o[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
+        if (nrm) {
+            const float *n = pr->normals + 3 * (size_t)v;
+            float x = m[0] * n[0] + m[1] * n[1] + m[2] * n[2];
+            float y = m[4] * n[0] + m[5] * n[1] + m[6] * n[2];
+            float z = m[8] * n[0] + m[9] * n[1] + m[10] * n[2];
+            float l = sqrtf(x * x + y * y + z * z);
+            float *on = nrm + 3 * (size_t)v;
+            if (l > 0.0f && isfinite(l))
+                on[0] = x / l, on[1] = y / l, on[2] = z / l;
+            else
+                on[0] = 0.0f, on[1] = 0.0f, on[2] = 1.0f;
+        }
+    }
+}
+
 /* The instance's vertices at the posed nodes into s->pos (and s->nrm when
  * it has normals): skinned, or placed by its node's world matrix, or (local
  * 1, a rigid instance) in the node's space. Returns 0 when out of memory. */
@@ -458,6 +494,9 @@ static int eval_inst(gltf_state *s, const gltf_inst *in, int local) {
             double *j = realloc(s->joints, 12 * sizeof(double) * skin->joint_count);
             if (!j) return 0;
             s->joints = j;
+            float *jf = realloc(s->joints_f, 12 * sizeof(float) * skin->joint_count);
+            if (!jf) return 0;
+            s->joints_f = jf;
             s->joint_capacity = skin->joint_count;
         }
         for (uint32_t j = 0; j < skin->joint_count; j++) {
@@ -467,6 +506,13 @@ static int eval_inst(gltf_state *s, const gltf_inst *in, int local) {
                 for (int k = 0; k < 4; k++) ib[r * 4 + k] = c[k * 4 + r];
             mat_mul(s->world + 16 * (size_t)skin->joints[j], ib, jm);
             memcpy(s->joints + 12 * (size_t)j, jm, 12 * sizeof(double));
+            for (int e = 0; e < 12; e++) s->joints_f[12 * (size_t)j + e] = (float)jm[e];
+        }
+        int morphed = 0;
+        for (uint32_t t = 0; t < nt && t < wl; t++) morphed |= w[t] != 0.0f;
+        if (!morphed) {
+            skin_fast(pr, s->joints_f, s->pos, pr->normals ? s->nrm : NULL);
+            return 1;
         }
     }
     static const double identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
