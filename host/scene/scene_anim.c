@@ -468,7 +468,7 @@ rt_status rt_scene_select_clip(rt_scene *scene, const char *clip) {
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                              "the scene has no animation clips (--animation is for glTF files)");
     for (uint32_t i = 0; i < n; i++) {
-        const char *name;
+        const char *name = "";
         rt_scene_clip_info(scene, i, &name, NULL);
         if (strcmp(name, clip) == 0)
             return scene->animator.select_clip(scene, scene->animator.state, i);
@@ -480,7 +480,7 @@ rt_status rt_scene_select_clip(rt_scene *scene, const char *clip) {
     char names[400] = "";
     size_t used = 0;
     for (uint32_t i = 0; i < n && used + 2 < sizeof names; i++) {
-        const char *name;
+        const char *name = "";
         rt_scene_clip_info(scene, i, &name, NULL);
         int w = snprintf(names + used, sizeof names - used, "%s%s", i ? ", " : "", name);
         if (w < 0) break;
