@@ -629,10 +629,10 @@ static rt_status apply_frame(rt_scene *scene, gltf_state *s) {
     }
     if (s->camera_node != RT_GLTF_NONE && scene->has_camera) {
         rt_camera cam = scene->camera;
-        if (camera_of(s, &cam) && memcmp(&cam, &scene->camera, sizeof cam) != 0) {
-            rt_status st = rt_camera_set(scene, &cam);
-            if (st != RT_OK) return st;
-        }
+        /* A degenerate pose (a camera node scaled to 0) keeps the last
+         * camera: rt_camera_set refuses it and changes nothing. */
+        if (camera_of(s, &cam) && memcmp(&cam, &scene->camera, sizeof cam) != 0)
+            (void)rt_camera_set(scene, &cam);
     }
     for (uint32_t l = 0; l < s->light_count; l++) {
         if (s->light_ids[l] >= scene->light_count) continue; /* removed by the caller */
