@@ -110,8 +110,11 @@ expect 2 "--animation need --animate" -- "$RTCL" bench "$robot" --animation Walk
 
 # The viewer plays a chosen clip (under Xvfb, where it is here and the viewer is built).
 if command -v xvfb-run >/dev/null && "$RTCL" view --help 2>/dev/null | grep -q -- "--play"; then
+    # SDL's software renderer, as cli_view.sh: no Mesa (which leaks when
+    # unloaded, in the sanitizer build's leak check).
     expect 0 "view: 6 frames" -- xvfb-run -a -s "-screen 0 640x480x24" \
-        env SDL_RENDER_DRIVER=software "$RTCL" view "$robot" --play --animation Dance --frames 6 \
+        env SDL_RENDER_DRIVER=software SDL_FRAMEBUFFER_ACCELERATION=0 \
+        ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}use_sigaltstack=0" "$RTCL" view "$robot" --play --animation Dance --frames 6 \
         --width 64 --height 36 --backend cpu
 else
     echo "note: rtcl view skipped (no xvfb-run, or no viewer in this build)"
