@@ -778,6 +778,16 @@ static void test_malformed(void) {
              "\"skins\":[{\"joints\":[1]}],\"nodes\":[{\"mesh\":0,\"skin\":0},{}]",
              pos, aj, aw);
     expect_fail(write_gltf("joint.gltf", &g, NULL, rest), "JOINTS_0");
+    /* a required extension that would change the geometry */
+    gb_init(&g);
+    pos = tri_positions(&g);
+    snprintf(rest, sizeof rest,
+             "\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],"
+             "\"extensionsRequired\":[\"KHR_draco_mesh_compression\"],"
+             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":%d}}]}],"
+             "\"nodes\":[{\"mesh\":0}]",
+             pos);
+    expect_fail(write_gltf("draco.gltf", &g, NULL, rest), "/extensionsRequired/0");
     /* not JSON at all */
     snprintf(path, sizeof path, "%s/garbage.gltf", dir);
     f = fopen(path, "w");

@@ -851,6 +851,19 @@ rt_status read_doc(const char *path, rt_gltf_doc **out, rt_error *err) {
             if (model.buffers[b].data.empty())
                 return rt_error_set(err, RT_ERROR_PARSE, path, 0, 0, "/buffers/%zu: no data (%s)",
                                     b, one_line(twarn.empty() ? "empty" : twarn).c_str());
+        // A required extension this loader does not know could change the
+        // geometry (Draco or meshopt compression, GPU instancing): refused.
+        for (size_t e = 0; e < model.extensionsRequired.size(); e++) {
+            const std::string &x = model.extensionsRequired[e];
+            bool safe = x == "KHR_lights_punctual" || x == "KHR_mesh_quantization" ||
+                        x == "KHR_texture_transform" || x == "KHR_texture_basisu" ||
+                        x == "EXT_texture_webp" || x.compare(0, 14, "KHR_materials_") == 0;
+            if (!safe)
+                return rt_error_set(err, RT_ERROR_UNSUPPORTED, path, 0, 0,
+                                    "/extensionsRequired/%zu: the file requires %s, which this "
+                                    "loader does not support",
+                                    e, x.c_str());
+        }
         doc = static_cast<rt_gltf_doc *>(std::calloc(1, sizeof *doc));
         if (!doc) throw std::bad_alloc();
         convert(model, doc);
