@@ -461,6 +461,11 @@ static void test_morph(void) {
         CHECK_V(wpos(s, 2), 0.5, 0, 0.5);
         CHECK_V(wpos(s, 2) + 3, 1, 0, 0.5);
     }
+    /* An object removed by the caller: the animation goes on with the others. */
+    CHECK(rt_object_remove(s, 0) == RT_OK);
+    CHECK(rt_scene_set_time(s, 0.25) == RT_OK);
+    CHECK_EQ_INT(s->object_count, 2);
+    CHECK_V(wpos(s, 1), 0.25, 0, 0.25);
     rt_scene_destroy(s);
 }
 

@@ -586,7 +586,18 @@ static rt_status apply_frame(rt_scene *scene, gltf_state *s) {
     for (uint32_t i = 0; i < s->inst_count; i++) {
         gltf_inst *in = &s->insts[i];
         int local = 0;
-        if (in->rigid && in->object < scene->object_count) {
+        /* The caller may have removed objects (rt_object_remove compacts
+         * their ids): find the instance's again, or leave it be. */
+        if (in->object >= scene->object_count ||
+            rt_object_shown_mesh(&scene->objects[in->object]) != in->scene_mesh) {
+            uint32_t o = 0;
+            while (o < scene->object_count &&
+                   rt_object_shown_mesh(&scene->objects[o]) != in->scene_mesh)
+                o++;
+            if (o == scene->object_count) continue; /* removed */
+            in->object = o;
+        }
+        if (in->rigid) {
             const double *w = s->world + 16 * (size_t)in->node;
             float t[16], inv[16];
             int ok = 1;
