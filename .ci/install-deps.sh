@@ -12,6 +12,7 @@ $SUDO apt-get install -y -qq --no-install-recommends \
     libsdl2-dev xvfb xauth \
     libopenimageio-dev openimageio-tools \
     libsimde-dev libembree-dev libjansson-dev \
+    libtinygltf-dev nlohmann-json3-dev libstb-dev \
     gcc-aarch64-linux-gnu libc6-dev-arm64-cross qemu-user \
     clang libclang-rt-14-dev clang-format gnuplot-nox python3 ffmpeg time help2man \
     python3-dev python3-numpy python3-pytest python3-open3d >/dev/null

@@ -77,7 +77,8 @@ int main(int argc, char **argv) {
            "out), %s backend, %dx%d, primary and shadow rays, one light\n\n",
            threads, runs, frames, fps, backend, width, height);
     for (int si = first_scene; si < argc; si++) {
-        bench_anim_setup su = {runs, frames - 1, fps, threads, width, height, backend, 1, NULL};
+        bench_anim_setup su = {runs,   frames - 1, fps, threads, width,
+                               height, backend,    1,   NULL,    NULL};
         bench_anim_result res;
         char err[400];
         if (!bench_animate(argv[si], &su, &res, err, sizeof err)) {

@@ -5,6 +5,7 @@
 #                                           (include/ is on the targets' and pkg-config's path)
 #   lib/librtcl.a, lib/librtcl.so*          the library, static and shared
 #   lib/librtcl_image.so                    the image module (PNG, EXR), when built
+#   lib/librtcl_gltf.so                     the glTF module (tinygltf), when built
 #   lib/cmake/rtcl/                         find_package(rtcl): rtcl::rtcl (shared)
 #                                           and rtcl::rtcl_static
 #   lib/pkgconfig/rtcl.pc                   pkg-config rtcl (--static for the archive)
@@ -50,6 +51,9 @@ if(NOT CMAKE_CROSSCOMPILING)
   install(DIRECTORY ${rt_cli_docs}/man1 DESTINATION ${CMAKE_INSTALL_MANDIR} COMPONENT runtime)
   install(FILES ${rt_cli_docs}/completion/rtcl
           DESTINATION ${CMAKE_INSTALL_DATADIR}/bash-completion/completions COMPONENT runtime)
+endif()
+if(TARGET rtcl_gltf)
+  install(TARGETS rtcl_gltf LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime)
 endif()
 
 set(rt_cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/rtcl)

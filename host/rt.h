@@ -643,6 +643,21 @@ rt_status rt_scene_set_time(rt_scene *scene, double seconds);
  * something), else 0. */
 int rt_scene_is_animated(const rt_scene *scene);
 
+/* Animation clips of a scene file that has several (a glTF file's
+ * animations; 0 for other scenes). A glTF scene plays clip 0 unless another
+ * is selected. */
+uint32_t rt_scene_clip_count(const rt_scene *scene);
+/* Clip index's name ("" when unnamed) and duration in seconds (its last
+ * key time); the name lives as long as the scene. */
+rt_status rt_scene_clip_info(const rt_scene *scene, uint32_t index, const char **name,
+                             double *duration);
+/* The clip being played (0 when there are none). */
+uint32_t rt_scene_selected_clip(const rt_scene *scene);
+/* Plays the clip named clip, or else of that decimal index, from now on:
+ * the scene at its current time is evaluated again. Fails, listing the
+ * clips, when there is none such. */
+rt_status rt_scene_select_clip(rt_scene *scene, const char *clip);
+
 /* What the last rt_render or rt_trace_rays did to bring the scene's
  * acceleration structures up to date, per mesh that it touched. */
 typedef enum rt_update_action {

@@ -23,6 +23,10 @@ typedef struct bench_anim_setup {
     const char *backend; /* ours (NULL: "packet") */
     int embree;          /* 0: leave the Embree rows out */
     void (*progress)(const char *scene, const char *what);
+    /* A glTF scene's clip (rt_scene_select_clip), or NULL: its first. A
+     * scene with clips and no morphing object plays its clip: every mesh
+     * may deform; frames 0: 10, fps 0: 5. */
+    const char *animation;
 } bench_anim_setup;
 
 /* One engine and policy. Samples are kept per run and frame: index
@@ -49,7 +53,11 @@ typedef struct bench_anim_result {
     int runs, frames; /* frames counted (frame 0 not among them) */
     double fps;
     uint32_t keyframes, morph_triangles, triangles; /* morphing object, whole frame */
-    char embree_note[200];                          /* when there are no Embree rows: why */
+    /* rt_scene_set_time per counted frame (keyframe blending, a glTF clip's
+     * posing, skinning and morphing): min and median over the runs of the
+     * per-run mean. Not part of any row's frame. */
+    double scene_ms_min, scene_ms_median;
+    char embree_note[200]; /* when there are no Embree rows: why */
 } bench_anim_result;
 
 /* Plays the scene at path: frame k (0 .. frames) at time k / fps, each row

@@ -82,6 +82,10 @@ const cli_option cli_scene_options[] = {
              "object): {choices} (kd: the exact SAH kd-tree, kd-binned: a binned one); all give "
              "the same bits",
      .fallback = "each mesh's \"accel\" in the scene file, else bvh"},
+    {"--animation", 0, CLI_STRING, "CLIP", offsetof(cli_scene_args, animation),
+     .flags = CLI_NONEMPTY,
+     .help = "the animation clip a glTF scene plays, by name or index ('rtcl info' lists them)",
+     .fallback = "the file's first (index 0)"},
     {NULL}};
 
 const cli_option cli_time_options[] = {
@@ -95,6 +99,7 @@ void cli_scene_args_init(cli_scene_args *a) {
     a->accel = -1;
     a->time = NAN;
     a->update = -1;
+    a->animation = NULL;
 }
 
 rt_scene *cli_scene_open(const char *command, const char *source, const cli_scene_args *a) {
@@ -112,6 +117,7 @@ rt_scene *cli_scene_open(const char *command, const char *source, const cli_scen
         p += n + (eol ? 1 : 0);
     }
     if ((a->accel >= 0 && rt_scene_set_static_accel(s, (rt_accel)a->accel) != RT_OK) ||
+        (a->animation && rt_scene_select_clip(s, a->animation) != RT_OK) ||
         (!isnan(a->time) && rt_scene_set_time(s, a->time) != RT_OK)) {
         cli_error(command, "%s", rt_scene_error(s));
         rt_scene_destroy(s);

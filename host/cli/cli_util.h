@@ -37,10 +37,11 @@ typedef struct cli_scene_args {
     int accel;   /* --accel: an rt_accel for every static mesh, or -1: each mesh's own */
     double time; /* --time: seconds, NAN when not given */
     int update;  /* --update: an rt_update_policy for every mesh, or -1: each mesh's own */
+    const char *animation; /* --animation: a clip's name or index (glTF), or NULL */
 } cli_scene_args;
 
 /* The scene groups, each a table into cli_scene_args (title
- * CLI_SCENE_TITLE): --accel; --time; --update. */
+ * CLI_SCENE_TITLE): --accel and --animation; --time; --update. */
 extern const cli_option cli_scene_options[];
 extern const cli_option cli_time_options[];
 extern const cli_option cli_update_options[];
@@ -50,7 +51,7 @@ void cli_scene_args_init(cli_scene_args *a);
 
 /* Opens source (a file or builtin:NAME, rt_scene_open), prints the
  * loader's notices (rt_scene_notices) on stderr, "rtcl COMMAND: notice:
- * ..." each, and applies the scene options given: --accel, then --time,
+ * ..." each, and applies the scene options given: --accel, --animation, then --time,
  * then --update. Prints the error and returns NULL when that fails. */
 rt_scene *cli_scene_open(const char *command, const char *source, const cli_scene_args *a);
 

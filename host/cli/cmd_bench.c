@@ -21,7 +21,8 @@ typedef struct bench_args {
     int accel, device_math, denormals, verbose; /* build and render */
     int animate, frames, series;                /* --animate */
     double fps;
-    int incoherent, rays; /* --incoherent */
+    const char *animation; /* --animation (glTF clip) */
+    int incoherent, rays;  /* --incoherent */
 } bench_args;
 
 static const cli_option bench_options[] = {
@@ -79,6 +80,10 @@ static const cli_option animate_options[] = {
      .help = "frames per second", .fallback = "the keyframe rate"},
     {"--series", 0, CLI_FLAG, NULL, offsetof(bench_args, series),
      .help = "with --json: each row's per-frame medians too"},
+    {"--animation", 0, CLI_STRING, "CLIP", offsetof(bench_args, animation), .flags = CLI_NONEMPTY,
+     .help = "a glTF scene's clip, by name or index: a glTF scene without a morphing object "
+             "plays it (skinned meshes deform, rigid parts move as objects)",
+     .fallback = "its first"},
     {NULL}};
 
 static const cli_option incoherent_options[] = {
@@ -112,7 +117,7 @@ const cli_command cmd_bench_spec = {
     "scene",
     1,
     -1,
-    "Each SCENE is a .json scene, a bare .obj, or builtin:NAME.\n"
+    "Each SCENE is a .json scene, a bare .obj, a .gltf or .glb, or builtin:NAME.\n"
     "\n"
     "Build: one BVH over all triangles of each scene with every builder\n"
     "(thesis-scalar, thesis-neon, thesis-mt, fast, and embree when available):\n"
@@ -153,8 +158,8 @@ static const char *misplaced(const bench_args *a) {
                "backend)";
     if (a->animate && a->verbose)
         return "--verbose does not apply to --animate (it runs the packet backend)";
-    if (!a->animate && (a->frames || a->fps > 0.0 || a->series))
-        return "--frames, --fps and --series need --animate";
+    if (!a->animate && (a->frames || a->fps > 0.0 || a->series || a->animation))
+        return "--frames, --fps, --series and --animation need --animate";
     if (a->incoherent && a->accel >= 0)
         return "--accel does not apply to --incoherent (it traces the scene's own structures)";
     if (a->incoherent && maths)
@@ -201,7 +206,7 @@ int cmd_bench(int argc, char **argv) {
     }
     if (a.animate) {
         bench_anim_setup su = {a.reps,   a.frames, a.fps, a.threads, a.width,
-                               a.height, "packet", 1,     progress};
+                               a.height, "packet", 1,     progress,  a.animation};
         return bench_anim_run(scenes, n, &su, a.json, a.series, "rtcl bench");
     }
     bench_build_setup su = {"rtcl bench",

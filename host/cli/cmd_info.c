@@ -38,7 +38,8 @@ const cli_command cmd_info_spec = {
     1,
     1,
     "Prints the triangles, meshes, objects, materials and lights of SCENE (a .json\n"
-    "scene, a bare .obj, or builtin:NAME), its camera, and the features it uses:\n"
+    "scene, a bare .obj, a .gltf or .glb, or builtin:NAME; a glTF file's animation\n"
+    "clips with their durations), its camera, and the features it uses:\n"
     "backends specialise to these (no secondary rays without reflective or\n"
     "refractive materials, no instance transforms for one identity object, no\n"
     "normal interpolation without normals; OpenCL as -D switches, Vulkan as\n"
@@ -96,6 +97,16 @@ static void print_json(const char *path, const rt_scene *s, const rt_scene_info 
                (double)hi[2]);
     else
         printf(", \"bounds\": null");
+    printf(", \"clips\": [");
+    for (uint32_t i = 0; i < rt_scene_clip_count(s); i++) {
+        const char *name;
+        double duration;
+        rt_scene_clip_info(s, i, &name, &duration);
+        printf("%s{\"name\": ", i ? ", " : "");
+        json_out_string(name);
+        printf(", \"duration\": %.9g}", duration);
+    }
+    printf("]");
     printf(", \"features\": {\"reflection\": %s, \"refraction\": %s, \"instancing\": %s, "
            "\"normals\": %s, \"keyframes\": %s, \"tri_materials\": %s}",
            cli_json_bool(in->reflection), cli_json_bool(in->refraction),
@@ -153,12 +164,25 @@ int cmd_info(int argc, char **argv) {
                m.update ? rt_update_policy_name(m.update) : "", rt_accel_name(m.accel));
     }
     printf("objects      %u\n", in.objects);
-    if (in.animated)
+    uint32_t clips = rt_scene_clip_count(s);
+    if (clips)
+        printf("animation    a glTF clip at every time (node animation, skins, morph targets); "
+               "rigid parts are objects, skinned meshes deform\n");
+    else if (in.animated)
         printf("animation    keyframes switched on %u objects, blended on %u; transform keys on %u "
                "objects; camera path of %u keys\n",
                in.switched_objects, in.blended_objects, in.keyed_objects, in.camera_path_keys);
     else
         printf("animation    none (the scene stays still)\n");
+    if (clips) {
+        printf("clips        %u (playing %u)\n", clips, rt_scene_selected_clip(s));
+        for (uint32_t i = 0; i < clips; i++) {
+            const char *name;
+            double duration;
+            rt_scene_clip_info(s, i, &name, &duration);
+            printf("  %-3u %-24s %.6g s\n", i, name[0] ? name : "(unnamed)", duration);
+        }
+    }
     printf("materials    %u\n", in.materials);
     printf("lights       %u\n", in.lights);
     rt_camera cam;

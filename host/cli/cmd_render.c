@@ -63,9 +63,9 @@ const cli_command cmd_render_spec = {
     "scene",
     1,
     1,
-    "Renders SCENE (a .json scene, a bare .obj, or builtin:NAME) with Whitted-style\n"
-    "shading (Phong, shadow rays, reflection, refraction). Options may come before or\n"
-    "after SCENE.\n",
+    "Renders SCENE (a .json scene, a bare .obj, a .gltf or .glb, or builtin:NAME)\n"
+    "with Whitted-style shading (Phong, shadow rays, reflection, refraction).\n"
+    "Options may come before or after SCENE.\n",
     render_groups,
     NULL,
     NULL};

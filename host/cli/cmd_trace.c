@@ -87,8 +87,8 @@ const cli_command cmd_trace_spec = {
     "scene",
     1,
     1,
-    "Traces the rays of RAYS.txt through SCENE (a .json scene, a bare .obj, or\n"
-    "builtin:NAME) and writes one line per ray to HITS.txt.\n",
+    "Traces the rays of RAYS.txt through SCENE (a .json scene, a bare .obj, a .gltf\n"
+    "or .glb, or builtin:NAME) and writes one line per ray to HITS.txt.\n",
     trace_groups,
     NULL,
     NULL};

@@ -26,7 +26,8 @@ static void usage(FILE *out) {
         fprintf(out, "  %-9s %s\n", commands[i].spec->name, commands[i].spec->summary);
     fprintf(out, "\n'rtcl COMMAND --help' or 'rtcl help COMMAND' describes each command, and\n"
                  "'rtcl help --synopsis' lists every command's synopsis. A SCENE is a .json\n"
-                 "scene file, a bare .obj file, or builtin:NAME (cornell, keyframes).\n");
+                 "scene file, a bare .obj file, a glTF 2.0 file (.gltf, .glb), or builtin:NAME\n"
+                 "(cornell, keyframes).\n");
 }
 
 static int find(const char *name) {

@@ -9,6 +9,7 @@
  * descends. The first error stops the load; rt_scene_load then destroys the
  * scene, so nothing is half-loaded.
  */
+#include "formats/gltf_load.h"
 #include "formats/scene_load.h"
 #include "formats/scene_obj.h"
 
@@ -688,7 +689,8 @@ static rt_status white_material(loader *L, uint32_t *id) {
     return RT_OK;
 }
 
-/* An OBJ file, its path relative to the scene file's folder. */
+/* An OBJ or glTF file (gltf_load.h: rt_gltf_add_mesh), its path relative to
+ * the scene file's folder. */
 static rt_status load_mesh_file(loader *L, json_t *v, uint32_t *id) {
     json_t *file = json_object_get(v, "file");
     rt_status st;
@@ -713,7 +715,8 @@ static rt_status load_mesh_file(loader *L, json_t *v, uint32_t *id) {
     }
     memcpy(full, L->path, dir_len);
     strcpy(full + dir_len, name);
-    st = rt_scene_add_obj(L->scene, full, id, L->err);
+    st = rt_gltf_is_gltf_path(full) ? rt_gltf_add_mesh(L->scene, full, id, L->err)
+                                    : rt_scene_add_obj(L->scene, full, id, L->err);
     if (st != RT_OK && L->err) {
         /* The OBJ loader's message names the OBJ file and line; add where the
          * scene refers to it. */

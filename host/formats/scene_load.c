@@ -7,6 +7,7 @@
 #include <strings.h>
 
 #include "base/error.h"
+#include "formats/gltf_load.h"
 #include "formats/scene_obj.h"
 #include "scene/scene.h"
 
@@ -63,9 +64,11 @@ rt_status rt_scene_load_with(const char *path, const rt_scene_load_options *opti
 #endif
     else if (has_extension(path, ".obj"))
         st = load_bare_obj(scene, path, err);
+    else if (rt_gltf_is_gltf_path(path))
+        st = rt_scene_load_gltf(scene, path, err);
     else
         st = rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0,
-                          "unknown scene type: expected a .json or .obj file");
+                          "unknown scene type: expected a .json, .obj, .gltf or .glb file");
     if (st == RT_OK && rt_scene_triangle_count(scene) == 0)
         st = rt_error_set(err, RT_ERROR_PARSE, path, 0, 0,
                           "the scene is empty: no object has a triangle");

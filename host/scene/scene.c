@@ -126,6 +126,7 @@ void rt_mesh_data_free_arrays(rt_mesh_data *m) {
 
 void rt_scene_destroy(rt_scene *scene) {
     if (!scene) return;
+    if (scene->animator.destroy) scene->animator.destroy(scene->animator.state);
     for (uint32_t i = 0; i < scene->mesh_count; i++) rt_mesh_data_free_arrays(&scene->meshes[i]);
     for (uint32_t i = 0; i < scene->object_count; i++) {
         free(scene->objects[i].meshes);

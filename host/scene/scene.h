@@ -66,6 +66,24 @@ typedef struct rt_light_data {
     float color[3];
 } rt_light_data;
 
+/* An animation a loader keeps in the scene (formats/gltf_load.c: a glTF
+ * file's clips): rt_scene_set_time calls set_time after the scene's own
+ * keyframes and keys, and rt_scene_destroy calls destroy. state is the
+ * loader's; NULL set_time: none. The clip calls back the rt.h functions
+ * rt_scene_clip_count, rt_scene_clip_info and rt_scene_select_clip. */
+typedef struct rt_scene_animator {
+    void *state;
+    rt_status (*set_time)(rt_scene *scene, void *state, double seconds);
+    void (*destroy)(void *state);
+    uint32_t (*clip_count)(const void *state);
+    /* name and duration of clip index (< clip_count) */
+    void (*clip_info)(const void *state, uint32_t index, const char **name, double *duration);
+    /* plays clip index from now on (the scene's time is evaluated again) */
+    rt_status (*select_clip)(rt_scene *scene, void *state, uint32_t index);
+    uint32_t selected;
+    int animated; /* 1: set_time changes something (rt_scene_is_animated) */
+} rt_scene_animator;
+
 struct rt_scene {
     rt_mesh_data *meshes;
     uint32_t mesh_count, mesh_capacity;
@@ -92,9 +110,10 @@ struct rt_scene {
     /* Unique among the scenes of the process (never reused), so that a
      * renderer given another scene knows its caches are not this one's. */
     uint64_t uid;
-    char source[512]; /* the file it was loaded from, or "" */
-    char *notices;    /* rt_scene_notices: lines, or NULL when none */
-    rt_error error;   /* the last error of a call that edited the scene */
+    char source[512];           /* the file it was loaded from, or "" */
+    char *notices;              /* rt_scene_notices: lines, or NULL when none */
+    rt_scene_animator animator; /* a loader's animation, zero: none */
+    rt_error error;             /* the last error of a call that edited the scene */
 };
 
 /* Identity matrix. */

@@ -175,7 +175,8 @@ rt_status rt_camera_set_path(rt_scene *scene, const rt_camera_key *keys, uint32_
 
 int rt_scene_is_animated(const rt_scene *scene) {
     if (!scene) return 0;
-    if (scene->camera_path_count) return 1;
+    if (scene->camera_path_count || (scene->animator.set_time && scene->animator.animated))
+        return 1;
     for (uint32_t i = 0; i < scene->object_count; i++) {
         const rt_object_data *o = &scene->objects[i];
         if ((o->keyframe_rate > 0.0f && o->mesh_count > 1) || o->transform_key_count) return 1;
@@ -429,5 +430,61 @@ rt_status rt_scene_set_time(rt_scene *scene, double seconds) {
             if (st != RT_OK) return st;
         }
     }
+    if (scene->animator.set_time)
+        return scene->animator.set_time(scene, scene->animator.state, seconds);
     return RT_OK;
+}
+
+/* ---- a loader's clips (rt_scene_animator) ------------------------------------ */
+
+uint32_t rt_scene_clip_count(const rt_scene *scene) {
+    if (!scene || !scene->animator.clip_count) return 0;
+    return scene->animator.clip_count(scene->animator.state);
+}
+
+rt_status rt_scene_clip_info(const rt_scene *scene, uint32_t index, const char **name,
+                             double *duration) {
+    if (!scene || index >= rt_scene_clip_count(scene)) return RT_ERROR_INVALID_ARGUMENT;
+    const char *n = "";
+    double d = 0.0;
+    scene->animator.clip_info(scene->animator.state, index, &n, &d);
+    if (name) *name = n;
+    if (duration) *duration = d;
+    return RT_OK;
+}
+
+uint32_t rt_scene_selected_clip(const rt_scene *scene) {
+    return scene && rt_scene_clip_count(scene) ? scene->animator.selected : 0;
+}
+
+rt_status rt_scene_select_clip(rt_scene *scene, const char *clip) {
+    if (!scene) return RT_ERROR_INVALID_ARGUMENT;
+    if (!clip) return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "no clip named");
+    uint32_t n = rt_scene_clip_count(scene);
+    if (!n)
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "the scene has no animation clips (--animation is for glTF files)");
+    for (uint32_t i = 0; i < n; i++) {
+        const char *name = "";
+        rt_scene_clip_info(scene, i, &name, NULL);
+        if (strcmp(name, clip) == 0)
+            return scene->animator.select_clip(scene, scene->animator.state, i);
+    }
+    char *end;
+    unsigned long k = strtoul(clip, &end, 10);
+    if (clip[0] >= '0' && clip[0] <= '9' && !*end && k < n)
+        return scene->animator.select_clip(scene, scene->animator.state, (uint32_t)k);
+    char names[400] = "";
+    size_t used = 0;
+    for (uint32_t i = 0; i < n && used + 2 < sizeof names; i++) {
+        const char *name = "";
+        rt_scene_clip_info(scene, i, &name, NULL);
+        int w = snprintf(names + used, sizeof names - used, "%s%s", i ? ", " : "", name);
+        if (w < 0) break;
+        used += (size_t)w;
+    }
+    if (used >= sizeof names) used = sizeof names - 1;
+    return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                         "no animation clip '%.100s': the scene has %u (0..%u: %s)", clip, n, n - 1,
+                         names);
 }

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the libFuzzer harnesses of an RT_FUZZ=ON build, one after another.
-#   tests/fuzz/run.sh BUILD_DIR SECONDS [NAME...]   (NAMEs: obj json rays trace)
+#   tests/fuzz/run.sh BUILD_DIR SECONDS [NAME...]   (NAMEs: obj json rays trace gltf)
 # Each fuzzer starts from its seeds (tests/fuzz/corpus/NAME, read only) and
 # writes the inputs it finds to BUILD_DIR/fuzz-corpus/NAME (kept between
 # runs), a crash or hang to BUILD_DIR/fuzz-artifacts/, its log to
@@ -12,7 +12,7 @@ build="${1:?usage: run.sh BUILD_DIR SECONDS [NAME...]}"
 seconds="${2:?usage: run.sh BUILD_DIR SECONDS [NAME...]}"
 shift 2
 names=("$@")
-[ ${#names[@]} -gt 0 ] || names=(obj json rays trace)
+[ ${#names[@]} -gt 0 ] || names=(obj json rays trace gltf)
 mkdir -p "$build/fuzz-artifacts" "$build/fuzz-logs"
 failed=0
 for name in "${names[@]}"; do
@@ -27,7 +27,10 @@ for name in "${names[@]}"; do
     # unless the machine is starved); -rss_limit_mb: the loaders may allocate
     # what a file asks for (within the documented limits), 2 GB catches a
     # runaway allocation.
+    # LD_LIBRARY_PATH: the glTF and image modules, which ASan's dlopen finds
+    # through the library path, not the program's RUNPATH.
     # shellcheck disable=SC2086
+    LD_LIBRARY_PATH="$build${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
     "$fuzzer" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 -print_final_stats=1 \
         -dict="$here/$name.dict" -artifact_prefix="$build/fuzz-artifacts/$name-" \
         ${RT_FUZZ_FLAGS:-} "$build/fuzz-corpus/$name" "$here/corpus/$name" > "$log" 2>&1

@@ -73,7 +73,8 @@ const cli_command cmd_view_spec = {
     "Mrays/s, backend and device, whether the backend promises the CPU oracle's bits,\n"
     "triangles, the resolution divisor, the view, the lighting and the scene time.\n"
     "Options may come before or after SCENE; --width and --height also size the\n"
-    "window, and --time is the timeline's start.\n",
+    "window, and --time is the timeline's start. SCENE may also be a .gltf or .glb\n"
+    "file; --animation picks the clip its timeline plays.\n",
     view_groups,
     NULL,
     print_keys};

@@ -30,6 +30,15 @@ rt_status view_timeline_apply(view_timeline *tl, rt_scene *scene, double t) {
      * 'rtcl render --time t' does. The camera stays the viewer's: the user
      * flies, so a camera path is not followed here. */
     if (rt_scene_is_animated(scene)) {
+        /* A glTF clip loops in the viewer (render and animate hold its
+         * last pose after its end, as the file says). */
+        double duration = 0.0;
+        if (rt_scene_clip_count(scene) &&
+            rt_scene_clip_info(scene, rt_scene_selected_clip(scene), NULL, &duration) == RT_OK &&
+            duration > 0.0) {
+            t = fmod(t, duration);
+            if (t < 0.0) t += duration;
+        }
         rt_camera cam;
         rt_camera_get(scene, &cam);
         rt_status st = rt_scene_set_time(scene, t);
