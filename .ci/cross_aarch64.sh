@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Cross-compiles the dependency-free core for aarch64 and runs its tests
 # (tests/test_core_*.c) under qemu-aarch64, so that the NEON code is tested
 # as real NEON, not only through SIMDe on x86.

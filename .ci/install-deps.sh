@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Installs every package rtcl builds, tests and benchmarks with (Debian 12, as root).
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive

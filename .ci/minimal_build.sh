@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # minimal_build.sh - the build without the optional libraries (jansson,
 # OpenImageIO, Embree, tinygltf), as a machine that has only a C compiler, CMake and
 # SIMDe gets it: it must build, render OBJ scenes to PPM/PFM, refuse JSON

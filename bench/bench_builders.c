@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_builders.c - BVH builders and their settings: build time against
  * tree quality (SAH) against the time to trace a frame through the tree
  * (issue 7, study b; bench/study_builders.sh runs it).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_bvh_sah.c - times the fast BVH builder alone on one scene, and
  * prints a checksum of the tree so that variants of the builder can be
  * compared for identical output.

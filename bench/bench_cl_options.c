@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_cl_options.c - OpenCL kernel build options against image error
  * (issue 7, study c; bench/study_opencl_options.sh runs it).
  *

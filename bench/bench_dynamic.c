@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_dynamic.c - the keyframe benchmark of Langr 2016 (section 4.1) for
  * deforming meshes: an animated scene morphing between its keyframes, frame
  * by frame, with each update policy of ours on one renderer, beside Embree

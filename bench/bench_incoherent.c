@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_incoherent.c - the incoherent-ray benchmark as a program of its own
  * (the same code as 'rtcl bench --incoherent': bench/engines/incoherent_bench.h),
  * with the interior views of VIEWS.md for the bare OBJ files of Sponza and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_kd.c - build time of the SAH kd-tree builders (issue 18) on one scene:
  * one tree over all triangles of all meshes (as rtcl bench builds one BVH),
  * exact and binned, with 1 and 2 threads. Prints wall-clock and CPU time

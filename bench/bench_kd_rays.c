@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_kd_rays.c - incoherent ray queries through kd-tree meshes against
  * BVH meshes (issue 18) in one run: the same scene loaded twice, once with
  * BVH meshes and once with every static mesh a kd-tree (exact or binned),

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_memory.c - memory per triangle of each backend and structure,
  * beside Embree's footprint for the same mesh (docs/BENCHMARKS.md, "Memory
  * per triangle"; bench/memory_section.sh makes the section).

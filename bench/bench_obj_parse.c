@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_obj_parse.c - OBJ load throughput: triangles per second.
  *
  * usage: bench_obj_parse [-n RUNS] FILE.obj...

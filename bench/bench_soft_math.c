@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_soft_math.c - kernels/rt_soft_math.h against the hardware on many
  * random operands, and its speed.
  *

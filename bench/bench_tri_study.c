@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_tri_study.c - the triangle tests' speed against their error on real
  * rays (issue 7, study a; bench/study_tri_tests.sh runs it).
  *

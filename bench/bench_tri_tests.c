@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_tri_tests.c - what robustness costs: trace speed of the watertight
  * default against the other triangle tests (docs/ROBUSTNESS.md).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_util.h - what the benchmark programs share: min and median of
  * repeated timings, integer options, the interior views of
  * shared/scenes/VIEWS.md for the bare OBJ files of Sponza and Sibenik, and

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """build_table.py - turns `rtcl bench --json` lines (stdin) into the markdown
 table of docs/BENCHMARKS.md, so that no number there is typed by hand.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # common_args.sh - sourced by the bench scripts (report.sh, kd_section.sh,
 # common_study_args.sh) with their arguments: sets root (the repository),
 # quick (1 when --quick is among them, else 0) and args (the others, in

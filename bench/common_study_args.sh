@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # common_study_args.sh - sourced by bench/study_NAME.sh: reads "BUILD_DIR
 # SHARED_SCENES OUT_DIR [--quick]" and sets root, quick, build, shared, out,
 # data (OUT_DIR/data/NAME, emptied) and threads (bench/report.sh passes its

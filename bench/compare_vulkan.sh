@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # compare_vulkan.sh - renders every scene of the shared benchmark set with the
 # CPU oracle and with the Vulkan backend, compares the images exactly (the
 # float EXRs pixel by pixel, the 8-bit PNGs byte for byte), and times both.

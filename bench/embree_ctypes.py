@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """embree_ctypes.py - Embree 3 from Python through ctypes, queried the way
 Open3D's RaycastingScene queries it (one triangle geometry per mesh,
 RTC_SCENE_FLAG_ROBUST, rtcIntersect1M / rtcOccluded1M over batches of rays on

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # gpu_check.sh - one run, on a machine with a GPU, of everything that needs
 # one: build, list the devices, render the shared scenes and run the
 # robustness suite on every OpenCL device in both maths profiles (native,

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # incoherent_report.sh RTCL SHARED_SCENES [RAYS] [REPS] [--quick] - the incoherent-ray
 # section of docs/BENCHMARKS.md (issue 20), as Markdown on stdout: one
 # 'rtcl bench --incoherent' run per scene (Sponza's and Sibenik's interior

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # kd_packet_frames.sh - frame times of the packet tracers on kd meshes
 # (issue 18): ROUNDS interleaved rounds, each running every configuration
 # once per scene ('rtcl render SCENE --backend B --accel A --direct --frames

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # kd_report.sh - the kd-tree numbers of docs/BENCHMARKS.md (issue 18): for
 # each scene, ROUNDS rounds that alternate 'rtcl bench --accel bvh' and
 # 'rtcl bench --accel kd' (so that a busy machine slows both alike), then a

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # kd_section.sh [BUILD_DIR] [SHARED_SCENES] [--quick] - prints the Markdown
 # section "SAH kd-trees against the BVH in one run" of docs/BENCHMARKS.md
 # (issue 18) on stdout: bench/report.sh calls it, and it runs alone (about

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """kd_section_tables.py - the tables of bench/kd_section.sh from its runs' JSON lines.
 
 usage: kd_section_tables.py rays RAYS.jsonl        (bench_kd_rays --json)

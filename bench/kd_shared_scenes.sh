@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # kd_shared_scenes.sh - the SAH kd-trees (issue 18) against the BVH on the
 # shared scenes (../shared/scenes): for each scene, the image and the depth
 # and primitive-id AOVs rendered with --accel kd and --accel kd-binned on

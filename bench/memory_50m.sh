@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # memory_50m.sh [BUILD_DIR] - renders a 50-million-triangle height field
 # with the packet backend (one frame, direct rays) and checks that the
 # process's peak resident memory stays under 8 GiB (issue 31). Needs about

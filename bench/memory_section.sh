@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # memory_section.sh [BUILD_DIR] [SHARED_SCENES] [--quick] - prints the
 # Markdown section "Memory per triangle" of docs/BENCHMARKS.md (issue 31) on
 # stdout: bench/report.sh calls it, and it runs alone (about 4 minutes;

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: Apache-2.0
 """python_open3d.py - rtcl's Python package beside Open3D's RaycastingScene
 (Embree inside) in the same run, on the same numpy arrays: scene build time,
 Mrays/s of cast_rays and test_occlusion (Open3D: test_occlusions), and the

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """render_table.py - turns the "render" rows of `rtcl bench --json` lines
 (stdin) into the markdown tables of docs/BENCHMARKS.md: frame times of our
 backends beside Embree's, the ratios the issue's targets are judged by, and a

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # report.sh [BUILD_DIR] [SHARED_SCENES] [--quick] - regenerates docs/BENCHMARKS.md
 # (and its plots in docs/plots/) from the scenes in SHARED_SCENES: every table
 # is printed by a program of this repository in this run; nothing is typed by

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # study_builders.sh BUILD_DIR SHARED_SCENES OUT_DIR [--quick] - BVH builders
 # and their settings: build time against SAH cost against the time to trace
 # a frame through the tree (issue 7, study b). Writes OUT_DIR/builders.md and

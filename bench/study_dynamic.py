@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """study_dynamic.py DATA_DIR OUT_DIR --command CMD [options] - the report
 section OUT_DIR/dynamic.md and plot OUT_DIR/plots/dynamic.png of the dynamic
 scenes study (bench/study_dynamic.sh) from what 'rtcl bench --animate --json'

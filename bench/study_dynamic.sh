@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # study_dynamic.sh BUILD_DIR SHARED_SCENES OUT_DIR [--quick] - the update
 # policies of deforming meshes (issue 16): per-frame update ms against trace
 # ms over our policies and Embree's build qualities on the morphing

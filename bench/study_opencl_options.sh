@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # study_opencl_options.sh BUILD_DIR SHARED_SCENES OUT_DIR [--quick] - OpenCL
 # kernel build options against image error (issue 7, study c). Writes
 # OUT_DIR/opencl_options.md and OUT_DIR/plots/opencl_options.png;

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """study_report.py STUDY DATA_DIR OUT_DIR --command CMD [options] - writes the
 report section OUT_DIR/STUDY.md and the plot OUT_DIR/plots/STUDY.png of one
 speed-against-error study (issue 7) from what its script measured into

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # study_tri_tests.sh BUILD_DIR SHARED_SCENES OUT_DIR [--quick] - speed against
 # error of the four triangle tests (issue 7, study a). Writes
 # OUT_DIR/tri_tests.md (a report section) and OUT_DIR/plots/tri_tests.png;

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """thesis_table.py THESIS_TSV < rtcl-bench-json - the thesis's own build times
 (bench/thesis_numbers.tsv, copied from the thesis) beside ours for the same
 scene, taken from this run's `rtcl bench --json` lines. The thesis ran on a

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """view_fps.py - frames per second of 'rtcl view', the real-time viewer, on
 each backend, beside Embree rendering the same frames ('rtcl bench').
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # whitted_table.sh RTCL SHARED_SCENES [FRAMES] - frame times of every backend on
 # the shipped and shared scenes at 1024x576 (one light, Whitted shading), as
 # the markdown table of docs/BENCHMARKS.md. Each cell: min / median ms of the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Cross-compiling for 64-bit ARM Linux with the Debian/Ubuntu
 # gcc-aarch64-linux-gnu toolchain; ctest runs the test programs under
 # qemu-aarch64 (package qemu-user) with the target's libraries as its root.

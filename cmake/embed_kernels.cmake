@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # embed_kernels.cmake - writes a C file holding OpenCL kernel sources as
 # strings, so that rtcl runs from any directory.
 #

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # embed_spirv.cmake - writes a C file holding SPIR-V modules as arrays of
 # 32-bit words, so that rtcl runs from any directory.
 #

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # install.cmake - what `cmake --install` puts where (included from the top
 # CMakeLists.txt once the targets exist):
 #   bin/rtcl                                the tool (library linked in statically)

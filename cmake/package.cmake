@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # package.cmake - Debian packages from the build (CPack DEB), included at the
 # end of cmake/install.cmake:
 #   cd build && cpack -G DEB

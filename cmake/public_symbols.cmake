@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # public_symbols.cmake - writes the linker version script of librtcl.so from
 # the public header: every function declared in rt.h (comments removed, any
 # name rt_xxx followed by '(') is global, everything else local, so that the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cpu_backends.c - the two CPU backends behind host/backend/backend.h: "cpu"
  * (the scalar oracle, cpu_render.c) and "packet" (ray packets through wide
  * copies of the BVHs, packet_render.c). Both run on the renderer's pool. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cpu_backends.h - the CPU backends as host/backend/backend.h implementations:
  * "cpu" (the scalar oracle) and "packet" (ray packets). */
 #ifndef RT_CPU_BACKENDS_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cpu_isa.c - the table of the CPU tracers' instruction-set builds
  * (cpu_isa.h), and the one test of what this CPU runs. */
 #include "cpu_isa.h"

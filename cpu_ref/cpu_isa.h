@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cpu_isa.h - the instruction-set builds of the CPU tracers: one table for
  * the packet tracer (packet_trace.h) and the single-ray tracer
  * (single_trace.h), one place that decides which builds this CPU runs.

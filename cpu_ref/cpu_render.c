@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cpu_render.c - the scalar oracle: one ray at a time through the shared
  * header, threads over interleaved rows. Each pixel depends only on its own
  * rays, so the image does not depend on the thread count. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cpu_render.h - the CPU backends over the flattened layout: the scalar
  * oracle ("cpu") and the packet path ("packet", cpu_ref/packet_trace.h). Both write the same
  * bits: the packet path only changes how primary rays find their hits. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* crossings.c - counting the triangles a ray crosses (crossings.h).
  *
  * The watertight test (rt_tri_watertight) decides in the ray's sheared 2D

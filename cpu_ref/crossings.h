@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* crossings.h - how many triangles each ray crosses (rt.h's
  * rt_count_intersections), over the flattened layout with the oracle's
  * shared maths: every hit of the watertight test in the ray's range that

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* kernel_maths.h - the shared maths of kernels/ (the scalar oracle, which is
  * also the OpenCL C the devices compile) as the CPU backends use it: ray
  * set-up, box and triangle tests, hit order and acceptance, traversal,

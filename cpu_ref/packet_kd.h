@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* packet_kd.h - kd-tree meshes (RT_INST_KD) in the packet tracer: a group of
  * RT_VN lanes, one native vector, traverses the tree together. Included once
  * by cpu_ref/packet_trace.c (one copy per instruction-set build), after the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* packet_render.c - the packet path (Langr 2016, section 3.2.6, with larger
  * packets): tiles of TILE_W x TILE_H pixels, one ray packet per tile
  * (cpu_ref/packet_trace.c), their shadow rays traced as packets too, blocks

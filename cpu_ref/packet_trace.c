@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* packet_trace.c - RT_PK_LANES rays through the two-level BVH together
  * (packet_trace.h), in G groups of RT_VN lanes, one native vector each
  * (simd.h: 16 groups of 4 lanes with NEON or SSE2, 8 of 8 with AVX2, 4 of

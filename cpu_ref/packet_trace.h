@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* packet_trace.h - ray packets through the two-level BVH, RT_PK_LANES rays
  * at once (an 8x8-pixel tile of the renderer, or 64 consecutive rays of a
  * query).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* ray_coherence.c - the cheap coherence measure of a group of rays
  * (ray_coherence.h). */
 #include "ray_coherence.h"

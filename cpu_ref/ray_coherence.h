@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* ray_coherence.h - whether a group of rays is coherent enough for the
  * packet tracer, or goes one ray at a time through the single-ray tracer
  * (cpu_ref/single_trace.h). Either path gives the same hits; the measure

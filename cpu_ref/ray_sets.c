@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* ray_sets.c - random and diffuse-bounce rays (ray_sets.h). */
 #include "ray_sets.h"
 

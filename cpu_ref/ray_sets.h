@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* ray_sets.h - reproducible sets of incoherent rays over a layout, for the
  * tests and benchmarks of the single-ray tracer (and the Embree peer beside
  * it): random rays inside the scene, and diffuse bounces from the closest

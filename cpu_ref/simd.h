@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* simd.h - the CPU tracers' one door to vectors: 4, 8 or 16 lanes of float
  * or int32.
  *

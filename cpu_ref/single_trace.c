@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* single_trace.c - one ray at a time through 4- or 8-wide BVHs
  * (single_trace.h), W lanes per vector (simd.h's RT_VN): W = 8 in the AVX2
  * and AVX-512 builds, 4 in the baseline one (SSE2 on x86-64, NEON on

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* single_trace.h - incoherent rays one at a time through the two-level BVH
  * as 4- or 8-wide nodes (wide_bvh.h, shaped by rt_sw_shape): one vector box
  * test for all children of a node, the hit children taken nearest first

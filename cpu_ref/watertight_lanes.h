@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* watertight_lanes.h - rt_tri_watertight (kernels/rt_shared.h) on the RT_VN
  * lanes of rt_vf (simd.h): the one vector copy of the oracle's watertight
  * arithmetic, shared by the packet tracer (one triangle, a vector of rays)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* wide_bvh.c - the layout's binary BVHs collapsed into 4- or 8-wide nodes
  * (wide_bvh.h), for both CPU tracers.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* wide_bvh.h - the CPU tracers' view of the layout's BVHs: the binary trees
  * collapsed into nodes of 4 or 8 children whose boxes sit in the parent (as
  * in Embree's and tinybvh's wide BVHs), one collapse for both tracers,

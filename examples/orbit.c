@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* orbit.c - a small program on rtcl's C API (rt.h), built against the
  * installed package (examples/CMakeLists.txt, or pkg-config rtcl).
  *

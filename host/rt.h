@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt.h - the public C API of the rtcl ray tracing library.
  *
  * The operations follow the library of Langr 2016 (section 3.2): meshes of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_box.h - ray/box: the robust slab test (Ize 2013) and the widened t
  * range boxes are tested against (rt_box_lo, rt_box_hi). Valid C99 and
  * OpenCL C (rt_math_profile.h); the GLSL mirror is

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_bvh.h - BVH traversal: one inner-node step (rt_descend, shared with
  * the object BVH of rt_trace.h) and the walk of one mesh's BVH
  * (rt_trace_mesh). Valid C99 and OpenCL C (rt_math_profile.h); the GLSL

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_camera.h - the primary rays of the camera that rt_layout.h describes
  * (rt_scene_header's cam_* fields, written by the host). Valid C99 and
  * OpenCL C (rt_math_profile.h); the GLSL mirror is

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_fp_mode.h - the calling thread's denormal mode on the CPU (C only).
  *
  * The project's denormal policy (docs/PORTABLE_MATH.md): "preserve" is IEEE

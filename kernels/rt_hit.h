@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_hit.h - hits: the hit record and test counters, the total order of
  * hits, which hits are accepted, and the test of one leaf's triangles that
  * both traversals (rt_bvh.h, rt_kd.h) call.

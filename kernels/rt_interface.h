@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_interface.h - the C side of the GPU interface table (rt_interface.def):
  * the buffer slots of both backends, the Vulkan push constants and
  * specialization constants, the AOV codes and the shared numbers, each

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_interface_rows.h - every row macro of rt_interface.def defined empty:
  * an expansion of the table includes this, redefines the rows it wants and
  * includes the table (rt_interface.h, rt_kernel_arg_index.h,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_interface_test.cl - for test_gpu_interface (not part of the backend's
  * program): one work-item goes through the rows of rt_interface_fields.def
  * in order, numbering the words n = 0, 1, ...: the bits of each field the

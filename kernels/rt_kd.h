@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_kd.h - kd-tree traversal of one mesh (the layout of rt_layout.h,
  * RT_INST_KD), shared by the C oracle and the OpenCL kernels; rt_trace.h
  * calls it for kd meshes beside rt_bvh.h's BVH walk. Valid C99 and OpenCL C

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_kernel_arg_index.h - the position of every argument of every OpenCL
  * kernel (kernels/rt_single_ray.cl, kernels/rt_ray_packet.cl), from the
  * kernel rows of the GPU interface table (rt_interface.def): the host sets

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_kernel_args.h - what the OpenCL kernel files (rt_single_ray.cl,
  * rt_ray_packet.cl) share besides the maths: the scene-view arguments every
  * tracing kernel takes (in the order of the view rows of rt_interface.def,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_layout.h - the flattened scene layout, shared by the host, the CPU oracle
  * and the OpenCL kernels.
  *

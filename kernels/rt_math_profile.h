@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_math_profile.h - how the shared maths (the kernels/ headers rt_vec.h
  * .. rt_shade.h) is written so that one text is valid C99 and valid OpenCL C
  * and gives the same bits everywhere: the language switches (RT_FN,

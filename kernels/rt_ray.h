@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_ray.h - the ray and what every test reuses of it: rt_ray, its
  * prepared values (rt_ray_pre: reciprocal direction, the watertight test's
  * shear), and where a secondary ray starts (rt_offset_point). Valid C99 and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_ray_packet.cl - the packet kernels for OpenCL CPU devices (issue 7).
  *
  * rt_single_ray.cl runs the shared scalar maths one ray per work-item; a CPU

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_shade.h - Whitted shading over the shared traversal (Langr 2016,
  * sections 3.2.5 and 3.2.6): Phong (ambient + diffuse + specular), one shadow
  * ray per light, reflection and refraction through an explicit stack.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_shared.h - the shared ray tracing maths in one include, for code that
  * uses most of it: rays, the camera, box and triangle tests, hits, and the
  * BVH and kd-tree traversals (rt_trace.h); shading is rt_shade.h. Each part

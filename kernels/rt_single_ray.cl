@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_single_ray.cl - the OpenCL backend's one-ray-per-work-item kernels over
  * the shared maths (every device; rt_ray_packet.cl adds packets on CPUs).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_soft_math.h - IEEE 754 binary32 division, square root and difference of
  * products, correctly rounded (round to nearest, ties to even), from exact
  * 32-bit integer arithmetic and correctly rounded float + - *.

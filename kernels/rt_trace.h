@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_trace.h - the two-level traversal: the object BVH over the instances,
  * then each reached instance's mesh, by its BVH (rt_bvh.h) or its kd-tree
  * (rt_kd.h), with the ray in the instance's object space. Valid C99 and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_tri.h - the four ray/triangle tests (RT_TRI_* of rt_layout.h) and the
  * choice between them (rt_tri_test). Valid C99 and OpenCL C
  * (rt_math_profile.h); the GLSL mirror is kernels/vulkan/rt_vk_tri.glsl. */

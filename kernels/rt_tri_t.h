@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_tri_t.h - an accurate hit distance for the watertight test: when the
  * fast t = T / det may be off by more than RT_T_REL_BOUND of itself
  * (rt_tri_t_unsure, a cheap a-priori error bound), t is taken from the

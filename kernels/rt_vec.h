@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vec.h - small vector helpers of the shared maths, each with its order
  * of operations written out. Valid C99 and OpenCL C (rt_math_profile.h says
  * the rules); the GLSL mirror is kernels/vulkan/rt_vk_vec.glsl. */

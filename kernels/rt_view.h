@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_view.h - the scene as a backend sees it: rt_scene_view, the arrays of
  * the flattened layout (rt_layout.h), and the feature switches that read the
  * scene's flags at run time or take them as compile-time constants. Valid

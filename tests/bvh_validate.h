@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bvh_validate.h - checks that any rt_bvh is a well-formed tree over its input.
  *
  * Header-only (static inline) so that every BVH test can include it. The check

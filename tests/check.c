@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* check.c - support for the plain ctest programs. */
 #include "check.h"
 

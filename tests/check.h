@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* check.h - a few assertion macros for plain ctest programs.
  *
  * A failed CHECK prints the file, line and expression and counts a failure;

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """Every function of the shared maths has its GLSL mirror.
 
 The shared maths is one header per job in kernels/ (C99 = OpenCL C); the

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # check_kernels_clang.sh - the OpenCL kernels compile without a single
 # warning for the x86 targets PoCL picks on common CPUs: baseline x86-64
 # (SSE2), haswell (AVX2) and skylake-avx512, with the packet kernel's 16, 8

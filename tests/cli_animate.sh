@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_animate.sh - 'rtcl animate' and 'rtcl render --time': frame k of an
 # animation is, bit for bit (32-bit float EXR), the image 'rtcl render --time
 # k/F' gives, for every update policy and on the cpu and packet backends;

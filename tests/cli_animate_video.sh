@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_animate_video.sh - 'rtcl animate -o out.mp4' (and .mkv, .webm) through
 # ffmpeg: the video has the frames asked for, the size and the codec
 # (ffprobe), and its frame k, decoded by ffmpeg, is the image 'rtcl render

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # cli_bench.sh - 'rtcl bench --json' on a small generated OBJ: one JSON object
 # per scene with the documented keys, every builder and renderer named, sane
 # numbers; the packet and OpenCL images equal the oracle's bit for bit and

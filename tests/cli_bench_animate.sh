@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # cli_bench_animate.sh - 'rtcl bench --animate --json' on the shipped keyframe
 # scene at a tiny size: one JSON object with a "dynamic" array holding our
 # four update policies (and Embree's three qualities where the build has

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # cli_bench_incoherent.sh - 'rtcl bench --incoherent' (issue 20) on the
 # shipped Cornell box (or its room, without JSON) with few rays: one JSON object per scene whose
 # "incoherent" array has a row per (rays, query, engine, path) with the

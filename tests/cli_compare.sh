@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # cli_compare.sh - 'rtcl compare': exit status, printed figures, --max-diff,
 # --diff and the errors for missing files and bad usage. The images are small
 # binary PPMs made here, so the test needs nothing but the rtcl binary.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_deb.sh - the Debian packages of the build (issue 30, item 4;
 # cmake/package.cmake): cpack makes rtcl (runtime) and librtcl-dev, each
 # holds its part and not the other's, the runtime has a manual page per

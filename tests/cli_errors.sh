@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_errors.sh - rtcl answers bad input with a clear message and status 2.
 . "$(dirname "$0")/shell_check.sh"
 : "${RTCL:?RTCL must name the rtcl binary}"

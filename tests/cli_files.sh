@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_files.sh - input files that are not regular files, or too large, are
 # refused with the file name and the reason, never read without bound and
 # never waited on: a FIFO as a scene, OBJ, MTL or ray file (open() used to

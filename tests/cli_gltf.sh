@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_gltf.sh - glTF scenes through rtcl: 'rtcl render BrainStem.glb --time
 # 1.0' works; 'rtcl info' lists the clips; --animation picks one by name or
 # index and refuses an unknown one, listing them; frame k of 'rtcl animate'

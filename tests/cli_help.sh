@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_help.sh - the help tells the truth (issue 30, item 8; brief item 5):
 # every command's --help lists every option of its synopsis, each option
 # that takes a value states its default ("[...]"), every option the help

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_image_formats.sh - rtcl writes every image format of the library's one
 # table by extension (issue 30, item 9), and its help and its error for an
 # unknown extension list the same set: 'rtcl render -o' and 'rtcl compare

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_install.sh - `cmake --install` gives a library others can use (issue 19,
 # item 9): rt.h, librtcl.a and librtcl.so, rtcl, the image module, a CMake
 # package and a pkg-config file. examples/orbit.c is built against the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_kd.sh - SAH kd-trees (issue 18) against the BVH, bit for bit, through
 # rtcl on every backend: the images of every shipped scene (scenes/*.json)
 # and built-in scene, the robustness suite's hit files (tests/robust) and

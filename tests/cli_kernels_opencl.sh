@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_kernels_opencl.sh - the shared maths (kernels/rt_*.h up to rt_shade.h) are valid OpenCL C
 # (checked with clang's OpenCL front end; skipped without clang).
 command -v clang >/dev/null || { echo "skipped: clang not installed"; exit 77; }

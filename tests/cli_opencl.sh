@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_opencl.sh - 'rtcl devices', render and trace with --backend opencl
 # (byte-identical to the CPU oracle on PoCL), --device errors, and what
 # happens without any OpenCL platform: explicit opencl fails with status 2 and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_opencl_quiet.sh - nothing of the device compiler reaches the user's
 # terminal (issue 19, fault 1): with an empty PoCL kernel cache, as on a
 # fresh machine, OpenCL renders and ray queries print nothing on stderr but

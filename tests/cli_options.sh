@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_options.sh - rtcl's options follow the GNU conventions (issue 30, item
 # 8) and its numbers parse strictly (issue 25, item 5): --opt=value as well
 # as --opt value, a mistyped option answered in one line that names the

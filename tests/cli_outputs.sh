@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_outputs.sh - what rtcl writes is whole, checked up front and the same
 # bytes for the same image (issue 31):
 #  - output paths and formats are refused before any work: a missing folder

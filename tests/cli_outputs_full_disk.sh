@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_outputs_full_disk.sh - writes onto a real full file system (a 256 KiB
 # tmpfs mounted here, with all but one page taken by a filler file): every
 # image format, animation frames, a video, a hit file and generated scenes

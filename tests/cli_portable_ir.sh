@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_portable_ir.sh - the portable maths profile holds no float division, no
 # square root and no double (docs/PORTABLE_MATH.md): the kernels are compiled
 # to LLVM IR by clang with the options the OpenCL backend uses for the

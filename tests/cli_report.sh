@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # cli_report.sh - the single command that regenerates docs/BENCHMARKS.md
 # (bench/report.sh) runs end to end in its quick mode and prints every section:
 # the build, thesis, render and Whitted tables with real rows, the targets

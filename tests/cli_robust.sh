@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_robust.sh - the numerical robustness suite (issue 6, docs/ROBUSTNESS.md):
 # tests/robust/gen_cases.py writes hard cases with exact expectations, every
 # backend traces them through 'rtcl trace' with every triangle test, and

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # cli_shared_symbols.sh - librtcl.so exports the public API and nothing else
 # (issue 19): every defined dynamic symbol of the shared library is a
 # function declared in rt.h, and every function declared in rt.h is

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_startup.sh - commands that read or write no image never load
 # OpenImageIO (issue 19, item 8: rtcl mapped ~260 libraries, 0.25 s before
 # doing anything). The image module (librtcl_image.so) is loaded on the first

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_stats.sh - 'rtcl render --stats' tells the truth (issue 30, item 7):
 # on the CPU backends, the oracle itself and the packet tracer that gives its
 # bits, the maths line names the profile (ieee) and the denormal mode and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_trace.sh - 'rtcl trace': hit lines, misses, tmin/tmax, backends agree,
 # any-hit, bad ray lines reported with file:line; --packet-path, --stats,
 # --json and --reps (issue 20).

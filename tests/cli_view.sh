@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # cli_view.sh - 'rtcl view' under Xvfb, driven by --script: a scripted camera
 # move's screenshot equals 'rtcl render' of the camera the viewer prints (C),
 # bit for bit (32-bit float EXR, and the 8-bit PNG); switching backends

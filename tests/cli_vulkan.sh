@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_vulkan.sh - 'rtcl devices --api vulkan', render and trace with
 # --backend vulkan (byte-identical to the CPU oracle on lavapipe), --stats,
 # device errors, and what happens without a Vulkan driver: explicit vulkan

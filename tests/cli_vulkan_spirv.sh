@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # cli_vulkan_spirv.sh - the shipped SPIR-V modules of the Vulkan backend
 # (build/spirv/*.spv, the bytes embedded in rtcl) are in the portable maths
 # profile: spirv-dis shows no OpFDiv, no Sqrt or InverseSqrt, no Float64, and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* oracle_util.h - brute force over every triangle and random rays, for the
  * tests that hold the BVH traversal (scalar and packet) to it. */
 #ifndef RT_TEST_ORACLE_UTIL_H

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """output_faults.py - faults while rtcl writes a file (tests/cli_outputs.sh).
 
   output_faults.py kill RTCL DIR ROUNDS

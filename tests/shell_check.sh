@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # shell_check.sh - helpers for the shell tests of rtcl (sourced, not run).
 # expect STATUS PATTERN -- CMD...: runs CMD, checks its exit status and that
 # its stdout+stderr match the extended regular expression PATTERN.

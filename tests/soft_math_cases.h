@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* soft_math_cases.h - operands for the tests of kernels/rt_soft_math.h: the
  * special values (every class of binary32 and the boundaries between them)
  * and random generators (bit patterns, values near each other, results near

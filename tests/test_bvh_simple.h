@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_bvh_simple.h - a small median-split BVH builder for tests, so that
  * traversal can be tested independently of the library's builders. Not part
  * of the library. */

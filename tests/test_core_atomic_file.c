@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_atomic_file.c - base/atomic_file.h: a committed file replaces
  * the target whole; a discarded one leaves it; two open writers of one path
  * have their own temporaries and the last commit wins; a reserved temporary

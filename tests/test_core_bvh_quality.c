@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_bvh_quality.c - rt_bvh_measure on hand-made trees whose figures
  * are worked out by hand, and on built trees. */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_bvh_sah.c - the SAH builder: valid trees, the same bytes for
  * every thread count and for the scalar and NEON loops, degenerate inputs,
  * and the parameter ranges of the builder study (bins 2..256, leaf sizes 1 to

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_bvh_thesis.c - the thesis builder in its three setups.
  *
  * Every tree is validated (bvh_validate.h); the NEON setup must produce the

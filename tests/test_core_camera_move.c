@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_camera_move.c - a camera move touches no geometry.
  *
  * The camera has its own version (rt_camera_set bumps it, not the scene's),

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_crossings.c - rt_count_intersections (rt.h, cpu_ref/crossings.c).
  *
  * - The tie rule: a ray exactly through an edge shared by two triangles, or

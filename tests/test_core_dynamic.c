@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_dynamic.c - deforming meshes and their update policies.
  *
  * - Every policy (refit, fast, auto, rebuild), frame after frame on one

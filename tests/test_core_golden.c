@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_golden.c - golden images of the built-in scenes, compared
  * exactly: the oracle's float framebuffer (512x288) hashed bit for bit
  * (64-bit FNV-1a over the 32-bit patterns) against tests/golden/NAME.hash.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_hit_normals.c - rt_hit's geometric normal and mesh id (rt.h).
  *
  * - The normal is unit length (within float rounding) and points along the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_kd.c - SAH kd-trees (host/accel/kd.h, kernels/rt_kd.h).
  *
  * - Exactness: the kd traversal gives the brute-force hit over every

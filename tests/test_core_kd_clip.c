@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_kd_clip.c - perfect-split clipping (host/accel/kd_clip.c) gives
  * the boxes of the plain rule, bit for bit: rt_kd_clip_box and rt_kd_clip_pair
  * (both children of a split at once, sharing the planes before the split

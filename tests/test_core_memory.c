@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_memory.c - memory per triangle (issue 31), counted by
  * rt_renderer_memory: a static mesh's tree is held once (in the layout; its
  * BVH keeps the root node), no build scratch is kept, and the layout is the

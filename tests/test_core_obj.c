@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_obj.c - the OBJ/MTL loader: statements, index forms, fan
  * triangulation, normals, materials, every error kind. The shared scenes are in
  * test_core_obj_scenes.c. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_obj_numbers.c - the loaders' number parsing: floats bit-identical
  * to strtof, the accepted grammar, and integers. */
 #include <math.h>

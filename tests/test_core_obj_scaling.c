@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_obj_scaling.c - OBJ loading stays near-linear where it used to
  * be quadratic: one position used with 100,000 distinct normals (the vertex
  * de-duplication searched a list per position) and 40,000 distinct usemtl

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_obj_scenes.c - the OBJ loader on the real shared scenes, with the
  * counts of /work/shared/scenes/SOURCES.md. Skips when they are absent. */
 #include <stdint.h>

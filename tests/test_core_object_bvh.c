@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_object_bvh.c - the object BVH over transformed objects: a valid tree
  * whose leaf boxes contain every transformed vertex of their object, rebuilt
  * after objects move. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_oracle_acne.c - surface offsets (Waechter and Binder 2019) leave
  * no shadow acne: near the origin and 1e5 units away.
  * 1. A lit plane with nothing above it, ambient 0: every pixel that sees the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_packet.c - the packet path renders bit-identical images to the
  * scalar oracle on every built-in scene (memcmp of the float framebuffers),
  * for the image (Whitted and direct-only) and the depth, primitive, instance

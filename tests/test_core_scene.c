@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_scene.c - the scene model's operations and their validation. */
 #include <math.h>
 #include <stdint.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_scene_bounds.c - rt_scene_bounds' shortcut for objects with the
  * identity transform gives the same floats, bit for bit, as transforming each
  * vertex with the matrix (the general path, written out here as the scene

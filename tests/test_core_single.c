@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_single.c - the single-ray tracer over wide BVHs
  * (cpu_ref/single_trace.h) gives the scalar oracle's hits bit for bit (t,
  * u, v, prim, inst, entry; any hit: the occluded flag), with every

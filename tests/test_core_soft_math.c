@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_soft_math.c - kernels/rt_soft_math.h against the hardware and an
  * exact reference, bit for bit (any NaN equals any NaN).
  *

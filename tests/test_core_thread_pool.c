@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_thread_pool.c - every worker runs exactly once per job, the
  * caller is worker 0, and the pool survives many jobs. */
 #include <stdatomic.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_threads.c - a renderer's frames on several threads after scene
  * edits give the bits of one thread: the cpu and packet backends on 4 (and
  * 7) workers against the cpu backend on 1, and packet on 5 against cpu on 1

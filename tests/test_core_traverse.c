@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_traverse.c - single- and two-level BVH traversal of
  * kernels/rt_trace.h against brute force over all triangles: identical hits
  * (t bits, u, v, prim, inst) on random rays over the built-in scenes, for every

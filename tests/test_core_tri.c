@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_tri.c - the ray/box and ray/triangle tests of kernels/rt_box.h and rt_tri.h
  * on hand-made cases: hit, miss, edge, vertex, parallel, degenerate, the
  * inclusive [tmin, tmax], both faces, and watertightness on a shared edge. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_wide.c - the one wide collapse (cpu_ref/wide_bvh.h) in every
  * shape the tracers use (the packet tracer's, the single-ray tracer's at
  * widths 4 and 8), and the instruction-set table (cpu_ref/cpu_isa.h):

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_dynamic_scenes.c - animated scenes frame by frame: on every backend
  * (cpu, packet, and opencl or, with the argument vulkan, Vulkan where a device exists), with every
  * update policy (refit, fast, auto) kept on one renderer across the frames, each frame's image is

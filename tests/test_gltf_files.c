@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_gltf_files.c - small glTF files written here, loaded and evaluated:
  * node hierarchies (TRS and matrix), strips and fans, non-indexed
  * primitives, normalized and sparse accessors, every sampler type (STEP,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_gltf_shared.c - the shared glTF files (../shared/scenes) evaluated at
  * the times their OBJ frames were baked at give the baked positions.
  *

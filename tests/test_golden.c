@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_golden.c - the oracle's images of the built-in scenes (512x288)
  * written as 8-bit PNG match tests/golden/NAME.png exactly. The exact check
  * of the float bits is test_core_golden (hashes, also under qemu); this one

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_gpu_interface.c - every field of every struct the host and the GPU
  * code exchange is where the device reads or writes it, on OpenCL and on
  * Vulkan. The host fills each input buffer (and the push constants) with

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_image.c - image.h: writing PNG/EXR/PPM, reading back, 8-bit rounding,
  * comparison figures and the errors for bad sizes, names and paths. */
 #include <math.h>

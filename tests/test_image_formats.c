@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_image_formats.c - every format of the library's one table
  * (rt_image_format_at, formats/image_formats.def) is written by its
  * extension and read back (issue 30, item 9): the same size and channels,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_image_pnm.c - PPM/PGM and PFM, the image formats the library reads and
  * writes in plain C, without the image module (so also in builds without
  * OpenImageIO): PFM keeps every float bit (NaN, infinities, -0, subnormals)

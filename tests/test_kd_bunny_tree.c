@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_kd_bunny_tree.c - the SAH kd-trees of the Stanford Bunny
  * (../shared/scenes) are the trees the builders gave before their speed-ups:
  * a hash of every node, leaf entry and the root cell, for the exact and the

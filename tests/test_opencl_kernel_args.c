@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_opencl_kernel_args.c - the host sets kernel arguments by the names of
  * kernels/rt_kernel_arg_index.h, which expands the kernel rows of the GPU
  * interface table (kernels/rt_interface.def); this holds the table to the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_opencl_oracle.c - the OpenCL backend against the CPU oracle: on every
  * built-in scene, the hit buffers of ray queries (t, u, v as bits, prim,
  * inst; closest and any hit) and the rendered images (float framebuffer of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_oracle_scenes.c - the renderer's traversal (real builders, the layout
  * rt_render uses) against brute force over all triangles, on random and
  * camera rays over the built-in scenes and the shared scenes: identical hits

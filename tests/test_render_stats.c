@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_render_stats.c - rt_render_stats tells the truth (issue 30, item 7):
  * the CPU backends (the oracle and the packet tracer, which gives its bits)
  * report exact = 1, the maths profile "ieee" and the denormal mode asked

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_scene_edits.c - lights moved and removed, objects removed and replaced
  * (rt_light_set, rt_light_remove, rt_object_remove), on one renderer kept
  * across the edits: after each edit the image (and the object-id AOV) is bit

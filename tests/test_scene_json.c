@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_scene_json.c - JSON scenes that load: every key with its value, the
  * defaults, the default view without a camera, keyframes, transforms, mesh
  * files relative to the scene file. The errors are in

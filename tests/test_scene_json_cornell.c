@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_scene_json_cornell.c - a real OBJ scene (with its .mtl) referenced from
  * a JSON scene by a relative path: the same geometry and default view as the
  * bare OBJ. Skips when the shared scenes are absent. */

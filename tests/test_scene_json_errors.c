@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_scene_json_errors.c - every kind of bad JSON scene gives an error with
  * the scene file, the line and column of the offending value (or key) and a
  * reason, and no scene. Positions were counted by hand from the texts below.

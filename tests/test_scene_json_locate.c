@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_scene_json_locate.c - positions of JSON values by path (json_locate.h),
  * which the JSON scene loader uses for its error messages. */
 #include <string.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_scene_save_time.c - rt_scene_save_json keeps time: a scene loaded,
  * saved (at some time other than 0) and loaded again renders at every time
  * exactly as the original does, bit for bit. The saved file carries the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_scenes_shipped.c - the JSON + OBJ files in scenes/ load to exactly the
  * built-in scenes they were generated from (`rtcl generate scenes`). */
 #include <stdio.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_soft_math_opencl.c - kernels/rt_soft_math.h compiled as OpenCL C gives
  * the bits of the C build, and stays free of what a portable device may lack.
  *

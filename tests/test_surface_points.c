@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_surface_points.c - shadow rays start on the right side of the surface
  * (issue 14, item 5): a finely tessellated convex dome (119,072 triangles)
  * lit by one light in front, so that every face looks at the light and

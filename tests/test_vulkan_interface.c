@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_vulkan_interface.c - the Vulkan shaders as built declare the
  * interface of kernels/rt_interface.def, as test_opencl_kernel_args does for
  * the OpenCL kernels. Reads the embedded SPIR-V of every shipped module (no

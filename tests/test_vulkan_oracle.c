@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* test_vulkan_oracle.c - the Vulkan backend against the CPU oracle, on a
  * Vulkan device (lavapipe in CI):
  * - the GLSL mirror of the soft maths (kernels/vulkan/rt_vk_soft_math.glsl)

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """vulkan_spirv_check.py - checks that a SPIR-V module is in the portable
 maths profile: no OpFDiv, no Sqrt or InverseSqrt (GLSL.std.450), no Float64
 capability or 64-bit float type, and every float arithmetic instruction

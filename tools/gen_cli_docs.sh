@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # gen_cli_docs.sh - the manual pages and the bash completion of rtcl, both
 # generated from the program itself, so that they say what its help says:
 #   tools/gen_cli_docs.sh RTCL VERSION OUTDIR

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_animate.c - the keyframe benchmark (bench_animate.h).
  *
  * What is timed, per frame k >= 1 (frame 0 builds everything and is left

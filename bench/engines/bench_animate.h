@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_animate.h - the keyframe benchmark of Langr 2016 (section 4.1) for
  * deforming meshes, 'rtcl bench --animate' and bench/bench_dynamic: an
  * animated scene played frame by frame with each update policy of ours on

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_build.c - the build and render benchmark of 'rtcl bench'
  * (bench_build.h): BVH build times and tree quality per scene, every
  * builder side by side (and Embree's, when this build has it), then the

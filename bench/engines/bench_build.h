@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_build.h - 'rtcl bench' without --animate or --incoherent: per
  * scene, BVH build times and tree quality of every builder beside Embree's,
  * then frame times of every backend (bench_render.h). Only rt.h types here:

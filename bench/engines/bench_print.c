@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_print.c - JSON strings and the progress line (bench_print.h). */
 #include "engines/bench_print.h"
 

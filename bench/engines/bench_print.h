@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_print.h - what the benchmark engines and rtcl print with: JSON
  * strings on stdout (the --json outputs, written by hand) and the progress
  * line on stderr. */

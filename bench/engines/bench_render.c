@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_render.c - the render part of 'rtcl bench' (bench_render.h).
  *
  * The thesis's set-up (Langr 2016, section 4): 1024x576, one point light,

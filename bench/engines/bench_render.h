@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bench_render.h - the render part of 'rtcl bench' (bench_build.h): frame
  * times of every backend on one scene in the thesis's set-up, Embree beside
  * them. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* incoherent_bench.c - the incoherent-ray benchmark (incoherent_bench.h). */
 #include "engines/incoherent_bench.h"
 

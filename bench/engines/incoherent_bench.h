@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* incoherent_bench.h - the incoherent-ray benchmark (issue 20), shared by
  * 'rtcl bench --incoherent' (host/cli/cmd_bench.c) and the standalone
  * bench/bench_incoherent.c: reproducible ray sets, interleaved timing of our

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* embree_anim.c - the peer of 'rtcl bench --animate' (embree_peer.h): the
  * benchmark frame's scene kept in a dynamic Embree scene, updated frame by
  * frame at one build quality, and traced by embree_trace.c. */

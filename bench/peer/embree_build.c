@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* embree_build.c - Embree's builders as a benchmark peer (embree_peer.h). */
 #include <stdio.h>
 #include <stdlib.h>

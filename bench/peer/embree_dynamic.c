@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* embree_dynamic.c - Embree updating one deforming triangle geometry per
  * frame, the peer of our update policies (embree_peer.h). */
 #include <stdlib.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* embree_memory.c - what Embree holds for a triangle mesh (embree_peer.h):
  * the bytes its device allocates, counted by its memory monitor callback,
  * for one triangle geometry that shares the caller's vertex and index

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* embree_peer.h - Embree as a peer in benchmarks (only when CMake found it:
  * RT_HAVE_EMBREE=1).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* embree_scene.h - the peer's traced scene, shared by embree_trace.c (which
  * traces it) and embree_anim.c (which updates it per frame). Private to
  * bench/peer/. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* embree_trace.c - Embree tracing the benchmark frame as a peer
  * (embree_peer.h): the same camera rays, the same shadow rays and the same
  * Phong terms as the thesis set-up of our renderer (rt_render with

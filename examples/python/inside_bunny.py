@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Which random points lie inside the Stanford bunny: the parity of the
 triangles a ray from each point crosses (each triangle once, rays through
 shared edges and vertices counted exactly once). The scan has holes in its

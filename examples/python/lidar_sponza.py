@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """A lidar scan of Sponza from a sensor moving down the nave, written as a
 point cloud with normals (binary PLY). usage: lidar_sponza.py [SPONZA.obj] [OUT.ply]"""
 import sys

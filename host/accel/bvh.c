@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bvh.c - rt_bvh_build: options, names and the dispatch to each builder. */
 #include "accel/bvh.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bvh.h - bounding volume hierarchy builders and tree quality figures.
  *
  * Every builder takes one axis-aligned box per primitive (a triangle's box, or

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bvh_internal.h - entry points of the individual builders behind rt_bvh_build. */
 #ifndef RT_BVH_INTERNAL_H
 #define RT_BVH_INTERNAL_H

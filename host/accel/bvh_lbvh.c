@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bvh_lbvh.c - the per-frame builder of the "lbvh" update policy: a linear
  * BVH over Morton codes (after Lauterbach et al. 2009 and Karras 2012).
  *

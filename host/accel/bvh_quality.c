@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bvh_quality.c - rt_bvh_measure: the figures by which trees are compared.
  *
  * SAH cost, as the thesis's Table 6 "BVH cost" (Langr 2016), with A the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bvh_refit.c - bottom-up refit of a BVH (bvh_refit.h).
  *
  * Each worker takes a share of the leaves, computes their boxes and climbs

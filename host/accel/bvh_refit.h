@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bvh_refit.h - refitting a BVH whose primitives moved: the tree's topology
  * stays, every box is recomputed bottom-up from the primitives' new boxes,
  * in parallel over the thread pool. Boxes are unions (min and max), exact in

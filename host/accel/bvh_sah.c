@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bvh_sah.c - the default BVH builder: binned SAH (Wald 2007) on a
  * persistent thread pool, deterministic for any thread count.
  *

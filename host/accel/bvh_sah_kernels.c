@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bvh_sah_kernels.c - binning and partitioning loops of the SAH builder,
  * scalar and NEON (see bvh_sah_kernels.h for why they agree bit for bit). */
 #include "accel/bvh_sah_kernels.h"

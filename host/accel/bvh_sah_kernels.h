@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bvh_sah_kernels.h - the inner loops of the SAH builder: binning and
  * partitioning one range of primitive references, in a scalar and a NEON
  * version that produce the same bits.

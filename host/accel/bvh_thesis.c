@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bvh_thesis.c - the thesis's binned SAH builder (Langr 2016, section 3.4,
  * Algorithms 3 and 4; binning after Wald 2007), in its three setups.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bvh_thesis_kernels.h - the two inner loops of the thesis builder, scalar and
  * NEON (Langr 2016 setup 2 vectorises exactly these: the centroid bounds and
  * the bin indices, four primitives at a time).

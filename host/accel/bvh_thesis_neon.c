@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bvh_thesis_neon.c - the thesis builder's inner loops, scalar and NEON.
  *
  * The NEON loops take four primitives per step from the structure-of-arrays

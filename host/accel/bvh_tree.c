@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* bvh_tree.c - a built BVH's lifetime, apart from the builders so that every
  * builder can free a tree without depending on the dispatch in bvh.c. */
 #include <stdlib.h>

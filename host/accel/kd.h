@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* kd.h - SAH kd-trees over a mesh's triangles (Rahikainen 2013, chapters 4-5).
  *
  * Two builders share one tree format and the same split rules:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* kd_binned.c - the approximate SAH split: per axis, the cell is cut into
  * bins and two histograms (where boxes begin, where they end) price every bin
  * boundary in one pass (the scanning/binning approximation of Hunt et al.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* kd_build.c - the kd-tree recursion shared by both split finders, its
  * parallel form and the public rt_kd_build.
  *

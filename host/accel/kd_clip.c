@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* kd_clip.c - perfect splits: a triangle's box within a cell is the box of
  * the triangle clipped to the cell (Sutherland-Hodgman against the six
  * planes), not the cell's part of the triangle's box. It is computed in

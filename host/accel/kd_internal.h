@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* kd_internal.h - what the kd-tree builder's files share: the build context,
  * the output buffer, the split rules (kd_split.c), perfect-split clipping
  * (kd_clip.c) and the two split finders (kd_sweep.c exact, kd_binned.c

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* kd_measure.c - a kd-tree's SAH cost and size, walked without recursion. */
 #include "accel/kd.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* kd_scratch.c - a build worker's scratch list and the leaves' sort (kd_internal.h); its own file
  * so that the split finders, which use it, and the recursion, which uses the
  * finders, do not call each other. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* kd_split.c - the SAH of a kd split (Wald and Havran 2006, section 4): the
  * cost model, the empty-space bonus and the place of planar triangles. */
 #include "accel/kd_internal.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* kd_sweep.c - the exact SAH split of Wald and Havran (2006) in O(N log N):
  * every node keeps its split events sorted, one list per axis (by position,
  * then type, then triangle), so the best plane is one sweep per axis; the

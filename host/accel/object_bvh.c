@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* object_bvh.c - the object BVH over the objects' world-space boxes (object_bvh.h). */
 #include "accel/object_bvh.h"
 

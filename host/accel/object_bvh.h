@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* object_bvh.h - the object BVH (Langr 2016, section 3.2.1): a BVH over the
  * objects' world-space boxes, rebuilt every frame.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene_boxes.c - triangle and object boxes of a scene for the builders. */
 #include "accel/scene_boxes.h"
 

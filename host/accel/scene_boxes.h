@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene_boxes.h - the boxes the BVH builders take from a scene: one per
  * triangle of a mesh (a mesh BVH's input) and one per object in world space. */
 #ifndef RT_SCENE_BOXES_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* backend.h - the one interface every backend implements (cpu, packet,
  * opencl; vulkan next), and all that a backend sees of a scene.
  *

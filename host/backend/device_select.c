@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* device_select.c - see device_select.h. */
 #include "backend/device_select.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* device_select.h - picking a device from a listing by the user's selector,
  * shared by the OpenCL and Vulkan backends (rtcl --device, --backend
  * opencl:D and vulkan:D). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* upload_plan.c - see upload_plan.h. */
 #include "backend/upload_plan.h"
 

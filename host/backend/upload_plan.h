@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* upload_plan.h - what a device backend copies to bring its copy of the
  * flattened layout up to date, one rule for OpenCL and Vulkan: nothing when
  * the device holds this layout and header; the header alone when only it

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* atomic_file.c - see atomic_file.h. */
 #define _XOPEN_SOURCE 700 /* realpath */
 #include "base/atomic_file.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* atomic_file.h - output files written in full or not at all.
  *
  * Every file the library or rtcl writes (images, animation frames, videos,

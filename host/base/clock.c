@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* clock.c - the monotonic clock behind rt_now_ms. */
 #include "base/clock.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* clock.h - the one monotonic clock that timings in the library, rtcl and
  * the benchmark programs read (base/clock.c). */
 #ifndef RT_CLOCK_H

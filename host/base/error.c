@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* error.c - error values with their place of origin. */
 #include "base/error.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* error.h - filling rt_error and the scene's last-error text. */
 #ifndef RT_ERROR_H
 #define RT_ERROR_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* file_read.h - reading a whole input file (scene, OBJ, MTL, ray file) with
  * its size known up front, and the limits on input sizes (docs/ROBUSTNESS.md,
  * "Limits"). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* simd_neon.h - the one door to SIMD: NEON intrinsics everywhere.
  *
  * On ARM this is <arm_neon.h>; elsewhere SIMDe's NEON implementation provides

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* thread_pool.c - a persistent pool of pthreads (see thread_pool.h).
  *
  * A job is published by bumping a generation counter. Workers first spin a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* thread_pool.h - a persistent pool of pthreads.
  *
  * Threads are created once and sleep between jobs, so a build or a frame costs

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cli_anim.c - the --stats part of the dynamic-scene commands (cli_anim.h). */
 #include "cli_anim.h"
 

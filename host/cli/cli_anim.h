@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cli_anim.h - what the dynamic-scene commands print: the last frame's
  * update (rtcl animate --stats). */
 #ifndef RTCL_CLI_ANIM_H

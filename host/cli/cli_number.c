@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cli_number.c - strict number parsing for rtcl's options (cli_number.h). */
 #include "cli_number.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cli_number.h - the one number parser of rtcl's options: the whole text,
  * strictly, in the grammar of the scene loaders (formats/parse_number.h):
  * [+-] digits [. digits] [(e|E) [+-] digits] for numbers, [+-] digits for

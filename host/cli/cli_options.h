@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cli_options.h - every rtcl command's options as a table (name, kind,
  * range, destination, help), read by one parser that also prints the
  * command's usage from the same table, so that the help lists exactly the

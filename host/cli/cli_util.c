@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cli_util.c - shared parts of the rtcl commands (cli_util.h). */
 #include "cli_util.h"
 

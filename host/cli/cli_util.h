@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cli_util.h - what the rtcl commands share: the option groups of scenes,
  * renderers and kernels (tables for cli_options.h) with what applies them,
  * messages, the progress bar and the clock. rtcl is a program on rt.h

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cmd_animate.c - 'rtcl animate': the frames of an animated scene, one image
  * each, with the BVHs kept and updated from frame to frame by the meshes'
  * update policies (the way a real-time loop renders). */

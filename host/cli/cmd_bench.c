@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cmd_bench.c - 'rtcl bench': the command line of the benchmark engines
  * (bench/engines/): BVH builds and renders beside Embree (bench_build.h),
  * the keyframe benchmark (--animate, bench_animate.h) and incoherent rays

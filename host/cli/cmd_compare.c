@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cmd_compare.c - 'rtcl compare A B': how far two images are apart.
  *
  * Prints the figures of rt_image_compare and exits 0 when the largest channel

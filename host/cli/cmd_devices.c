@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cmd_devices.c - 'rtcl devices': the devices of every device backend the
  * backend registry names (OpenCL platforms and devices, Vulkan devices), and
  * whether each promises the CPU oracle's bits, as text or JSON (--json). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cmd_generate.c - 'rtcl generate DIR': the built-in scenes as JSON + OBJ. */
 #include <errno.h>
 #include <stdio.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cmd_info.c - 'rtcl info': what a scene holds and which features it uses,
  * as text or as one JSON object (--json). */
 #include <stddef.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cmd_render.c - 'rtcl render': a scene to an image or an AOV. */
 #include <stddef.h>
 #include <stdio.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cmd_trace.c - 'rtcl trace': rays from a text file through a scene, one hit
  * line per ray (rt_trace_rays). */
 #include <stddef.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* commands.h - one function per rtcl command, each in its own cmd_*.c file
  * with its option table (cli_options.h). Each function gets argv after the
  * command name (argv[0] is the command) and returns the process exit

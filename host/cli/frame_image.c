@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* frame_image.c - frames and AOVs as image files and display colours. */
 #include "frame_image.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* frame_image.h - a rendered frame (or AOV) as an image file or as display
  * colours, the same way for 'rtcl render' and 'rtcl view', so that a viewer
  * screenshot and a render of the same camera are the same file. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rtcl.c - the command-line tool: one function per command (commands.h),
  * 'rtcl help [COMMAND]' and the list of commands. */
 #include <stdio.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* video_out.c - frames into an ffmpeg child process (video_out.h).
  *
  * ffmpeg is started with posix_spawnp and an argument vector (no shell, so

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* video_out.h - 'rtcl animate -o out.mp4': frames piped into an ffmpeg child
  * process, which encodes the video. rtcl links no codec: ffmpeg (Debian's
  * ffmpeg package) is found on PATH at run time, and without it the caller

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* gltf_load.c - glTF 2.0 scenes into a scene, and their animation at every
  * rt_scene_set_time (gltf_load.h says what is mapped onto what). */
 #include "formats/gltf_load.h"

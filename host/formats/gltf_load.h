@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* gltf_load.h - glTF 2.0 scenes (.gltf, .glb) into a scene.
  *
  * The file is read by the glTF module (formats/gltf_module.h, tinygltf,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* gltf_module.h - the interface between the library and its glTF module
  * (librtcl_gltf.so, host/gltf/gltf_module.cpp), which reads .gltf and .glb
  * files through tinygltf and hands back their content as plain C arrays.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* gltf_module_load.c - finding and loading the glTF module (gltf_module.h),
  * by the image module's rules (image_load.c).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* image.c - image.h's calls: PPM/PGM and PFM here in C (image_pnm.c), the
  * other formats of the table (image_formats.def: PNG, JPEG, TIFF, EXR, ...)
  * and reading whatever OpenImageIO reads through the image module, loaded on

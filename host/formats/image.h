@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* image.h - images: write PNG, EXR, PPM/PGM and PFM by extension, read any
  * format OpenImageIO reads, compare two images. PPM/PGM and PFM are plain C
  * (image_pnm.c); PNG, EXR and the other formats go through the image module

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* image_formats.c - the table of image formats (image_formats.def) as rt.h
  * gives it: rt_image_format_at, rt_image_format_of, rt_image_format_list. */
 #include <stdio.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* image_load.c - finding and loading the image module (image_module.h).
  *
  * Where it is looked for, in order:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* image_module.h - the interface between the library and its image module
  * (librtcl_image.so, host/image_oiio/), which reads and writes the formats
  * that need OpenImageIO (PNG, EXR and whatever else OIIO reads).

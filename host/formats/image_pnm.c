@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* image_pnm.c - PPM/PGM and PFM encoding and decoding (image_pnm.h). */
 #include "formats/image_pnm.h"
 

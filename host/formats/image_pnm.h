@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* image_pnm.h - PPM/PGM and PFM in plain C: the formats the library reads
  * and writes without its image module (image_module.h), so that a build
  * without OpenImageIO still writes images, and they need no module at run

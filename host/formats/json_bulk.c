@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* json_bulk.c - see json_bulk.h. */
 #include "formats/json_bulk.h"
 

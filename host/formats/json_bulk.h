@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* json_bulk.h - the big number arrays of a JSON scene (inline meshes'
  * "positions", "normals" and "triangles") read straight from the text,
  * without a JSON value per number.

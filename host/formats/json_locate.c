@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* json_locate.c - positions of JSON values by path, found by scanning the text. */
 #include "formats/json_locate.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* json_locate.h - where a value sits in JSON text, for error messages.
  *
  * JSON libraries such as jansson keep no source positions in the values they

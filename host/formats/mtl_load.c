@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* mtl_load.c - the few MTL statements a ray tracer uses: newmtl, Kd, Ks, Ns,
  * Ni, d and Tr. Everything else (Ka, Ke, illum, maps, ...) is accepted and
  * ignored. Each file is read once and each name defined once (the first

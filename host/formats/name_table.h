@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* name_table.h - names (byte strings of any length) to dense ids 0, 1, 2...
  * in order of first sight, with O(1) lookups: the material names of MTL
  * files and the usemtl names of an OBJ file. Names are kept whole: two

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* obj_internal.h - pieces shared by the OBJ and MTL readers (not public API).
  *
  * Both formats are line based: a statement is a keyword and blank-separated

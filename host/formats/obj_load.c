@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* obj_load.c - Wavefront OBJ to one indexed triangle mesh.
  *
  * One pass over the text, read in one piece: positions and normals go into

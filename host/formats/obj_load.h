@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* obj_load.h - Wavefront OBJ (and its MTL materials) to one indexed mesh.
  *
  * Faces with n >= 3 vertices are fan-triangulated as (v0,v1,v2),(v0,v2,v3)...,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* parse_number.c - decimal integers and floats without strtof where exact.
  *
  * Why the float fast path is exact: a mantissa m <= 2^24 and 10^k for

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* parse_number.h - fast decimal number parsing for the text loaders.
  *
  * The parsers read from [p, end) and need no terminating NUL. They stop at

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* ray_file.c - see ray_file.h. */
 #include "formats/ray_file.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* ray_file.h - the ray files of `rtcl trace --rays` (one ray per text line),
  * read into rt_ray arrays. The format is the one `rtcl trace --help` gives. */
 #ifndef RT_RAY_FILE_H

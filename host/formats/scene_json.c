@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene_json.c - JSON scene files (docs/SCENE_FORMAT.md) into a scene.
  *
  * jansson parses the text; this file checks every key, type and range and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene_load.c - rt_scene_load: a scene file into a new scene, all or nothing. */
 #include "formats/scene_load.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene_load.h - scene files into a scene: .json scenes and bare .obj files. */
 #ifndef RT_SCENE_LOAD_H
 #define RT_SCENE_LOAD_H

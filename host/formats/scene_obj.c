@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene_obj.c - an OBJ file (and its MTL materials) as a mesh of a scene. */
 #include "formats/scene_obj.h"
 

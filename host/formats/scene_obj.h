@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene_obj.h - an OBJ file into a scene as one mesh (the JSON loader's
  * meshes and a bare .obj scene both come this way). */
 #ifndef RT_SCENE_OBJ_H

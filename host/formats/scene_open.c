@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene_open.c - rt_scene_open (rt.h): a scene by the name a user gives,
  * "builtin:NAME" or a file, so that every program takes both the same way. */
 #include <string.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene_save.c - writes a scene as JSON + OBJ (docs/SCENE_FORMAT.md). */
 #include "formats/scene_save.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene_save.h - a scene as a JSON scene file plus one OBJ file per mesh. */
 #ifndef RT_SCENE_SAVE_H
 #define RT_SCENE_SAVE_H

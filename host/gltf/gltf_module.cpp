@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 // gltf_module.cpp - the glTF module (librtcl_gltf.so, formats/gltf_module.h):
 // .gltf and .glb files through tinygltf, handed back as plain C arrays.
 //

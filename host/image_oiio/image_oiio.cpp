@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 // image_oiio.cpp - the image module (librtcl_image.so, formats/image_module.h):
 // encoding the formats of formats/image_formats.def that it writes (PNG,
 // JPEG, TIFF, EXR, HDR, ...), and reading any format, over OpenImageIO 2.4.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* flat.c - the layout's lifetime and its view for the shared traversal. */
 #include "layout/flat.h"
 

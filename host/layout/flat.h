@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* flat.h - the device layout of kernels/rt_layout.h as the host holds it:
  * plain arrays with absolute indices, no pointers between them. It is all a
  * backend sees of a scene (host/backend/backend.h), so every backend traces

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* flatten.c - scene + BVHs -> the device layout (kernels/rt_layout.h). */
 #include "layout/flatten.h"
 

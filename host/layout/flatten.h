@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* flatten.h - a scene and its BVHs into the device layout (layout/flat.h). */
 #ifndef RT_FLATTEN_H
 #define RT_FLATTEN_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cl_backend.c - the OpenCL backend (host/backend/backend.h): device state
  * kept by the renderer, uploads of what changed, the kernel program
  * specialised to the scene, and frames rendered in bounded tiles

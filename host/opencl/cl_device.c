@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cl_device.c - OpenCL platforms and devices through the ICD loader. */
 #include "opencl/cl_device.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cl_device.h - OpenCL platforms and devices (host/opencl/cl_device.c): listing,
  * capabilities that decide bit-exactness with the CPU oracle, and selection
  * by index or name. Compiled only when the build found the OpenCL ICD loader

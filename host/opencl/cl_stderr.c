@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cl_stderr.c - descriptor 2 into a temporary file around device builds. */
 #include "opencl/cl_stderr.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* cl_stderr.h - keeping what a device compiler prints on the process's
  * stderr off the user's terminal.
  *

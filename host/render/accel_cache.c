@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* accel_cache.c - a renderer's BVHs and layout of one scene, kept up to date
  * frame by frame with the least work. */
 #include "render/accel_cache.h"

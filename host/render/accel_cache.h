@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* accel_cache.h - the acceleration structures a renderer keeps for a scene
  * between frames: one BVH per mesh (updated only when the mesh changed, by
  * the mesh's update policy: rebuilt, refitted or built by the LBVH), the

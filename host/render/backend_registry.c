@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* backend_registry.c - the one place that lists the backends. A backend is
  * a line here (and its folder and build rule); nothing else names it. A
  * backend the build leaves out keeps a line with the reason, so that asking

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* backend_registry.h - every backend the renderer knows, by name: those this
  * build has, and those it lacks with the reason (host/render/backend_registry.c). */
 #ifndef RT_BACKEND_REGISTRY_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* count.c - rt_count_intersections: the triangles each ray crosses, on the
  * renderer's layout and workers (cpu_ref/crossings.h), whatever its backend. */
 #include <stdlib.h>

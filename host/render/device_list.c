@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* device_list.c - the devices of each device backend in rt.h's one form
  * (rt_device_info), from the backends' own listings (opencl/cl_device.h,
  * vulkan/vk_device.h), so that programs list devices through rt.h alone.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* device_list.h - each device backend's devices as rt_device_info (rt.h),
  * for rt_devices; compiled in where the backend is (RT_HAVE_OPENCL,
  * RT_HAVE_VULKAN). selector NULL lists every device, else only the one it

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* render.c - rt_render: one frame of a scene on the renderer's backend. The
  * renderer brings the layout up to date (render/accel_cache.c), the backend
  * brings its copy up to date and renders; statistics are gathered here. */

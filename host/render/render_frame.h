@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* render_frame.h - what rt_render and rt_trace_rays share: the frame's
  * layout (the triangle test and features it asks for) and the backend that
  * runs it. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* renderer.c - rt_renderer: the caller-owned context that keeps a scene's
  * BVHs and layout, the worker threads and the backends' state between
  * frames (Langr 2016's RayTracerContext). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* renderer_internal.h - the renderer's state (rt.h's rt_renderer), for the
  * files of host/render/ and for programs that look inside (the benchmark's
  * Embree peer traces the renderer's layout; tests check it). */

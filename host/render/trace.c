@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* trace.c - rt_trace_rays: the caller's rays through the same layout and
  * traversal as rendering, on the renderer's backend; then each hit's
  * geometric normal and mesh, on the host, the same for every backend. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene.c - the scene model and the rt.h operations that edit it. */
 #include "scene/scene.h"
 

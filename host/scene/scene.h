@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene.h - the scene model behind rt.h (Langr 2016, section 3.2).
  *
  * Plain growable arrays. Every input is validated on its way in (rt.h calls

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene_accel.c - the per-mesh choice of acceleration structure (rt.h). */
 #include <string.h>
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene_anim.c - dynamic scenes: vertices that move, the update policy a
  * renderer follows for them, and the scene's time (keyframes that switch or
  * blend, keyed object transforms, the camera's path). The scene stays pure

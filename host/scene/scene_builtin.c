@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene_builtin.c - the scenes the project ships, generated in code.
  *
  * "cornell": a Cornell-like room (red and green side walls, open front) with a

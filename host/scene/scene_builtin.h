@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene_builtin.h - the scenes the project ships, generated in code.
  *
  * The generator is the single source of these scenes: `rtcl generate DIR`

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene_counts.c - how many meshes and objects a scene holds (rt.h), for
  * callers that check ids before using them (the Python package). */
 #include "scene/scene.h"

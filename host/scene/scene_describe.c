@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene_describe.c - what a scene holds, for programs on rt.h
  * (rt_scene_describe, rt_mesh_describe, rt_object_describe): the scene's
  * own counts and features, read here so that nothing outside the library

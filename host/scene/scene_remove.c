@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* scene_remove.c - removing lights and objects (rt_light_remove,
  * rt_object_remove).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* vk_backend.c - the Vulkan compute backend (host/backend/backend.h): a
  * device and queue opened at the first frame, the flattened layout in
  * storage buffers (uploaded once, then only what changed), compute pipelines

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* vk_backend.h - the Vulkan compute backend (host/backend/backend.h), built
  * where the build found the Vulkan loader and glslangValidator
  * (RT_HAVE_VULKAN); and hooks for the tests. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* vk_device.c - Vulkan devices through the loader: listing, float controls,
  * selection (vk_device.h). */
 #include <stddef.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* vk_device.h - Vulkan devices (host/vulkan/vk_device.c): listing through the
  * loader, the float controls that decide whether the oracle's bits are
  * promised, and selection by index or name. Compiled only where the build

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* vk_internal.h - what vk_device.c gives vk_backend.c: an instance and the
  * physical device behind a rt_vk_device_info. Vulkan types; for host/vulkan/
  * alone. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* gen_interface.c - a build step: writes the GLSL side of the GPU interface
  * table (kernels/rt_interface.def) as rt_vk_interface.glsl, which the
  * shaders include: the shared numbers and AOV codes, the buffers' bindings,

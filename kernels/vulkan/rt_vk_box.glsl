@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_box.glsl - the GLSL mirror of kernels/rt_box.h: the robust slab
  * test (a node passed by index) and the widened t range of box tests. */
 #ifndef RT_VK_BOX_GLSL

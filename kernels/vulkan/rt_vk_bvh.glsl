@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_bvh.glsl - the GLSL mirror of kernels/rt_bvh.h: one inner-node step
  * and the walk of one mesh's BVH, with the traversal stacks in workgroup
  * memory (GLSL only, below). */

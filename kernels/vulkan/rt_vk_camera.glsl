@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_camera.glsl - the GLSL mirror of kernels/rt_camera.h: the primary
  * rays of the scene header's camera. */
 #ifndef RT_VK_CAMERA_GLSL

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_hit.glsl - the GLSL mirror of kernels/rt_hit.h: the hit record and
  * counters, the total order of hits, hit acceptance (rt_hit.h says why) and
  * the test of one leaf's triangles. */

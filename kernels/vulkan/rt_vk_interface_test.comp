@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_interface_test.comp - for test_gpu_interface (not used by frames):
  * one invocation goes through the rows of kernels/rt_interface_fields.def
  * in order, numbering the words n = 0, 1, ...: the bits of each field the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_io.glsl - what the Vulkan entry shaders share besides the maths (the
  * twin of kernels/rt_kernel_args.h): the per-dispatch buffers, declared from
  * the table (kernels/rt_interface.def, RT_VK_IO_BUFFERS of the generated

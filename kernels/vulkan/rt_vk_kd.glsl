@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_kd.glsl - the GLSL mirror of kernels/rt_kd.h: kd-tree traversal of
  * one mesh (instance flag RT_INST_KD) for the Vulkan backend.
  * rt_vk_trace.glsl calls it for kd meshes; a leaf calls rt_leaf_test

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_layout.glsl - the GLSL mirror of kernels/rt_layout.h: the flattened
  * scene's structs (std430 puts them at C's offsets) and flags. */
 #ifndef RT_VK_LAYOUT_GLSL

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_main.comp - the Vulkan backend's one shader: a frame's tile (one
  * pixel per invocation) or ray queries (one ray per invocation).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_math_profile.glsl - the GLSL mirror of kernels/rt_math_profile.h:
  * the portable profile's division, square root and difference of products
  * (rt_vk_soft_math.glsl), fabs as a bit operation and infinity by its bits;

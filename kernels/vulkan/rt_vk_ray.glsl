@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_ray.glsl - the GLSL mirror of kernels/rt_ray.h: the ray, its
  * prepared values and where a secondary ray starts. */
 #ifndef RT_VK_RAY_GLSL

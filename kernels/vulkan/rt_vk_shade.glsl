@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_shade.glsl - the GLSL mirror of kernels/rt_shade.h: the surface at a
  * hit, Phong with shadow rays and the steps of the shading tree that
  * rt_vk_main.comp runs around its one rt_trace call. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_soft_math.glsl - the GLSL mirror of kernels/rt_soft_math.h: binary32
  * division, square root and difference of products, correctly rounded, from
  * 32-bit integer operations and a float first guess that integer

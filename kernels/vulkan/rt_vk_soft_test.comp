@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_soft_test.comp - the soft maths of rt_vk_soft_math.glsl on given
  * operands, for test_vulkan_oracle (not used by frames): case i reads the
  * four bit patterns a, b, c, d at words 4i .. 4i + 3 of the rays binding and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_trace.glsl - the GLSL mirror of kernels/rt_trace.h: the two-level
  * traversal over the object BVH, each instance's mesh by its BVH
  * (rt_vk_bvh.glsl) or its kd-tree (rt_vk_kd.glsl). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_tri.glsl - the GLSL mirror of kernels/rt_tri.h: the four
  * ray/triangle tests (a triangle passed by index) and the choice between
  * them. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_tri_t.glsl - the GLSL mirror of kernels/rt_tri_t.h: the fast t's
  * error bound and the plane's t in float-float arithmetic (the bounds and
  * their proofs are there). spv_precise decorates every operation

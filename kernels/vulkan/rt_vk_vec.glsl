@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_vec.glsl - the GLSL mirror of kernels/rt_vec.h: small vector
  * helpers with their order of operations written out, and rt_pick3 (GLSL
  * only: an element by selects instead of a run-time index). */

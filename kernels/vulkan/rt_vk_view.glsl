@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_view.glsl - the GLSL mirror of kernels/rt_view.h: the scene view as
  * storage buffers (declared from the view rows of kernels/rt_interface.def,
  * rt_scene_view's order) and the feature switches as specialization

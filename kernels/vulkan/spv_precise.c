@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* spv_precise.c - a build step of the Vulkan shaders: decorates every float
  * arithmetic instruction of a SPIR-V module NoContraction (GLSL's 'precise'),
  * so that no Vulkan implementation may fuse a multiply and an add, reorder a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """rtcl: exact, watertight ray queries on numpy arrays.
 
     import numpy as np, rtcl

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Checks and conversions of the caller's arguments into what the extension
 module reads: C-contiguous float32 and uint32 arrays. An array that already
 is one is passed on as it is (no copy); any other real array is converted

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Rays to query with: the rays of a pinhole camera."""
 
 import numpy as np

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """rtcl.Scene: triangle meshes, instances of them, and ray queries on numpy
 arrays (docs/PYTHON.md)."""
 

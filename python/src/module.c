@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* module.c - rtcl._rtcl, the extension module under the Python package rtcl
  * (python/rtcl/): one type, Scene, that owns an rt_scene and the renderers
  * that query it. rtcl/__init__.py checks and converts the caller's arrays;

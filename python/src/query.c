@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* query.c - a ray query of the Python package: the caller's arrays read in
  * place, block by block, into the library's rays; the library's hits
  * scattered into the caller's output arrays. Plain C, no Python calls: it

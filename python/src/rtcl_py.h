@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* rtcl_py.h - what the files of the extension module rtcl._rtcl share. The
  * module calls the library through rt.h alone (tests/python/
  * check_public_api.sh checks its objects' undefined symbols against rt.h). */

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """The library has no circles, between files or between folders.
 
 Files: source file A depends on B when A's object file uses a symbol that

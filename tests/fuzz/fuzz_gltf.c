@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* fuzz_gltf.c - libFuzzer harness of the glTF loader (the module's parser
  * and accessor reads, gltf_module.cpp; the mapping, validation and
  * animation of gltf_load.c; through rt_scene_load).

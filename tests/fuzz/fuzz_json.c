@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* fuzz_json.c - libFuzzer harness of the JSON scene loader (scene_json.c,
  * json_locate.c, through rt_scene_load).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* fuzz_obj.c - libFuzzer harness of the OBJ and MTL readers.
  *
  * The input is an OBJ file, optionally followed by the line "#mtl" and an

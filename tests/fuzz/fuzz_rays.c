@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* fuzz_rays.c - libFuzzer harness of the ray-file reader of `rtcl trace`
  * (formats/ray_file.c). The first byte's low bit selects the 11-number form
  * (--offset-origins); the rest is the file's text. A parse must end (no

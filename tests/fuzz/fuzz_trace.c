@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* fuzz_trace.c - libFuzzer harness: fuzzed rays through every CPU backend,
  * each hit compared bit for bit with the scalar oracle (the cpu backend).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* fuzz_util.c - see fuzz_util.h. */
 #include "fuzz_util.h"
 

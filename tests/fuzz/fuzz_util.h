@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* fuzz_util.h - what the libFuzzer harnesses of tests/fuzz/ share: a private
  * scratch folder for the loaders that read files, and small renders.
  *

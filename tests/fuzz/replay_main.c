@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* replay_main.c - runs a fuzz harness on files, for the builds without
  * libFuzzer: each argument is a file or a folder whose files (sorted by name,
  * not recursively) are fed to LLVMFuzzerTestOneInput one by one. A finding

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
 # Runs the libFuzzer harnesses of an RT_FUZZ=ON build, one after another.
 #   tests/fuzz/run.sh BUILD_DIR SECONDS [NAME...]   (NAMEs: obj json rays trace gltf)
 # Each fuzzer starts from its seeds (tests/fuzz/corpus/NAME, read only) and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # check_public_api.sh MAP OBJECT_DIR - the Python extension module calls the
 # library through rt.h alone: every rt_ function its own objects (the .o files
 # under OBJECT_DIR, before the static library is linked in) leave undefined

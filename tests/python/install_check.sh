@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # install_check.sh BUILD PYTHON SITE - `cmake --install` puts the package rtcl
 # where the interpreter finds it: installed to a fresh prefix, it imports from
 # PREFIX/SITE (SITE: RT_PYTHON_INSTALL_DIR, relative to the prefix) with no

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """run.py TEST_FILE... - runs the Python package's tests with pytest, as ctest
 does: exit 77 (ctest's "skipped") with the reason when numpy or pytest is
 missing from this interpreter, pytest's exit status otherwise. Writes no

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The rtcl package's API: shapes and dtypes of what goes in and comes out,
 every refusal (TypeError or ValueError naming the argument, never a crash,
 and a refused call changes nothing), zero-copy inputs, the GIL released

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Every backend this machine has gives the same bits through the package:
 packet, cpu, opencl (PoCL here) and vulkan (lavapipe here), on closest hits
 (t, ids, u, v and the host's normals) and occlusion, for random rays, camera

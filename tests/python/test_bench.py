@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """bench/python_open3d.py on a small run (counts, not timing): it runs beside
 Open3D and the Embree peer, reports every field, its classes add up, and
 rtcl never misses a clear exact crossing (a leak), on the bunny."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The examples in examples/python run as the README shows them (from the
 repository root, on the shared scenes) and produce what they say: a PLY
 point cloud of surface points with unit normals within the sensor's range,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The package's hits are the C oracle's, bit for bit: `rtcl trace --backend
 cpu` (rt_trace_rays on the scalar oracle, through the command line, which
 shares no code with the package but the library) on the same float32 rays,

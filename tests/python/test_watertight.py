@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Watertightness and exact inside/outside: closed meshes whose inside is
 known exactly (the surface of random voxels, on the integer lattice and on a
 shifted, scaled one; a closed sphere against exact rational half-space tests

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """What the Python package's tests share: the paths ctest gives (RTCL,
 RT_SOURCE_DIR, RT_SHARED_SCENES), meshes with exactly known insides, rays,
 files for `rtcl trace` (the C oracle, through the command line) and bitwise

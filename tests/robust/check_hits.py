@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """check_hits.py CASEDIR HITSDIR LABEL [--strict] - compares the hit files
 HITSDIR/NAME.hits written by 'rtcl trace' with the exact expectations of
 CASEDIR/manifest.json (gen_cases.py) and prints per category: rays, leaks

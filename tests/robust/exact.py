@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exact.py - exact rational arithmetic on float32 inputs for the robustness
 suite (tests/robust). Every float32 is a dyadic rational, so Fraction gives
 the exact answer of a ray/triangle query; no rounding anywhere below except

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """gen_cases.py OUTDIR - writes the numerical robustness suite: per case an OBJ
 scene, a rays file for 'rtcl trace', and OUTDIR/manifest.json with the
 expectation of every ray, computed in exact rational arithmetic on the float32

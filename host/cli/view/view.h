@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* view.h - 'rtcl view': the options the command line gives the viewer, and
  * the viewer itself (view_app.c with SDL2, view_missing.c without). */
 #ifndef RTCL_VIEW_H

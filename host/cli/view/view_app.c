@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* view_app.c - the viewer's window (SDL2): input, the camera, the job loop
  * with the render thread (view_worker.c), presenting, the title's numbers,
  * screenshots. Only this file includes SDL. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* view_cmd.c - 'rtcl view': the command line (built with or without SDL2, so
  * that --help tells the keys and the reason when the viewer is missing). */
 #include <math.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* view_keys.c - key names and the key list. */
 #include "view_keys.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* view_keys.h - the viewer's keys, independent of SDL: their names (for
  * --script files) and what each does (for --help and the H key). The SDL
  * layer (view_app.c) maps its key codes to these. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* view_missing.c - 'rtcl view' in a build without SDL2: says what is missing. */
 #include <stdio.h>
 

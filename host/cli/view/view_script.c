@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* view_script.c - the --script file reader. */
 #include "view_script.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* view_script.h - timed input for 'rtcl view --script FILE', so that a
  * session replays exactly without a person at the keyboard.
  *

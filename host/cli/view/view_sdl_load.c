@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* view_sdl_load.c - SDL2 loaded when the viewer first calls it, not when
  * rtcl starts. Linked normally, SDL2 brings about 50 libraries (X11,
  * Wayland, PulseAudio, ...) into every rtcl command: about 6 ms of CPU at

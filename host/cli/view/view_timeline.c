@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* view_timeline.c - the viewer's clock applied to the scene. */
 #include "view_timeline.h"
 

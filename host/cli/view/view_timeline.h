@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* view_timeline.h - scene time for the viewer: the one place where the
  * viewer's clock reaches the scene.
  *

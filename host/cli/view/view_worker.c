@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* view_worker.c - the render thread. */
 #include "view_worker.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* view_worker.h - the viewer's render thread. It owns the scene and the
  * renderer while it runs: the window's thread never calls the library, so
  * input and presenting never wait for a frame (a slow backend makes frames
