@@ -423,6 +423,97 @@ static inline rt_vf pick(rt_vi k0, rt_vi k1, const rt_vf *v) {
     return rt_vsel(k0, v[0], rt_vsel(k1, v[1], v[2]));
 }
 
+/* rt_tri_t_plane's first tier (the plane in float, within its bound) for
+ * the lanes of un in group g, in vectors: the triangle's part once
+ * (rt_tri_t_normal), each lane's by the oracle's operations in its order.
+ * Sets those lanes' t and returns the lanes the tier did not settle, which
+ * take the whole scalar function. Most lanes past the fast bound end here
+ * (large triangles near the origin), and the scalar function's dependent
+ * chains cost far more time per lane than its instruction count says. */
+static uint32_t pk_plane_tier1(const rt_tri *tri, int ip, const float *n, const float *m,
+                               const pk_geom *p, int g, uint32_t un, rt_vf *t) {
+    const float *v = tri->v0;
+    rt_vf Nv = rt_vsplat(0.0f), Dv = Nv, bn = Nv, bd = Nv;
+    for (int i = 0; i < 3; i++) {
+        const rt_vf a = rt_vsplat(v[ip + i]) - p->org[i][g], d = p->dir[i][g];
+        Nv = Nv + rt_vsplat(n[i]) * a;
+        Dv = Dv + rt_vsplat(n[i]) * d;
+        bn = bn + rt_vsplat(RT_FABS(n[i]) + m[i]) * rt_vabs(a);
+        bd = bd + rt_vsplat(3.0f * RT_FABS(n[i]) + 4.0f * m[i]) * rt_vabs(d);
+    }
+    const rt_vf aN = rt_vabs(Nv), aD = rt_vabs(Dv), t1 = Nv / Dv;
+    const rt_vi ok =
+        ((rt_vsplat(4.0f) * bn) * aD + bd * aN + aN * aD <= rt_vsplat(128.0f) * (aN * aD)) &
+        (t1 - t1 == rt_vsplat(0.0f)) & (aN * aD > rt_vsplat(0.0f));
+    const uint32_t good = rt_vbits(ok) & un;
+    *t = rt_vsel(rt_vmask(good), t1, *t);
+    return un & ~good;
+}
+
+/* rt_ff_* of rt_tri_t.h per lane, the same operations in the same order. */
+static inline rt_vf pk_ff_sum_err(rt_vf a, rt_vf b, rt_vf s) {
+    const rt_vf bv = s - a;
+    const rt_vf av = s - bv;
+    return (a - av) + (b - bv);
+}
+static inline void pk_ff_split(rt_vf a, rt_vf *hi, rt_vf *lo) {
+    const rt_vf c = rt_vsplat(4097.0f) * a;
+    const rt_vf h = c - (c - a);
+    *hi = h;
+    *lo = a - h;
+}
+static inline void pk_ff_mul(rt_vf a, rt_vf alo, rt_vf as, rt_vf al2, rt_vf b, rt_vf blo, rt_vf bs,
+                             rt_vf bl2, rt_vf *ph, rt_vf *pl) {
+    const rt_vf x = a * b;
+    const rt_vf e = ((((as * bs - x) + as * bl2) + al2 * bs) + al2 * bl2) + (a * blo + alo * b);
+    const rt_vf h = x + e;
+    *ph = h;
+    *pl = e - (h - x);
+}
+static inline void pk_ff_add(rt_vf ah, rt_vf al, rt_vf bh, rt_vf bl, rt_vf *sh, rt_vf *sl) {
+    const rt_vf s0 = ah + bh;
+    const rt_vf e0 = pk_ff_sum_err(ah, bh, s0) + (al + bl);
+    *sh = s0 + e0;
+    *sl = pk_ff_sum_err(s0, e0, *sh);
+}
+
+/* rt_tri_t_plane's second tier (float-float) for the lanes of un in group
+ * g, in vectors: the triangle's float-float normal once
+ * (rt_tri_t_normal_ff), each lane's part by the oracle's operations in its
+ * order; the rare lanes whose result is not finite take the scalar function
+ * (its fallback to the fast t). Returns those lanes. */
+static uint32_t pk_plane_tier2(const rt_tri *tri, int ip, const float *e, const float *f,
+                               const pk_geom *p, int g, uint32_t un, rt_vf *t) {
+    float nh[3], nl[3];
+    rt_tri_t_normal_ff(tri, ip, e, f, nh, nl);
+    const float *v = tri->v0;
+    rt_vf a[3], al[3], as[3], at[3], ds[3], dt[3];
+    for (int i = 0; i < 3; i++) {
+        const rt_vf vp = rt_vsplat(v[ip + i]), mo = -p->org[i][g];
+        a[i] = vp - p->org[i][g];
+        al[i] = pk_ff_sum_err(vp, mo, a[i]);
+        pk_ff_split(a[i], &as[i], &at[i]);
+        pk_ff_split(p->dir[i][g], &ds[i], &dt[i]);
+    }
+    const rt_vf zero = rt_vsplat(0.0f);
+    rt_vf Nh = zero, Nl = zero, Dh = zero, Dl = zero;
+    for (int i = 0; i < 3; i++) {
+        float ns, nt;
+        rt_ff_split(nh[i], &ns, &nt);
+        const rt_vf h = rt_vsplat(nh[i]), l = rt_vsplat(nl[i]), hs = rt_vsplat(ns),
+                    ht = rt_vsplat(nt);
+        rt_vf ph, pl;
+        pk_ff_mul(h, l, hs, ht, a[i], al[i], as[i], at[i], &ph, &pl);
+        pk_ff_add(Nh, Nl, ph, pl, &Nh, &Nl);
+        pk_ff_mul(h, l, hs, ht, p->dir[i][g], zero, ds[i], dt[i], &ph, &pl);
+        pk_ff_add(Dh, Dl, ph, pl, &Dh, &Dl);
+    }
+    const rt_vf t2 = Nh / Dh;
+    const uint32_t good = rt_vbits(t2 - t2 == zero) & un;
+    *t = rt_vsel(rt_vmask(good), t2, *t);
+    return un & ~good;
+}
+
 /* rt_tri_watertight on the lanes of m in group g against entry e. */
 static void pk_tri(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u32 e, rt_u32 inst) {
     st->counts->group_tri_tests++;
@@ -468,8 +559,16 @@ static void pk_tri(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u32 e, 
     rt_vf t = rt_vwt_t(&x, p->sz[g]);
     /* A t that the oracle takes from the plane (rt_tri_t.h): the shared
      * scalar function for those lanes (rare). */
-    for (uint32_t un = rt_vwt_unsure(&x, A, B, C, p->sx[g], p->sy[g], p->sz[g], inside); un;
-         un &= un - 1) {
+    uint32_t un = rt_vwt_unsure(&x, A, B, C, p->sx[g], p->sy[g], p->sz[g], inside);
+    if (un) {
+        /* The triangle's part of both tiers, once. */
+        const int ip = rt_tri_t_apex(tri);
+        float te[3], tf[3], tn[3], tm[3];
+        rt_tri_t_normal(tri, ip, te, tf, tn, tm);
+        un = pk_plane_tier1(tri, ip, tn, tm, p, g, un, &t);
+        if (un) un = pk_plane_tier2(tri, ip, te, tf, p, g, un, &t);
+    }
+    for (; un; un &= un - 1) {
         const int i = rt_lane_first(un);
         rt_ray lr;
         lane_ray(p, g, i, &lr);

@@ -159,7 +159,9 @@ RT_FN float rt_ff_sum_err(float a, float b, float s) {
     return (a - av) + (b - bv);
 }
 
-RT_FN_RARE float rt_tri_t_plane(RT_GLOBAL const rt_tri *tri, const rt_ray *r, float t_fast) {
+/* The apex of rt_tri_t_plane: the offset (0, 3 or 6) of the vertex opposite
+ * the triangle's longest edge among its nine coordinates. */
+RT_FN int rt_tri_t_apex(RT_GLOBAL const rt_tri *tri) {
     RT_GLOBAL const float *v = tri->v0;    /* v0, v1, v2: 9 floats in a row */
     float l0 = 0.0f, l1 = 0.0f, l2 = 0.0f; /* squared lengths of the edges opposite v0, v1, v2 */
     for (int i = 0; i < 3; i++) {
@@ -168,22 +170,61 @@ RT_FN_RARE float rt_tri_t_plane(RT_GLOBAL const rt_tri *tri, const rt_ray *r, fl
         l1 = l1 + b * b;
         l2 = l2 + c * c;
     }
-    /* The apex p and the other two vertices q, s, in the triangle's order. */
-    const int ip = (l0 >= l1 && l0 >= l2) ? 0 : (l1 >= l2 ? 3 : 6);
+    return (l0 >= l1 && l0 >= l2) ? 0 : (l1 >= l2 ? 3 : 6);
+}
+
+/* The triangle's part of tier 1: the edges e = q - p, f = s - p from the
+ * apex ip (q, s the next vertices in the triangle's order), n = e x f in
+ * float and m_i = |e_j f_k| + |e_k f_j|, the scale of n_i's rounding. The
+ * CPU packet tracer computes it once per triangle for a packet's rays. */
+RT_FN void rt_tri_t_normal(RT_GLOBAL const rt_tri *tri, int ip, float *e, float *f, float *n,
+                           float *m) {
+    RT_GLOBAL const float *v = tri->v0;
     const int iq = ip == 6 ? 0 : ip + 3, is = iq == 6 ? 0 : iq + 3;
-    float e[3], f[3], a[3], n[3], m[3];
     for (int i = 0; i < 3; i++) {
         e[i] = v[iq + i] - v[ip + i];
         f[i] = v[is + i] - v[ip + i];
-        a[i] = v[ip + i] - r->org[i];
     }
-    /* Tier 1: float, with its error bound. */
-    float N = 0.0f, D = 0.0f, bn = 0.0f, bd = 0.0f;
     for (int i = 0; i < 3; i++) {
         const int j = i == 2 ? 0 : i + 1, k = j == 2 ? 0 : j + 1;
         const float x = e[j] * f[k], y = e[k] * f[j];
         n[i] = x - y;
         m[i] = RT_FABS(x) + RT_FABS(y);
+    }
+}
+
+/* The triangle's part of tier 2: n = e x f in float-float (nh + nl), from
+ * the edges of rt_tri_t_normal and their exact rounding errors, each
+ * operand split once. */
+RT_FN void rt_tri_t_normal_ff(RT_GLOBAL const rt_tri *tri, int ip, const float *e, const float *f,
+                              float *nh, float *nl) {
+    RT_GLOBAL const float *v = tri->v0;
+    const int iq = ip == 6 ? 0 : ip + 3, is = iq == 6 ? 0 : iq + 3;
+    float el[3], es[3], et[3], fl[3], fs[3], ft[3];
+    for (int i = 0; i < 3; i++) {
+        el[i] = rt_ff_sum_err(v[iq + i], -v[ip + i], e[i]);
+        fl[i] = rt_ff_sum_err(v[is + i], -v[ip + i], f[i]);
+        rt_ff_split(e[i], &es[i], &et[i]);
+        rt_ff_split(f[i], &fs[i], &ft[i]);
+    }
+    for (int i = 0; i < 3; i++) {
+        const int j = i == 2 ? 0 : i + 1, k = j == 2 ? 0 : j + 1;
+        float xh, xl, yh, yl;
+        rt_ff_mul(e[j], el[j], es[j], et[j], f[k], fl[k], fs[k], ft[k], &xh, &xl);
+        rt_ff_mul(e[k], el[k], es[k], et[k], f[j], fl[j], fs[j], ft[j], &yh, &yl);
+        rt_ff_add(xh, xl, -yh, -yl, &nh[i], &nl[i]);
+    }
+}
+
+RT_FN_RARE float rt_tri_t_plane(RT_GLOBAL const rt_tri *tri, const rt_ray *r, float t_fast) {
+    RT_GLOBAL const float *v = tri->v0; /* v0, v1, v2: 9 floats in a row */
+    const int ip = rt_tri_t_apex(tri);
+    float e[3], f[3], a[3], n[3], m[3];
+    rt_tri_t_normal(tri, ip, e, f, n, m);
+    for (int i = 0; i < 3; i++) a[i] = v[ip + i] - r->org[i];
+    /* Tier 1: float, with its error bound. */
+    float N = 0.0f, D = 0.0f, bn = 0.0f, bd = 0.0f;
+    for (int i = 0; i < 3; i++) {
         N = N + n[i] * a[i];
         D = D + n[i] * r->dir[i];
         bn = bn + (RT_FABS(n[i]) + m[i]) * RT_FABS(a[i]);
@@ -195,30 +236,22 @@ RT_FN_RARE float rt_tri_t_plane(RT_GLOBAL const rt_tri *tri, const rt_ray *r, fl
         const float t = RT_DIV(N, D);
         if (t - t == 0.0f && aN * aD > 0.0f) return t; /* t - t: 0 for a finite t */
     }
-    /* Tier 2: float-float. The differences' exact errors, the leading parts
-     * split once. */
-    float el[3], es[3], et[3], fl[3], fs[3], ft[3], al[3], as[3], at[3];
+    /* Tier 2: float-float. */
+    float nh[3], nl[3];
+    rt_tri_t_normal_ff(tri, ip, e, f, nh, nl);
+    float al[3], as[3], at[3], ds[3], dt[3];
     for (int i = 0; i < 3; i++) {
-        el[i] = rt_ff_sum_err(v[iq + i], -v[ip + i], e[i]);
-        fl[i] = rt_ff_sum_err(v[is + i], -v[ip + i], f[i]);
         al[i] = rt_ff_sum_err(v[ip + i], -r->org[i], a[i]);
-        rt_ff_split(e[i], &es[i], &et[i]);
-        rt_ff_split(f[i], &fs[i], &ft[i]);
         rt_ff_split(a[i], &as[i], &at[i]);
+        rt_ff_split(r->dir[i], &ds[i], &dt[i]);
     }
-    float ds[3], dt[3];
-    for (int i = 0; i < 3; i++) rt_ff_split(r->dir[i], &ds[i], &dt[i]);
     float Nh = 0.0f, Nl = 0.0f, Dh = 0.0f, Dl = 0.0f;
     for (int i = 0; i < 3; i++) {
-        const int j = i == 2 ? 0 : i + 1, k = j == 2 ? 0 : j + 1;
-        float xh, xl, yh, yl, nh, nl, ns, nt, ph, pl;
-        rt_ff_mul(e[j], el[j], es[j], et[j], f[k], fl[k], fs[k], ft[k], &xh, &xl);
-        rt_ff_mul(e[k], el[k], es[k], et[k], f[j], fl[j], fs[j], ft[j], &yh, &yl);
-        rt_ff_add(xh, xl, -yh, -yl, &nh, &nl);
-        rt_ff_split(nh, &ns, &nt);
-        rt_ff_mul(nh, nl, ns, nt, a[i], al[i], as[i], at[i], &ph, &pl);
+        float ns, nt, ph, pl;
+        rt_ff_split(nh[i], &ns, &nt);
+        rt_ff_mul(nh[i], nl[i], ns, nt, a[i], al[i], as[i], at[i], &ph, &pl);
         rt_ff_add(Nh, Nl, ph, pl, &Nh, &Nl);
-        rt_ff_mul(nh, nl, ns, nt, r->dir[i], 0.0f, ds[i], dt[i], &ph, &pl);
+        rt_ff_mul(nh[i], nl[i], ns, nt, r->dir[i], 0.0f, ds[i], dt[i], &ph, &pl);
         rt_ff_add(Dh, Dl, ph, pl, &Dh, &Dl);
     }
     const float t = RT_DIV(Nh, Dh);
