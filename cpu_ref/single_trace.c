@@ -142,6 +142,51 @@ static int tri_scalar(sw_ctx *x, rt_u32 e, rt_u32 inst, const rt_ray *r, const r
     return take_hit(x, best, t, u, v, e, inst);
 }
 
+/* rt_tri_t_plane's first tier (the plane in float, within its bound) for
+ * the lanes of un of a block: each lane's triangle from the block's copies
+ * of the vertices, by the oracle's operations in its order (rt_tri_t_apex,
+ * rt_tri_t_normal, then the ray's part); the apex picked by selects. Sets
+ * those lanes' t and returns the lanes the tier did not settle. */
+static uint32_t sw_plane_tier1(const uint32_t *blk, const rt_ray *r, uint32_t un, rt_vf *t) {
+    rt_vf v[9]; /* v0, v1, v2, coordinate by coordinate, as the block holds them */
+    for (int k = 0; k < 9; k++) v[k] = rt_vload(blk + k * W);
+    const rt_vf zero = rt_vsplat(0.0f);
+    rt_vf l0 = zero, l1 = zero, l2 = zero;
+    for (int i = 0; i < 3; i++) {
+        const rt_vf a = v[3 + i] - v[6 + i], b = v[6 + i] - v[i], c = v[i] - v[3 + i];
+        l0 = l0 + a * a;
+        l1 = l1 + b * b;
+        l2 = l2 + c * c;
+    }
+    const rt_vi k0 = (l0 >= l1) & (l0 >= l2), k1 = ~k0 & (l1 >= l2);
+    rt_vf e[3], f[3], a[3];
+    for (int i = 0; i < 3; i++) {
+        const rt_vf p = rt_vsel(k0, v[i], rt_vsel(k1, v[3 + i], v[6 + i]));
+        const rt_vf q = rt_vsel(k0, v[3 + i], rt_vsel(k1, v[6 + i], v[i]));
+        const rt_vf s = rt_vsel(k0, v[6 + i], rt_vsel(k1, v[i], v[3 + i]));
+        e[i] = q - p;
+        f[i] = s - p;
+        a[i] = p - rt_vsplat(r->org[i]);
+    }
+    rt_vf Nv = zero, Dv = zero, bn = zero, bd = zero;
+    for (int i = 0; i < 3; i++) {
+        const int j = i == 2 ? 0 : i + 1, k = j == 2 ? 0 : j + 1;
+        const rt_vf x = e[j] * f[k], y = e[k] * f[j];
+        const rt_vf n = x - y, m = rt_vabs(x) + rt_vabs(y), d = rt_vsplat(r->dir[i]);
+        Nv = Nv + n * a[i];
+        Dv = Dv + n * d;
+        bn = bn + (rt_vabs(n) + m) * rt_vabs(a[i]);
+        bd = bd + (rt_vsplat(3.0f) * rt_vabs(n) + rt_vsplat(4.0f) * m) * rt_vabs(d);
+    }
+    const rt_vf aN = rt_vabs(Nv), aD = rt_vabs(Dv), t1 = Nv / Dv;
+    const rt_vi ok =
+        ((rt_vsplat(4.0f) * bn) * aD + bd * aN + aN * aD <= rt_vsplat(128.0f) * (aN * aD)) &
+        (t1 - t1 == zero) & (aN * aD > zero);
+    const uint32_t good = rt_vbits(ok) & un;
+    *t = rt_vsel(rt_vmask(good), t1, *t);
+    return un & ~good;
+}
+
 /* The blocks first .. first + count - 1 of a leaf: rt_tri_watertight on
  * each lane's triangle. Returns 1 when an any-hit ray found a hit. */
 static int leaf_test(sw_ctx *x, rt_u32 first, rt_u32 count, rt_u32 inst, const rt_ray *r,
@@ -185,7 +230,9 @@ static int leaf_test(sw_ctx *x, rt_u32 first, rt_u32 count, rt_u32 inst, const r
         const rt_vf V = wt.V, Wf = wt.W, det = wt.det;
         /* A t that the oracle takes from the plane (rt_tri_t.h): the shared
          * scalar function for those lanes (rare). */
-        for (uint32_t un = rt_vwt_unsure(&wt, A, B, C, sx, sy, sz, inside); un; un &= un - 1) {
+        uint32_t un = rt_vwt_unsure(&wt, A, B, C, sx, sy, sz, inside);
+        if (un) un = sw_plane_tier1(blk, r, un, &t);
+        for (; un; un &= un - 1) {
             const int l = rt_lane_first(un);
             t[l] = rt_tri_t_plane(&x->s->tris[ent[l]], r, t[l]);
         }
