@@ -432,22 +432,15 @@ static inline rt_vf pick(rt_vi k0, rt_vi k1, const rt_vf *v) {
  * chains cost far more time per lane than its instruction count says. */
 static uint32_t pk_plane_tier1(const rt_tri *tri, int ip, const float *n, const float *m,
                                const pk_geom *p, int g, uint32_t un, rt_vf *t) {
-    const float *v = tri->v0;
-    rt_vf Nv = rt_vsplat(0.0f), Dv = Nv, bn = Nv, bd = Nv;
+    const float *v = tri->v0; /* v0, v1, v2: 9 floats in a row */
+    rt_vf a[3], nv[3], mv[3], d[3];
     for (int i = 0; i < 3; i++) {
-        const rt_vf a = rt_vsplat(v[ip + i]) - p->org[i][g], d = p->dir[i][g];
-        Nv = Nv + rt_vsplat(n[i]) * a;
-        Dv = Dv + rt_vsplat(n[i]) * d;
-        bn = bn + rt_vsplat(RT_FABS(n[i]) + m[i]) * rt_vabs(a);
-        bd = bd + rt_vsplat(3.0f * RT_FABS(n[i]) + 4.0f * m[i]) * rt_vabs(d);
+        a[i] = rt_vsplat(v[ip + i]) - p->org[i][g];
+        nv[i] = rt_vsplat(n[i]);
+        mv[i] = rt_vsplat(m[i]);
+        d[i] = p->dir[i][g];
     }
-    const rt_vf aN = rt_vabs(Nv), aD = rt_vabs(Dv), t1 = Nv / Dv;
-    const rt_vi ok =
-        ((rt_vsplat(4.0f) * bn) * aD + bd * aN + aN * aD <= rt_vsplat(128.0f) * (aN * aD)) &
-        (t1 - t1 == rt_vsplat(0.0f)) & (aN * aD > rt_vsplat(0.0f));
-    const uint32_t good = rt_vbits(ok) & un;
-    *t = rt_vsel(rt_vmask(good), t1, *t);
-    return un & ~good;
+    return rt_vwt_plane1(a, nv, mv, d, un, t);
 }
 
 /* rt_ff_* of rt_tri_t.h per lane, the same operations in the same order. */

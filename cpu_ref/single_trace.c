@@ -168,23 +168,15 @@ static uint32_t sw_plane_tier1(const uint32_t *blk, const rt_ray *r, uint32_t un
         f[i] = s - p;
         a[i] = p - rt_vsplat(r->org[i]);
     }
-    rt_vf Nv = zero, Dv = zero, bn = zero, bd = zero;
+    rt_vf n[3], m[3], d[3];
     for (int i = 0; i < 3; i++) {
         const int j = i == 2 ? 0 : i + 1, k = j == 2 ? 0 : j + 1;
         const rt_vf x = e[j] * f[k], y = e[k] * f[j];
-        const rt_vf n = x - y, m = rt_vabs(x) + rt_vabs(y), d = rt_vsplat(r->dir[i]);
-        Nv = Nv + n * a[i];
-        Dv = Dv + n * d;
-        bn = bn + (rt_vabs(n) + m) * rt_vabs(a[i]);
-        bd = bd + (rt_vsplat(3.0f) * rt_vabs(n) + rt_vsplat(4.0f) * m) * rt_vabs(d);
+        n[i] = x - y;
+        m[i] = rt_vabs(x) + rt_vabs(y);
+        d[i] = rt_vsplat(r->dir[i]);
     }
-    const rt_vf aN = rt_vabs(Nv), aD = rt_vabs(Dv), t1 = Nv / Dv;
-    const rt_vi ok =
-        ((rt_vsplat(4.0f) * bn) * aD + bd * aN + aN * aD <= rt_vsplat(128.0f) * (aN * aD)) &
-        (t1 - t1 == zero) & (aN * aD > zero);
-    const uint32_t good = rt_vbits(ok) & un;
-    *t = rt_vsel(rt_vmask(good), t1, *t);
-    return un & ~good;
+    return rt_vwt_plane1(a, n, m, d, un, t);
 }
 
 /* The blocks first .. first + count - 1 of a leaf: rt_tri_watertight on

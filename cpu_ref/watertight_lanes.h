@@ -99,4 +99,30 @@ static inline uint32_t rt_vwt_unsure(const rt_vwt *x, const rt_vf a[3], const rt
     return rt_vbits(lhs > rt_vabs(x->t) * adet) & m;
 }
 
+/* The ray's part of rt_tri_t_plane's first tier per lane (the plane in
+ * float, within its bound), from each lane's a = p - o, n, m (the
+ * triangle's part, rt_tri_t_normal) and direction d, by the oracle's
+ * operations in its order. Sets the lanes of un it settles to their t and
+ * returns the lanes it did not settle, which take the scalar function.
+ * Both CPU tracers call it: the packet tracer with one triangle's n and m
+ * for a packet's rays, the single-ray tracer with a block's triangles. */
+static inline uint32_t rt_vwt_plane1(const rt_vf a[3], const rt_vf n[3], const rt_vf m[3],
+                                     const rt_vf d[3], uint32_t un, rt_vf *t) {
+    const rt_vf zero = rt_vsplat(0.0f);
+    rt_vf N = zero, D = zero, bn = zero, bd = zero;
+    for (int i = 0; i < 3; i++) {
+        N = N + n[i] * a[i];
+        D = D + n[i] * d[i];
+        bn = bn + (rt_vabs(n[i]) + m[i]) * rt_vabs(a[i]);
+        bd = bd + (rt_vsplat(3.0f) * rt_vabs(n[i]) + rt_vsplat(4.0f) * m[i]) * rt_vabs(d[i]);
+    }
+    const rt_vf aN = rt_vabs(N), aD = rt_vabs(D), t1 = N / D;
+    const rt_vi ok =
+        ((rt_vsplat(4.0f) * bn) * aD + bd * aN + aN * aD <= rt_vsplat(128.0f) * (aN * aD)) &
+        (t1 - t1 == zero) & (aN * aD > zero);
+    const uint32_t good = rt_vbits(ok) & un;
+    *t = rt_vsel(rt_vmask(good), t1, *t);
+    return un & ~good;
+}
+
 #endif /* RT_WATERTIGHT_LANES_H */
