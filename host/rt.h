@@ -640,6 +640,13 @@ rt_status rt_camera_set_path(rt_scene *scene, const rt_camera_key *keys, uint32_
  * it is. Loading a scene file sets time 0. */
 rt_status rt_scene_set_time(rt_scene *scene, double seconds);
 
+/* The threads of the scene's own per-frame work at rt_scene_set_time (a
+ * glTF file's instances posed, skinned and morphed, one mesh per job; the
+ * vertices are the same whatever the count): <= 0, the default, one per
+ * core; 1: the caller's thread only. The threads are made when first
+ * needed and kept until the scene is destroyed or the count changes. */
+rt_status rt_scene_set_threads(rt_scene *scene, int threads);
+
 /* 1 when some object or the camera is animated (rt_scene_set_time changes
  * something), else 0. */
 int rt_scene_is_animated(const rt_scene *scene);

@@ -339,6 +339,7 @@ int bench_animate(const char *path, const bench_anim_setup *su, bench_anim_resul
         snprintf(err, err_size, "%s", e.message);
         return 0;
     }
+    rt_scene_set_threads(s, su->threads);
     int mo = morph_object(s);
     uint32_t clips = rt_scene_clip_count(s);
     if (su->animation && rt_scene_select_clip(s, su->animation) != RT_OK) {

@@ -4,12 +4,14 @@
 #include "formats/gltf_load.h"
 
 #include <math.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
 #include "base/error.h"
+#include "base/thread_pool.h"
 #include "formats/gltf_module.h"
 #include "scene/scene.h"
 
@@ -34,6 +36,25 @@ typedef struct gltf_inst {
     int local_current; /* the mesh holds the local vertices now */
 } gltf_inst;
 
+/* One worker's scratch for evaluating instances: the skin's joint matrices
+ * and the vertices of the instance at hand. */
+typedef struct gltf_scratch {
+    double *joints;  /* 12 per joint (3x4 row-major) */
+    float *joints_f; /* the same in float, for the skinning loop */
+    uint32_t joint_capacity;
+    float *pos, *nrm; /* 3 per vertex of the largest primitive */
+} gltf_scratch;
+
+/* What one instance's evaluation in a frame came to (apply_frame). */
+typedef struct gltf_job {
+    uint32_t inst;
+    uint32_t vertices; /* of its primitive: the job's size */
+    int local;         /* the instance's vertices in its node's space */
+    int outcome;       /* JOB_* */
+} gltf_job;
+
+enum { JOB_SAME, JOB_CHANGED, JOB_OUT_OF_MEMORY, JOB_NOT_FINITE };
+
 typedef struct gltf_state {
     const rt_gltf_module *module;
     rt_gltf_doc *doc;
@@ -49,10 +70,10 @@ typedef struct gltf_state {
     float *weights;          /* per node, weight_offset[node] .. + weight_len[node] */
     uint32_t *weight_offset; /* per node */
     uint32_t *weight_len;    /* per node: the morph targets of its mesh */
-    double *joints;          /* scratch: 12 per joint (3x4 row-major) */
-    float *joints_f;         /* the same in float, for the skinning loop */
-    uint32_t joint_capacity;
-    float *pos, *nrm; /* scratch: 3 per vertex of the largest primitive */
+    uint32_t max_vertices;   /* of the largest primitive */
+    gltf_scratch *scratch;   /* per worker of the scene's pool (one without) */
+    int scratch_count;
+    gltf_job *jobs; /* per instance: this frame's evaluations */
     int32_t camera_node;
     uint32_t camera_index;
     uint32_t light_count;
@@ -76,10 +97,14 @@ static void state_free(void *p) {
     free(s->weights);
     free(s->weight_offset);
     free(s->weight_len);
-    free(s->joints);
-    free(s->joints_f);
-    free(s->pos);
-    free(s->nrm);
+    for (int w = 0; w < s->scratch_count; w++) {
+        free(s->scratch[w].joints);
+        free(s->scratch[w].joints_f);
+        free(s->scratch[w].pos);
+        free(s->scratch[w].nrm);
+    }
+    free(s->scratch);
+    free(s->jobs);
     free(s->light_nodes);
     free(s->light_ids);
     free(s->durations);
@@ -479,10 +504,10 @@ static void skin_fast(const rt_gltf_prim *pr, const float *jf, float *pos, float
     }
 }
 
-/* The instance's vertices at the posed nodes into s->pos (and s->nrm when
+/* The instance's vertices at the posed nodes into ws->pos (and ws->nrm when
  * it has normals): skinned, or placed by its node's world matrix, or (local
  * 1, a rigid instance) in the node's space. Returns 0 when out of memory. */
-static int eval_inst(gltf_state *s, const gltf_inst *in, int local) {
+static int eval_inst(const gltf_state *s, gltf_scratch *ws, const gltf_inst *in, int local) {
     const rt_gltf_doc *d = s->doc;
     const rt_gltf_node *node = &d->nodes[in->node];
     const rt_gltf_prim *pr = &d->meshes[in->mesh].prims[in->prim];
@@ -491,14 +516,14 @@ static int eval_inst(gltf_state *s, const gltf_inst *in, int local) {
     uint32_t wl = s->weight_len[in->node];
     const rt_gltf_skin *skin = in->skinned ? &d->skins[node->skin] : NULL;
     if (skin) {
-        if (skin->joint_count > s->joint_capacity) {
-            double *j = realloc(s->joints, 12 * sizeof(double) * skin->joint_count);
+        if (skin->joint_count > ws->joint_capacity) {
+            double *j = realloc(ws->joints, 12 * sizeof(double) * skin->joint_count);
             if (!j) return 0;
-            s->joints = j;
-            float *jf = realloc(s->joints_f, 12 * sizeof(float) * skin->joint_count);
+            ws->joints = j;
+            float *jf = realloc(ws->joints_f, 12 * sizeof(float) * skin->joint_count);
             if (!jf) return 0;
-            s->joints_f = jf;
-            s->joint_capacity = skin->joint_count;
+            ws->joints_f = jf;
+            ws->joint_capacity = skin->joint_count;
         }
         for (uint32_t j = 0; j < skin->joint_count; j++) {
             double ib[16], jm[16];
@@ -506,13 +531,13 @@ static int eval_inst(gltf_state *s, const gltf_inst *in, int local) {
             for (int r = 0; r < 4; r++)
                 for (int k = 0; k < 4; k++) ib[r * 4 + k] = c[k * 4 + r];
             mat_mul(s->world + 16 * (size_t)skin->joints[j], ib, jm);
-            memcpy(s->joints + 12 * (size_t)j, jm, 12 * sizeof(double));
-            for (int e = 0; e < 12; e++) s->joints_f[12 * (size_t)j + e] = (float)jm[e];
+            memcpy(ws->joints + 12 * (size_t)j, jm, 12 * sizeof(double));
+            for (int e = 0; e < 12; e++) ws->joints_f[12 * (size_t)j + e] = (float)jm[e];
         }
         int morphed = 0;
         for (uint32_t t = 0; t < nt && t < wl; t++) morphed |= w[t] != 0.0f;
         if (!morphed) {
-            skin_fast(pr, s->joints_f, s->pos, pr->normals ? s->nrm : NULL);
+            skin_fast(pr, ws->joints_f, ws->pos, pr->normals ? ws->nrm : NULL);
             return 1;
         }
     }
@@ -541,7 +566,7 @@ static int eval_inst(gltf_state *s, const gltf_inst *in, int local) {
             for (uint32_t k = 0; k < 4 * sets; k++) {
                 double wt = pr->weights[(size_t)v * 4 * sets + k];
                 if (wt == 0.0) continue;
-                const double *jm = s->joints + 12 * (size_t)pr->joints[(size_t)v * 4 * sets + k];
+                const double *jm = ws->joints + 12 * (size_t)pr->joints[(size_t)v * 4 * sets + k];
                 for (int e = 0; e < 12; e++) m[e] += wt * jm[e];
             }
             xform_point(m, p, out);
@@ -549,13 +574,13 @@ static int eval_inst(gltf_state *s, const gltf_inst *in, int local) {
                 /* the blended matrix's linear part, as real-time skinning
                  * does (not its inverse transpose: joints rarely shear) */
                 double sn[9] = {m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10]};
-                put_normal(sn, n, s->nrm + 3 * (size_t)v);
+                put_normal(sn, n, ws->nrm + 3 * (size_t)v);
             }
         } else {
             xform_point(place, p, out);
-            if (pr->normals) put_normal(nm, n, s->nrm + 3 * (size_t)v);
+            if (pr->normals) put_normal(nm, n, ws->nrm + 3 * (size_t)v);
         }
-        for (int k = 0; k < 3; k++) s->pos[3 * (size_t)v + k] = (float)out[k];
+        for (int k = 0; k < 3; k++) ws->pos[3 * (size_t)v + k] = (float)out[k];
     }
     return 1;
 }
@@ -582,8 +607,82 @@ static int d_has_targets(const gltf_state *s, const gltf_inst *in) {
     return s->doc->meshes[in->mesh].prims[in->prim].target_count > 0;
 }
 
-/* Writes the frame into the scene's meshes, camera and lights. */
+/* Scratch for n workers (kept between frames). Returns 0 when out of memory. */
+static int reserve_scratch(gltf_state *s, int n) {
+    if (n <= s->scratch_count) return 1;
+    gltf_scratch *g = realloc(s->scratch, (size_t)n * sizeof *g);
+    if (!g) return 0;
+    s->scratch = g;
+    size_t bytes = 3 * sizeof(float) * (s->max_vertices ? s->max_vertices : 1);
+    for (; s->scratch_count < n; s->scratch_count++) {
+        gltf_scratch *w = &g[s->scratch_count];
+        memset(w, 0, sizeof *w);
+        w->pos = malloc(bytes);
+        w->nrm = malloc(bytes);
+        if (!w->pos || !w->nrm) {
+            s->scratch_count++; /* freed with the state */
+            return 0;
+        }
+    }
+    return 1;
+}
+
+typedef struct frame_work {
+    rt_scene *scene;
+    gltf_state *state;
+    uint32_t count; /* jobs */
+    atomic_uint next;
+} frame_work;
+
+/* One job: the instance's vertices at this frame into its mesh when they
+ * differ. Jobs touch only their own instance's mesh, so workers need no
+ * lock; the versions are bumped afterwards, on one thread. */
+static void run_job(rt_scene *scene, gltf_state *s, gltf_scratch *ws, gltf_job *job) {
+    gltf_inst *in = &s->insts[job->inst];
+    if (!eval_inst(s, ws, in, job->local)) {
+        job->outcome = JOB_OUT_OF_MEMORY;
+        return;
+    }
+    rt_mesh_data *m = &scene->meshes[in->scene_mesh];
+    size_t n = 3 * (size_t)m->vertex_count;
+    for (size_t k = 0; k < n; k++)
+        if (!isfinite(ws->pos[k])) {
+            job->outcome = JOB_NOT_FINITE;
+            return;
+        }
+    in->local_current = job->local;
+    int changed = memcmp(m->positions, ws->pos, n * sizeof(float)) != 0;
+    if (changed) memcpy(m->positions, ws->pos, n * sizeof(float));
+    if (m->normals && memcmp(m->normals, ws->nrm, n * sizeof(float)) != 0) {
+        memcpy(m->normals, ws->nrm, n * sizeof(float));
+        changed = 1;
+    }
+    job->outcome = changed ? JOB_CHANGED : JOB_SAME;
+}
+
+static void frame_worker(void *ctx, int worker, int worker_count) {
+    (void)worker_count;
+    frame_work *f = ctx;
+    for (;;) {
+        uint32_t j = atomic_fetch_add_explicit(&f->next, 1u, memory_order_relaxed);
+        if (j >= f->count) return;
+        run_job(f->scene, f->state, &f->state->scratch[worker], &f->state->jobs[j]);
+    }
+}
+
+static int larger_job_first(const void *a, const void *b) {
+    const gltf_job *x = a, *y = b;
+    return x->vertices != y->vertices ? (x->vertices < y->vertices ? 1 : -1)
+                                      : (x->inst > y->inst) - (x->inst < y->inst);
+}
+
+/* Writes the frame into the scene's meshes, camera and lights: first, on
+ * the caller's thread, the rigid instances' object transforms and which
+ * instances need their vertices again; then those instances (posed,
+ * skinned, morphed) over the scene's threads, the largest first; then the
+ * versions, and the first failure in instance order. */
 static rt_status apply_frame(rt_scene *scene, gltf_state *s) {
+    uint32_t count = 0;
     for (uint32_t i = 0; i < s->inst_count; i++) {
         gltf_inst *in = &s->insts[i];
         int local = 0;
@@ -618,27 +717,37 @@ static rt_status apply_frame(rt_scene *scene, gltf_state *s) {
             /* Unmorphed local vertices never change. */
             if (local && in->local_current && !d_has_targets(s, in)) continue;
         }
-        if (!eval_inst(s, in, local))
-            return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "%s: out of memory", s->path);
-        in->local_current = local;
-        rt_mesh_data *m = &scene->meshes[in->scene_mesh];
-        size_t n = 3 * (size_t)m->vertex_count;
-        for (size_t k = 0; k < n; k++)
-            if (!isfinite(s->pos[k]))
-                return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
-                                     "%s: node %u: a vertex is not finite at time %g", s->path,
-                                     in->node, scene->time);
-        int changed = memcmp(m->positions, s->pos, n * sizeof(float)) != 0;
-        if (changed) memcpy(m->positions, s->pos, n * sizeof(float));
-        if (m->normals && memcmp(m->normals, s->nrm, n * sizeof(float)) != 0) {
-            memcpy(m->normals, s->nrm, n * sizeof(float));
-            changed = 1;
-        }
-        if (changed) {
-            m->version++;
+        uint32_t nv = s->doc->meshes[in->mesh].prims[in->prim].vertex_count;
+        s->jobs[count++] = (gltf_job){i, nv, local, JOB_SAME};
+    }
+    /* The largest instances first, so that no worker starts a big one last. */
+    qsort(s->jobs, count, sizeof *s->jobs, larger_job_first);
+    rt_pool *pool = count > 1 ? rt_scene_pool(scene) : NULL;
+    int workers = pool ? rt_pool_size(pool) : 1;
+    if (!reserve_scratch(s, workers))
+        return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "%s: out of memory", s->path);
+    if (pool) {
+        frame_work f = {scene, s, count, 0};
+        rt_pool_run(pool, frame_worker, &f);
+    } else {
+        for (uint32_t j = 0; j < count; j++) run_job(scene, s, &s->scratch[0], &s->jobs[j]);
+    }
+    const gltf_job *failed = NULL;
+    for (uint32_t j = 0; j < count; j++) {
+        const gltf_job *job = &s->jobs[j];
+        if (job->outcome == JOB_CHANGED) {
+            scene->meshes[s->insts[job->inst].scene_mesh].version++;
             scene->version++;
+        } else if (job->outcome != JOB_SAME && (!failed || job->inst < failed->inst)) {
+            failed = job;
         }
     }
+    if (failed && failed->outcome == JOB_OUT_OF_MEMORY)
+        return rt_scene_fail(scene, RT_ERROR_OUT_OF_MEMORY, "%s: out of memory", s->path);
+    if (failed)
+        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
+                             "%s: node %u: a vertex is not finite at time %g", s->path,
+                             s->insts[failed->inst].node, scene->time);
     if (s->camera_node != RT_GLTF_NONE && scene->has_camera) {
         rt_camera cam = scene->camera;
         /* A degenerate pose (a camera node scaled to 0) keeps the last
@@ -809,9 +918,9 @@ static rt_status build(rt_scene *scene, gltf_state *s, rt_error *err) {
                                     i);
         }
     }
-    s->pos = malloc(3 * sizeof(float) * (max_v ? max_v : 1));
-    s->nrm = malloc(3 * sizeof(float) * (max_v ? max_v : 1));
-    if (!s->pos || !s->nrm) return oom(path, err);
+    s->max_vertices = max_v;
+    s->jobs = malloc((s->inst_count ? s->inst_count : 1) * sizeof(gltf_job));
+    if (!s->jobs || !reserve_scratch(s, 1)) return oom(path, err);
     /* Clip durations. */
     for (uint32_t a = 0; a < d->animation_count; a++) {
         const rt_gltf_animation *an = &d->animations[a];
@@ -860,15 +969,16 @@ static rt_status build(rt_scene *scene, gltf_state *s, rt_error *err) {
             st = rt_material_add(scene, &m, &mat_ids[slot]);
             if (st != RT_OK) break;
         }
-        if (!eval_inst(s, in, 0)) {
+        if (!eval_inst(s, &s->scratch[0], in, 0)) {
             st = oom(path, err);
             break;
         }
         uint32_t mesh, obj;
         st = rt_mesh_create(scene, &mesh);
         if (st == RT_OK)
-            st = rt_mesh_add_triangles(scene, mesh, s->pos, pr->normals ? s->nrm : NULL,
-                                       pr->vertex_count, pr->indices, pr->triangle_count);
+            st = rt_mesh_add_triangles(scene, mesh, s->scratch[0].pos,
+                                       pr->normals ? s->scratch[0].nrm : NULL, pr->vertex_count,
+                                       pr->indices, pr->triangle_count);
         if (st == RT_OK) st = rt_object_create(scene, mat_ids[slot], &obj);
         if (st == RT_OK) st = rt_object_add_mesh(scene, obj, mesh);
         if (st != RT_OK) {

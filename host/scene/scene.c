@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "base/error.h"
+#include "base/thread_pool.h"
 
 /* ---- small helpers ---------------------------------------------------- */
 
@@ -116,6 +117,24 @@ rt_status rt_scene_create(rt_scene **out) {
     return RT_OK;
 }
 
+rt_status rt_scene_set_threads(rt_scene *scene, int threads) {
+    if (!scene) return RT_ERROR_INVALID_ARGUMENT;
+    if (threads < 0) threads = 0;
+    if (threads != scene->threads) {
+        rt_pool_destroy(scene->pool);
+        scene->pool = NULL;
+        scene->threads = threads;
+    }
+    return RT_OK;
+}
+
+rt_pool *rt_scene_pool(rt_scene *scene) {
+    int n = scene->threads > 0 ? scene->threads : rt_cpu_count();
+    if (n <= 1) return NULL;
+    if (!scene->pool) scene->pool = rt_pool_create(n);
+    return scene->pool;
+}
+
 void rt_mesh_data_free_arrays(rt_mesh_data *m) {
     free(m->positions);
     free(m->normals);
@@ -128,6 +147,7 @@ void rt_mesh_data_free_arrays(rt_mesh_data *m) {
 void rt_scene_destroy(rt_scene *scene) {
     if (!scene) return;
     if (scene->animator.destroy) scene->animator.destroy(scene->animator.state);
+    rt_pool_destroy(scene->pool);
     for (uint32_t i = 0; i < scene->mesh_count; i++) rt_mesh_data_free_arrays(&scene->meshes[i]);
     for (uint32_t i = 0; i < scene->object_count; i++) {
         free(scene->objects[i].meshes);

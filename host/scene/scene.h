@@ -114,8 +114,17 @@ struct rt_scene {
     char source[512];           /* the file it was loaded from, or "" */
     char *notices;              /* rt_scene_notices: lines, or NULL when none */
     rt_scene_animator animator; /* a loader's animation, zero: none */
-    rt_error error;             /* the last error of a call that edited the scene */
+    /* rt_scene_set_threads: the threads of the scene's own per-frame work
+     * (<= 0: all cores), and their pool, made when first needed. */
+    int threads;
+    struct rt_pool *pool;
+    rt_error error; /* the last error of a call that edited the scene */
 };
+
+/* The pool of the scene's per-frame work (rt_scene_set_threads), made on
+ * first use; NULL for one thread, or when no thread could be made (then the
+ * work runs on the caller's thread). */
+struct rt_pool *rt_scene_pool(rt_scene *scene);
 
 /* Identity matrix. */
 void rt_mat4_identity(float m[16]);
