@@ -101,10 +101,10 @@ void cli_scene_args_init(cli_scene_args *a) {
     a->time = NAN;
     a->update = -1;
     a->animation = NULL;
-    a->threads = 0;
 }
 
-rt_scene *cli_scene_open(const char *command, const char *source, const cli_scene_args *a) {
+rt_scene *cli_scene_open(const char *command, const char *source, const cli_scene_args *a,
+                         int threads) {
     rt_scene *s = NULL;
     rt_error err;
     if (rt_scene_open(source, &s, &err) != RT_OK) {
@@ -118,7 +118,7 @@ rt_scene *cli_scene_open(const char *command, const char *source, const cli_scen
         fprintf(stderr, "rtcl %s: notice: %.*s\n", command, n, p);
         p += n + (eol ? 1 : 0);
     }
-    rt_scene_set_threads(s, a->threads);
+    rt_scene_set_threads(s, threads);
     if ((a->accel >= 0 && rt_scene_set_static_accel(s, (rt_accel)a->accel) != RT_OK) ||
         (a->animation && rt_scene_select_clip(s, a->animation) != RT_OK) ||
         (!isnan(a->time) && rt_scene_set_time(s, a->time) != RT_OK)) {
@@ -360,9 +360,7 @@ int cli_session_open(cli_session *out, const char *command, const char *source,
                      const cli_frame_args *frame) {
     out->scene = NULL;
     out->renderer = cli_renderer_create(command, renderer);
-    cli_scene_args with_threads = *scene;
-    with_threads.threads = renderer->threads;
-    if (out->renderer) out->scene = cli_scene_open(command, source, &with_threads);
+    if (out->renderer) out->scene = cli_scene_open(command, source, scene, renderer->threads);
     if (out->scene && (!frame || cli_apply_frame_size(command, out->scene, frame))) return 1;
     cli_session_close(out);
     return 0;

@@ -39,7 +39,6 @@ typedef struct cli_scene_args {
     double time; /* --time: seconds, NAN when not given */
     int update;  /* --update: an rt_update_policy for every mesh, or -1: each mesh's own */
     const char *animation; /* --animation: a clip's name or index (glTF), or NULL */
-    int threads; /* the scene's own per-frame work (rt_scene_set_threads): the renderer's */
 } cli_scene_args;
 
 /* The scene groups, each a table into cli_scene_args (title
@@ -53,9 +52,12 @@ void cli_scene_args_init(cli_scene_args *a);
 
 /* Opens source (a file or builtin:NAME, rt_scene_open), prints the
  * loader's notices (rt_scene_notices) on stderr, "rtcl COMMAND: notice:
- * ..." each, and applies the scene options given: its threads, --accel,
- * --animation, then --time, then --update. Prints the error and returns NULL when that fails. */
-rt_scene *cli_scene_open(const char *command, const char *source, const cli_scene_args *a);
+ * ..." each, gives the scene threads for its own per-frame work
+ * (rt_scene_set_threads: the renderer's --threads), and applies the scene
+ * options given: --accel, --animation, then --time, then --update. Prints
+ * the error and returns NULL when that fails. */
+rt_scene *cli_scene_open(const char *command, const char *source, const cli_scene_args *a,
+                         int threads);
 
 /* ---- image options: what a frame is --------------------------------------- */
 

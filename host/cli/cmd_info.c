@@ -140,8 +140,7 @@ int cmd_info(int argc, char **argv) {
     const char *cl_options = a.renderer.cl_options;
     const char *math = choice_name(cli_device_math_choices, a.renderer.device_math);
     const char *denormals = choice_name(cli_denormals_choices, a.renderer.denormals);
-    a.scene.threads = a.renderer.threads;
-    rt_scene *s = cli_scene_open("info", path, &a.scene);
+    rt_scene *s = cli_scene_open("info", path, &a.scene, a.renderer.threads);
     if (!s) return 2;
     rt_scene_info in;
     rt_scene_describe(s, &in);

@@ -171,8 +171,7 @@ int cmd_trace(int argc, char **argv) {
         cli_session_close(&held);
         return 2;
     }
-    a.scene.threads = a.renderer.threads;
-    rt_scene *scene = held.scene = cli_scene_open("trace", argv[0], &a.scene);
+    rt_scene *scene = held.scene = cli_scene_open("trace", argv[0], &a.scene, a.renderer.threads);
     if (!scene) {
         free(rays);
         cli_session_close(&held);

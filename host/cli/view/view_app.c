@@ -639,8 +639,7 @@ static int load(app *a, rt_scene **scene, rt_renderer **renderer) {
         }
         a->scripted = 1;
     }
-    o->scene.threads = o->renderer.threads;
-    if (!(*scene = cli_scene_open("view", o->scene_path, &o->scene))) return 0;
+    if (!(*scene = cli_scene_open("view", o->scene_path, &o->scene, o->renderer.threads))) return 0;
     rt_camera_get(*scene, &a->cam);
     if (o->frame.width) a->cam.width = o->frame.width;
     if (o->frame.height) a->cam.height = o->frame.height;
