@@ -328,7 +328,7 @@ static void option_label(const cli_option *o, char *buf, size_t cap) {
 static void option_help(const cli_option *o, char *buf, size_t cap) {
     char text[2048], names[512] = "";
     if (o->dynamic_help)
-        o->dynamic_help(text, sizeof text);
+        o->dynamic_help(o->help ? o->help : "", text, sizeof text);
     else
         snprintf(text, sizeof text, "%s", o->help ? o->help : "");
     if (o->kind == CLI_CHOICE) choice_list(o, names, sizeof names);

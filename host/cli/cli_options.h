@@ -64,8 +64,9 @@ typedef struct cli_option {
      * default follow it, so that they are never written twice. */
     const char *help;
     const char *fallback; /* the default in words, shown as "[...]"; NULL for flags */
-    /* Help that depends on the build (the backend list): written into buf. */
-    void (*dynamic_help)(char *buf, size_t cap);
+    /* Help that depends on the build (the backend list, the image formats):
+     * written into buf, given the help above (which it may fill in). */
+    void (*dynamic_help)(const char *help, char *buf, size_t cap);
 } cli_option;
 
 typedef struct cli_group {

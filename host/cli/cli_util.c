@@ -185,7 +185,7 @@ int cli_apply_frame_size(const char *command, rt_scene *scene, const cli_frame_a
 
 /* --backend's help from the backend registry: every backend, what it is,
  * and whether this build has it. */
-static void backend_help(char *buf, size_t cap) {
+static void backend_help(const char *help, char *buf, size_t cap) {
     size_t used = (size_t)snprintf(buf, cap, "the backend:");
     rt_backend_info b;
     for (int i = 0; rt_backend_name(i) && used < cap; i++) {

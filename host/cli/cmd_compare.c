@@ -21,19 +21,11 @@ typedef struct compare_options {
     double max_diff;
 } compare_options;
 
-/* --diff's help: the formats from the library's one table. */
-static void diff_help(char *buf, size_t cap) {
-    char formats[1024];
-    cli_image_formats_text(formats, sizeof formats);
-    snprintf(buf, cap,
-             "write |A - B| per channel to D, its format by the extension: %s; use a float format "
-             "(.exr) to see small differences",
-             formats);
-}
-
 static const cli_option compare_table[] = {
     {"--diff", 0, CLI_STRING, "D", offsetof(compare_options, diff_path), .flags = CLI_NONEMPTY,
-     .dynamic_help = diff_help, .fallback = "none"},
+     .help = "write |A - B| per channel to D, its format by the extension: {formats}; use a "
+             "float format (.exr) to see small differences",
+     .dynamic_help = cli_image_formats_help, .fallback = "none"},
     {"--max-diff", 0, CLI_FLOAT, "X", offsetof(compare_options, max_diff), 0.0, INFINITY,
      .help = "the largest absolute difference that still passes", .fallback = "0: identical"},
     {NULL}};

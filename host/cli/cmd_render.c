@@ -17,19 +17,12 @@ typedef struct render_args {
     cli_renderer_args renderer;
 } render_args;
 
-/* -o's help: the formats from the library's one table. */
-static void output_help(char *buf, size_t cap) {
-    char formats[1024];
-    cli_image_formats_text(formats, sizeof formats);
-    snprintf(buf, cap,
-             "the image, its format by the extension: %s; checked before the frame is made, and "
-             "written whole or not at all (a failed write leaves an existing FILE as it was)",
-             formats);
-}
-
 static const cli_option render_options[] = {
     {"--output", 'o', CLI_STRING, "FILE", offsetof(render_args, out), .flags = CLI_NONEMPTY,
-     .dynamic_help = output_help, .fallback = "out.png"},
+     .help = "the image, its format by the extension: {formats}; checked before the frame is "
+             "made, and written whole or not at all (a failed write leaves an existing FILE as "
+             "it was)",
+     .dynamic_help = cli_image_formats_help, .fallback = "out.png"},
     {"--metadata", 0, CLI_FLAG, NULL, offsetof(render_args, metadata),
      .help = "record the time of writing and the software in PNG and EXR files (without it "
              "equal images are equal files)"},

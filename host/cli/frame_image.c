@@ -120,3 +120,13 @@ rt_status cli_frame_write(const char *path, const rt_framebuffer *fb, rt_aov aov
     free(display);
     return status;
 }
+
+void cli_image_formats_help(const char *help, char *buf, size_t cap) {
+    char formats[1024];
+    cli_image_formats_text(formats, sizeof formats);
+    const char *mark = strstr(help, "{formats}");
+    if (mark)
+        snprintf(buf, cap, "%.*s%s%s", (int)(mark - help), help, formats, mark + 9);
+    else
+        snprintf(buf, cap, "%s", help);
+}

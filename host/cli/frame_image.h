@@ -27,6 +27,10 @@ int cli_is_float_format(const char *path);
  * (rt_image_format_at) grouped by bits, the lossy ones marked, into buf. */
 void cli_image_formats_text(char *buf, size_t cap);
 
+/* An option's dynamic_help (cli_options.h): help with "{formats}" replaced by
+ * cli_image_formats_text. */
+void cli_image_formats_help(const char *help, char *buf, size_t cap);
+
 /* Makes an AOV displayable: a new 3-channel image (caller frees with free()),
  * depth and counters scaled to [0,1] by their maximum, ids in false colour,
  * normals as 0.5 + 0.5 n. NULL when out of memory. */

@@ -14,33 +14,13 @@
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "formats/image_check.h"
 #include "base/file_read.h"
 #include "formats/image_module.h"
 #include "formats/image_pnm.h"
 
 /* The largest PPM or PFM file read: a 32768 x 32768 RGB float image. */
 #define RT_MAX_PNM_FILE_BYTES ((uint64_t)12 << 30)
-
-static rt_status check_image(const rt_image *image, const char *what, const char *path,
-                             size_t *count, rt_error *err) {
-    if (!image)
-        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0, "%s image is NULL", what);
-    if (image->width <= 0 || image->height <= 0 || image->channels <= 0)
-        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0,
-                            "%s image has size %dx%d with %d channels (all must be > 0)", what,
-                            image->width, image->height, image->channels);
-    size_t n = (size_t)image->width;
-    if (n > SIZE_MAX / sizeof(float) / (size_t)image->height ||
-        n * (size_t)image->height > SIZE_MAX / sizeof(float) / (size_t)image->channels)
-        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0,
-                            "%s image size %dx%dx%d overflows", what, image->width, image->height,
-                            image->channels);
-    *count = n * (size_t)image->height * (size_t)image->channels;
-    if (!image->pixels)
-        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0, "%s image has no pixels",
-                            what);
-    return RT_OK;
-}
 
 /* The format of path's extension, checked for writing: RT_OK, or
  * RT_ERROR_UNSUPPORTED naming the known ones (the table's list) and, for a
@@ -81,7 +61,7 @@ rt_status rt_image_write_with(const char *path, const rt_image *image,
     if (!path || !path[0])
         return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, NULL, 0, 0, "no output file name");
     size_t count = 0;
-    rt_status st = check_image(image, "the", path, &count, err);
+    rt_status st = rt_image_check(image, "the", path, &count, err);
     if (st != RT_OK) return st;
     const rt_image_format *format;
     const rt_image_module *module;
@@ -164,9 +144,9 @@ rt_status rt_image_compare(const rt_image *a, const rt_image *b, rt_image_diff *
     if (diff_out) memset(diff_out, 0, sizeof *diff_out);
     if (!result) return rt_fail(err, RT_ERROR_INVALID_ARGUMENT, "result is NULL");
     size_t count = 0, count_b = 0;
-    rt_status st = check_image(a, "first", NULL, &count, err);
+    rt_status st = rt_image_check(a, "first", NULL, &count, err);
     if (st != RT_OK) return st;
-    st = check_image(b, "second", NULL, &count_b, err);
+    st = rt_image_check(b, "second", NULL, &count_b, err);
     if (st != RT_OK) return st;
     if (a->width != b->width || a->height != b->height || a->channels != b->channels)
         return rt_fail(err, RT_ERROR_INVALID_ARGUMENT,

@@ -1,103 +1,37 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* image_load.c - finding and loading the image module (image_module.h).
- *
- * Where it is looked for, in order:
- *  1. beside the binary that holds this code (dladdr): the shared library
- *     librtcl.so, or the program itself when it links the static library
- *     (rtcl in the build folder, where the module is built beside it);
- *  2. from there, the relative path from the install's bin to its lib folder
- *     (an installed rtcl, linked statically, in PREFIX/bin);
- *  3. by bare name, as the dynamic loader finds it (the program's RUNPATH,
- *     which the build gives every program of the build tree, then
- *     LD_LIBRARY_PATH and the loader's cache);
- *  4. the install's lib folder as configured (a user program linked with the
- *     installed static library, anywhere).
- * A module that exists but does not load (a library of OpenImageIO missing)
- * is reported with the loader's reason, not skipped silently. */
-#define _GNU_SOURCE /* dladdr */
+/* image_load.c - finding and loading the image module (image_module.h) by
+ * module_loader.h's rules. */
 #include "formats/image_module.h"
 
-#include <dlfcn.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "base/error.h"
-
-#ifndef RT_IMAGE_MODULE_BIN_TO_LIB
-#define RT_IMAGE_MODULE_BIN_TO_LIB "../lib"
-#endif
+#include "formats/module_loader.h"
 
 static pthread_once_t module_once = PTHREAD_ONCE_INIT;
 static const rt_image_module *module_table;
-static rt_status module_status = RT_ERROR_UNSUPPORTED;
 static char module_reason[768];
 
 #ifdef RT_HAVE_IMAGE_MODULE
-/* Tries one candidate. 1: loaded; 0: not there (keep looking); -1: there
- * but unusable (the reason is kept and the search stops). */
-static int try_module(const char *path, int must_exist) {
-    if (must_exist && access(path, F_OK) != 0) return 0;
-    void *handle = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-    if (!handle) {
-        if (!must_exist) return 0; /* by bare name: not found is not an error */
-        const char *why = dlerror();
-        snprintf(module_reason, sizeof module_reason, "%.400s does not load: %.300s", path,
-                 why ? why : "no reason given");
-        module_status = RT_ERROR_UNSUPPORTED;
-        return -1;
-    }
+static const void *open_table(void *symbol, int *abi) {
     rt_image_module_entry entry = NULL;
-    void *symbol = dlsym(handle, RT_IMAGE_MODULE_SYMBOL);
     memcpy(&entry, &symbol, sizeof entry); /* object to function pointer, as POSIX allows */
     const rt_image_module *table = entry ? entry() : NULL;
+    *abi = table ? table->abi : 0;
     if (!table || table->abi != RT_IMAGE_MODULE_ABI || table->image_size != sizeof(rt_image) ||
-        table->error_size != sizeof(rt_error) || !table->read || !table->encode) {
-        snprintf(module_reason, sizeof module_reason,
-                 "%.500s is not this version's image module (interface %d, expected %d): "
-                 "reinstall rtcl",
-                 path, table ? table->abi : 0, RT_IMAGE_MODULE_ABI);
-        dlclose(handle);
-        module_status = RT_ERROR_UNSUPPORTED;
-        return -1;
-    }
-    module_table = table; /* never closed: OpenImageIO keeps global state */
-    module_status = RT_OK;
-    return 1;
+        table->error_size != sizeof(rt_error) || !table->read || !table->encode)
+        return NULL;
+    return table;
 }
 
 static void load_module(void) {
-    char here[4096] = "", path[4200];
-    Dl_info info;
-    if (dladdr((void *)&rt_image_module_get, &info) && info.dli_fname) {
-        snprintf(here, sizeof here, "%s", info.dli_fname);
-        char *slash = strrchr(here, '/');
-        if (slash)
-            *slash = '\0';
-        else
-            here[0] = '\0'; /* a bare name: the program was found through PATH */
-    }
-    if (here[0]) {
-        snprintf(path, sizeof path, "%s/%s", here, RT_IMAGE_MODULE_FILE);
-        if (try_module(path, 1)) return;
-        snprintf(path, sizeof path, "%s/%s/%s", here, RT_IMAGE_MODULE_BIN_TO_LIB,
-                 RT_IMAGE_MODULE_FILE);
-        if (try_module(path, 1)) return;
-    }
-    if (try_module(RT_IMAGE_MODULE_FILE, 0)) return;
-#ifdef RT_IMAGE_MODULE_INSTALL_DIR
-    snprintf(path, sizeof path, "%s/%s", RT_IMAGE_MODULE_INSTALL_DIR, RT_IMAGE_MODULE_FILE);
-    if (try_module(path, 1)) return;
-#endif
-    snprintf(module_reason, sizeof module_reason,
-             "the image module " RT_IMAGE_MODULE_FILE " (OpenImageIO) was not found beside %.300s"
-#ifdef RT_IMAGE_MODULE_INSTALL_DIR
-             " nor in " RT_IMAGE_MODULE_INSTALL_DIR
-#endif
-             " nor on the library path: install it with rtcl; .ppm and .pfm need no module",
-             here[0] ? here : "the program");
-    module_status = RT_ERROR_UNSUPPORTED;
+    static const rt_module_spec spec = {
+        RT_IMAGE_MODULE_FILE,           RT_IMAGE_MODULE_SYMBOL, "image module", "OpenImageIO",
+        ".ppm and .pfm need no module", RT_IMAGE_MODULE_ABI,    open_table};
+    /* never closed: OpenImageIO keeps global state */
+    module_table = rt_module_load(&spec, module_reason, sizeof module_reason);
 }
 #else
 static void load_module(void) {
@@ -105,12 +39,11 @@ static void load_module(void) {
              "this build has no PNG or EXR support: OpenImageIO was not found when it was "
              "configured (install libopenimageio-dev and configure again); .ppm and .pfm work "
              "without it");
-    module_status = RT_ERROR_UNSUPPORTED;
 }
 #endif
 
 const rt_image_module *rt_image_module_get(rt_error *err) {
     pthread_once(&module_once, load_module);
-    if (!module_table) rt_fail(err, module_status, "%s", module_reason);
+    if (!module_table) rt_fail(err, RT_ERROR_UNSUPPORTED, "%s", module_reason);
     return module_table;
 }

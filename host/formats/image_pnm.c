@@ -24,31 +24,38 @@ static unsigned char to_8bit(float v) {
     return (unsigned char)floor((double)v * 255.0 + 0.5);
 }
 
-/* Room for the header and width * height * channels * bytes_per_value. */
-static unsigned char *alloc_file(const char *path, const rt_image *image, size_t per_value,
-                                 size_t header, size_t *total, rt_error *err) {
+/* A new file buffer: the header (magic 'P' kind, the size, then the scale
+ * line, "255" or "-1.0") and room for width * height * channels values of
+ * per_value bytes after it, at bytes + *header. NULL on error (err set). */
+static unsigned char *start_file(const char *path, const rt_image *image, char kind,
+                                 const char *scale, size_t per_value, size_t *header, size_t *total,
+                                 rt_error *err) {
+    char text[64];
+    int n =
+        snprintf(text, sizeof text, "P%c\n%d %d\n%s\n", kind, image->width, image->height, scale);
+    *header = (size_t)n;
     size_t values = (size_t)image->width * (size_t)image->height * (size_t)image->channels;
-    if (values > (SIZE_MAX - header) / per_value) {
+    if (values > (SIZE_MAX - *header) / per_value) {
         rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0, "image too large");
         return NULL;
     }
-    *total = header + values * per_value;
+    *total = *header + values * per_value;
     unsigned char *bytes = malloc(*total);
-    if (!bytes)
+    if (!bytes) {
         rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0, "no memory for %zu bytes", *total);
+        return NULL;
+    }
+    memcpy(bytes, text, *header);
     return bytes;
 }
 
 rt_status rt_pnm_encode(const char *path, const rt_image *image, unsigned char **out, size_t *size,
                         rt_error *err) {
-    char header[64];
-    int n = snprintf(header, sizeof header, "P%c\n%d %d\n255\n", image->channels == 1 ? '5' : '6',
-                     image->width, image->height);
-    size_t total;
-    unsigned char *bytes = alloc_file(path, image, 1, (size_t)n, &total, err);
+    size_t n, total;
+    unsigned char *bytes =
+        start_file(path, image, image->channels == 1 ? '5' : '6', "255", 1, &n, &total, err);
     if (!bytes) return err ? err->status : RT_ERROR_OUT_OF_MEMORY;
-    memcpy(bytes, header, (size_t)n);
-    for (size_t i = 0; i < total - (size_t)n; i++) bytes[n + i] = to_8bit(image->pixels[i]);
+    for (size_t i = 0; i < total - n; i++) bytes[n + i] = to_8bit(image->pixels[i]);
     *out = bytes;
     *size = total;
     return RT_OK;
@@ -56,13 +63,10 @@ rt_status rt_pnm_encode(const char *path, const rt_image *image, unsigned char *
 
 rt_status rt_pfm_encode(const char *path, const rt_image *image, unsigned char **out, size_t *size,
                         rt_error *err) {
-    char header[64];
-    int n = snprintf(header, sizeof header, "P%c\n%d %d\n-1.0\n", image->channels == 1 ? 'f' : 'F',
-                     image->width, image->height);
-    size_t total;
-    unsigned char *bytes = alloc_file(path, image, 4, (size_t)n, &total, err);
+    size_t n, total;
+    unsigned char *bytes =
+        start_file(path, image, image->channels == 1 ? 'f' : 'F', "-1.0", 4, &n, &total, err);
     if (!bytes) return err ? err->status : RT_ERROR_OUT_OF_MEMORY;
-    memcpy(bytes, header, (size_t)n);
     size_t row = (size_t)image->width * (size_t)image->channels;
     unsigned char *p = bytes + n;
     for (int y = image->height - 1; y >= 0; y--) { /* PFM stores the bottom row first */

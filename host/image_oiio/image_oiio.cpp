@@ -32,6 +32,7 @@
 
 extern "C" {
 #include "base/error.h"
+#include "formats/image_check.h"
 }
 
 namespace {
@@ -86,35 +87,6 @@ std::string one_line(std::string text) {
 // Clears OIIO's per-thread global error so that a later message is ours.
 void clear_global_error() {
     (void)OIIO::geterror(true);
-}
-
-// width * height * channels, or false when it would not fit in memory.
-bool value_count(int width, int height, int channels, size_t *out) {
-    if (width < 0 || height < 0 || channels < 0) return false;
-    size_t n = static_cast<size_t>(width);
-    if (height && n > SIZE_MAX / sizeof(float) / static_cast<size_t>(height)) return false;
-    n *= static_cast<size_t>(height);
-    if (channels && n > SIZE_MAX / sizeof(float) / static_cast<size_t>(channels)) return false;
-    *out = n * static_cast<size_t>(channels);
-    return true;
-}
-
-rt_status check_image(const rt_image *image, const char *what, const char *path, size_t *count,
-                      rt_error *err) {
-    if (!image)
-        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0, "%s image is NULL", what);
-    if (image->width <= 0 || image->height <= 0 || image->channels <= 0)
-        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0,
-                            "%s image has size %dx%d with %d channels (all must be > 0)", what,
-                            image->width, image->height, image->channels);
-    if (!value_count(image->width, image->height, image->channels, count))
-        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0,
-                            "%s image size %dx%dx%d overflows", what, image->width, image->height,
-                            image->channels);
-    if (!image->pixels)
-        return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, path, 0, 0, "%s image has no pixels",
-                            what);
-    return RT_OK;
 }
 
 // Clamps to [0,1] and rounds to the nearest of 256 levels. NaN becomes 0 so
@@ -194,7 +166,7 @@ std::string time_stamp() {
 rt_status encode_image(const char *path, const rt_image *image, int metadata,
                        unsigned char **bytes_out, size_t *size_out, rt_error *err) {
     size_t count = 0;
-    rt_status status = check_image(image, "the", path, &count, err);
+    rt_status status = rt_image_check(image, "the", path, &count, err);
     if (status != RT_OK) return status;
 
     const format_row *format = format_of(path);
@@ -439,7 +411,7 @@ rt_status read_image(const char *path, rt_image *out, rt_error *err) {
                             "deep and volume images are not supported");
     size_t count = 0;
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 ||
-        !value_count(spec.width, spec.height, spec.nchannels, &count))
+        !rt_image_value_count(spec.width, spec.height, spec.nchannels, &count))
         return rt_error_set(err, RT_ERROR_PARSE, path, 0, 0,
                             "unusable image size %dx%d with %d channels", spec.width, spec.height,
                             spec.nchannels);
@@ -482,6 +454,20 @@ rt_status exception_error(rt_error *err, const char *path, const char *what) {
     return rt_error_set(err, RT_ERROR_BACKEND, path, 0, 0, "unexpected C++ exception: %s", what);
 }
 
+// Runs f, turning a C++ exception into an error about path: none may cross
+// the module's C interface.
+template <class F> rt_status guarded(rt_error *err, const char *path, F f) {
+    try {
+        return f();
+    } catch (const std::bad_alloc &) {
+        return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0, "out of memory");
+    } catch (const std::exception &e) {
+        return exception_error(err, path, e.what());
+    } catch (...) {
+        return exception_error(err, path, "unknown exception");
+    }
+}
+
 } // namespace
 
 namespace {
@@ -492,15 +478,8 @@ rt_status module_encode(const char *path, const rt_image *image, int metadata,
     *size = 0;
     if (!path || !path[0])
         return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, nullptr, 0, 0, "no output file name");
-    try {
-        return encode_image(path, image, metadata, bytes, size, err);
-    } catch (const std::bad_alloc &) {
-        return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0, "out of memory");
-    } catch (const std::exception &e) {
-        return exception_error(err, path, e.what());
-    } catch (...) {
-        return exception_error(err, path, "unknown exception");
-    }
+    return guarded(err, path,
+                   [&] { return encode_image(path, image, metadata, bytes, size, err); });
 }
 
 rt_status module_read(const char *path, rt_image *out, rt_error *err) {
@@ -509,15 +488,7 @@ rt_status module_read(const char *path, rt_image *out, rt_error *err) {
     std::memset(out, 0, sizeof *out);
     if (!path || !path[0])
         return rt_error_set(err, RT_ERROR_INVALID_ARGUMENT, nullptr, 0, 0, "no input file name");
-    try {
-        return read_image(path, out, err);
-    } catch (const std::bad_alloc &) {
-        return rt_error_set(err, RT_ERROR_OUT_OF_MEMORY, path, 0, 0, "out of memory");
-    } catch (const std::exception &e) {
-        return exception_error(err, path, e.what());
-    } catch (...) {
-        return exception_error(err, path, "unknown exception");
-    }
+    return guarded(err, path, [&] { return read_image(path, out, err); });
 }
 
 const rt_image_module the_module = {RT_IMAGE_MODULE_ABI, sizeof(rt_image),
