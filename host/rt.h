@@ -171,6 +171,12 @@ rt_status rt_scene_set_ambient(rt_scene *scene, const float color[3]);
 /* The colour of rays that hit nothing (each component in 0..1e6). */
 rt_status rt_scene_set_background(rt_scene *scene, const float color[3]);
 
+/* Exposure in stops, -64..64 (0 when never set): rt_render multiplies the
+ * shaded image by 2^ev after shading, on the host, so the image is the same
+ * on every backend; AOVs are not scaled. Changing it rebuilds nothing. */
+rt_status rt_scene_set_exposure(rt_scene *scene, float ev);
+float rt_scene_exposure(const rt_scene *scene);
+
 /* ---- objects ----------------------------------------------------------- */
 
 /* Creates an object with material material_id, the identity transform and
@@ -396,7 +402,18 @@ typedef struct rt_render_options {
      * a frame loop touches no fresh pages (every pixel is written anew). 0:
      * *fb is overwritten, as a new framebuffer. */
     int reuse_framebuffer;
+    /* Samples per pixel of the shaded image: 0 or 1, one ray through each
+     * pixel's centre; N > 1, N passes, each with every primary ray moved to
+     * the same point of its pixel (stratified: a k x k grid when N = k * k,
+     * else N columns of the pixel with rows by the base-2 radical inverse),
+     * summed in pass order and divided by N. Each pass is the oracle's frame
+     * on every backend, and so the mean is the same bits everywhere. At most
+     * RT_MAX_SAMPLES; AOVs refuse N > 1. */
+    int samples;
 } rt_render_options;
+
+/* The most samples per pixel rt_render takes. */
+#define RT_MAX_SAMPLES 4096
 
 /* The shaded image, Whitted, watertight test, no statistics. */
 rt_render_options rt_render_options_default(void);

@@ -46,7 +46,8 @@ static const error_case cases[] = {
 
     /* unknown keys, at every level: the key is named and the valid ones listed */
     {"unknown_top_key", "{\n  'objets': []\n}", 2, 3,
-     "unknown key 'objets' in the scene (valid keys: camera, background, ambient, materials, "
+     "unknown key 'objets' in the scene (valid keys: camera, background, ambient, exposure, "
+     "materials, "
      "lights, meshes, objects)"},
     {"unknown_camera_key", "{\n  'camera': {'position': [0, 0, 5], 'zoom': 2}\n}", 2, 37,
      "unknown key 'zoom' in camera (valid keys: position, look_at, direction, up, fov, width, "

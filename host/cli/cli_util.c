@@ -164,9 +164,21 @@ const cli_option cli_aov_options[] = {
      .fallback = "the shaded image"},
     {NULL}};
 
+const cli_option cli_sample_options[] = {
+    {"--spp", 0, CLI_INT, "N", offsetof(cli_frame_args, spp), 1, RT_MAX_SAMPLES,
+     .help = "samples per pixel of the shaded image: N passes, each with every primary ray "
+             "through the same point of its pixel (a k x k grid when N = k * k, else stratified "
+             "columns), averaged; each pass, and so the image, is the same on every backend",
+     .fallback = "1: the pixel's centre"},
+    {"--exposure", 0, CLI_FLOAT, "EV", offsetof(cli_frame_args, exposure), -64.0, 64.0,
+     .help = "multiply the shaded image by 2^EV (stops), overriding the scene's \"exposure\"",
+     .fallback = "the scene's, else 0"},
+    {NULL}};
+
 void cli_frame_args_init(cli_frame_args *a) {
     memset(a, 0, sizeof *a);
     a->aov = RT_AOV_NONE;
+    a->exposure = NAN;
 }
 
 int cli_apply_frame_size(const char *command, rt_scene *scene, const cli_frame_args *a) {
@@ -174,7 +186,8 @@ int cli_apply_frame_size(const char *command, rt_scene *scene, const cli_frame_a
     rt_camera_get(scene, &cam);
     if (a->width) cam.width = a->width;
     if (a->height) cam.height = a->height;
-    if (rt_camera_set(scene, &cam) != RT_OK) {
+    if (rt_camera_set(scene, &cam) != RT_OK ||
+        (!isnan(a->exposure) && rt_scene_set_exposure(scene, (float)a->exposure) != RT_OK)) {
         cli_error(command, "%s", rt_scene_error(scene));
         return 0;
     }

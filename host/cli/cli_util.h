@@ -65,12 +65,16 @@ typedef struct cli_frame_args {
     int width, height; /* --width, --height: 0 for the scene camera's */
     int direct;        /* --direct: primary and shadow rays only */
     int aov;           /* --aov (cli_aov_options): an rt_aov */
+    int spp;           /* --spp (cli_sample_options): samples per pixel, 0: one */
+    double exposure;   /* --exposure: stops, NAN for the scene's */
 } cli_frame_args;
 
 /* --width, --height, --direct. */
 extern const cli_option cli_frame_options[];
 /* --aov (the same struct). */
 extern const cli_option cli_aov_options[];
+/* --spp and --exposure (the same struct): render and animate. */
+extern const cli_option cli_sample_options[];
 #define CLI_FRAME_TITLE "Image options"
 
 void cli_frame_args_init(cli_frame_args *a);

@@ -61,6 +61,7 @@ static const cli_option animate_options[] = {
 static const cli_group animate_groups[] = {
     {NULL, animate_options, 0},
     {CLI_FRAME_TITLE, cli_frame_options, offsetof(animate_args, frame)},
+    {CLI_FRAME_TITLE, cli_sample_options, offsetof(animate_args, frame)},
     {CLI_SCENE_TITLE, cli_scene_options, offsetof(animate_args, scene)},
     {CLI_SCENE_TITLE, cli_update_options, offsetof(animate_args, scene)},
     {CLI_RENDERER_TITLE, cli_renderer_options, offsetof(animate_args, renderer)},
@@ -247,6 +248,7 @@ int cmd_animate(int argc, char **argv) {
     }
     rt_render_options opt = rt_render_options_default();
     opt.direct_only = a.frame.direct;
+    opt.samples = a.frame.spp;
     rt_render_stats st;
     opt.stats = &st;
     opt.reuse_framebuffer = 1;

@@ -42,6 +42,7 @@ static const cli_group render_groups[] = {
     {NULL, render_options, 0},
     {CLI_FRAME_TITLE, cli_frame_options, offsetof(render_args, frame)},
     {CLI_FRAME_TITLE, cli_aov_options, offsetof(render_args, frame)},
+    {CLI_FRAME_TITLE, cli_sample_options, offsetof(render_args, frame)},
     {CLI_SCENE_TITLE, cli_scene_options, offsetof(render_args, scene)},
     {CLI_SCENE_TITLE, cli_time_options, offsetof(render_args, scene)},
     {CLI_SCENE_TITLE, cli_update_options, offsetof(render_args, scene)},
@@ -146,6 +147,7 @@ int cmd_render(int argc, char **argv) {
     rt_render_options opt = rt_render_options_default();
     opt.aov = (rt_aov)a.frame.aov;
     opt.direct_only = a.frame.direct;
+    opt.samples = a.frame.spp;
 
     /* The output's folder and format are checked before the frame is made. */
     rt_error oerr;

@@ -1057,8 +1057,18 @@ static rt_status load_ambient(loader *L, json_t *v) {
     return st;
 }
 
+static rt_status load_exposure(loader *L, json_t *v) {
+    if (!json_is_number(v))
+        return fail(L, "exposure must be a number of stops, found %s", type_name(v));
+    double ev = json_number_value(v);
+    if (!(ev >= -64.0 && ev <= 64.0))
+        return fail(L, "exposure %g is out of range (-64 to 64 stops)", ev);
+    if (rt_scene_set_exposure(L->scene, (float)ev) != RT_OK) return fail_scene(L);
+    return RT_OK;
+}
+
 static rt_status load_document(loader *L, json_t *root) {
-    static const char *const keys[] = {"camera", "background", "ambient", "materials",
+    static const char *const keys[] = {"camera", "background", "ambient", "exposure", "materials",
                                        "lights", "meshes",     "objects", NULL};
     if (!json_is_object(root))
         return fail(L, "a scene file holds a JSON object, found %s", type_name(root));
@@ -1066,6 +1076,7 @@ static rt_status load_document(loader *L, json_t *root) {
     if (st == RT_OK) st = section(L, root, "camera", load_camera);
     if (st == RT_OK) st = section(L, root, "background", load_background);
     if (st == RT_OK) st = section(L, root, "ambient", load_ambient);
+    if (st == RT_OK) st = section(L, root, "exposure", load_exposure);
     if (st == RT_OK) st = section(L, root, "materials", load_materials);
     if (st == RT_OK) st = section(L, root, "lights", load_lights);
     if (st == RT_OK) st = section(L, root, "meshes", load_meshes);

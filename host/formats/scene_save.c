@@ -232,6 +232,7 @@ rt_status rt_scene_save_json(const rt_scene *s, const char *dir, const char *nam
     write_camera(f, s);
     write_vec3(f, "  \"background\": ", s->background);
     write_vec3(f, ",\n  \"ambient\": ", s->ambient);
+    if (s->exposure != 0.0f) fprintf(f, ",\n  \"exposure\": %.9g", (double)s->exposure);
     fprintf(f, ",\n  \"materials\": {\n");
     for (uint32_t i = 0; i < s->material_count; i++) {
         const rt_material *m = &s->materials[i];

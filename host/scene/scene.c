@@ -386,6 +386,20 @@ rt_status rt_scene_set_background(rt_scene *scene, const float color[3]) {
     return set_color(scene, scene ? scene->background : NULL, color, "background colour");
 }
 
+rt_status rt_scene_set_exposure(rt_scene *scene, float ev) {
+    if (!scene) return RT_ERROR_INVALID_ARGUMENT;
+    rt_error_clear(&scene->error);
+    if (!(ev >= -64.0f && ev <= 64.0f))
+        return rt_fail(&scene->error, RT_ERROR_INVALID_ARGUMENT,
+                       "exposure %g is not a number of stops in -64..64", (double)ev);
+    scene->exposure = ev; /* read at rt_render: no version bump, nothing to rebuild */
+    return RT_OK;
+}
+
+float rt_scene_exposure(const rt_scene *scene) {
+    return scene ? scene->exposure : 0.0f;
+}
+
 /* ---- objects ------------------------------------------------------------ */
 
 /* Object id, or NULL: no scene, or (the scene's error) no such object. */

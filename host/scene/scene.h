@@ -96,6 +96,7 @@ struct rt_scene {
     uint32_t object_count, object_capacity;
     float ambient[3];
     float background[3];
+    float exposure; /* rt_scene_set_exposure: stops, 0 by default */
     rt_camera camera;
     int has_camera;
     rt_camera_key *camera_path; /* rt_camera_set_path, or NULL */
