@@ -74,9 +74,15 @@ typedef struct rt_material {
     float reflectivity; /* 0..1: share of the mirror direction */
     float transparency; /* 0..1: share of the refracted direction */
     float ior;          /* index of refraction (> 0) */
+    /* Light the surface gives off (each component in 0..1e6), added to its
+     * Phong sum whatever the lights: MTL Ke, glTF emissive. Loaders also
+     * make point lights of emissive surfaces where a scene has no lights
+     * (docs/SCENE_FORMAT.md, "Emission"). */
+    float emission[3];
 } rt_material;
 
-/* White, diffuse, ambient 1, no specular, reflection or refraction, ior 1. */
+/* White, diffuse, ambient 1, no specular, reflection or refraction, ior 1,
+ * no emission. */
 rt_material rt_material_default(void);
 
 typedef struct rt_camera {
@@ -158,6 +164,10 @@ rt_status rt_light_add(rt_scene *scene, const float position[3], const float col
  * layout's per-frame part (the light count is the same). */
 rt_status rt_light_set(rt_scene *scene, uint32_t light_id, const float position[3],
                        const float color[3]);
+
+/* Light light_id's position and color; RT_ERROR_INVALID_ARGUMENT when there
+ * is no such light. */
+rt_status rt_light_get(const rt_scene *scene, uint32_t light_id, float position[3], float color[3]);
 
 /* Removes light light_id; the lights after it move down one id (light_id
  * + 1 becomes light_id, ...), so the scene is the one built without it. A

@@ -94,6 +94,7 @@ typedef struct rt_material_d {
     float reflectivity;
     float transparency;
     float ior;
+    float emission[3]; /* light the surface gives off, added before the lights (rt_phong_ambient) */
 } rt_material_d;
 
 typedef struct rt_light_d {

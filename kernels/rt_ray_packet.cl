@@ -793,7 +793,7 @@ typedef struct pk_surf {
 } pk_surf;
 
 typedef struct pk_mat {
-    pk_f color[3], ambient, diffuse, specular, reflectivity, transparency;
+    pk_f color[3], ambient, diffuse, specular, reflectivity, transparency, emission[3];
     pk_i shininess;
 } pk_mat;
 
@@ -809,7 +809,7 @@ static void pk_surface_at(const rt_scene_view *s, const pk_ray *r, const pk_stat
                           int some, pk_surf *sf, pk_mat *mat) {
     uint ent[RT_PK_LANES], ins[RT_PK_LANES], mi[RT_PK_LANES];
     int hm[RT_PK_LANES], fl[RT_PK_LANES], shin[RT_PK_LANES];
-    float v[9][RT_PK_LANES], m[9][RT_PK_LANES], vn[9][RT_PK_LANES], mf[8][RT_PK_LANES];
+    float v[9][RT_PK_LANES], m[9][RT_PK_LANES], vn[9][RT_PK_LANES], mf[11][RT_PK_LANES];
     float om[12][RT_PK_LANES];
     pk_vstore(h->entry, 0, ent);
     pk_vstore(h->inst, 0, ins);
@@ -838,6 +838,7 @@ static void pk_surface_at(const rt_scene_view *s, const pk_ray *r, const pk_stat
         mf[5][l] = md->specular;
         mf[6][l] = md->reflectivity;
         mf[7][l] = md->transparency;
+        for (int k = 0; k < 3; k++) mf[8 + k][l] = md->emission[k];
         shin[l] = md->shininess;
     }
     sf->material = pk_vload(0, mi);
@@ -847,6 +848,7 @@ static void pk_surface_at(const rt_scene_view *s, const pk_ray *r, const pk_stat
     mat->specular = pk_vload(0, mf[5]);
     mat->reflectivity = pk_vload(0, mf[6]);
     mat->transparency = pk_vload(0, mf[7]);
+    for (int k = 0; k < 3; k++) mat->emission[k] = pk_vload(0, mf[8 + k]);
     mat->shininess = pk_vload(0, shin);
 
     pk_i flags = pk_vload(0, fl);
@@ -943,7 +945,7 @@ static void pk_shade_root(const rt_scene_view *s, const pk_ray *p, const pk_stat
     *lwp = lw;
     pk_i lighting = hit & (lw > 0.0f);
     if (!pk_any(lighting)) return;
-    for (int k = 0; k < 3; k++) lit[k] = (m.ambient * m.color[k]) * hdr->ambient[k];
+    for (int k = 0; k < 3; k++) lit[k] = m.emission[k] + (m.ambient * m.color[k]) * hdr->ambient[k];
     for (rt_u32 li = 0; li < hdr->light_count; li++) {
         /* rt_phong_light */
         RT_GLOBAL const rt_light_d *light = &s->lights[li];

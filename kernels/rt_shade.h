@@ -108,7 +108,10 @@ RT_FN void rt_surface_at(const rt_scene_view *s, const rt_ray *r, const rt_hit_d
  * runs them with one scalar shadow ray at a time. */
 RT_FN void rt_phong_ambient(const rt_scene_view *s, const rt_surface *sf, float *out) {
     RT_GLOBAL const rt_material_d *m = &s->materials[sf->material];
-    for (int k = 0; k < 3; k++) out[k] = (m->ambient * m->color[k]) * s->hdr->ambient[k];
+    /* The emission first: 0 + x is x, so a surface that gives off no light
+     * keeps the bits it had before emission was modelled. */
+    for (int k = 0; k < 3; k++)
+        out[k] = m->emission[k] + (m->ambient * m->color[k]) * s->hdr->ambient[k];
 }
 
 /* Light li seen from the surface: 0 when it cannot contribute (it is at the

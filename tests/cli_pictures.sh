@@ -114,4 +114,92 @@ sed 's/"exposure": 1/"exposure": "bright"/' "$tmp/ev_scene.json" >"$tmp/ev_bad.j
 expect 2 "ev_bad.json.*exposure must be a number" -- "$RTCL" render "$tmp/ev_bad.json" \
     "${size[@]}" -o "$tmp/x.pfm"
 
+# Emission: a surface that gives off e, with no light, no ambient and a
+# black background, shows exactly e where it covers the pixel, on every
+# backend.
+cat >"$tmp/quad.obj" <<'EOF'
+v -1 -1 0
+v 1 -1 0
+v 1 1 0
+v -1 1 0
+f 1 2 3
+f 1 3 4
+EOF
+cat >"$tmp/glow.json" <<EOF
+{"camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 40,
+            "width": 16, "height": 16},
+ "background": [0, 0, 0], "ambient": [0, 0, 0], "lights": [],
+ "materials": {"glow": {"color": [1, 1, 1], "diffuse": 0, "emission": [0.25, 0.5, 0.75]}},
+ "meshes": {"quad": {"file": "$tmp/quad.obj"}},
+ "objects": [{"mesh": "quad", "material": "glow"}]}
+EOF
+for b in "${backends[@]}"; do
+    expect 0 "wrote" -- no_leak_check "$RTCL" render "$tmp/glow.json" --backend "$b" \
+        -o "$tmp/glow_$b.pfm"
+    [ "$b" = cpu ] || same "$tmp/glow_cpu.pfm" "$tmp/glow_$b.pfm" "emission on $b"
+done
+pfm_check "$tmp/glow_cpu.pfm" "$tmp/glow_cpu.pfm" \
+    "np.all(b.reshape(-1, 3) == np.array([0.25, 0.5, 0.75], np.float32), axis=1).sum() >= 64"
+sed 's/"emission": \[0.25, 0.5, 0.75\]/"emission": [0.25, -1, 0.75]/' "$tmp/glow.json" \
+    >"$tmp/glow_bad.json"
+expect 2 "glow_bad.json.*emission" -- "$RTCL" render "$tmp/glow_bad.json" -o "$tmp/x.pfm"
+
+# MTL Ke: a bare OBJ whose ceiling panel emits gets one light just below the
+# panel (the area-weighted centre, moved off it along its normal) and no
+# other; a bare OBJ without emitters, one light above and right of the camera.
+cat >"$tmp/room.obj" <<'EOF'
+mtllib room.mtl
+v -1 0 -1
+v 1 0 -1
+v 1 0 1
+v -1 0 1
+v -1 2 -1
+v 1 2 -1
+v 1 2 1
+v -1 2 1
+v -0.2 1.99 -0.2
+v 0.2 1.99 -0.2
+v 0.2 1.99 0.2
+v -0.2 1.99 0.2
+usemtl wall
+f 1 2 3 4
+f 5 8 7 6
+f 1 5 6 2
+usemtl lamp
+f 9 10 11 12
+EOF
+cat >"$tmp/room.mtl" <<'EOF'
+newmtl wall
+Kd 0.8 0.8 0.8
+newmtl lamp
+Kd 0.8 0.8 0.8
+Ke 10 5 2.5
+EOF
+expect 0 '"lights": 1, "light_list": \[\{"position": \[-?[0-9.e-]+, 1\.98[0-9]*, -?[0-9.e-]+\], "color": \[1, 0\.5, 0\.25\]\}\]' \
+    -- "$RTCL" info "$tmp/room.obj" --json
+for b in "${backends[@]}"; do
+    expect 0 "wrote" -- no_leak_check "$RTCL" render "$tmp/room.obj" "${size[@]}" \
+        --backend "$b" -o "$tmp/room_$b.pfm"
+    [ "$b" = cpu ] || same "$tmp/room_cpu.pfm" "$tmp/room_$b.pfm" "the lamp-lit room on $b"
+done
+grep -v -E '^(mtllib|usemtl)' "$tmp/room.obj" | head -17 >"$tmp/plain_room.obj"
+"$RTCL" info "$tmp/plain_room.obj" --json >"$tmp/plain_room.json"
+checks=$((checks + 1))
+if ! "$PY" - "$tmp/plain_room.json" <<'EOF'; then
+import json, sys
+import numpy as np
+d = json.load(open(sys.argv[1]))
+cam = d["camera"]
+p, a, up = (np.array(cam[k], np.float64) for k in ("position", "look_at", "up"))
+f = (a - p) / np.linalg.norm(a - p)
+r = np.cross(f, up); r /= np.linalg.norm(r)
+u = np.cross(r, f)
+want = p + (0.3 * u + 0.2 * r) * np.linalg.norm(a - p)
+got = np.array(d["light_list"][0]["position"])
+sys.exit(0 if d["lights"] == 1 and np.allclose(got, want, rtol=0, atol=1e-5) else 1)
+EOF
+    echo "FAIL: a bare OBJ's default light is not beside its camera: $(cat "$tmp/plain_room.json")"
+    fails=$((fails + 1))
+fi
+
 finish

@@ -6,6 +6,7 @@
 
 #include "check.h"
 #include "scene/scene.h"
+#include "scene/scene_default_view.h"
 
 static void test_mesh_and_objects(void) {
     rt_scene *s;

@@ -19,7 +19,8 @@ static const cli_option info_options[] = {
     {"--json", 0, CLI_FLAG, NULL, offsetof(info_args, json),
      .help = "the same as one JSON object on stdout: scene, triangles, all_triangles, meshes "
              "[{name, triangles, vertices, normals, update, accel}], objects, animation, "
-             "materials, lights, camera, bounds, features, specialised, opencl, device_math, "
+             "materials, lights, light_list [{position, color}], camera, bounds, features, "
+             "specialised, opencl, device_math, "
              "denormals, vulkan"},
     {NULL}};
 
@@ -83,7 +84,14 @@ static void print_json(const char *path, const rt_scene *s, const rt_scene_info 
            "\"blended_objects\": %u, \"keyed_objects\": %u, \"camera_path_keys\": %u}",
            in->objects, cli_json_bool(in->animated), in->switched_objects, in->blended_objects,
            in->keyed_objects, in->camera_path_keys);
-    printf(", \"materials\": %u, \"lights\": %u", in->materials, in->lights);
+    printf(", \"materials\": %u, \"lights\": %u, \"light_list\": [", in->materials, in->lights);
+    for (uint32_t i = 0; i < in->lights; i++) {
+        float p[3], c[3];
+        if (rt_light_get(s, i, p, c) != RT_OK) break;
+        printf("%s{\"position\": [%.9g, %.9g, %.9g], \"color\": [%.9g, %.9g, %.9g]}", i ? ", " : "",
+               (double)p[0], (double)p[1], (double)p[2], (double)c[0], (double)c[1], (double)c[2]);
+    }
+    printf("]");
     rt_camera c;
     rt_camera_get(s, &c);
     printf(", \"camera\": {\"position\": [%.9g, %.9g, %.9g], \"look_at\": [%.9g, %.9g, %.9g], "

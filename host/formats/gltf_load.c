@@ -14,6 +14,7 @@
 #include "base/thread_pool.h"
 #include "formats/gltf_module.h"
 #include "scene/scene.h"
+#include "scene/scene_default_view.h"
 
 int rt_gltf_is_gltf_path(const char *path) {
     size_t n = path ? strlen(path) : 0;
@@ -808,6 +809,10 @@ static rt_material material_of(const rt_gltf_material *g) {
     double shin = r4 > 0.0 ? 2.0 / r4 - 2.0 : 1024.0;
     m.shininess = shin < 1.0 ? 1 : shin > 1024.0 ? 1024 : (int)lround(shin);
     m.reflectivity = (float)(metal * (1.0 - rough) * (1.0 - rough));
+    for (int k = 0; k < 3; k++) {
+        double e = g->emissive[k]; /* glTF: linear, in 0..1 */
+        m.emission[k] = (float)(e < 0.0 ? 0.0 : e > 1.0 ? 1.0 : e);
+    }
     return m;
 }
 
@@ -1033,10 +1038,13 @@ static rt_status build(rt_scene *scene, gltf_state *s, rt_error *err) {
         scene->no_default_light = keep;
         if (st != RT_OK) return rt_error_set(err, st, path, 0, 0, "%s", scene->error.message);
     } else if (!s->light_count && !scene->no_default_light) {
-        /* the default light and ambient, keeping the file's camera */
+        /* the default lights and ambient, keeping the file's camera */
         rt_camera keep = scene->camera;
+        scene->no_default_light = 1;
         st = rt_scene_apply_default_view(scene, keep.width, keep.height);
+        scene->no_default_light = 0;
         if (st == RT_OK) st = rt_camera_set(scene, &keep);
+        if (st == RT_OK) st = rt_scene_add_default_lights(scene);
         if (st != RT_OK) return rt_error_set(err, st, path, 0, 0, "%s", scene->error.message);
     }
     char note[700];

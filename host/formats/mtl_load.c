@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* mtl_load.c - the few MTL statements a ray tracer uses: newmtl, Kd, Ks, Ns,
- * Ni, d and Tr. Everything else (Ka, Ke, illum, maps, ...) is accepted and
+/* mtl_load.c - the few MTL statements a ray tracer uses: newmtl, Kd, Ks, Ke,
+ * Ns, Ni, d and Tr. Everything else (Ka, illum, maps, ...) is accepted and
  * ignored. Each file is read once and each name defined once (the first
  * definition counts; later ones are counted for a notice). */
 #include <stdio.h>
@@ -176,6 +176,8 @@ static rt_status parse_text(rt_mtl_library *lib, uint32_t file, const char *text
             st = read_colour(&r, "Kd", current->kd);
         } else if (current && keyword_is(keyword, klen, "Ks")) {
             st = read_colour(&r, "Ks", current->ks);
+        } else if (current && keyword_is(keyword, klen, "Ke")) {
+            st = read_colour(&r, "Ke", current->ke);
         } else if (current && keyword_is(keyword, klen, "Ns")) {
             st = read_number(&r, "Ns", &current->ns);
         } else if (current && keyword_is(keyword, klen, "Ni")) {

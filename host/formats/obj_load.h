@@ -18,6 +18,7 @@ typedef struct rt_obj_material {
     char *name;  /* whole, as newmtl gives it (trailing blanks dropped) */
     float kd[3]; /* diffuse colour (Kd), default 0.8 */
     float ks[3]; /* specular colour (Ks), default 0 */
+    float ke[3]; /* emission (Ke), default 0 */
     float ns;    /* shininess (Ns), default 0 */
     float ni;    /* index of refraction (Ni), default 1 */
     float d;     /* dissolve (d, or 1 - Tr), default 1 */

@@ -28,6 +28,7 @@
 #include "formats/json_bulk.h"
 #include "formats/json_locate.h"
 #include "scene/scene.h"
+#include "scene/scene_default_view.h"
 
 /* Deep enough for the deepest value of the format,
  * objects[i].transform.rotate.axis[k]. */
@@ -472,9 +473,9 @@ static rt_status load_camera(loader *L, json_t *v) {
 }
 
 static rt_status load_material(loader *L, json_t *v, uint32_t *id) {
-    static const char *const keys[] = {"color",        "ambient",   "diffuse",
-                                       "specular",     "shininess", "reflectivity",
-                                       "transparency", "ior",       NULL};
+    static const char *const keys[] = {
+        "color",        "ambient",      "diffuse", "specular", "shininess",
+        "reflectivity", "transparency", "ior",     "emission", NULL};
     rt_material m = rt_material_default();
     long long shininess = m.shininess;
     rt_status st = expect_object(L, v);
@@ -487,6 +488,7 @@ static rt_status load_material(loader *L, json_t *v, uint32_t *id) {
     if (st == RT_OK) st = opt_float(L, v, "reflectivity", &m.reflectivity, UNIT);
     if (st == RT_OK) st = opt_float(L, v, "transparency", &m.transparency, UNIT);
     if (st == RT_OK) st = opt_float(L, v, "ior", &m.ior, POSITIVE);
+    if (st == RT_OK) st = opt_color(L, v, "emission", m.emission);
     if (st != RT_OK) return st;
     m.shininess = (int)shininess;
     if (m.reflectivity + m.transparency > 1.0f)

@@ -11,6 +11,7 @@
 #include "formats/gltf_load.h"
 #include "formats/scene_obj.h"
 #include "scene/scene.h"
+#include "scene/scene_default_view.h"
 
 static int has_extension(const char *path, const char *ext) {
     size_t n = strlen(path), e = strlen(ext);

@@ -19,6 +19,7 @@ static rt_material material_from_mtl(const rt_obj_material *m) {
     out.shininess = (int)lroundf(m->ns < 0.0f ? 0.0f : (m->ns > 100000.0f ? 100000.0f : m->ns));
     out.transparency = m->d < 1.0f && m->d >= 0.0f ? 1.0f - m->d : 0.0f;
     out.ior = m->ni > 0.0f ? m->ni : 1.0f;
+    memcpy(out.emission, m->ke, sizeof out.emission);
     return out;
 }
 

@@ -240,10 +240,12 @@ rt_status rt_scene_save_json(const rt_scene *s, const char *dir, const char *nam
         write_vec3(f, "", m->color);
         fprintf(f,
                 ", \"ambient\": %.9g, \"diffuse\": %.9g, \"specular\": %.9g, \"shininess\": %d,\n"
-                "          \"reflectivity\": %.9g, \"transparency\": %.9g, \"ior\": %.9g}%s\n",
+                "          \"reflectivity\": %.9g, \"transparency\": %.9g, \"ior\": %.9g",
                 (double)m->ambient, (double)m->diffuse, (double)m->specular, m->shininess,
-                (double)m->reflectivity, (double)m->transparency, (double)m->ior,
-                i + 1 < s->material_count ? "," : "");
+                (double)m->reflectivity, (double)m->transparency, (double)m->ior);
+        if (m->emission[0] != 0.0f || m->emission[1] != 0.0f || m->emission[2] != 0.0f)
+            write_vec3(f, ", \"emission\": ", m->emission);
+        fprintf(f, "}%s\n", i + 1 < s->material_count ? "," : "");
     }
     fprintf(f, "  },\n  \"lights\": [\n");
     for (uint32_t i = 0; i < s->light_count; i++) {

@@ -528,6 +528,7 @@ static rt_status write_frame(const rt_scene *scene, const rt_bvh *top, const rt_
         d->reflectivity = s->reflectivity;
         d->transparency = s->transparency;
         d->ior = s->ior;
+        memcpy(d->emission, s->emission, sizeof d->emission);
     }
     for (uint32_t i = 0; i < scene->light_count; i++) {
         memcpy(out->lights[i].position, scene->lights[i].position, 3 * sizeof(float));

@@ -86,7 +86,7 @@ int rt_transform_is_identity(const float m[16]) {
 /* ---- lifetime --------------------------------------------------------- */
 
 rt_material rt_material_default(void) {
-    rt_material m = {{1.0f, 1.0f, 1.0f}, 1.0f, 1.0f, 0.0f, 1, 0.0f, 0.0f, 1.0f};
+    rt_material m = {{1.0f, 1.0f, 1.0f}, 1.0f, 1.0f, 0.0f, 1, 0.0f, 0.0f, 1.0f, {0.0f, 0.0f, 0.0f}};
     return m;
 }
 
@@ -308,6 +308,7 @@ rt_status rt_material_add(rt_scene *scene, const rt_material *mat, uint32_t *mat
     rt_status st = check_colour(scene, "material: colour component", mat->color, 3);
     if (st == RT_OK)
         st = check_colour(scene, "material: ambient, diffuse or specular factor", coeffs, 3);
+    if (st == RT_OK) st = check_colour(scene, "material: emission component", mat->emission, 3);
     if (st != RT_OK) return st;
     if (mat->shininess < 0 || mat->shininess > 100000)
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
@@ -364,6 +365,15 @@ rt_status rt_light_set(rt_scene *scene, uint32_t light_id, const float position[
     memcpy(l->position, position, sizeof l->position);
     memcpy(l->color, color, sizeof l->color);
     scene->version++;
+    return RT_OK;
+}
+
+rt_status rt_light_get(const rt_scene *scene, uint32_t light_id, float position[3],
+                       float color[3]) {
+    if (!scene || !position || !color || light_id >= scene->light_count)
+        return RT_ERROR_INVALID_ARGUMENT;
+    memcpy(position, scene->lights[light_id].position, 3 * sizeof(float));
+    memcpy(color, scene->lights[light_id].color, 3 * sizeof(float));
     return RT_OK;
 }
 
@@ -694,50 +704,6 @@ int rt_scene_bounds(const rt_scene *scene, float bmin[3], float bmax[3]) {
         }
     }
     return any;
-}
-
-rt_status rt_scene_apply_default_view(rt_scene *scene, int width, int height) {
-    float bmin[3], bmax[3];
-    if (!rt_scene_bounds(scene, bmin, bmax))
-        return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "the scene has no triangles");
-    float c[3], ext[3];
-    for (int k = 0; k < 3; k++) c[k] = 0.5f * (bmin[k] + bmax[k]), ext[k] = bmax[k] - bmin[k];
-    float d = sqrtf(dot3(ext, ext));
-    if (!isfinite(d)) {
-        /* An extent whose square overflows a float (an object scaled by
-         * 1e30): its length in double, where it cannot; a scene whose
-         * extent itself is not a float has no default view. */
-        double e2 = (double)ext[0] * ext[0] + (double)ext[1] * ext[1] + (double)ext[2] * ext[2];
-        d = (float)sqrt(e2);
-        if (!isfinite(d) || !finite3(ext))
-            return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
-                                 "the scene's bounds (%g, %g, %g) .. (%g, %g, %g) are too large "
-                                 "for a default camera: give the scene a camera",
-                                 (double)bmin[0], (double)bmin[1], (double)bmin[2], (double)bmax[0],
-                                 (double)bmax[1], (double)bmax[2]);
-    }
-    if (!(d > 0.0f)) d = 1.0f; /* a single point: any distance will do */
-    float dir[3] = {0.3f, 0.35f, 1.0f};
-    normalize3(dir);
-    rt_camera cam;
-    for (int k = 0; k < 3; k++) {
-        cam.position[k] = c[k] + dir[k] * 0.9f * d;
-        cam.look_at[k] = c[k];
-    }
-    cam.up[0] = 0.0f, cam.up[1] = 1.0f, cam.up[2] = 0.0f;
-    cam.hfov_degrees = 60.0f;
-    cam.width = width > 0 ? width : 1024;
-    cam.height = height > 0 ? height : 576;
-    rt_status st = rt_camera_set(scene, &cam);
-    if (st != RT_OK) return st;
-    const float offset[3] = {0.25f, 0.6f, 0.3f}, white[3] = {1.0f, 1.0f, 1.0f};
-    float light[3];
-    for (int k = 0; k < 3; k++) light[k] = c[k] + offset[k] * d;
-    uint32_t id;
-    st = scene->no_default_light ? RT_OK : rt_light_add(scene, light, white, &id);
-    if (st != RT_OK) return st;
-    const float ambient[3] = {0.1f, 0.1f, 0.1f};
-    return rt_scene_set_ambient(scene, ambient);
 }
 
 static int is_identity(const float m[16]) {

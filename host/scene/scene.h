@@ -193,11 +193,6 @@ uint64_t rt_scene_triangle_count(const rt_scene *scene);
  * the renderer's cache both ask this. */
 rt_accel rt_mesh_data_structure(const rt_mesh_data *m);
 
-/* The default view of a bare OBJ (docs/SCENE_FORMAT.md): camera, one light
- * (none when scene->no_default_light) and ambient 0.1, from the bounding box
- * of all meshes. Fails on an empty scene. */
-rt_status rt_scene_apply_default_view(rt_scene *scene, int width, int height);
-
 /* rt_scene_bounds, the world-space box of the current frame, is public (rt.h). */
 
 /* Which features the scene uses; backends specialise to these. */

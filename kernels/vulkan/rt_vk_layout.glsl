@@ -52,6 +52,7 @@ struct rt_material_d {
     float reflectivity;
     float transparency;
     float ior;
+    float emission[3];
 };
 struct rt_light_d {
     float position[3];
