@@ -579,6 +579,31 @@ static void test_camera_lights_materials(void) {
     rt_scene_destroy(s);
 }
 
+/* An emissive material: its emission, and, with no KHR_lights_punctual
+ * light, the point light the loader makes of it instead of the default
+ * light (docs/SCENE_FORMAT.md, "Emission"). */
+static void test_emissive_material(void) {
+    gb g;
+    gb_init(&g);
+    int pos = tri_positions(&g);
+    char rest[600];
+    snprintf(
+        rest, sizeof rest,
+        "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":%d},\"material\":0}]}],"
+        "\"materials\":[{\"emissiveFactor\":[1,0.5,2]}],"
+        "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.5,\"znear\":0.1}}],"
+        "\"nodes\":[{\"mesh\":0},{\"camera\":0,\"translation\":[0,0,10]}],"
+        "\"scenes\":[{\"nodes\":[0,1]}]",
+        pos);
+    rt_scene *s = load_ok(write_gltf("emissive.gltf", &g, NULL, rest));
+    if (!s) return;
+    CHECK_EQ_INT(s->material_count, 1);
+    if (s->material_count) CHECK_V(s->materials[0].emission, 1, 0.5, 1); /* clamped to 1 */
+    CHECK_EQ_INT(s->light_count, 1); /* the emitter's, not the default light */
+    if (s->light_count) CHECK_V(s->lights[0].color, 1, 0.5, 1);
+    rt_scene_destroy(s);
+}
+
 static void test_external_and_glb(void) {
     gb g;
     gb_init(&g);
@@ -836,6 +861,7 @@ int main(void) {
     test_morph();
     test_skin();
     test_camera_lights_materials();
+    test_emissive_material();
     test_external_and_glb();
     test_malformed();
     char cmd[300];
