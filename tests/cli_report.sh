@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
-# cli_report.sh - the single command that regenerates docs/BENCHMARKS.md
+# cli_report.sh - the single command that regenerates docs/BENCHMARKS_REPORT.md
 # (bench/report.sh) runs end to end in its quick mode and prints every section:
 # the build, thesis, render and Whitted tables with real rows, the targets
 # judged, and one section with a PNG plot per speed-against-error study, whose
@@ -16,10 +16,10 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 REPORT_OUT=$out bash "$RT_SOURCE_DIR/bench/report.sh" "$RT_BINARY_DIR" "$RT_SHARED_SCENES" --quick \
     >"$out/log" 2>&1 || { echo "report.sh failed:"; tail -30 "$out/log"; exit 1; }
-md=$out/BENCHMARKS.md
+md=$out/BENCHMARKS_REPORT.md
 fails=0
 need() {
-    grep -q -E -- "$1" "$md" || { echo "FAIL: BENCHMARKS.md lacks /$1/"; fails=$((fails + 1)); }
+    grep -q -E -- "$1" "$md" || { echo "FAIL: BENCHMARKS_REPORT.md lacks /$1/"; fails=$((fails + 1)); }
 }
 need '^## OBJ parsing'
 need '^robot_walk_00.obj +3237 '
