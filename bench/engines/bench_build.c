@@ -397,10 +397,11 @@ static int bench_scene(const char *path, const bench_args *a, rt_pool *pool) {
     rt_scene_destroy(scene);
     row rows[MAX_ROWS];
     memset(rows, 0, sizeof rows);
+    /* lbvh: the builder of the per-frame "lbvh" update policy (issue 32 item 3). */
     const rt_builder ours[] = {RT_BUILDER_THESIS_SCALAR, RT_BUILDER_THESIS_NEON,
-                               RT_BUILDER_THESIS_MT, RT_BUILDER_SAH};
+                               RT_BUILDER_THESIS_MT, RT_BUILDER_SAH, RT_BUILDER_LBVH};
     int n = 0;
-    for (int i = 0; i < 4; i++) {
+    for (int i = 0; i < (int)(sizeof ours / sizeof ours[0]); i++) {
         progress(a, path, rt_builder_name(ours[i]));
         bench_ours(a, &in, ours[i], pool, &rows[n++]);
     }
