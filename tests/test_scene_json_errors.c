@@ -57,7 +57,7 @@ static const error_case cases[] = {
      "0]}},\n" MESH_T OBJ_T "}",
      3, 25,
      "unknown key 'colour' in materials.red (valid keys: color, ambient, diffuse, specular, "
-     "shininess, reflectivity, transparency, ior)"},
+     "shininess, reflectivity, transparency, ior, emission)"},
     {"unknown_light_key", "{\n  'lights': [{'position': [0, 0, 5], 'power': 2}]\n}", 2, 38,
      "unknown key 'power' in lights[0] (valid keys: position, color)"},
     {"unknown_mesh_key", "{\n  'meshes': {'t': {'path': 'a.obj'}}\n}", 2, 20,
@@ -228,7 +228,9 @@ static const error_case cases[] = {
     {"mesh_bad_update",
      "{\n  'meshes': {'t': {'positions': [0,0,0, 1,0,0, 0,1,0], 'triangles': [0,1,2], "
      "'update': 'lazy'}},\n" OBJ_T "}",
-     2, 88, "meshes.t.update: unknown update policy 'lazy' (valid: rebuild, refit, fast, auto)"},
+     2, 88,
+     "meshes.t.update: expected an update policy: \"sah\", \"refit\", \"lbvh\" or \"auto\", found "
+     "\"lazy\""},
 
     /* references */
     {"missing_mesh", "{\n" MESH_T "  'objects': [{'mesh': 'cube'}]\n}", 3, 24,

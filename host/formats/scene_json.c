@@ -736,40 +736,43 @@ static rt_status load_mesh_file(loader *L, json_t *v, uint32_t *id) {
     return st;
 }
 
-/* "accel": the mesh's structure, "bvh" (the default), "kd" or "kd-binned". */
-static rt_status load_mesh_accel(loader *L, json_t *m, uint32_t id) {
-    json_t *a = json_object_get(m, "accel");
+/* A mesh's string key whose value one of the library's name tables reads:
+ * parse gives the enum (1: known), set applies it to mesh id; expected
+ * lists the valid names for the messages. Absent: nothing changes. */
+static rt_status load_mesh_choice(loader *L, json_t *m, uint32_t id, const char *key,
+                                  const char *expected, int (*parse)(const char *, int *),
+                                  rt_status (*set)(rt_scene *, uint32_t, int)) {
+    json_t *a = json_object_get(m, key);
     if (!a) return RT_OK;
-    enter_key(L, "accel");
-    rt_accel accel;
+    enter_key(L, key);
+    int value;
     rt_status st = RT_OK;
     if (!json_is_string(a))
-        st = fail(L, "expected \"bvh\", \"kd\" or \"kd-binned\", found %s", type_name(a));
-    else if (!rt_accel_parse(json_string_value(a), &accel))
-        st = fail(L, "expected \"bvh\", \"kd\" or \"kd-binned\", found \"%s\"",
-                  json_string_value(a));
-    else if (rt_mesh_set_accel(L->scene, id, accel) != RT_OK)
+        st = fail(L, "expected %s, found %s", expected, type_name(a));
+    else if (!parse(json_string_value(a), &value))
+        st = fail(L, "expected %s, found \"%s\"", expected, json_string_value(a));
+    else if (set(L->scene, id, value) != RT_OK)
         st = fail_scene(L);
     leave(L);
     return st;
 }
 
-/* A mesh's "update": its BVH update policy. */
-static rt_status load_update(loader *L, json_t *m, uint32_t id) {
-    json_t *u = json_object_get(m, "update");
-    if (!u) return RT_OK;
-    rt_update_policy policy;
-    rt_status st = RT_OK;
-    enter_key(L, "update");
-    if (!json_is_string(u))
-        st = fail(L, "expected an update policy (a string), found %s", type_name(u));
-    else if (!rt_update_policy_parse(json_string_value(u), &policy))
-        st = fail(L, "unknown update policy '%s' (valid: rebuild, refit, fast, auto)",
-                  json_string_value(u));
-    else if (rt_mesh_set_update(L->scene, id, policy) != RT_OK)
-        st = fail_scene(L);
-    leave(L);
-    return st;
+/* "accel": the mesh's structure, "bvh" (the default), "kd" or "kd-binned". */
+static int parse_accel(const char *name, int *value) {
+    rt_accel a;
+    return rt_accel_parse(name, &a) ? (*value = (int)a, 1) : 0;
+}
+static rt_status set_accel(rt_scene *scene, uint32_t id, int value) {
+    return rt_mesh_set_accel(scene, id, (rt_accel)value);
+}
+
+/* "update": the mesh's BVH update policy (and the names before 0.2). */
+static int parse_update(const char *name, int *value) {
+    rt_update_policy p;
+    return rt_update_policy_parse(name, &p) ? (*value = (int)p, 1) : 0;
+}
+static rt_status set_update(rt_scene *scene, uint32_t id, int value) {
+    return rt_mesh_set_update(scene, id, (rt_update_policy)value);
 }
 
 static rt_status load_meshes(loader *L, json_t *v) {
@@ -789,8 +792,13 @@ static rt_status load_meshes(loader *L, json_t *v) {
         if (st == RT_OK)
             st = json_object_get(m, "file") ? load_mesh_file(L, m, &id)
                                             : load_inline_mesh(L, m, name, &id);
-        if (st == RT_OK) st = load_update(L, m, id);
-        if (st == RT_OK) st = load_mesh_accel(L, m, id);
+        if (st == RT_OK)
+            st = load_mesh_choice(L, m, id, "update",
+                                  "an update policy: \"sah\", \"refit\", \"lbvh\" or \"auto\"",
+                                  parse_update, set_update);
+        if (st == RT_OK)
+            st = load_mesh_choice(L, m, id, "accel", "\"bvh\", \"kd\" or \"kd-binned\"",
+                                  parse_accel, set_accel);
         leave(L);
         if (st != RT_OK) return st;
         if (json_object_set_new(L->mesh_ids, name, json_integer(id)) != 0)
