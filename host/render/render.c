@@ -109,6 +109,25 @@ static void pass_progress(void *user, double done) {
     p->progress(p->user, ((double)p->pass + done) / (double)p->passes);
 }
 
+/* Adds a pass's counts and times to sum. */
+static void add_counts(rt_render_stats *sum, const rt_render_stats *s) {
+    sum->render_ms += s->render_ms;
+    sum->rays += s->rays;
+    sum->primary_rays += s->primary_rays;
+    sum->box_tests += s->box_tests;
+    sum->tri_tests += s->tri_tests;
+    sum->packets += s->packets;
+    sum->packet_box_tests += s->packet_box_tests;
+    sum->packet_tri_tests += s->packet_tri_tests;
+    sum->build_ms += s->build_ms;
+    sum->compile_ms += s->compile_ms;
+    sum->upload_ms += s->upload_ms;
+    sum->upload_bytes += s->upload_bytes;
+    sum->download_ms += s->download_ms;
+    for (int k = 0; k < 3; k++) sum->kernel_ms[k] += s->kernel_ms[k];
+    sum->launches += s->launches;
+}
+
 /* rt_render_options.samples: the passes, summed in order into fb, then
  * divided by their number; the statistics are the passes' totals. */
 static rt_status render_samples(rt_renderer *r, rt_frame_state *fs, rt_backend_frame *frame,
@@ -140,20 +159,10 @@ static rt_status render_samples(rt_renderer *r, rt_frame_state *fs, rt_backend_f
         if (st == RT_OK) st = fs->ops->render(fs->state, &fs->layout, frame, s, &r->error);
         if (st != RT_OK) break;
         for (size_t j = 0; j < count; j++) fb->pixels[j] += pass[j];
-        total.render_ms += s->render_ms;
-        total.rays += s->rays;
-        total.primary_rays += s->primary_rays;
-        total.box_tests += s->box_tests;
-        total.tri_tests += s->tri_tests;
-        total.packets += s->packets;
-        total.packet_box_tests += s->packet_box_tests;
-        total.packet_tri_tests += s->packet_tri_tests;
-        total.compile_ms += s->compile_ms;
-        total.upload_ms += s->upload_ms;
-        total.upload_bytes += s->upload_bytes;
-        total.download_ms += s->download_ms;
-        for (int k = 0; k < 3; k++) total.kernel_ms[k] += s->kernel_ms[k];
-        total.launches += s->launches;
+        if (i == 0)
+            total = *s; /* the descriptive fields (backend, device, ...) are the same each pass */
+        else
+            add_counts(&total, s);
     }
     free(pass);
     frame->pixels = fb->pixels;
@@ -162,21 +171,7 @@ static rt_status render_samples(rt_renderer *r, rt_frame_state *fs, rt_backend_f
     if (st != RT_OK) return st;
     const float n = (float)samples;
     for (size_t j = 0; j < count; j++) fb->pixels[j] = fb->pixels[j] / n;
-    /* The last pass's descriptive fields (backend, device, ...), the sums. */
-    s->render_ms = total.render_ms;
-    s->rays = total.rays;
-    s->primary_rays = total.primary_rays;
-    s->box_tests = total.box_tests;
-    s->tri_tests = total.tri_tests;
-    s->packets = total.packets;
-    s->packet_box_tests = total.packet_box_tests;
-    s->packet_tri_tests = total.packet_tri_tests;
-    s->compile_ms = total.compile_ms;
-    s->upload_ms = total.upload_ms;
-    s->upload_bytes = total.upload_bytes;
-    s->download_ms = total.download_ms;
-    memcpy(s->kernel_ms, total.kernel_ms, sizeof s->kernel_ms);
-    s->launches = total.launches;
+    *s = total;
     return RT_OK;
 }
 
