@@ -861,7 +861,9 @@ rt_status rt_image_write(const char *path, const rt_image *image, rt_error *err)
 typedef struct rt_image_write_options {
     /* 1: PNG and EXR files record when they were written (EXR capDate, PNG
      * time) and the software ("rtcl"), so two writes of one image differ;
-     * PPM and PFM have no place for either. 0 (the default): neither. */
+     * DPX records the time and the file's name too; PPM and PFM have no
+     * place for either. 0 (the default): none of these, so equal pixels give
+     * equal files under any name. */
     int metadata;
 } rt_image_write_options;
 

@@ -191,6 +191,27 @@ std::string time_stamp() {
     return text;
 }
 
+// Clears the header fields through which OpenImageIO 2.4 puts more than the
+// pixels into a file, so that equal pixels give equal files whatever the
+// file's name and whatever was on the stack (tests/cli_outputs.sh):
+//  - SGI: the 80-byte image name (offset 24) is left uninitialised, stack
+//    bytes (pointers among them) when no ImageDescription is given, and the
+//    module gives none; it is zeroed always, as the format's "no name";
+//  - DPX: the 100-byte file name (offset 36) holds the target's file name,
+//    so one frame written under two names gave two files; zeroed unless
+//    metadata asks for it (the creation time there is asked for the same way).
+// Both formats' magic numbers are checked first, so a writer of another
+// layout is left alone.
+void clear_varying_fields(const format_row *format, int metadata,
+                          std::vector<unsigned char> &file) {
+    const std::string name = format->name;
+    if (name == "SGI" && file.size() >= 512 && file[0] == 0x01 && file[1] == 0xda)
+        std::memset(file.data() + 24, 0, 80);
+    const bool dpx_magic = file.size() >= 2048 && (std::memcmp(file.data(), "SDPX", 4) == 0 ||
+                                                   std::memcmp(file.data(), "XPDS", 4) == 0);
+    if (name == "DPX" && dpx_magic && !metadata) std::memset(file.data() + 36, 0, 100);
+}
+
 rt_status encode_image(const char *path, const rt_image *image, int metadata,
                        unsigned char **bytes_out, size_t *size_out, rt_error *err) {
     size_t count = 0;
@@ -273,6 +294,7 @@ rt_status encode_image(const char *path, const rt_image *image, int metadata,
             return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot finish the file: %s",
                                 one_line(out->geterror()).c_str());
     }
+    clear_varying_fields(format, metadata, encoded);
     // malloc'ed: the library frees it with free().
     unsigned char *file = static_cast<unsigned char *>(std::malloc(encoded.size() + 1));
     if (!file)
