@@ -1,13 +1,14 @@
 # SPDX-License-Identifier: Apache-2.0
 """output_faults.py - faults while rtcl writes a file (tests/cli_outputs.sh).
 
-  output_faults.py kill RTCL DIR ROUNDS
-      A good image is written to DIR/out.pfm; then, ROUNDS times, a render
-      of another image to the same name is killed with SIGKILL at a random
-      point while its file is being written (seen as its temporary,
-      .out.tmp-*.pfm, existing), or at a random time of the whole run. Each
-      time DIR/out.pfm must be byte for byte the old image or the new one,
-      never a part; a kill during the write must leave the old one.
+  output_faults.py kill RTCL DIR ROUNDS [EXT]
+      A good image is written to DIR/out.EXT (pfm unless EXT is given);
+      then, ROUNDS times, a render of another image to the same name is
+      killed with SIGKILL at a random point while its file is being written
+      (seen as its temporary, .out.tmp-*.EXT, existing), or at a random time
+      of the whole run. Each time DIR/out.EXT must be byte for byte the old
+      image or the new one (killed after its rename), never a part, and no
+      other file than a killed writer's temporary may appear.
 
   output_faults.py interleave RTCL DIR EXT
       Two renders of different images to DIR/out.EXT; the first is stopped
@@ -61,11 +62,11 @@ def wait_for_temporary(proc, folder, stem, ext, limit_s=120.0):
     return False
 
 
-def kill(rtcl, folder, rounds):
+def kill(rtcl, folder, rounds, ext):
     failures = []
-    old_path = os.path.join(folder, "old.pfm")
-    new_path = os.path.join(folder, "new.pfm")
-    out = os.path.join(folder, "out.pfm")
+    old_path = os.path.join(folder, "old." + ext)
+    new_path = os.path.join(folder, "new." + ext)
+    out = os.path.join(folder, "out." + ext)
     run_ok(render_args(rtcl, old_path, 640, 640))
     run_ok(render_args(rtcl, new_path, 1024, 1024))
     old, new = read(old_path), read(new_path)
@@ -78,13 +79,13 @@ def kill(rtcl, folder, rounds):
     for k in range(rounds):
         with open(out, "wb") as f:
             f.write(old)
-        for t in temporaries(folder, "out", ".pfm"):
+        for t in temporaries(folder, "out", "." + ext):
             os.unlink(t)
         proc = subprocess.Popen(render_args(rtcl, out, 1024, 1024), stdout=subprocess.DEVNULL,
                                 stderr=subprocess.DEVNULL)
         in_write = k % 2 == 0
         if in_write:
-            seen = wait_for_temporary(proc, folder, "out", ".pfm")
+            seen = wait_for_temporary(proc, folder, "out", "." + ext)
             time.sleep(rng.uniform(0.0, 0.004))
         else:
             time.sleep(rng.uniform(0.0, whole_s * 1.1))
@@ -98,16 +99,20 @@ def kill(rtcl, folder, rounds):
                 continue
             during += 1
             if proc.returncode == -signal.SIGKILL and now != old and now != new:
-                failures.append("round %d: killed while writing, out.pfm is %d bytes, neither "
-                                "the old (%d) nor the new image (%d)" % (k, len(now), len(old),
-                                                                        len(new)))
+                failures.append("round %d: killed while writing, out.%s is %d bytes, neither "
+                                "the old (%d) nor the new image (%d)" % (k, ext, len(now),
+                                                                        len(old), len(new)))
             elif proc.returncode == -signal.SIGKILL and now != old and now == new:
                 pass  # killed after the rename: the new file, whole
         elif now != old and now != new:
-            failures.append("round %d: killed at a random time, out.pfm is %d bytes, neither the "
-                            "old nor the new image" % (k, len(now)))
-    print("kill: %d rounds, %d killed while writing, %d failures" % (rounds, during,
-                                                                      len(failures)))
+            failures.append("round %d: killed at a random time, out.%s is %d bytes, neither the "
+                            "old nor the new image" % (k, ext, len(now)))
+        strays = sorted(set(os.listdir(folder)) - {"old." + ext, "new." + ext, "out." + ext} -
+                        {os.path.basename(t) for t in temporaries(folder, "out", "." + ext)})
+        if strays:
+            failures.append("round %d: other files appeared: %s" % (k, ", ".join(strays)))
+    print("kill %s: %d rounds, %d killed while writing, %d failures" % (ext, rounds, during,
+                                                                         len(failures)))
     return failures
 
 
@@ -155,7 +160,7 @@ def interleave(rtcl, folder, ext):
 def main():
     mode, rtcl, folder = sys.argv[1], sys.argv[2], sys.argv[3]
     if mode == "kill":
-        failures = kill(rtcl, folder, int(sys.argv[4]))
+        failures = kill(rtcl, folder, int(sys.argv[4]), sys.argv[5] if len(sys.argv) > 5 else "pfm")
     else:
         failures = interleave(rtcl, folder, sys.argv[4])
     for f in failures:
