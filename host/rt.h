@@ -953,6 +953,14 @@ void rt_output_discard(rt_output *output);
  * folder. RT_OK or RT_ERROR_IO naming the fault; nothing is created. */
 rt_status rt_output_check(const char *target, const char *what, rt_error *err);
 
+/* Removes the temporary file of every write this process has under way
+ * (images, hit files, scenes, reserved outputs not yet committed or
+ * discarded); the targets are untouched. Async-signal-safe: for a program's
+ * SIGINT or SIGTERM handler, which then ends the process, so that an
+ * interrupted write leaves neither a part of a file nor a stray temporary
+ * (rtcl does this). Paths are as given: call it before any chdir. */
+void rt_output_remove_temporaries(void);
+
 /* What a backend is (rt_backend_describe): the registry's facts, for
  * programs that list or check backends without naming them. */
 typedef struct rt_backend_info {

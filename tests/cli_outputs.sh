@@ -7,9 +7,11 @@
 #    would take minutes (8192x8192 frames, under a timeout) or where an input
 #    is missing (the output is named, so it was checked first);
 #  - SIGKILL while a file is written leaves the old file, whole, or the new
-#    one, never a part; two writers of one path, one stopped mid-write, both
-#    finish and the file is the whole image of the last (tests/
-#    output_faults.py); no temporary is left by a finished write;
+#    one, never a part; SIGINT, SIGTERM or SIGHUP also leaves no temporary
+#    (of an image, or of a video ffmpeg writes); two writers of one path,
+#    one stopped mid-write, both finish and the file is the whole image of
+#    the last (tests/output_faults.py); no temporary is left by a finished
+#    write;
 #  - two renders of one image are identical files in every format (EXR has
 #    no capDate unless --metadata asks for it);
 #  - an existing file keeps its permission bits; /dev/null is written in
@@ -112,6 +114,11 @@ for ext in pfm exr; do
     $py "$RT_SOURCE_DIR/tests/output_faults.py" kill "$RTCL" "$tmp/kill_$ext" 8 $ext ||
         fails=$((fails + 1))
 done
+# SIGINT, SIGTERM, SIGHUP during a write and during a video: no temporary.
+mkdir "$tmp/interrupt"
+checks=$((checks + 1))
+$py "$RT_SOURCE_DIR/tests/output_faults.py" interrupt "$RTCL" "$tmp/interrupt" ||
+    fails=$((fails + 1))
 for ext in ppm pfm png exr; do
     mkdir "$tmp/both_$ext"
     checks=$((checks + 1))

@@ -16,12 +16,20 @@
       is continued. Both must say "wrote" and exit 0, and the file must be
       the whole image of the one that finished last.
 
+  output_faults.py interrupt RTCL DIR
+      SIGINT, SIGTERM and SIGHUP while rtcl writes: a render to DIR/out.pfm
+      gets the signal while its temporary exists, and a video (when ffmpeg
+      is on PATH) while ffmpeg writes it. rtcl must end by that signal, the
+      old file must be as it was and no temporary may be left (rtcl's
+      handler removes them and stops ffmpeg first).
+
 Exit 0 when every check holds; the failures are printed.
 """
 
 import glob
 import os
 import random
+import shutil
 import signal
 import subprocess
 import sys
@@ -157,10 +165,65 @@ def interleave(rtcl, folder, ext):
     return failures
 
 
+def interrupt(rtcl, folder):
+    failures = []
+    out = os.path.join(folder, "out.pfm")
+    old_path = os.path.join(folder, "old.pfm")
+    run_ok(render_args(rtcl, old_path, 64, 64))
+    old = read(old_path)
+    jobs = [("pfm", render_args(rtcl, out, 1024, 1024), out, old)]
+    if shutil.which("ffmpeg"):
+        video = os.path.join(folder, "v.mp4")
+        with open(video, "wb") as f:
+            f.write(b"an old video")
+        scene = os.path.join(os.environ.get("RT_SOURCE_DIR", "."), "scenes",
+                             "keyframes_animated.json")
+        jobs.append(("mp4", [rtcl, "animate", scene, "--fps", "10", "--frames", "100000",
+                             "--width", "64", "--height", "64", "-o", video], video,
+                     b"an old video"))
+    for ext, args, target, before in jobs:
+        stem = os.path.splitext(os.path.basename(target))[0]
+        for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+            for attempt in range(20):
+                with open(target, "wb") as f:
+                    f.write(before)
+                proc = subprocess.Popen(args, stdout=subprocess.DEVNULL,
+                                        stderr=subprocess.DEVNULL)
+                if not wait_for_temporary(proc, folder, stem, "." + ext):
+                    proc.wait()
+                    failures.append("%s %s: the temporary never appeared" % (ext, sig.name))
+                    break
+                if ext == "mp4":
+                    time.sleep(0.3)  # ffmpeg has started and writes
+                proc.send_signal(sig)
+                proc.wait()
+                if proc.returncode == 0:
+                    continue  # it finished before the signal: again
+                if proc.returncode != -sig:
+                    failures.append("%s %s: exit status %d, not the signal" % (ext, sig.name,
+                                                                              proc.returncode))
+                time.sleep(0.2)
+                if read(target) != before:
+                    failures.append("%s %s: the old file changed" % (ext, sig.name))
+                left = temporaries(folder, stem, "." + ext)
+                if left:
+                    failures.append("%s %s: temporaries left: %s" % (ext, sig.name,
+                                                                     ", ".join(left)))
+                    for t in left:
+                        os.unlink(t)
+                break
+            else:
+                failures.append("%s %s: never interrupted while writing" % (ext, sig.name))
+    print("interrupt: %d jobs, %d failures" % (len(jobs), len(failures)))
+    return failures
+
+
 def main():
     mode, rtcl, folder = sys.argv[1], sys.argv[2], sys.argv[3]
     if mode == "kill":
         failures = kill(rtcl, folder, int(sys.argv[4]), sys.argv[5] if len(sys.argv) > 5 else "pfm")
+    elif mode == "interrupt":
+        failures = interrupt(rtcl, folder)
     else:
         failures = interleave(rtcl, folder, sys.argv[4])
     for f in failures:
