@@ -254,6 +254,21 @@ static int sync_path(const char *path) {
     return e;
 }
 
+/* Makes a rename in target's folder durable (the folder's entry), so that a
+ * file reported written is still there after a power loss. Best effort: the
+ * target is already replaced, so a failure here (a file system that cannot
+ * sync folders) is no reason to report the write as failed. */
+static void sync_folder(const char *target) {
+    char *dir = folder_of(target);
+    if (!dir) return;
+    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd >= 0) {
+        if (fsync(fd) != 0) errno = 0;
+        close(fd);
+    }
+    free(dir);
+}
+
 rt_status rt_atomic_file_commit(rt_atomic_file *f, rt_error *err) {
     const char *what = f->what ? f->what : "file";
     int e = 0;
@@ -269,6 +284,7 @@ rt_status rt_atomic_file_commit(rt_atomic_file *f, rt_error *err) {
         e = sync_path(f->temp);
     }
     if (!e && f->temp && rename(f->temp, f->target) != 0) e = errno;
+    if (!e && f->temp) sync_folder(f->target);
     if (e) {
         rt_error_set(err, RT_ERROR_IO, f->target, 0, 0, "cannot write the %s: %s", what,
                      strerror(e));

@@ -65,7 +65,8 @@ rt_status rt_atomic_file_reserve(rt_atomic_file *f, const char *target, const ch
                                  rt_error *err);
 
 /* Flushes, fsyncs and closes the stream (any error there, ENOSPC included,
- * is reported) and renames the temporary over the target. On failure the
+ * is reported), renames the temporary over the target and fsyncs its folder
+ * (best effort, so the rename survives a power loss). On failure the
  * temporary is removed, the target is untouched and err says why. f is
  * released either way. */
 rt_status rt_atomic_file_commit(rt_atomic_file *f, rt_error *err);
