@@ -213,8 +213,8 @@ static int wait_child(cli_video *v) {
     return status;
 }
 
-cli_video *cli_video_open(const char *path, int width, int height, double fps, char *why,
-                          size_t cap) {
+cli_video *cli_video_open(const char *path, int width, int height, double fps, int metadata,
+                          char *why, size_t cap) {
     if (!cli_have_ffmpeg()) {
         snprintf(why, cap, "%s", no_ffmpeg);
         return NULL;
@@ -286,6 +286,12 @@ cli_video *cli_video_open(const char *path, int width, int height, double fps, c
     if (!webm) {
         argv[n++] = "-f";
         argv[n++] = mkv ? "matroska" : "mp4";
+    }
+    if (!metadata) {
+        /* Matroska and WebM otherwise hold the date and a random segment
+         * id: two equal clips were two different files. */
+        argv[n++] = "-fflags";
+        argv[n++] = "+bitexact";
     }
     argv[n++] = url;
     argv[n] = NULL;
