@@ -133,8 +133,12 @@ uint16_t to_16bit(float v) {
 }
 
 // Encodes through a temporary file, for the writers that cannot write to
-// memory (OIIO's SGI and FITS): written in TMPDIR (or /tmp), read back
-// into encoded, removed. The library still writes the target whole.
+// memory (OIIO's SGI and FITS): made in TMPDIR (or /tmp), opened by OIIO by
+// its name and then at once unlinked, so that the file has a name only
+// while OIIO opens it: a process interrupted or killed during the encoding
+// leaves nothing in TMPDIR. OIIO writes through the stream it opened and
+// the bytes are read back through the descriptor kept from mkstemps (the
+// same file). The library still writes the target whole.
 bool encode_via_file(const char *path, const OIIO::ImageSpec &spec, OIIO::TypeDesc type,
                      const void *pixels, std::vector<unsigned char> &encoded, std::string &error) {
     const char *dot = std::strrchr(path, '.');
@@ -148,13 +152,14 @@ bool encode_via_file(const char *path, const OIIO::ImageSpec &spec, OIIO::TypeDe
                 ": " + std::strerror(errno);
         return false;
     }
-    close(fd);
     bool ok = false;
     {
         auto out = OIIO::ImageOutput::create(templ.data());
+        bool opened = out && out->open(templ.data(), spec);
+        unlink(templ.data());
         if (!out)
             error = one_line(OIIO::geterror());
-        else if (!out->open(templ.data(), spec))
+        else if (!opened)
             error = one_line(out->geterror());
         else {
             bool written = out->write_image(type, pixels);
@@ -165,20 +170,18 @@ bool encode_via_file(const char *path, const OIIO::ImageSpec &spec, OIIO::TypeDe
         }
     }
     if (ok) {
-        std::FILE *f = std::fopen(templ.data(), "rb");
-        ok = f != nullptr;
-        if (f) {
-            unsigned char chunk[65536];
-            size_t got;
-            while ((got = std::fread(chunk, 1, sizeof chunk, f)) > 0)
-                encoded.insert(encoded.end(), chunk, chunk + got);
-            ok = !std::ferror(f);
-            std::fclose(f);
+        unsigned char chunk[65536];
+        off_t at = 0;
+        ssize_t got;
+        while ((got = pread(fd, chunk, sizeof chunk, at)) > 0) {
+            encoded.insert(encoded.end(), chunk, chunk + got);
+            at += got;
         }
+        ok = got == 0;
         if (!ok)
             error = std::string("cannot read the temporary file back: ") + std::strerror(errno);
     }
-    unlink(templ.data());
+    close(fd);
     return ok;
 }
 
