@@ -888,7 +888,9 @@ rt_status rt_image_write(const char *path, const rt_image *image, rt_error *err)
 typedef struct rt_image_write_options {
     /* 1: PNG and EXR files record when they were written (EXR capDate, PNG
      * time) and the software ("rtcl"), so two writes of one image differ;
-     * PPM and PFM have no place for either. 0 (the default): neither. */
+     * DPX records the time and the file's name too; PPM and PFM have no
+     * place for either. 0 (the default): none of these, so equal pixels give
+     * equal files under any name. */
     int metadata;
 } rt_image_write_options;
 
@@ -977,6 +979,14 @@ void rt_output_discard(rt_output *output);
  * the work that makes it: its folder exists and is writable, target is no
  * folder. RT_OK or RT_ERROR_IO naming the fault; nothing is created. */
 rt_status rt_output_check(const char *target, const char *what, rt_error *err);
+
+/* Removes the temporary file of every write this process has under way
+ * (images, hit files, scenes, reserved outputs not yet committed or
+ * discarded); the targets are untouched. Async-signal-safe: for a program's
+ * SIGINT or SIGTERM handler, which then ends the process, so that an
+ * interrupted write leaves neither a part of a file nor a stray temporary
+ * (rtcl does this). Paths are as given: call it before any chdir. */
+void rt_output_remove_temporaries(void);
 
 /* What a backend is (rt_backend_describe): the registry's facts, for
  * programs that list or check backends without naming them. */

@@ -9,7 +9,8 @@
 # dropped nor reordered). Also: odd sizes are padded to even ones, frame
 # ranges, paths that a shell or ffmpeg would misread reach ffmpeg as they
 # are, and ffmpeg's failures (no such folder, a full disk) exit non-zero with
-# ffmpeg's reason; nothing reaches stderr on success. Without ffmpeg and
+# ffmpeg's reason; nothing reaches stderr on success; equal clips are equal
+# files unless --metadata. Without ffmpeg and
 # ffprobe (Debian package ffmpeg) this test is skipped; the error without
 # ffmpeg is tested in cli_animate.sh.
 . "$(dirname "$0")/shell_check.sh"
@@ -88,6 +89,28 @@ fi
 expect 0 "" -- "$RTCL" animate "$scene" --fps 8 --frames 12 --frame-range 4:7 "${size[@]}" \
     -o "$tmp/range.mp4"
 check_probe "$tmp/range.mp4" "$codec 160 90 4 yuv420p"
+
+# Equal clips are equal files in every container (issue 31): Matroska and
+# WebM held the date and a random segment id; --metadata keeps them.
+exts="mp4 mkv"
+ffmpeg -hide_banner -loglevel error -encoders | grep -q ' libvpx' && exts="$exts webm"
+for ext in $exts; do
+    for k in 1 2; do
+        expect 0 "" -- "$RTCL" animate "$scene" --fps 8 --frames 3 --width 32 --height 24 \
+            -o "$tmp/same$k.$ext"
+    done
+    checks=$((checks + 1))
+    cmp -s "$tmp/same1.$ext" "$tmp/same2.$ext" ||
+        { echo "FAIL: two equal clips to .$ext differ"; fails=$((fails + 1)); }
+done
+for k in 1 2; do
+    expect 0 "" -- "$RTCL" animate "$scene" --fps 8 --frames 3 --width 32 --height 24 \
+        --metadata -o "$tmp/meta$k.mkv"
+done
+checks=$((checks + 1))
+if cmp -s "$tmp/meta1.mkv" "$tmp/meta2.mkv"; then
+    echo "FAIL: --metadata: two .mkv files without their segment ids"; fails=$((fails + 1))
+fi
 
 # The path reaches ffmpeg as one argument: no shell runs it, and ffmpeg takes
 # neither a leading '-' for an option nor 'x:' for a protocol.

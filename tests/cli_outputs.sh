@@ -7,9 +7,11 @@
 #    would take minutes (8192x8192 frames, under a timeout) or where an input
 #    is missing (the output is named, so it was checked first);
 #  - SIGKILL while a file is written leaves the old file, whole, or the new
-#    one, never a part; two writers of one path, one stopped mid-write, both
-#    finish and the file is the whole image of the last (tests/
-#    output_faults.py); no temporary is left by a finished write;
+#    one, never a part; SIGINT, SIGTERM or SIGHUP also leaves no temporary
+#    (of an image, or of a video ffmpeg writes); two writers of one path,
+#    one stopped mid-write, both finish and the file is the whole image of
+#    the last (tests/output_faults.py); no temporary is left by a finished
+#    write;
 #  - two renders of one image are identical files in every format (EXR has
 #    no capDate unless --metadata asks for it);
 #  - an existing file keeps its permission bits; /dev/null is written in
@@ -46,9 +48,18 @@ expect 2 'plainfile: not a folder' -- $T "$RTCL" generate "$tmp/plainfile/gen"
 expect 2 'difference image: .*nodir/d.exr: cannot write the image file: folder' -- \
     $T "$RTCL" compare "$tmp/missing_a.png" "$tmp/missing_b.png" --diff "$tmp/nodir/d.exr"
 
-# Identical renders are identical files, in every format; no temporary stays.
+# Identical renders to two names are identical files, in every format of the
+# library's table (the list its unknown-extension error gives); no temporary
+# stays. (SGI's header held stack bytes, DPX's the file's name.)
 mkdir "$tmp/same"
-for ext in ppm pgm pfm png exr; do
+formats=$("$RTCL" render builtin:cornell -o "$tmp/x.nosuch" 2>&1 |
+    sed -n 's/.*(supported: \(.*\))$/\1/p' | tr -d ',.' | tr ' ' '\n' | sort -u)
+checks=$((checks + 1))
+for ext in ppm pgm pfm png exr tif sgi dpx; do
+    grep -qx "$ext" <<<"$formats" ||
+        { echo "FAIL: .$ext is not among the formats: $formats"; fails=$((fails + 1)); }
+done
+for ext in $formats; do
     for k in 1 2; do
         expect 0 "wrote $tmp/same/$k.$ext" -- "$RTCL" render builtin:cornell --width 48 \
             --height 32 -o "$tmp/same/$k.$ext"
@@ -97,9 +108,17 @@ checks=$((checks + 1))
     { echo "FAIL: writing through a symlink"; fails=$((fails + 1)); }
 
 # SIGKILL during writes and interleaved writers.
-mkdir "$tmp/kill"
+for ext in pfm exr; do
+    mkdir "$tmp/kill_$ext"
+    checks=$((checks + 1))
+    $py "$RT_SOURCE_DIR/tests/output_faults.py" kill "$RTCL" "$tmp/kill_$ext" 8 $ext ||
+        fails=$((fails + 1))
+done
+# SIGINT, SIGTERM, SIGHUP during a write and during a video: no temporary.
+mkdir "$tmp/interrupt"
 checks=$((checks + 1))
-$py "$RT_SOURCE_DIR/tests/output_faults.py" kill "$RTCL" "$tmp/kill" 8 || fails=$((fails + 1))
+$py "$RT_SOURCE_DIR/tests/output_faults.py" interrupt "$RTCL" "$tmp/interrupt" ||
+    fails=$((fails + 1))
 for ext in ppm pfm png exr; do
     mkdir "$tmp/both_$ext"
     checks=$((checks + 1))

@@ -249,6 +249,23 @@ printf '0 drag 3\n' >"$work/bad4.txt"
 run_rtcl view "$work/cornell.json" --script "$work/bad4.txt"
 expect_status 2 "drag without DY"
 expect_in "$err" "bad4.txt:1:9: this action needs 2 arguments" "drag without DY"
+# Screenshot paths are checked before the session starts (issue 31): a
+# missing folder or an unknown extension fails at once, naming the path.
+printf '0 down W\n5 screenshot %s/nodir/a.png\n' "$work" >"$work/bad5.txt"
+run_rtcl view "$work/cornell.json" --script "$work/bad5.txt"
+expect_status 2 "screenshot into a missing folder"
+expect_in "$err" "bad5.txt:2:14: screenshot: $work/nodir/a.png: cannot write the image file: folder" \
+    "screenshot into a missing folder"
+printf '5 screenshot %s/a.gif\n' "$work" >"$work/bad6.txt"
+run_rtcl view "$work/cornell.json" --script "$work/bad6.txt"
+expect_status 2 "screenshot of an unknown format"
+expect_in "$err" "bad6.txt:1:14: screenshot: $work/a.gif: unknown image file extension" \
+    "screenshot of an unknown format"
+run_rtcl view "$work/cornell.json" --frames 1000000 --screenshot "$work/nodir/end.exr"
+expect_status 2 "--screenshot into a missing folder"
+expect_in "$err" "--screenshot: $work/nodir/end.exr: cannot write the image file: folder" \
+    "--screenshot into a missing folder"
+case "$out" in *frames*) fail "--screenshot into a missing folder: frames were rendered: $out" ;; esac
 run_rtcl view "$work/cornell.json" --script "$work/missing.txt"
 expect_status 2 "missing script"
 expect_in "$err" "missing.txt: cannot open" "missing script"

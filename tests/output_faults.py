@@ -1,13 +1,14 @@
 # SPDX-License-Identifier: Apache-2.0
 """output_faults.py - faults while rtcl writes a file (tests/cli_outputs.sh).
 
-  output_faults.py kill RTCL DIR ROUNDS
-      A good image is written to DIR/out.pfm; then, ROUNDS times, a render
-      of another image to the same name is killed with SIGKILL at a random
-      point while its file is being written (seen as its temporary,
-      .out.tmp-*.pfm, existing), or at a random time of the whole run. Each
-      time DIR/out.pfm must be byte for byte the old image or the new one,
-      never a part; a kill during the write must leave the old one.
+  output_faults.py kill RTCL DIR ROUNDS [EXT]
+      A good image is written to DIR/out.EXT (pfm unless EXT is given);
+      then, ROUNDS times, a render of another image to the same name is
+      killed with SIGKILL at a random point while its file is being written
+      (seen as its temporary, .out.tmp-*.EXT, existing), or at a random time
+      of the whole run. Each time DIR/out.EXT must be byte for byte the old
+      image or the new one (killed after its rename), never a part, and no
+      other file than a killed writer's temporary may appear.
 
   output_faults.py interleave RTCL DIR EXT
       Two renders of different images to DIR/out.EXT; the first is stopped
@@ -15,12 +16,20 @@
       is continued. Both must say "wrote" and exit 0, and the file must be
       the whole image of the one that finished last.
 
+  output_faults.py interrupt RTCL DIR
+      SIGINT, SIGTERM and SIGHUP while rtcl writes: a render to DIR/out.pfm
+      gets the signal while its temporary exists, and a video (when ffmpeg
+      is on PATH) while ffmpeg writes it. rtcl must end by that signal, the
+      old file must be as it was and no temporary may be left (rtcl's
+      handler removes them and stops ffmpeg first).
+
 Exit 0 when every check holds; the failures are printed.
 """
 
 import glob
 import os
 import random
+import shutil
 import signal
 import subprocess
 import sys
@@ -61,11 +70,11 @@ def wait_for_temporary(proc, folder, stem, ext, limit_s=120.0):
     return False
 
 
-def kill(rtcl, folder, rounds):
+def kill(rtcl, folder, rounds, ext):
     failures = []
-    old_path = os.path.join(folder, "old.pfm")
-    new_path = os.path.join(folder, "new.pfm")
-    out = os.path.join(folder, "out.pfm")
+    old_path = os.path.join(folder, "old." + ext)
+    new_path = os.path.join(folder, "new." + ext)
+    out = os.path.join(folder, "out." + ext)
     run_ok(render_args(rtcl, old_path, 640, 640))
     run_ok(render_args(rtcl, new_path, 1024, 1024))
     old, new = read(old_path), read(new_path)
@@ -78,13 +87,13 @@ def kill(rtcl, folder, rounds):
     for k in range(rounds):
         with open(out, "wb") as f:
             f.write(old)
-        for t in temporaries(folder, "out", ".pfm"):
+        for t in temporaries(folder, "out", "." + ext):
             os.unlink(t)
         proc = subprocess.Popen(render_args(rtcl, out, 1024, 1024), stdout=subprocess.DEVNULL,
                                 stderr=subprocess.DEVNULL)
         in_write = k % 2 == 0
         if in_write:
-            seen = wait_for_temporary(proc, folder, "out", ".pfm")
+            seen = wait_for_temporary(proc, folder, "out", "." + ext)
             time.sleep(rng.uniform(0.0, 0.004))
         else:
             time.sleep(rng.uniform(0.0, whole_s * 1.1))
@@ -98,16 +107,20 @@ def kill(rtcl, folder, rounds):
                 continue
             during += 1
             if proc.returncode == -signal.SIGKILL and now != old and now != new:
-                failures.append("round %d: killed while writing, out.pfm is %d bytes, neither "
-                                "the old (%d) nor the new image (%d)" % (k, len(now), len(old),
-                                                                        len(new)))
+                failures.append("round %d: killed while writing, out.%s is %d bytes, neither "
+                                "the old (%d) nor the new image (%d)" % (k, ext, len(now),
+                                                                        len(old), len(new)))
             elif proc.returncode == -signal.SIGKILL and now != old and now == new:
                 pass  # killed after the rename: the new file, whole
         elif now != old and now != new:
-            failures.append("round %d: killed at a random time, out.pfm is %d bytes, neither the "
-                            "old nor the new image" % (k, len(now)))
-    print("kill: %d rounds, %d killed while writing, %d failures" % (rounds, during,
-                                                                      len(failures)))
+            failures.append("round %d: killed at a random time, out.%s is %d bytes, neither the "
+                            "old nor the new image" % (k, ext, len(now)))
+        strays = sorted(set(os.listdir(folder)) - {"old." + ext, "new." + ext, "out." + ext} -
+                        {os.path.basename(t) for t in temporaries(folder, "out", "." + ext)})
+        if strays:
+            failures.append("round %d: other files appeared: %s" % (k, ", ".join(strays)))
+    print("kill %s: %d rounds, %d killed while writing, %d failures" % (ext, rounds, during,
+                                                                         len(failures)))
     return failures
 
 
@@ -152,10 +165,65 @@ def interleave(rtcl, folder, ext):
     return failures
 
 
+def interrupt(rtcl, folder):
+    failures = []
+    out = os.path.join(folder, "out.pfm")
+    old_path = os.path.join(folder, "old.pfm")
+    run_ok(render_args(rtcl, old_path, 64, 64))
+    old = read(old_path)
+    jobs = [("pfm", render_args(rtcl, out, 1024, 1024), out, old)]
+    if shutil.which("ffmpeg"):
+        video = os.path.join(folder, "v.mp4")
+        with open(video, "wb") as f:
+            f.write(b"an old video")
+        scene = os.path.join(os.environ.get("RT_SOURCE_DIR", "."), "scenes",
+                             "keyframes_animated.json")
+        jobs.append(("mp4", [rtcl, "animate", scene, "--fps", "10", "--frames", "100000",
+                             "--width", "64", "--height", "64", "-o", video], video,
+                     b"an old video"))
+    for ext, args, target, before in jobs:
+        stem = os.path.splitext(os.path.basename(target))[0]
+        for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+            for attempt in range(20):
+                with open(target, "wb") as f:
+                    f.write(before)
+                proc = subprocess.Popen(args, stdout=subprocess.DEVNULL,
+                                        stderr=subprocess.DEVNULL)
+                if not wait_for_temporary(proc, folder, stem, "." + ext):
+                    proc.wait()
+                    failures.append("%s %s: the temporary never appeared" % (ext, sig.name))
+                    break
+                if ext == "mp4":
+                    time.sleep(0.3)  # ffmpeg has started and writes
+                proc.send_signal(sig)
+                proc.wait()
+                if proc.returncode == 0:
+                    continue  # it finished before the signal: again
+                if proc.returncode != -sig:
+                    failures.append("%s %s: exit status %d, not the signal" % (ext, sig.name,
+                                                                              proc.returncode))
+                time.sleep(0.2)
+                if read(target) != before:
+                    failures.append("%s %s: the old file changed" % (ext, sig.name))
+                left = temporaries(folder, stem, "." + ext)
+                if left:
+                    failures.append("%s %s: temporaries left: %s" % (ext, sig.name,
+                                                                     ", ".join(left)))
+                    for t in left:
+                        os.unlink(t)
+                break
+            else:
+                failures.append("%s %s: never interrupted while writing" % (ext, sig.name))
+    print("interrupt: %d jobs, %d failures" % (len(jobs), len(failures)))
+    return failures
+
+
 def main():
     mode, rtcl, folder = sys.argv[1], sys.argv[2], sys.argv[3]
     if mode == "kill":
-        failures = kill(rtcl, folder, int(sys.argv[4]))
+        failures = kill(rtcl, folder, int(sys.argv[4]), sys.argv[5] if len(sys.argv) > 5 else "pfm")
+    elif mode == "interrupt":
+        failures = interrupt(rtcl, folder)
     else:
         failures = interleave(rtcl, folder, sys.argv[4])
     for f in failures:

@@ -4,7 +4,8 @@
  * have their own temporaries and the last commit wins; a reserved temporary
  * carries the target's extension; long names stay within NAME_MAX; errors
  * name the fault (missing folder, a folder as the target, an unwritable
- * folder); nothing is left behind. */
+ * folder); rt_atomic_file_remove_temporaries removes the live temporaries
+ * only; nothing is left behind. */
 #include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
@@ -102,6 +103,36 @@ int main(void) {
     CHECK(access(video, F_OK) != 0);
     CHECK_EQ_INT(rt_atomic_file_commit(&a, &err), RT_OK);
     CHECK(strcmp(content(video), "frames\n") == 0);
+
+    /* What a signal handler calls: every live temporary (written or
+     * reserved) goes, the target stays; the files are then discarded, and a
+     * zeroed one too, without touching another writer's entry. Slots are
+     * reused: more writes than slots, one after another, are all removed. */
+    unlink(video);
+    CHECK_EQ_INT(rt_atomic_file_open(&a, target, "text file", &err), RT_OK);
+    CHECK_EQ_INT(rt_atomic_file_reserve(&b, video, "video", &err), RT_OK);
+    fputs("half", a.stream);
+    fflush(a.stream);
+    CHECK_EQ_INT(file_count(), 3);
+    rt_atomic_file_remove_temporaries();
+    CHECK(access(a.temp, F_OK) != 0 && access(b.temp, F_OK) != 0);
+    CHECK(strcmp(content(target), "from a\n") == 0 && access(video, F_OK) != 0);
+    CHECK_EQ_INT(file_count(), 1);
+    rt_atomic_file zeroed;
+    memset(&zeroed, 0, sizeof zeroed);
+    rt_atomic_file_discard(&zeroed);
+    rt_atomic_file_discard(&a);
+    rt_atomic_file_discard(&b);
+    for (int i = 0; i < 2 * RT_ATOMIC_LIVE_SLOTS; i++) {
+        CHECK_EQ_INT(rt_atomic_file_open(&a, target, "text file", &err), RT_OK);
+        rt_atomic_file_discard(&a);
+    }
+    CHECK_EQ_INT(rt_atomic_file_open(&a, target, "text file", &err), RT_OK);
+    rt_atomic_file_remove_temporaries();
+    CHECK(access(a.temp, F_OK) != 0);
+    rt_atomic_file_discard(&a);
+    CHECK(strcmp(content(target), "from a\n") == 0);
+    CHECK_EQ_INT(file_count(), 1);
 
     /* A name of NAME_MAX bytes still gets a temporary that fits. */
     char name[256];

@@ -27,6 +27,44 @@
 
 static atomic_uint name_counter;
 
+/* The temporaries now open, for rt_atomic_file_remove_temporaries, which a
+ * signal handler calls: a fixed table (no allocation), each path copied into
+ * its slot. A slot is FREE, being FILLED by its writer, or LIVE; the handler
+ * unlinks only LIVE ones. A slot is freed after its temporary was renamed
+ * or removed, so the handler's unlink of a path just freed fails harmlessly
+ * (ENOENT). */
+enum { SLOT_FREE, SLOT_FILLED, SLOT_LIVE };
+static struct live_slot {
+    atomic_int state;
+    char path[PATH_MAX];
+} live_slots[RT_ATOMIC_LIVE_SLOTS];
+
+/* Enters path in a free slot: 1 + its index, or 0 when the path is too long
+ * or every slot is taken (the write goes on; only a signal cannot clean it). */
+static int live_add(const char *path) {
+    size_t n = strlen(path);
+    if (n >= PATH_MAX) return 0;
+    for (int i = 0; i < RT_ATOMIC_LIVE_SLOTS; i++) {
+        int expected = SLOT_FREE;
+        if (atomic_compare_exchange_strong(&live_slots[i].state, &expected, SLOT_FILLED)) {
+            memcpy(live_slots[i].path, path, n + 1);
+            atomic_store(&live_slots[i].state, SLOT_LIVE);
+            return i + 1;
+        }
+    }
+    return 0;
+}
+
+/* Frees the slot live_add gave (0: none). */
+static void live_remove(int live) {
+    if (live > 0) atomic_store(&live_slots[live - 1].state, SLOT_FREE);
+}
+
+void rt_atomic_file_remove_temporaries(void) {
+    for (int i = 0; i < RT_ATOMIC_LIVE_SLOTS; i++)
+        if (atomic_load(&live_slots[i].state) == SLOT_LIVE) unlink(live_slots[i].path);
+}
+
 /* The folder part of path ("." for a bare name, "/" for "/x"), new. */
 static char *folder_of(const char *path) {
     const char *slash = strrchr(path, '/');
@@ -109,6 +147,7 @@ static char *temp_name(const char *target) {
 }
 
 static void release(rt_atomic_file *f) {
+    live_remove(f->live);
     free(f->target);
     free(f->temp);
     memset(f, 0, sizeof *f);
@@ -147,6 +186,11 @@ static rt_status open_output(rt_atomic_file *f, const char *target, const char *
     for (int tries = 0; tries < MAX_NAME_TRIES; tries++) {
         f->temp = temp_name(f->target);
         if (!f->temp) break;
+        /* Entered in the table before it exists, so that a signal right
+         * after open finds it (an unlink of a name not yet made fails
+         * harmlessly); its slot is freed again if open fails. (An existing
+         * name, EEXIST, is not expected: pid, counter and random bits.) */
+        f->live = live_add(f->temp);
         /* 0666 less the umask, as fopen gives a new file. */
         int fd = open(f->temp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (fd >= 0) {
@@ -157,6 +201,8 @@ static rt_status open_output(rt_atomic_file *f, const char *target, const char *
             return RT_OK;
         }
         int e = errno;
+        live_remove(f->live);
+        f->live = 0;
         free(f->temp);
         f->temp = NULL;
         if (e != EEXIST) {
@@ -208,6 +254,21 @@ static int sync_path(const char *path) {
     return e;
 }
 
+/* Makes a rename in target's folder durable (the folder's entry), so that a
+ * file reported written is still there after a power loss. Best effort: the
+ * target is already replaced, so a failure here (a file system that cannot
+ * sync folders) is no reason to report the write as failed. */
+static void sync_folder(const char *target) {
+    char *dir = folder_of(target);
+    if (!dir) return;
+    int fd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd >= 0) {
+        if (fsync(fd) != 0) errno = 0;
+        close(fd);
+    }
+    free(dir);
+}
+
 rt_status rt_atomic_file_commit(rt_atomic_file *f, rt_error *err) {
     const char *what = f->what ? f->what : "file";
     int e = 0;
@@ -223,6 +284,7 @@ rt_status rt_atomic_file_commit(rt_atomic_file *f, rt_error *err) {
         e = sync_path(f->temp);
     }
     if (!e && f->temp && rename(f->temp, f->target) != 0) e = errno;
+    if (!e && f->temp) sync_folder(f->target);
     if (e) {
         rt_error_set(err, RT_ERROR_IO, f->target, 0, 0, "cannot write the %s: %s", what,
                      strerror(e));
@@ -294,4 +356,8 @@ void rt_output_discard(rt_output *o) {
 
 rt_status rt_output_check(const char *target, const char *what, rt_error *err) {
     return rt_atomic_file_check(target, what ? what : "file", err);
+}
+
+void rt_output_remove_temporaries(void) {
+    rt_atomic_file_remove_temporaries();
 }

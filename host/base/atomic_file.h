@@ -8,7 +8,8 @@
  *  - a failed write (a full disk, an i/o error) removes the temporary and
  *    leaves an existing target as it was;
  *  - a process killed while writing leaves the old target intact (and a
- *    stray temporary, see below);
+ *    stray temporary, see below, unless its signal handler calls
+ *    rt_atomic_file_remove_temporaries, as rtcl's does);
  *  - concurrent writers of one path each write their own temporary, and each
  *    rename replaces the whole file: the last rename wins, no file is mixed.
  *
@@ -45,6 +46,7 @@ typedef struct rt_atomic_file {
     char *target;     /* the final path (a followed symlink's file) */
     char *temp;       /* the temporary path; NULL when written in place */
     const char *what; /* the kind of file, for messages ("image file") */
+    int live;         /* 1 + its slot in the table of live temporaries; 0: none */
 } rt_atomic_file;
 
 /* Opens a temporary for target (see above) and sets f->stream to it. what
@@ -63,7 +65,8 @@ rt_status rt_atomic_file_reserve(rt_atomic_file *f, const char *target, const ch
                                  rt_error *err);
 
 /* Flushes, fsyncs and closes the stream (any error there, ENOSPC included,
- * is reported) and renames the temporary over the target. On failure the
+ * is reported), renames the temporary over the target and fsyncs its folder
+ * (best effort, so the rename survives a power loss). On failure the
  * temporary is removed, the target is untouched and err says why. f is
  * released either way. */
 rt_status rt_atomic_file_commit(rt_atomic_file *f, rt_error *err);
@@ -81,5 +84,15 @@ rt_status rt_atomic_file_write(const char *target, const char *what, const void 
  * RT_OK, or RT_ERROR_IO naming the fault (and the folder). Nothing is
  * created. */
 rt_status rt_atomic_file_check(const char *target, const char *what, rt_error *err);
+
+/* Removes the temporary of every rt_atomic_file of this process that is
+ * open or reserved and not yet committed or discarded; the targets are
+ * untouched. Async-signal-safe (it only reads a fixed table and calls
+ * unlink), for a program's SIGINT/SIGTERM handler, which then ends the
+ * process (rt.h: rt_output_remove_temporaries). At most
+ * RT_ATOMIC_LIVE_SLOTS temporaries at once are known (more are written,
+ * but such a handler cannot remove them). */
+#define RT_ATOMIC_LIVE_SLOTS 64
+void rt_atomic_file_remove_temporaries(void);
 
 #endif /* RT_ATOMIC_FILE_H */

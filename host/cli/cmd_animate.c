@@ -48,8 +48,9 @@ static const cli_option animate_options[] = {
              "or interrupted write leaves an existing file of that name as it was",
      .fallback = "required"},
     {"--metadata", 0, CLI_FLAG, NULL, offsetof(animate_args, metadata),
-     .help = "record the time of writing and the software in PNG and EXR frames (without it "
-             "equal frames are equal files)"},
+     .help = "record the time of writing and the software in PNG and EXR frames (the time "
+             "and the file's name in DPX), and the date and a random id in Matroska and WebM "
+             "videos (without it equal frames are equal files)"},
     {"--stats", 0, CLI_FLAG, NULL, offsetof(animate_args, stats),
      .help = "one JSON line per frame on stdout: the frame, its time, what each updated mesh's "
              "BVH did (action, ms, SAH cost), object-BVH ms, layout ms and bytes rewritten, "
@@ -276,8 +277,8 @@ int cmd_animate(int argc, char **argv) {
         double w0 = cli_now_ms();
         if (video) {
             /* The video starts with the first frame, at its size. */
-            if (!vid &&
-                !(vid = cli_video_open(pattern, fb.width, fb.height, fps, why, sizeof why))) {
+            if (!vid && !(vid = cli_video_open(pattern, fb.width, fb.height, fps, a.metadata, why,
+                                               sizeof why))) {
                 cli_progress_done();
                 cli_error("animate", "-o %s: %s", pattern, why);
                 code = 2;

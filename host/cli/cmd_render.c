@@ -24,8 +24,9 @@ static const cli_option render_options[] = {
              "it was)",
      .dynamic_help = cli_image_formats_help, .fallback = "out.png"},
     {"--metadata", 0, CLI_FLAG, NULL, offsetof(render_args, metadata),
-     .help = "record the time of writing and the software in PNG and EXR files (without it "
-             "equal images are equal files)"},
+     .help = "record the time of writing and the software in PNG and EXR files, and the time "
+             "and the file's name in DPX (without it equal images are equal files, under any "
+             "name)"},
     {"--frames", 0, CLI_INT, "N", offsetof(render_args, frames), 1, 1000,
      .help = "render N frames in one process and print the first frame's time and the min and "
              "median of the others (a benchmark); the image written is the first frame's",

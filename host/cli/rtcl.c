@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "cli_signals.h"
 #include "commands.h"
 #include "rt.h"
 
@@ -79,6 +80,10 @@ int main(int argc, char **argv) {
     }
     if (!strcmp(argv[1], "help")) return help(argc, argv);
     int k = find(argv[1]);
+    /* An interrupted write leaves no temporary (cli_signals.h). Not for the
+     * viewer: SDL turns SIGINT and SIGTERM into a quit event when it finds
+     * their default actions, so that the session ends as by Escape. */
+    if (k >= 0 && commands[k].run != cmd_view) cli_signals_install();
     if (k >= 0) return commands[k].run(argc - 1, argv + 1);
     fprintf(stderr, "rtcl: unknown command '%s'; see 'rtcl --help'\n", argv[1]);
     return 2;

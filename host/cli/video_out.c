@@ -20,6 +20,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "cli_signals.h"
 #include "rt.h"
 
 extern char **environ;
@@ -197,15 +198,23 @@ static void release(cli_video *v) {
 
 static int wait_child(cli_video *v) {
     int status = 0;
-    if (v->pid > 0)
+    if (v->pid > 0) {
+        /* Waited for without reaping first: until it is reaped its id
+         * cannot be reused, so the signal handler (cli_signals.h), which
+         * kills it, can never kill another process. */
+        siginfo_t info;
+        while (waitid(P_PID, (id_t)v->pid, &info, WEXITED | WNOWAIT) < 0 && errno == EINTR) {
+        }
+        cli_signals_child(0);
         while (waitpid(v->pid, &status, 0) < 0 && errno == EINTR) {
         }
+    }
     v->pid = 0;
     return status;
 }
 
-cli_video *cli_video_open(const char *path, int width, int height, double fps, char *why,
-                          size_t cap) {
+cli_video *cli_video_open(const char *path, int width, int height, double fps, int metadata,
+                          char *why, size_t cap) {
     if (!cli_have_ffmpeg()) {
         snprintf(why, cap, "%s", no_ffmpeg);
         return NULL;
@@ -278,6 +287,12 @@ cli_video *cli_video_open(const char *path, int width, int height, double fps, c
         argv[n++] = "-f";
         argv[n++] = mkv ? "matroska" : "mp4";
     }
+    if (!metadata) {
+        /* Matroska and WebM otherwise hold the date and a random segment
+         * id: two equal clips were two different files. */
+        argv[n++] = "-fflags";
+        argv[n++] = "+bitexact";
+    }
     argv[n++] = url;
     argv[n] = NULL;
 
@@ -315,6 +330,7 @@ cli_video *cli_video_open(const char *path, int width, int height, double fps, c
         release(v);
         return NULL;
     }
+    cli_signals_child(v->pid);
     return v;
 }
 

@@ -28,10 +28,12 @@ int cli_video_check(const char *path, char *why, size_t cap);
  * it, else MPEG-4 part 2; VP9 (else VP8) in .webm; 4:2:0 chroma, padded by a
  * black column or row to even sides when odd. path reaches ffmpeg as one
  * argument (no shell), as a file: URL, so that no path is taken for an
- * option or a protocol. ffmpeg's messages are kept and shown only on
- * failure. NULL on failure with the reason in why. */
-cli_video *cli_video_open(const char *path, int width, int height, double fps, char *why,
-                          size_t cap);
+ * option or a protocol. Unless metadata is 1, the container holds no time
+ * or random id (ffmpeg's bitexact mode), so equal frames give an equal
+ * file. ffmpeg's messages are kept and shown only on failure. NULL on
+ * failure with the reason in why. */
+cli_video *cli_video_open(const char *path, int width, int height, double fps, int metadata,
+                          char *why, size_t cap);
 
 /* Sends one frame: width x height x 3 floats in rows from the top, clamped
  * to [0, 1] and rounded to 8 bits as the PPM writer does. 0 with the reason

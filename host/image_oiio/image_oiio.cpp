@@ -105,8 +105,12 @@ uint16_t to_16bit(float v) {
 }
 
 // Encodes through a temporary file, for the writers that cannot write to
-// memory (OIIO's SGI and FITS): written in TMPDIR (or /tmp), read back
-// into encoded, removed. The library still writes the target whole.
+// memory (OIIO's SGI and FITS): made in TMPDIR (or /tmp), opened by OIIO by
+// its name and then at once unlinked, so that the file has a name only
+// while OIIO opens it: a process interrupted or killed during the encoding
+// leaves nothing in TMPDIR. OIIO writes through the stream it opened and
+// the bytes are read back through the descriptor kept from mkstemps (the
+// same file). The library still writes the target whole.
 bool encode_via_file(const char *path, const OIIO::ImageSpec &spec, OIIO::TypeDesc type,
                      const void *pixels, std::vector<unsigned char> &encoded, std::string &error) {
     const char *dot = std::strrchr(path, '.');
@@ -120,13 +124,14 @@ bool encode_via_file(const char *path, const OIIO::ImageSpec &spec, OIIO::TypeDe
                 ": " + std::strerror(errno);
         return false;
     }
-    close(fd);
     bool ok = false;
     {
         auto out = OIIO::ImageOutput::create(templ.data());
+        bool opened = out && out->open(templ.data(), spec);
+        unlink(templ.data());
         if (!out)
             error = one_line(OIIO::geterror());
-        else if (!out->open(templ.data(), spec))
+        else if (!opened)
             error = one_line(out->geterror());
         else {
             bool written = out->write_image(type, pixels);
@@ -137,20 +142,18 @@ bool encode_via_file(const char *path, const OIIO::ImageSpec &spec, OIIO::TypeDe
         }
     }
     if (ok) {
-        std::FILE *f = std::fopen(templ.data(), "rb");
-        ok = f != nullptr;
-        if (f) {
-            unsigned char chunk[65536];
-            size_t got;
-            while ((got = std::fread(chunk, 1, sizeof chunk, f)) > 0)
-                encoded.insert(encoded.end(), chunk, chunk + got);
-            ok = !std::ferror(f);
-            std::fclose(f);
+        unsigned char chunk[65536];
+        off_t at = 0;
+        ssize_t got;
+        while ((got = pread(fd, chunk, sizeof chunk, at)) > 0) {
+            encoded.insert(encoded.end(), chunk, chunk + got);
+            at += got;
         }
+        ok = got == 0;
         if (!ok)
             error = std::string("cannot read the temporary file back: ") + std::strerror(errno);
     }
-    unlink(templ.data());
+    close(fd);
     return ok;
 }
 
@@ -161,6 +164,27 @@ std::string time_stamp() {
     char text[32] = "";
     if (localtime_r(&now, &local)) std::strftime(text, sizeof text, "%Y:%m:%d %H:%M:%S", &local);
     return text;
+}
+
+// Clears the header fields through which OpenImageIO 2.4 puts more than the
+// pixels into a file, so that equal pixels give equal files whatever the
+// file's name and whatever was on the stack (tests/cli_outputs.sh):
+//  - SGI: the 80-byte image name (offset 24) is left uninitialised, stack
+//    bytes (pointers among them) when no ImageDescription is given, and the
+//    module gives none; it is zeroed always, as the format's "no name";
+//  - DPX: the 100-byte file name (offset 36) holds the target's file name,
+//    so one frame written under two names gave two files; zeroed unless
+//    metadata asks for it (the creation time there is asked for the same way).
+// Both formats' magic numbers are checked first, so a writer of another
+// layout is left alone.
+void clear_varying_fields(const format_row *format, int metadata,
+                          std::vector<unsigned char> &file) {
+    const std::string name = format->name;
+    if (name == "SGI" && file.size() >= 512 && file[0] == 0x01 && file[1] == 0xda)
+        std::memset(file.data() + 24, 0, 80);
+    const bool dpx_magic = file.size() >= 2048 && (std::memcmp(file.data(), "SDPX", 4) == 0 ||
+                                                   std::memcmp(file.data(), "XPDS", 4) == 0);
+    if (name == "DPX" && dpx_magic && !metadata) std::memset(file.data() + 36, 0, 100);
 }
 
 rt_status encode_image(const char *path, const rt_image *image, int metadata,
@@ -245,6 +269,7 @@ rt_status encode_image(const char *path, const rt_image *image, int metadata,
             return rt_error_set(err, RT_ERROR_IO, path, 0, 0, "cannot finish the file: %s",
                                 one_line(out->geterror()).c_str());
     }
+    clear_varying_fields(format, metadata, encoded);
     // malloc'ed: the library frees it with free().
     unsigned char *file = static_cast<unsigned char *>(std::malloc(encoded.size() + 1));
     if (!file)

@@ -125,5 +125,12 @@ int cmd_view(int argc, char **argv) {
      * measured frame times (which would decide which frame is full). */
     if (o.script && !o.step_ms) o.step_ms = 1000.0 / 30.0;
     if (o.script && !o.move_divisor) o.move_divisor = 1;
+    /* The screenshot's folder and format are checked before the window
+     * opens, not at the end of the session (issue 31). */
+    rt_error oerr;
+    if (o.screenshot && cli_frame_check(o.screenshot, &oerr) != RT_OK) {
+        cli_error("view", "--screenshot: %s", oerr.message);
+        return 2;
+    }
     return view_run(&o);
 }

@@ -126,6 +126,15 @@ static int parse_line(const char *path, int line_no, const char *line, view_even
             }
             memcpy(ev->path, w, n);
             ev->path[n] = 0;
+            /* The file's folder and format are checked now, before the
+             * session's work, not when the frame is due (issue 31). */
+            rt_error check;
+            if (rt_image_check_output(ev->path, &check) != RT_OK) {
+                script_fail(err, path, line_no, col, "screenshot: %s", check.message);
+                free(ev->path);
+                ev->path = NULL;
+                return -1;
+            }
         } else if (!parse_float(w, n, a == 0 ? &ev->dx : &ev->dy)) {
             script_fail(err, path, line_no, col, "'%.*s' is not a number in -1e6..1e6", (int)n, w);
             return -1;
