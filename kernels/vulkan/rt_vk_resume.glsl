@@ -15,8 +15,11 @@
  * at most three soft divisions of 25; a kd step: its pop loop, at most
  * RT_KD_STACK; an instance: its ray's six divisions; a shading step:
  * rt_shade_begin or rt_shade_end, one light's shadow ray and Phong terms,
- * whose specular power loop runs the material's shininess), a few hundred
- * (the shininess aside), far below the margin.
+ * whose specular power loop runs the material's shininess, and the lights
+ * it skips before the next shadow ray), a few hundred, far below the margin.
+ * Two have no bound of their own: a shininess beyond about 30,000, or some
+ * 250 lights in a row that give no shadow ray (about 120 iterations each),
+ * would outrun the margin; the canary then reports the item, as before.
  *
  * The limit, RT_VK_TICK_LIMIT = 32768, half the budget: an item suspends
  * at the first checkpoint past it, so the driver has counted at most
