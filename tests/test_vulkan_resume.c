@@ -7,8 +7,9 @@
  *   (all are re-run alone) and every alone dispatch spends 31,000 of its
  *   iterations first, so that cornell's pixels and rays resume many times
  *   in the object BVH, a mesh BVH, a kd-tree and the shading loop: the
- *   image, the triangle-test AOV and the counters, and random closest and
- *   any hits, equal the oracle's, on the BVH and the kd-tree;
+ *   image, the triangle-test AOV (re-run in batches of 50 items) and the
+ *   counters, and random closest and any hits, equal the oracle's, on the
+ *   BVH and the kd-tree;
  * - a real case, no injection: a 64x64 grid morphed into a copy whose
  *   vertices are scrambled (long crossing slivers; the refitted BVH's boxes
  *   all span the grid, so a ray tests most of its 8,192 triangles): hits and
@@ -146,7 +147,10 @@ static void check_injected(void) {
         if (kd) CHECK(rt_scene_set_static_accel(s, RT_ACCEL_KD) == RT_OK);
         const char *name = kd ? "cornell kd (injected)" : "cornell bvh (injected)";
         check_render(name, s, RT_AOV_NONE, 32u * 18u);
+        /* Batches of 50 items: the re-run items of a tile in several. */
+        rt_vk_test_slots(50u);
         check_render(name, s, RT_AOV_TRI_TESTS, 32u * 18u);
+        rt_vk_test_slots(0u);
         check_trace(name, s, rays, N, N / 2, 1);
         rt_scene_destroy(s);
     }

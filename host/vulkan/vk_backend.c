@@ -69,6 +69,14 @@ void rt_vk_test_alone_ballast(uint32_t ballast) {
     vk_test_alone_ballast = ballast;
 }
 
+/* Items per alone dispatch (rerun_cut's batches), RT_VK_SLOTS unless a test
+ * sets fewer to run several batches on a small frame. */
+static uint32_t vk_slots = RT_VK_SLOTS;
+
+void rt_vk_test_slots(uint32_t slots) {
+    vk_slots = slots >= 1 && slots <= RT_VK_SLOTS ? slots : RT_VK_SLOTS;
+}
+
 /* What the last frame or trace re-ran (rerun_cut), for rt_vk_test_reruns. */
 typedef struct vk_reruns {
     uint32_t items;      /* items traced again alone */
@@ -746,7 +754,7 @@ static rt_status rerun_cut(vk_state *s, const rt_vk_push *push, size_t base, int
     for (uint32_t next = 0; next < push->count;) {
         /* The next batch: up to RT_VK_SLOTS cut items, slot k each. */
         uint32_t m = 0;
-        for (; next < push->count && m < RT_VK_SLOTS; next++)
+        for (; next < push->count && m < vk_slots; next++)
             if (items[next]) {
                 pairs[2 * m] = next;
                 pairs[2 * m + 1] = m;

@@ -68,6 +68,11 @@ void rt_vk_test_loop_limit(uint32_t ballast, int rerun);
  * budget and small scenes resume often. Not thread-safe; tests only. */
 void rt_vk_test_alone_ballast(uint32_t ballast);
 
+/* At most slots items (1 .. 4096; anything else: 4096, the default) per
+ * dispatch that traces items alone, so that a test runs several batches.
+ * Not thread-safe; tests only. */
+void rt_vk_test_slots(uint32_t slots);
+
 /* What the last frame or trace of this process traced alone: *items items
  * re-run, *resumes item-dispatches that went on from a saved state, in
  * *dispatches dispatches. Not thread-safe; tests and measurements only. */
