@@ -14,7 +14,10 @@
  *   vertices are scrambled (long crossing slivers; the refitted BVH's boxes
  *   all span the grid, so a ray tests most of its 8,192 triangles): hits and
  *   an image equal to the oracle's. Before resumes it was refused ("needs
- *   more loop iterations").
+ *   more loop iterations");
+ * - a floor lit from below by 400 lights (none gives a shadow ray), the
+ *   budget spent by injection: each pixel's scan for its next light
+ *   resumes; the image is the oracle's.
  * The resumes are lavapipe's (llvmpipe's loop limit); on another device
  * this test says so and skips. */
 #include <math.h>
@@ -250,6 +253,32 @@ static void check_real(void) {
     free(mix);
     free(rays);
 }
+
+/* Many lights that give no shadow ray: a floor lit from below by 400
+ * lights, then the one light above it, with the budget spent by fault
+ * injection, so that each pixel's scan for its next shadow ray (400 lights
+ * of 64 counted iterations or more each) suspends inside the scan. */
+static void check_lights(void) {
+    const float pos[12] = {-1.0f, 0.0f, -1.0f, 1.0f,  0.0f, -1.0f,
+                           1.0f,  0.0f, 1.0f,  -1.0f, 0.0f, 1.0f};
+    const uint32_t idx[6] = {0, 2, 1, 0, 3, 2};
+    rt_scene *s = test_mesh_scene(pos, 4, idx, 2);
+    if (!s) return;
+    rt_camera cam = {{0.0f, 2.0f, 0.5f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -1.0f}, 40.0f, 8, 8};
+    CHECK(rt_camera_set(s, &cam) == RT_OK);
+    const float dim[3] = {0.001f, 0.001f, 0.001f};
+    for (int k = 0; k < 400; k++) {
+        const float below[3] = {0.001f * (float)k, -1.0f - 0.01f * (float)k, 0.0f};
+        uint32_t id;
+        if (rt_light_add(s, below, dim, &id) != RT_OK) CHECK(0);
+    }
+    rt_vk_test_loop_limit(65000u, 1);
+    rt_vk_test_alone_ballast(31000u);
+    check_render("400 lights below a floor (injected)", s, RT_AOV_NONE, 64);
+    rt_vk_test_alone_ballast(0u);
+    rt_vk_test_loop_limit(0u, 1);
+    rt_scene_destroy(s);
+}
 #endif
 
 int main(void) {
@@ -273,6 +302,7 @@ int main(void) {
     if (!cpu_r || !vk_r) return TEST_END();
     check_injected();
     check_real();
+    check_lights();
     return TEST_END();
 #endif
 }

@@ -72,14 +72,15 @@ void st_get_node(inout uint w, out rt_shade_node x) {
     x.lw = st_getf(w);
 }
 
-/* main()'s whole state: where it is (in_trace: inside rt_trace, whose own
- * state is ST_TOP's and below; else before the next rt_trace), the ray
+/* main()'s whole state: where it is (where: 0 before the next rt_trace, 1
+ * inside it, whose own state is ST_TOP's and below, 2 in the scan for the
+ * next light with a shadow ray, before light li), the ray
  * kind, the shading node and its hit, the light, the shadow ray, the colour
  * so far, the stack of children and the counters (at most 204 words). */
 #define MAIN_SAVE()                                                                                \
     {                                                                                              \
         uint w = ST_MAIN;                                                                          \
-        st_put(w, in_trace ? 1u : 0u);                                                             \
+        st_put(w, where);                                                                          \
         st_put(w, uint(step));                                                                     \
         st_put(w, primary ? 1u : 0u);                                                              \
         st_put(w, begun ? 1u : 0u);                                                                \
@@ -100,7 +101,7 @@ void st_get_node(inout uint w, out rt_shade_node x) {
 #define MAIN_LOAD()                                                                                \
     {                                                                                              \
         uint w = ST_MAIN;                                                                          \
-        in_trace = st_get(w) != 0u;                                                                \
+        where = st_get(w);                                                                         \
         step = int(st_get(w));                                                                     \
         primary = st_get(w) != 0u;                                                                 \
         begun = st_get(w) != 0u;                                                                   \
@@ -156,10 +157,10 @@ void main() {
     float rgb[3] = float[3](0.0, 0.0, 0.0);
     rt_shade_entry stack[RT_SHADE_STACK];
     int sp = 0;
-    bool in_trace = false;
+    uint where = 0u; /* where a suspended item stopped: MAIN_SAVE */
     if (rt_vk_resuming) {
         MAIN_LOAD()
-        if (!in_trace) rt_vk_resuming = false;
+        if (where != 1u) rt_vk_resuming = false;
     } else if (step == STEP_QUERY) {
         e.ray = rays[i];
     } else {
@@ -170,57 +171,67 @@ void main() {
         e.depth = 0u;
     }
     for (;; RT_VK_TICK) {
-        /* Passive while resuming into rt_trace (in_trace). */
-        if (rt_vk_checkpoint()) {
-            in_trace = false;
-            break;
-        }
-        bool any = step == STEP_SHADOW || (step == STEP_QUERY && pc.any_hit != 0);
-        rt_hit_d th;
-        bool occluded = rt_trace(step == STEP_SHADOW ? sr : e.ray, any, th, c);
-        if (rt_vk_suspended) {
-            in_trace = true;
-            break;
-        }
-        if (step == STEP_QUERY) {
-            hits[i] = th;
-            break;
-        }
-        if (step == STEP_NODE) {
-            h = th;
-            if (primary && pc.aov != AOV_NONE && pc.aov != AOV_BOX_TESTS &&
-                pc.aov != AOV_TRI_TESTS) {
-                /* rt_cpu_finish_pixel's AOVs of the primary hit. */
-                bool hit_any = h.prim != RT_NO_HIT;
-                if (pc.aov == AOV_DEPTH) {
-                    fb[o] = hit_any ? h.t : RT_INF;
-                } else if (pc.aov == AOV_PRIMID) {
-                    fb[o] = hit_any ? float(h.prim) : -1.0;
-                } else if (pc.aov == AOV_INSTID) {
-                    fb[o] = hit_any ? float(h.inst) : -1.0;
-                } else {
-                    fb[o] = 0.0;
-                    fb[o + 1u] = 0.0;
-                    fb[o + 2u] = 0.0;
-                    if (hit_any) {
-                        rt_surface sf;
-                        rt_surface_at(e.ray, h, sf);
-                        for (int k = 0; k < 3; k++, RT_VK_TICK) fb[o + uint(k)] = sf.ns[k];
-                    }
-                }
+        /* Resumed in the light scan (where 2): straight back to it. */
+        if (where != 2u) {
+            /* Passive while resuming into rt_trace (where 1). */
+            if (rt_vk_checkpoint()) {
+                where = 0u;
                 break;
             }
-            begun = rt_shade_begin(e, h, nd);
-            li = 0u;
-        } else {
-            /* rt_shade_step: a light whose shadow ray finds no occluder. */
-            if (!occluded) rt_phong_add(nd.sf, li, Ln, ndl, nd.dn, nd.lit);
-            li++;
+            bool any = step == STEP_SHADOW || (step == STEP_QUERY && pc.any_hit != 0);
+            rt_hit_d th;
+            bool occluded = rt_trace(step == STEP_SHADOW ? sr : e.ray, any, th, c);
+            if (rt_vk_suspended) {
+                where = 1u;
+                break;
+            }
+            if (step == STEP_QUERY) {
+                hits[i] = th;
+                break;
+            }
+            if (step == STEP_NODE) {
+                h = th;
+                if (primary && pc.aov != AOV_NONE && pc.aov != AOV_BOX_TESTS &&
+                    pc.aov != AOV_TRI_TESTS) {
+                    /* rt_cpu_finish_pixel's AOVs of the primary hit. */
+                    bool hit_any = h.prim != RT_NO_HIT;
+                    if (pc.aov == AOV_DEPTH) {
+                        fb[o] = hit_any ? h.t : RT_INF;
+                    } else if (pc.aov == AOV_PRIMID) {
+                        fb[o] = hit_any ? float(h.prim) : -1.0;
+                    } else if (pc.aov == AOV_INSTID) {
+                        fb[o] = hit_any ? float(h.inst) : -1.0;
+                    } else {
+                        fb[o] = 0.0;
+                        fb[o + 1u] = 0.0;
+                        fb[o + 2u] = 0.0;
+                        if (hit_any) {
+                            rt_surface sf;
+                            rt_surface_at(e.ray, h, sf);
+                            for (int k = 0; k < 3; k++, RT_VK_TICK) fb[o + uint(k)] = sf.ns[k];
+                        }
+                    }
+                    break;
+                }
+                begun = rt_shade_begin(e, h, nd);
+                li = 0u;
+            } else {
+                /* rt_shade_step: a light whose shadow ray finds no occluder. */
+                if (!occluded) rt_phong_add(nd.sf, li, Ln, ndl, nd.dn, nd.lit);
+                li++;
+            }
         }
-        /* The next light with a shadow ray (rt_phong_light), if any. */
+        where = 0u;
+        /* The next light with a shadow ray (rt_phong_light), if any; a
+         * checkpoint before each light, so that many lights cost resumes. */
         step = STEP_NODE;
         if (begun) {
             while (li < hdr.light_count) {
+                RT_VK_TICK;
+                if (rt_vk_checkpoint()) {
+                    where = 2u;
+                    break;
+                }
                 if (rt_phong_light(nd.sf, li, sr, Ln, ndl)) {
                     step = STEP_SHADOW;
                     break;
@@ -228,6 +239,7 @@ void main() {
                 li++;
             }
         }
+        if (where == 2u) break;
         if (step == STEP_SHADOW) continue;
         /* The node is done: its term, then its children on the stack. */
         float term[3];

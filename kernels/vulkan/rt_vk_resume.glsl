@@ -10,16 +10,16 @@
  * loop (which the driver counts, the increment does not). The checkpoints
  * (rt_vk_checkpoint) come before each unit of work: a triangle of a leaf, a
  * node of a mesh's BVH or kd-tree, a node or an instance of the object BVH,
- * a step of rt_vk_main.comp's shading loop. A unit runs a bounded number of
- * loop iterations (a triangle test and its acceptance: its fixed loops and
- * at most three soft divisions of 25; a kd step: its pop loop, at most
- * RT_KD_STACK; an instance: its ray's six divisions; a shading step:
- * rt_shade_begin or rt_shade_end, one light's shadow ray and Phong terms,
- * whose specular power loop runs the material's shininess, and the lights
- * it skips before the next shadow ray), a few hundred, far below the margin.
- * Two have no bound of their own: a shininess beyond about 30,000, or some
- * 250 lights in a row that give no shadow ray (about 120 iterations each),
- * would outrun the margin; the canary then reports the item, as before.
+ * a step of rt_vk_main.comp's shading loop, a light of its scan for the
+ * next shadow ray. A unit runs a bounded number of loop iterations (a
+ * triangle test and its acceptance: its fixed loops and at most three soft
+ * divisions of 25; a kd step: its pop loop, at most RT_KD_STACK; an
+ * instance: its ray's six divisions; a shading step: rt_shade_begin or
+ * rt_shade_end, one light's Phong terms, whose specular power loop runs the
+ * material's shininess; a light: its direction and shadow ray), a few
+ * hundred, far below the margin. One has no bound of its own: a shininess
+ * beyond about 30,000 would outrun the margin, and the canary would report
+ * the item, as before.
  *
  * The limit, RT_VK_TICK_LIMIT = 32768, half the budget: an item suspends
  * at the first checkpoint past it, so the driver has counted at most
