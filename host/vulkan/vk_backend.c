@@ -46,6 +46,10 @@ extern const size_t rt_vk_spirv_rt_vk_main_size, rt_vk_spirv_rt_vk_soft_test_siz
 /* A dispatch that has not finished after this long is reported, not waited
  * for forever. */
 #define RT_VK_FENCE_NS (120ull * 1000000000ull)
+/* Items traced alone per dispatch, each with its slot of RT_VK_STATE_WORDS
+ * words in the state buffer (8.5 MiB); their (item, slot) pairs follow the
+ * flags in the items buffer, so 2 * RT_VK_SLOTS <= RT_VK_TILE_MAX. */
+#define RT_VK_SLOTS 4096u
 
 /* The buffers are RT_VK_BUF_* of the GPU interface table
  * (kernels/rt_interface.def), numbered by their bindings; the push
@@ -53,12 +57,39 @@ extern const size_t rt_vk_spirv_rt_vk_main_size, rt_vk_spirv_rt_vk_soft_test_siz
  * RT_VK_SPEC_*, the work group size RT_VK_LOCAL. */
 
 /* Fault injection for the tests (rt_vk_test_loop_limit). */
-static uint32_t vk_test_ballast;
+static uint32_t vk_test_ballast, vk_test_alone_ballast;
 static int vk_test_no_rerun;
 
 void rt_vk_test_loop_limit(uint32_t ballast, int rerun) {
     vk_test_ballast = ballast;
     vk_test_no_rerun = !rerun;
+}
+
+void rt_vk_test_alone_ballast(uint32_t ballast) {
+    vk_test_alone_ballast = ballast;
+}
+
+/* Items per alone dispatch (rerun_cut's batches), RT_VK_SLOTS unless a test
+ * sets fewer to run several batches on a small frame. */
+static uint32_t vk_slots = RT_VK_SLOTS;
+
+void rt_vk_test_slots(uint32_t slots) {
+    vk_slots = slots >= 1 && slots <= RT_VK_SLOTS ? slots : RT_VK_SLOTS;
+}
+
+/* What the last frame or trace re-ran (rerun_cut), for rt_vk_test_reruns. */
+typedef struct vk_reruns {
+    uint32_t items;      /* items traced again alone */
+    uint32_t resumes;    /* item-dispatches that went on from a saved state */
+    uint32_t dispatches; /* re-run and resume dispatches */
+    double ms;           /* their device time */
+} vk_reruns;
+static vk_reruns vk_last_reruns;
+
+void rt_vk_test_reruns(uint32_t *items, uint32_t *resumes, uint32_t *dispatches) {
+    *items = vk_last_reruns.items;
+    *resumes = vk_last_reruns.resumes;
+    *dispatches = vk_last_reruns.dispatches;
 }
 
 enum { P_MAIN, P_SOFT, P_PROBE, P_COUNT };
@@ -685,42 +716,76 @@ static uint32_t next_tile(uint32_t tile, double ms) {
     return tile;
 }
 
+/* The error for item i of the tile of push (width > 0: pixels of a frame
+ * that wide, else rays numbered from base) cut even alone. */
+static rt_status cut_error(vk_state *s, const rt_vk_push *push, size_t base, int width, uint32_t i,
+                           int alone, rt_error *err) {
+    char why[400];
+    snprintf(why, sizeof why,
+             "needs more loop iterations than the driver runs in one shader invocation (llvmpipe "
+             "and lavapipe stop every loop after 65535 in all)%s, so its result would be wrong",
+             alone ? " although it ran alone and saves its state before half of them" : "");
+    if (width > 0) {
+        size_t p = (size_t)push->first + i;
+        return rt_fail(err, RT_ERROR_BACKEND, "vulkan on '%s': pixel (%zu, %zu) %s", s->dev.name,
+                       p % (size_t)width, p / (size_t)width, why);
+    }
+    return rt_fail(err, RT_ERROR_BACKEND, "vulkan on '%s': ray %zu %s", s->dev.name, base + i, why);
+}
+
 /* The items of the last dispatch (push: its first pass) that the driver's
  * loop limit may have cut short (items[i] = 1: rt_vk_main.comp's canary)
  * are traced again, each alone in its work group, so that the limit is one
- * item's to spend. An item cut even then is an error that names it, never
- * a wrong result. width > 0: the items are pixels of a frame that wide,
- * else rays numbered from base. *reruns counts the items traced again. */
+ * item's to spend; in batches of RT_VK_SLOTS, the (item, slot) pairs from
+ * items[push->list_at] on. An item alone suspends before the limit
+ * (items[i] = 2, its state in its slot: rt_vk_resume.glsl) and the next
+ * dispatch of the batch resumes it, until none is left: a ray that needs
+ * many loop iterations costs dispatches, not an error. An item cut even
+ * alone (the canary, the safety net of the shader's own count) is an error
+ * that names it, never a wrong result; so is every cut item when the tests
+ * forbid re-runs. width > 0: the items are pixels of a frame that wide, else
+ * rays numbered from base. */
 static rt_status rerun_cut(vk_state *s, const rt_vk_push *push, size_t base, int width,
-                           uint32_t *reruns, rt_error *err) {
+                           vk_reruns *rr, rt_error *err) {
     uint32_t *items = s->buf[RT_VK_BUF_ITEMS].map;
-    uint32_t m = 0;
+    uint32_t *pairs = items + push->list_at;
     for (uint32_t i = 0; i < push->count; i++)
-        if (items[i]) items[push->list_at + m++] = i;
-    if (m == 0) return RT_OK;
-    if (!vk_test_no_rerun) {
+        if (items[i] && vk_test_no_rerun) return cut_error(s, push, base, width, i, 0, err);
+    for (uint32_t next = 0; next < push->count;) {
+        /* The next batch: up to RT_VK_SLOTS cut items, slot k each. */
+        uint32_t m = 0;
+        for (; next < push->count && m < vk_slots; next++)
+            if (items[next]) {
+                pairs[2 * m] = next;
+                pairs[2 * m + 1] = m;
+                m++;
+            }
         rt_vk_push again = *push;
-        again.count = m;
         again.stride = RT_VK_LOCAL;
-        again.ballast = 0;
-        double ms;
-        rt_status st = dispatch(s, P_MAIN, &again, &ms, err);
-        if (st != RT_OK) return st;
-        *reruns += m;
-    }
-    for (uint32_t k = 0; k < m; k++) {
-        uint32_t i = items[push->list_at + k];
-        if (!items[i]) continue;
-        const char *why = "needs more loop iterations than the driver runs in one shader "
-                          "invocation (llvmpipe and lavapipe stop every loop after 65535 in all), "
-                          "so its result would be wrong";
-        if (width > 0) {
-            size_t p = (size_t)push->first + i;
-            return rt_fail(err, RT_ERROR_BACKEND, "vulkan on '%s': pixel (%zu, %zu) %s",
-                           s->dev.name, p % (size_t)width, p / (size_t)width, why);
+        again.ballast = vk_test_alone_ballast;
+        again.resume = 0;
+        if (m) rr->items += m;
+        while (m) {
+            again.count = m;
+            double ms;
+            rt_status st = dispatch(s, P_MAIN, &again, &ms, err);
+            if (st != RT_OK) return st;
+            rr->dispatches++;
+            rr->ms += ms;
+            /* Keep the suspended items (in place: k <= q) for the next. */
+            uint32_t k = 0;
+            for (uint32_t q = 0; q < m; q++) {
+                uint32_t i = pairs[2 * q];
+                if (items[i] == 1) return cut_error(s, push, base, width, i, 1, err);
+                if (items[i] != 2) continue;
+                pairs[2 * k] = i;
+                pairs[2 * k + 1] = pairs[2 * q + 1];
+                k++;
+            }
+            m = k;
+            rr->resumes += m;
+            again.resume = 1;
         }
-        return rt_fail(err, RT_ERROR_BACKEND, "vulkan on '%s': ray %zu %s", s->dev.name, base + i,
-                       why);
     }
     return RT_OK;
 }
@@ -783,23 +848,28 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
         st = ensure(s, RT_VK_BUF_COUNTERS, sizeof(rt_counters) * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK)
         st = ensure(s, RT_VK_BUF_ITEMS, 2 * sizeof(uint32_t) * RT_VK_TILE_MAX, &remade, err);
+    if (st == RT_OK)
+        st = ensure(s, RT_VK_BUF_STATE, sizeof(uint32_t) * RT_VK_STATE_WORDS * RT_VK_SLOTS, &remade,
+                    err);
     if (st == RT_OK) st = bind_all(s, err);
     if (st != RT_OK) return named(err, st);
-    uint32_t reruns = 0;
+    vk_reruns rr;
+    memset(&rr, 0, sizeof rr);
     double t_render = rt_now_ms();
     const rt_counters *counts = s->buf[RT_VK_BUF_COUNTERS].map;
     for (uint32_t first = 0; first < pixels && st == RT_OK;) {
         uint32_t per = s->tile;
         uint32_t n = pixels - first < per ? pixels - first : per;
         rt_vk_push push = {first,        n, (int32_t)frame->aov, frame->channels, 0, 0,
-                           RT_VK_CANARY, 1, vk_test_ballast,     RT_VK_TILE_MAX};
+                           RT_VK_CANARY, 1, vk_test_ballast,     RT_VK_TILE_MAX,  0};
         double ms = 0.0;
         st = dispatch(s, P_MAIN, &push, &ms, err);
-        uint32_t before = reruns;
-        if (st == RT_OK) st = rerun_cut(s, &push, 0, h->width, &reruns, err);
+        uint32_t before = rr.dispatches;
+        double before_ms = rr.ms;
+        if (st == RT_OK) st = rerun_cut(s, &push, 0, h->width, &rr, err);
         if (st != RT_OK) break;
-        if (reruns != before) stats->launches++;
-        stats->kernel_ms[1] += ms;
+        stats->launches += rr.dispatches - before;
+        stats->kernel_ms[1] += ms + (rr.ms - before_ms);
         stats->launches++;
         if (n > stats->tile_pixels) stats->tile_pixels = n;
         double t0 = rt_now_ms();
@@ -816,10 +886,11 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
         if (n == per) s->tile = next_tile(s->tile, ms);
         if (frame->progress) frame->progress(frame->progress_user, (double)first / pixels);
     }
+    vk_last_reruns = rr;
     if (st != RT_OK) return named(err, st);
-    if (reruns)
-        snprintf(stats->kernels, sizeof stats->kernels, "vulkan rt_vk_main, %u px re-run alone",
-                 reruns);
+    if (rr.items)
+        snprintf(stats->kernels, sizeof stats->kernels, "vulkan: %u px re-run alone, %u resumed",
+                 rr.items, rr.resumes);
     else
         snprintf(stats->kernels, sizeof stats->kernels, "vulkan rt_vk_main, portable maths");
     stats->render_ms = rt_now_ms() - t_render;
@@ -843,21 +914,26 @@ static rt_status vk_trace(void *state, const rt_backend_layout *layout, const rt
         st = ensure(s, RT_VK_BUF_COUNTERS, sizeof(rt_counters) * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK)
         st = ensure(s, RT_VK_BUF_ITEMS, 2 * sizeof(uint32_t) * RT_VK_TILE_MAX, &remade, err);
+    if (st == RT_OK)
+        st = ensure(s, RT_VK_BUF_STATE, sizeof(uint32_t) * RT_VK_STATE_WORDS * RT_VK_SLOTS, &remade,
+                    err);
     if (st == RT_OK) st = bind_all(s, err);
-    uint32_t reruns = 0;
+    vk_reruns rr;
+    memset(&rr, 0, sizeof rr);
     for (size_t first = 0; first < count && st == RT_OK;) {
         uint32_t n = (uint32_t)(count - first < s->tile ? count - first : s->tile);
         memcpy(s->buf[RT_VK_BUF_RAYS].map, rays + first, sizeof(rt_ray) * n);
         rt_vk_push push = {
-            0, n, 0, 0, any_hit ? 1 : 0, 1, RT_VK_CANARY, 1, vk_test_ballast, RT_VK_TILE_MAX};
+            0, n, 0, 0, any_hit ? 1 : 0, 1, RT_VK_CANARY, 1, vk_test_ballast, RT_VK_TILE_MAX, 0};
         double ms = 0.0;
         st = dispatch(s, P_MAIN, &push, &ms, err);
-        if (st == RT_OK) st = rerun_cut(s, &push, first, 0, &reruns, err);
+        if (st == RT_OK) st = rerun_cut(s, &push, first, 0, &rr, err);
         if (st != RT_OK) break;
         memcpy(hits + first, s->buf[RT_VK_BUF_HITS].map, sizeof(rt_hit_d) * n);
         first += n;
         if (n == s->tile) s->tile = next_tile(s->tile, ms);
     }
+    vk_last_reruns = rr;
     return named(err, st);
 }
 
@@ -899,7 +975,7 @@ rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size
     for (size_t first = 0; first < count && st == RT_OK;) {
         uint32_t n = (uint32_t)(count - first < tile ? count - first : tile);
         memcpy(s->buf[RT_VK_BUF_RAYS].map, operands + 4 * first, 16 * (size_t)n);
-        rt_vk_push push = {0, n, 0, 0, 0, 0, 0, 1, 0, 0};
+        rt_vk_push push = {0, n, 0, 0, 0, 0, 0, 1, 0, 0, 0};
         st = dispatch(s, P_SOFT, &push, &ms, err);
         if (st == RT_OK) memcpy(results + 3 * first, s->buf[RT_VK_BUF_HITS].map, 12 * (size_t)n);
         first += n;

@@ -61,4 +61,21 @@ rt_status rt_vk_trace_kd_stack(const char *device, const struct rt_flat *flat, c
  * again alone only when rerun (1, the default). Not thread-safe; tests only. */
 void rt_vk_test_loop_limit(uint32_t ballast, int rerun);
 
+/* Fault injection for the test of resumes (rt_vk_resume.glsl): every
+ * dispatch that traces items alone (re-runs and resumes) first spends
+ * ballast loop iterations (0: none, the default), which the shader counts
+ * as its own, so that an item suspends after ballast less than half the
+ * budget and small scenes resume often. Not thread-safe; tests only. */
+void rt_vk_test_alone_ballast(uint32_t ballast);
+
+/* At most slots items (1 .. 4096; anything else: 4096, the default) per
+ * dispatch that traces items alone, so that a test runs several batches.
+ * Not thread-safe; tests only. */
+void rt_vk_test_slots(uint32_t slots);
+
+/* What the last frame or trace of this process traced alone: *items items
+ * re-run, *resumes item-dispatches that went on from a saved state, in
+ * *dispatches dispatches. Not thread-safe; tests and measurements only. */
+void rt_vk_test_reruns(uint32_t *items, uint32_t *resumes, uint32_t *dispatches);
+
 #endif /* RT_VK_BACKEND_H */

@@ -34,7 +34,7 @@ bool rt_slab_end(float lo, float hi, float tmax, out float tnear) {
 bool rt_box_interval(uint node, rt_ray r, rt_ray_pre p, float tmin, float tmax, out float tnear,
                      out float tfar) {
     float lo = tmin, hi = RT_INF;
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         float a = p.sign[i] != 0 ? nodes[node].bmax[i] : nodes[node].bmin[i];
         float b = p.sign[i] != 0 ? nodes[node].bmin[i] : nodes[node].bmax[i];
         rt_slab(a, b, r.org[i], p.inv[i], lo, hi);

@@ -1,24 +1,13 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_bvh.glsl - the GLSL mirror of kernels/rt_bvh.h: one inner-node step
  * and the walk of one mesh's BVH, with the traversal stacks in workgroup
- * memory (GLSL only, below). */
+ * memory (GLSL only, rt_vk_resume.glsl); resumable (rt_vk_resume.glsl). */
 #ifndef RT_VK_BVH_GLSL
 #define RT_VK_BVH_GLSL
 
 #include "rt_vk_hit.glsl"
 
-#define RT_STACK_SIZE 64
-
-/* ---- traversal stacks ------------------------------------------------------
- * In workgroup-shared memory, not in per-invocation arrays: a driver keeps a
- * private array indexed at run time in scratch memory or as a chain of
- * selects (lavapipe traced 100 times slower so). Entry k of invocation l is
- * at k * RT_VK_LOCAL + l (consecutive invocations in consecutive words;
- * RT_VK_LOCAL, the work group size, is kernels/rt_interface.def's). The
- * object BVH's stack is entries 0 .. RT_STACK_SIZE - 1, a mesh BVH's the
- * next RT_STACK_SIZE. */
-shared uint rt_vk_stack[2 * RT_STACK_SIZE * RT_VK_LOCAL];
-#define STACK_AT(level, k) rt_vk_stack[(uint(level) * uint(RT_STACK_SIZE) + uint(k)) * RT_VK_LOCAL + gl_LocalInvocationIndex]
+/* The traversal stacks (RT_STACK_SIZE, STACK_AT) are rt_vk_resume.glsl's. */
 
 /* rt_descend without the stack (GLSL has no pointer to it): returns 0 when
  * the caller must pop, 1 to go on at *next, 2 to go on at *next after
@@ -47,18 +36,33 @@ int rt_descend(uint node, rt_ray r, rt_ray_pre p, rt_hit_d best, inout rt_counte
     return 0;
 }
 
+/* Resumable (rt_vk_resume.glsl): suspended at a node (ST_MESH at = 0) or
+ * inside its leaf (at = 1, the leaf's own position in ST_LEAF). */
 bool rt_trace_mesh(uint root, uint inst, rt_ray r, rt_ray_pre p, bool any_hit,
                    inout rt_hit_d best, inout rt_counters c) {
     int sp = 0;
-    float tn;
-    c.box_tests++;
-    if (!rt_box_test(root, r, p, rt_box_lo(r.tmin), rt_box_hi(best.t), tn)) return false;
-    uint node = root;
-    for (;;) {
+    uint node = root, at = 0u;
+    if (rt_vk_resuming) {
+        st_get_bvh(ST_MESH, 1, node, sp, at);
+        if (at == 0u) rt_vk_resuming = false;
+    } else {
+        float tn;
+        c.box_tests++;
+        if (!rt_box_test(root, r, p, rt_box_lo(r.tmin), rt_box_hi(best.t), tn)) return false;
+    }
+    for (;; RT_VK_TICK) {
+        if (rt_vk_checkpoint()) {
+            at = 0u;
+            break;
+        }
         uint nb = nodes[node].b;
         if ((nb & RT_NODE_LEAF_FLAG) != 0u) {
             if (rt_leaf_test(nodes[node].a, nb & RT_NODE_COUNT_MASK, inst, r, p, any_hit, best, c))
                 return true;
+            if (rt_vk_suspended) {
+                at = 1u;
+                break;
+            }
             if (sp == 0) return false;
             node = STACK_AT(1, --sp);
             continue;
@@ -73,6 +77,8 @@ bool rt_trace_mesh(uint root, uint inst, rt_ray r, rt_ray_pre p, bool any_hit,
             node = next;
         }
     }
+    /* Suspended (the one way out of the loop). */
+    st_put_bvh(ST_MESH, 1, node, sp, at);
     return false;
 }
 

@@ -15,7 +15,7 @@ float rt_camera_sy(int py) {
 }
 void rt_camera_ray(int px, int py, out rt_ray r) {
     float sx = rt_camera_sx(px), sy = rt_camera_sy(py);
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         r.org[i] = hdr.cam_pos[i];
         r.dir[i] = (hdr.cam_forward[i] + sx * hdr.cam_right[i]) + sy * hdr.cam_up[i];
     }

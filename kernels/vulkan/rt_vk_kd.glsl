@@ -20,7 +20,8 @@
  * other path). A tree deep enough to need more
  * (host/layout/flatten.c admits depth up to RT_KD_STACK - 2) goes on in a
  * private array, which a driver may keep in slow memory but only such deep
- * paths touch. */
+ * paths touch. Resumable (rt_vk_resume.glsl): suspended at a node (ST_MESH
+ * at = 0) or inside its leaf (at = 1). */
 #ifndef RT_VK_KD_GLSL
 #define RT_VK_KD_GLSL
 
@@ -49,15 +50,52 @@ bool rt_kd_root_interval(uint node, rt_ray r, rt_ray_pre p, float lo, float hi, 
     }
 #define KD_TN(k)                                                       \
     ((k) < RT_VK_KD_SHARED ? uintBitsToFloat(STACK_AT(1, 3 * (k) + 1)) : ov_tn[k])
-#define KD_POP(k)                                                      \
+#define KD_GET(k, nd, n0, f0)                                          \
     if ((k) < RT_VK_KD_SHARED) {                                       \
-        node = STACK_AT(1, 3 * (k));                                   \
-        tn = uintBitsToFloat(STACK_AT(1, 3 * (k) + 1));                \
-        tf = uintBitsToFloat(STACK_AT(1, 3 * (k) + 2));                \
+        nd = STACK_AT(1, 3 * (k));                                     \
+        n0 = uintBitsToFloat(STACK_AT(1, 3 * (k) + 1));                \
+        f0 = uintBitsToFloat(STACK_AT(1, 3 * (k) + 2));                \
     } else {                                                           \
-        node = ov_node[k];                                             \
-        tn = ov_tn[k];                                                 \
-        tf = ov_tf[k];                                                 \
+        nd = ov_node[k];                                               \
+        n0 = ov_tn[k];                                                 \
+        f0 = ov_tf[k];                                                 \
+    }
+#define KD_POP(k) KD_GET(k, node, tn, tf)
+
+/* The traversal's position (ST_MESH: node, stack depth, at, the cell's
+ * entry and exit t, then the stack's cells), saved when it suspends and
+ * loaded when it resumes (rt_vk_resume.glsl), the t values as bits. */
+#define KD_SAVE(atv)                                                   \
+    {                                                                  \
+        uint w = ST_MESH;                                              \
+        st_put(w, node);                                               \
+        st_put(w, uint(sp));                                           \
+        st_put(w, (atv));                                              \
+        st_putf(w, tn);                                                \
+        st_putf(w, tf);                                                \
+        for (int k = 0; k < sp; k++, RT_VK_TICK) {                     \
+            uint cn;                                                   \
+            float c0, c1;                                              \
+            KD_GET(k, cn, c0, c1)                                      \
+            st_put(w, cn);                                             \
+            st_putf(w, c0);                                            \
+            st_putf(w, c1);                                            \
+        }                                                              \
+    }
+#define KD_LOAD()                                                      \
+    {                                                                  \
+        uint w = ST_MESH;                                              \
+        node = st_get(w);                                              \
+        sp = int(st_get(w));                                           \
+        at = st_get(w);                                                \
+        tn = st_getf(w);                                               \
+        tf = st_getf(w);                                               \
+        for (int k = 0; k < sp; k++, RT_VK_TICK) {                     \
+            uint cn = st_get(w);                                       \
+            float c0 = st_getf(w);                                     \
+            float c1 = st_getf(w);                                     \
+            KD_PUSH(k, cn, c0, c1)                                     \
+        }                                                              \
     }
 
 /* rt_kd_trace_mesh: the kd-tree of the mesh whose bounding rt_node is root,
@@ -66,19 +104,33 @@ bool rt_kd_root_interval(uint node, rt_ray r, rt_ray_pre p, float lo, float hi, 
 bool rt_kd_trace_mesh(uint root, uint inst, rt_ray r, rt_ray_pre p, bool any_hit,
                       inout rt_hit_d best, inout rt_counters c) {
     float tn, tf;
-    c.box_tests++;
-    if (!rt_kd_root_interval(root, r, p, rt_box_lo(r.tmin), rt_box_hi(best.t), tn, tf))
-        return false;
     uint ov_node[RT_KD_STACK];
     float ov_tn[RT_KD_STACK], ov_tf[RT_KD_STACK];
     int sp = 0;
-    uint node = nodes[root].a;
-    for (;;) {
+    uint node, at = 0u;
+    if (rt_vk_resuming) {
+        KD_LOAD()
+        if (at == 0u) rt_vk_resuming = false;
+    } else {
+        c.box_tests++;
+        if (!rt_kd_root_interval(root, r, p, rt_box_lo(r.tmin), rt_box_hi(best.t), tn, tf))
+            return false;
+        node = nodes[root].a;
+    }
+    for (;; RT_VK_TICK) {
+        if (rt_vk_checkpoint()) {
+            at = 0u;
+            break;
+        }
         uint na = kd_nodes[node].a, nb = kd_nodes[node].b;
         uint k = nb & 3u;
         bool pop = false;
         if (k == RT_KD_LEAF) {
             if (rt_leaf_test(na, nb >> 2, inst, r, p, any_hit, best, c)) return true;
+            if (rt_vk_suspended) {
+                at = 1u;
+                break;
+            }
             pop = true;
         } else {
             c.box_tests++;
@@ -126,7 +178,7 @@ bool rt_kd_trace_mesh(uint root, uint inst, rt_ray r, rt_ray_pre p, bool any_hit
         }
         if (pop) {
             /* The next cell that may still hold a hit at or before best. */
-            for (;;) {
+            for (;; RT_VK_TICK) {
                 if (sp == 0) return false;
                 --sp;
                 if (KD_TN(sp) <= rt_box_hi(best.t)) break;
@@ -134,6 +186,8 @@ bool rt_kd_trace_mesh(uint root, uint inst, rt_ray r, rt_ray_pre p, bool any_hit
             KD_POP(sp)
         }
     }
+    /* Suspended (the one way out of the loop). */
+    KD_SAVE(at)
     return false;
 }
 

@@ -41,8 +41,8 @@ void rt_ray_prepare(rt_ray r, out rt_ray_pre p) {
     float num[6] = float[6](1.0, 1.0, 1.0, rt_pick3(r.dir, kx), rt_pick3(r.dir, ky), 1.0);
     float den[6] = float[6](r.dir[0], r.dir[1], r.dir[2], dkz, dkz, dkz);
     float q[6];
-    [[dont_unroll]] for (int i = 0; i < 6; i++) q[i] = RT_DIV(num[i], den[i]);
-    for (int i = 0; i < 3; i++) {
+    [[dont_unroll]] for (int i = 0; i < 6; i++, RT_VK_TICK) q[i] = RT_DIV(num[i], den[i]);
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         p.inv[i] = q[i];
         p.sign[i] = p.inv[i] < 0.0 ? 1 : 0;
     }
@@ -53,7 +53,7 @@ void rt_ray_prepare(rt_ray r, out rt_ray_pre p) {
 }
 
 void rt_offset_point(float p[3], float n[3], float sign, out float o[3]) {
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         float ni = sign * n[i];
         int of = int(256.0 * ni);
         float pi = intBitsToFloat(floatBitsToInt(p[i]) + (p[i] < 0.0 ? -of : of));

@@ -22,6 +22,8 @@
 
 #extension GL_EXT_control_flow_attributes : require
 
+#include "rt_vk_ticks.glsl" /* RT_VK_TICK in the loops */
+
 #define RT_SM_SIGN  0x80000000u
 #define RT_SM_INF   0x7f800000u
 #define RT_SM_QNAN  0x7fc00000u
@@ -79,7 +81,7 @@ uint rt_sm_round_pack_(uint sign, int e, uint sig, uint sticky, bool ftz) {
 
 uint rt_sm_div_serial_(uint ma, uint mb, out uint rem) {
     uint r = ma - mb, q = 1u;
-    [[dont_unroll]] for (int i = 0; i < 24; i++) {
+    [[dont_unroll]] for (int i = 0; i < 24; i++, RT_VK_TICK) {
         r <<= 1;
         uint t = r - mb;
         uint bit = (t >> 31) ^ 1u;
@@ -121,7 +123,7 @@ uint rt_sm_div_sig_(uint ma, uint mb, uint dbl, out uint rem) {
     ma <<= dbl;
     uint r = (ma << 24) - q * mb;
     bad |= r >= (mb << 3) ? 1u : 0u;
-    [[unroll]] for (int k = 2; k >= 0; k--) {
+    [[unroll]] for (int k = 2; k >= 0; k--, RT_VK_TICK) {
         uint t = r - (mb << uint(k));
         uint bit = (t >> 31) ^ 1u;
         q += bit << uint(k);
@@ -159,7 +161,7 @@ uint rt_sm_div_bits_(uint a, uint b, bool ftz) {
 
 uint rt_sm_sqrt_serial_(uint t, out uint rem_out) {
     uint root = 0u, rem = 0u;
-    [[dont_unroll]] for (int i = 0; i < 25; i++) {
+    [[dont_unroll]] for (int i = 0; i < 25; i++, RT_VK_TICK) {
         uint pair = 0u;
         if (i < 13) pair = (t >> uint(24 - 2 * i)) & 3u;
         rem = (rem << 2) | pair;
@@ -191,7 +193,7 @@ uint rt_sm_sqrt_sig_(uint m, uint odd, out uint rem_out) {
     uint root = rt_sm_sqrt_guess_(m, odd, bad) - 2u;
     uint rem = (t << 24) - root * root;
     bad |= rem >= (root << 3) + 16u ? 1u : 0u;
-    [[unroll]] for (int k = 1; k >= 0; k--) {
+    [[unroll]] for (int k = 1; k >= 0; k--, RT_VK_TICK) {
         uint d = rem - ((root << uint(k + 1)) + (1u << uint(2 * k)));
         uint bit = (d >> 31) ^ 1u;
         root += bit << uint(k);

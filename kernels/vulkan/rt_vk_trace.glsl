@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* rt_vk_trace.glsl - the GLSL mirror of kernels/rt_trace.h: the two-level
  * traversal over the object BVH, each instance's mesh by its BVH
- * (rt_vk_bvh.glsl) or its kd-tree (rt_vk_kd.glsl). */
+ * (rt_vk_bvh.glsl) or its kd-tree (rt_vk_kd.glsl), resumable at every
+ * level (rt_vk_resume.glsl). */
 #ifndef RT_VK_TRACE_GLSL
 #define RT_VK_TRACE_GLSL
 
@@ -9,7 +10,7 @@
 #include "rt_vk_kd.glsl"
 
 void rt_ray_to_object(uint inst, rt_ray r, out rt_ray o) {
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         float m0 = instances[inst].world_to_object[4 * i];
         float m1 = instances[inst].world_to_object[4 * i + 1];
         float m2 = instances[inst].world_to_object[4 * i + 2];
@@ -23,7 +24,9 @@ void rt_ray_to_object(uint inst, rt_ray r, out rt_ray o) {
 
 /* One call of rt_trace_mesh (and of rt_kd_trace_mesh) for both cases of the
  * C function (the ray transformed or not): one inlined copy of each
- * traversal. */
+ * traversal. Keeps no state of its own: a resumed instance enters and
+ * transforms the ray again (the same operations, the same bits, no counter)
+ * and its mesh traversal loads its position. */
 bool rt_trace_instance(uint inst, rt_ray r, rt_ray_pre p, bool any_hit, inout rt_hit_d best,
                        inout rt_counters c) {
     uint root = instances[inst].root;
@@ -42,27 +45,67 @@ bool rt_trace_instance(uint inst, rt_ray r, rt_ray_pre p, bool any_hit, inout rt
     return rt_trace_mesh(root, inst, o, op, any_hit, best, c);
 }
 
+/* The closest (or any) hit of r. Resumable (rt_vk_resume.glsl): the best
+ * hit and the object BVH's position are ST_TOP's: at = 0 before a node,
+ * 2 before instance e of the node's leaf, 1 inside it (the mesh's position
+ * deeper down). A resumed trace prepares the ray again (the same
+ * operations, the same bits) and counts neither the ray nor the root box
+ * again. */
 bool rt_trace(rt_ray r, bool any_hit, out rt_hit_d best, inout rt_counters c) {
     rt_ray_pre p;
     rt_ray_prepare(r, p);
     rt_hit_init(best, r);
-    c.rays++;
+    uint w = ST_TOP;
+    if (rt_vk_resuming) {
+        st_get_hit(w, best);
+    } else {
+        c.rays++;
+    }
     if (hdr.instance_count == 0u) return false;
     if ((RT_SCENE_FLAGS() & RT_SCENE_SINGLE) != 0u) {
         rt_trace_instance(0u, r, p, any_hit, best, c);
+        if (rt_vk_suspended) {
+            w = ST_TOP;
+            st_put_hit(w, best);
+            return false;
+        }
         return best.prim != RT_NO_HIT;
     }
     int sp = 0;
-    float tn;
-    uint node = hdr.top_root;
-    c.box_tests++;
-    if (!rt_box_test(node, r, p, rt_box_lo(r.tmin), rt_box_hi(best.t), tn)) return false;
-    for (;;) {
+    uint node = hdr.top_root, at = 0u, e0 = 0u;
+    if (rt_vk_resuming) {
+        e0 = st_get(w);
+        st_get_bvh(w, 0, node, sp, at);
+        if (at != 1u) rt_vk_resuming = false;
+    } else {
+        float tn;
+        c.box_tests++;
+        if (!rt_box_test(node, r, p, rt_box_lo(r.tmin), rt_box_hi(best.t), tn)) return false;
+    }
+    uint stop = 0u, e = 0u;
+    for (;; RT_VK_TICK) {
+        /* Resumed inside a leaf: no checkpoint before the leaf's own. */
+        if (at == 0u && rt_vk_checkpoint()) {
+            stop = 3u;
+            break;
+        }
         uint nb = nodes[node].b;
         if ((nb & RT_NODE_LEAF_FLAG) != 0u) {
             uint count = nb & RT_NODE_COUNT_MASK, na = nodes[node].a;
-            for (uint e = na; e < na + count; e++)
+            e = at != 0u ? e0 : na;
+            at = 0u;
+            for (; e < na + count; e++, RT_VK_TICK) {
+                if (rt_vk_checkpoint()) {
+                    stop = 2u;
+                    break;
+                }
                 if (rt_trace_instance(inst_ids[e], r, p, any_hit, best, c)) return true;
+                if (rt_vk_suspended) {
+                    stop = 1u;
+                    break;
+                }
+            }
+            if (stop != 0u) break;
             if (sp == 0) break;
             node = STACK_AT(0, --sp);
             continue;
@@ -77,7 +120,13 @@ bool rt_trace(rt_ray r, bool any_hit, out rt_hit_d best, inout rt_counters c) {
             node = next;
         }
     }
-    return best.prim != RT_NO_HIT;
+    if (stop == 0u) return best.prim != RT_NO_HIT;
+    /* Suspended: stop 3 before node, 2 before instance e, 1 inside it. */
+    w = ST_TOP;
+    st_put_hit(w, best);
+    st_put(w, e);
+    st_put_bvh(w, 0, node, sp, stop == 3u ? 0u : stop);
+    return false;
 }
 
 #endif

@@ -19,7 +19,7 @@ void rt_edge_recheck(float Ax, float Ay, float Bx, float By, float Cx, float Cy,
 bool rt_tri_watertight(uint e, rt_ray r, rt_ray_pre p, float tmin, float tmax, out float t,
                        out float u, out float v) {
     float A[3], B[3], C[3];
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         A[i] = tris[e].v0[i] - r.org[i];
         B[i] = tris[e].v1[i] - r.org[i];
         C[i] = tris[e].v2[i] - r.org[i];
@@ -56,7 +56,7 @@ bool rt_tri_watertight(uint e, rt_ray r, rt_ray_pre p, float tmin, float tmax, o
 bool rt_tri_moller(uint e, rt_ray r, float tmin, float tmax, out float t, out float u,
                    out float v) {
     float e1[3], e2[3], s[3], pv[3], q[3];
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         e1[i] = tris[e].v1[i] - tris[e].v0[i];
         e2[i] = tris[e].v2[i] - tris[e].v0[i];
         s[i] = r.org[i] - tris[e].v0[i];
@@ -84,7 +84,7 @@ bool rt_tri_moller(uint e, rt_ray r, float tmin, float tmax, out float t, out fl
 bool rt_tri_pluecker(uint e, rt_ray r, float tmin, float tmax, out float t, out float u,
                      out float v) {
     float a[3], b[3], c[3], bc[3], ca[3], ab[3];
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         a[i] = tris[e].v0[i] - r.org[i];
         b[i] = tris[e].v1[i] - r.org[i];
         c[i] = tris[e].v2[i] - r.org[i];
@@ -110,7 +110,7 @@ bool rt_tri_pluecker(uint e, rt_ray r, float tmin, float tmax, out float t, out 
 bool rt_tri_badouel(uint e, rt_ray r, float tmin, float tmax, out float t, out float u,
                     out float v) {
     float e1[3], e2[3], n[3], a[3];
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         e1[i] = tris[e].v1[i] - tris[e].v0[i];
         e2[i] = tris[e].v2[i] - tris[e].v0[i];
         a[i] = tris[e].v0[i] - r.org[i];

@@ -77,7 +77,7 @@ float rt_tri_coord(uint e, int k) {
 
 int rt_tri_t_apex(uint tri) {
     float l0 = 0.0, l1 = 0.0, l2 = 0.0;
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         float a = tris[tri].v1[i] - tris[tri].v2[i], b = tris[tri].v2[i] - tris[tri].v0[i];
         float c = tris[tri].v0[i] - tris[tri].v1[i];
         l0 = l0 + a * a;
@@ -90,12 +90,12 @@ int rt_tri_t_apex(uint tri) {
 void rt_tri_t_normal(uint tri, int ip, out float e[3], out float f[3], out float n[3],
                      out float m[3]) {
     int iq = ip == 6 ? 0 : ip + 3, is = iq == 6 ? 0 : iq + 3;
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         float vp = rt_tri_coord(tri, ip + i);
         e[i] = rt_tri_coord(tri, iq + i) - vp;
         f[i] = rt_tri_coord(tri, is + i) - vp;
     }
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         int j = i == 2 ? 0 : i + 1, k = j == 2 ? 0 : j + 1;
         float x = e[j] * f[k], y = e[k] * f[j];
         n[i] = x - y;
@@ -107,14 +107,14 @@ void rt_tri_t_normal_ff(uint tri, int ip, float e[3], float f[3], out float nh[3
                         out float nl[3]) {
     int iq = ip == 6 ? 0 : ip + 3, is = iq == 6 ? 0 : iq + 3;
     float el[3], es[3], et[3], fl[3], fs[3], ft[3];
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         float vp = rt_tri_coord(tri, ip + i);
         el[i] = rt_ff_sum_err(rt_tri_coord(tri, iq + i), -vp, e[i]);
         fl[i] = rt_ff_sum_err(rt_tri_coord(tri, is + i), -vp, f[i]);
         rt_ff_split(e[i], es[i], et[i]);
         rt_ff_split(f[i], fs[i], ft[i]);
     }
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         int j = i == 2 ? 0 : i + 1, k = j == 2 ? 0 : j + 1;
         float xh, xl, yh, yl;
         rt_ff_mul(e[j], el[j], es[j], et[j], f[k], fl[k], fs[k], ft[k], xh, xl);
@@ -127,12 +127,12 @@ float rt_tri_t_plane(uint tri, rt_ray r, float t_fast) {
     int ip = rt_tri_t_apex(tri);
     float e[3], f[3], a[3], n[3], m[3], vp[3];
     rt_tri_t_normal(tri, ip, e, f, n, m);
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         vp[i] = rt_tri_coord(tri, ip + i);
         a[i] = vp[i] - r.org[i];
     }
     float N = 0.0, D = 0.0, bn = 0.0, bd = 0.0;
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         N = N + n[i] * a[i];
         D = D + n[i] * r.dir[i];
         bn = bn + (RT_FABS(n[i]) + m[i]) * RT_FABS(a[i]);
@@ -146,13 +146,13 @@ float rt_tri_t_plane(uint tri, rt_ray r, float t_fast) {
     float nh[3], nl[3];
     rt_tri_t_normal_ff(tri, ip, e, f, nh, nl);
     float al[3], as[3], at[3], ds[3], dt[3];
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         al[i] = rt_ff_sum_err(vp[i], -r.org[i], a[i]);
         rt_ff_split(a[i], as[i], at[i]);
         rt_ff_split(r.dir[i], ds[i], dt[i]);
     }
     float Nh = 0.0, Nl = 0.0, Dh = 0.0, Dl = 0.0;
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 3; i++, RT_VK_TICK) {
         float ns, nt, ph, pl;
         rt_ff_split(nh[i], ns, nt);
         rt_ff_mul(nh[i], nl[i], ns, nt, a[i], al[i], as[i], at[i], ph, pl);

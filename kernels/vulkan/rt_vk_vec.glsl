@@ -27,7 +27,7 @@ void rt_cross3(float a[3], float b[3], out float o[3]) {
 void rt_normalize3(inout float v[3]) {
     float len = RT_SQRT(rt_dot3(v, v));
     if (len > 0.0) {
-        [[dont_unroll]] for (int i = 0; i < 3; i++) v[i] = RT_DIV(v[i], len);
+        [[dont_unroll]] for (int i = 0; i < 3; i++, RT_VK_TICK) v[i] = RT_DIV(v[i], len);
     }
 }
 
