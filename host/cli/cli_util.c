@@ -312,6 +312,27 @@ static void device_backends(char *buf, size_t cap) {
     }
 }
 
+/* rt_renderer_options.on_compile: one line on a terminal before the first
+ * kernel build from source of the process (a pipe or a log file gets
+ * nothing: tests and scripts see no noise). user is the command's name. */
+static void compile_notice(void *user, const char *backend, const char *device,
+                           const char *cache_dir) {
+    static int shown;
+    if (shown || !isatty(STDERR_FILENO)) return;
+    shown = 1;
+    cli_progress_done();
+    if (cache_dir)
+        fprintf(stderr, "rtcl %s: compiling the %s kernels for %s (once; cached in %s)\n",
+                (const char *)user, !strcmp(backend, "opencl") ? "OpenCL" : backend, device,
+                cache_dir);
+    else
+        fprintf(stderr,
+                "rtcl %s: compiling the %s kernels for %s (not cached: RTCL_CACHE_DIR=off "
+                "or no writable cache folder)\n",
+                (const char *)user, !strcmp(backend, "opencl") ? "OpenCL" : backend, device);
+    fflush(stderr);
+}
+
 rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a) {
     if (a->device) {
         if (!cli_backend_takes_device(a->backend) || strchr(a->backend, ':')) {
@@ -339,6 +360,8 @@ rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a) {
     o.opencl.no_wavefront = a->cl_no_wavefront;
     o.opencl.packet_lanes = a->cl_packet_lanes;
     o.opencl.wave_queue_cap = (uint32_t)a->cl_wave_cap;
+    o.on_compile = compile_notice;
+    o.on_compile_user = (void *)command;
     rt_renderer *r = NULL;
     rt_error err;
     memset(&err, 0, sizeof err);
