@@ -229,9 +229,9 @@ const cli_option cli_renderer_options[] = {
              "the same bits",
      .fallback = "the widest the CPU runs"},
     {"--verbose", 0, CLI_FLAG, NULL, offsetof(cli_renderer_args, verbose),
-     .help = "print the device compiler's messages (the build log, and what the driver printed "
-             "while building) on stderr; without it they are shown only when the kernels fail "
-             "to build"},
+     .help = "print the backend and device that ran, and the device compiler's messages (the "
+             "build log, and what the driver printed while building), on stderr; without it "
+             "the build messages are shown only when the kernels fail to build"},
     {NULL}};
 
 const cli_option cli_backend_auto_options[] = {
@@ -398,14 +398,20 @@ void cli_session_close(cli_session *out) {
 
 void cli_print_backend_choice(const char *command, const cli_renderer_args *a, const char *backend,
                               const char *device, const char *notice) {
-    char asked[64];
-    backend_of(a->backend, asked, sizeof asked);
     if (notice) {
         fprintf(stderr, "rtcl %s: notice: %s\n", command, notice);
-    } else if (!strcmp(asked, "auto") && backend) {
+    } else if (a->verbose && backend) {
         fprintf(stderr, "rtcl %s: backend: %s (%s)\n", command, backend,
                 device && device[0] ? device : "the CPU");
     }
+}
+
+const char *cli_backend_text(const char *backend, const char *device, char *buf, size_t cap) {
+    if (device && device[0])
+        snprintf(buf, cap, "backend %s, %s", backend ? backend : "?", device);
+    else
+        snprintf(buf, cap, "backend %s", backend ? backend : "?");
+    return buf;
 }
 
 void cli_print_build_log(const char *command, const rt_renderer *renderer) {
