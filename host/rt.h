@@ -355,6 +355,19 @@ typedef struct rt_renderer_options {
     rt_opencl_tuning opencl;
     rt_device_math device_math; /* device backends; the CPU is IEEE, the oracle */
     rt_denormals denormals;     /* every backend */
+    /* Called by the opencl backend just before it compiles its kernels from
+     * source because the on-disk kernel cache (README, "Kernel cache") holds
+     * no binary for them: the first run on a device or driver, a new
+     * version of this library, a new scene specialisation, or the cache off
+     * (RTCL_CACHE_DIR=off). Not called when a cached binary is used.
+     * backend is "opencl", device the device's name, cache_dir the folder
+     * the result will be kept in (NULL when the cache is off or its folder
+     * unusable). Called on the rendering thread before the compiler starts,
+     * so a caller can say that the wait is a one-time compile (rtcl prints
+     * one line when stderr is a terminal); the library itself never prints.
+     * NULL: not called. */
+    void (*on_compile)(void *user, const char *backend, const char *device, const char *cache_dir);
+    void *on_compile_user;
 } rt_renderer_options;
 
 /* cpu, all cores, no device options. */

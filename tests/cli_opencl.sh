@@ -78,25 +78,31 @@ for any in "" --any-hit; do
     cmp -s "$tmp/h_cpu.txt" "$tmp/h_cl.txt" || { echo "FAIL: trace $any: opencl hits differ"; fails=$((fails + 1)); }
 done
 
-# --backend auto names what it chose, one line on stderr (issue 30, item 10);
-# with a device that is a device backend and its device; stdout stays the
-# JSON alone.
-expect 0 '^rtcl render: backend: (opencl|vulkan) \(.+\)$' -- "$RTCL" render builtin:cornell \
+# --backend auto names what it chose in the result line, not a line of its
+# own (issue 30, item 10): render's "wrote" line, trace's --stats and --json;
+# with --verbose one line on stderr. With a device that is a device backend
+# and its device; stdout stays the JSON alone.
+expect 0 '^wrote .*x\.png \(32x18, backend (opencl|vulkan), .+\)$' -- "$RTCL" render builtin:cornell \
     --width 32 --height 18 --backend auto -o "$tmp/x.png"
-expect 0 '^rtcl render: backend: opencl \(.+\)$' -- "$RTCL" render builtin:cornell \
+expect 0 '^wrote .*x\.png \(32x18, backend opencl, .+\)$' -- "$RTCL" render builtin:cornell \
     --width 32 --height 18 --backend auto --device 0 -o "$tmp/x.png"
+expect 0 '^rtcl render: backend: opencl \(.+\)$' -- "$RTCL" render builtin:cornell \
+    --width 32 --height 18 --backend auto --device 0 --verbose -o "$tmp/x.png"
 "$RTCL" trace builtin:cornell --rays "$tmp/rays.txt" --json --backend auto \
     >"$tmp/auto.json" 2>"$tmp/auto.err"
 checks=$((checks + 1))
-python3 -c 'import json, sys; json.load(open(sys.argv[1]))' "$tmp/auto.json" ||
-    { echo "FAIL: trace --json --backend auto: stdout is not JSON alone"; fails=$((fails + 1)); }
+python3 -c 'import json, sys; d = json.load(open(sys.argv[1])); assert d["backend"] in ("opencl", "vulkan") and d["device"], d' "$tmp/auto.json" ||
+    { echo "FAIL: trace --json --backend auto: stdout is not JSON alone naming the backend and device"; fails=$((fails + 1)); }
 checks=$((checks + 1))
-grep -q -E '^rtcl trace: backend: (opencl|vulkan) \(.+\)$' "$tmp/auto.err" ||
-    { echo "FAIL: trace --backend auto names no backend: $(cat "$tmp/auto.err")"; fails=$((fails + 1)); }
-# An explicit backend prints no such line.
-"$RTCL" render builtin:cornell --width 32 --height 18 --backend opencl -o "$tmp/x.png" 2>"$tmp/e.txt"
-checks=$((checks + 1))
-! grep -q 'backend:' "$tmp/e.txt" || { echo "FAIL: --backend opencl printed: $(cat "$tmp/e.txt")"; fails=$((fails + 1)); }
+[ ! -s "$tmp/auto.err" ] || { echo "FAIL: trace --backend auto printed on stderr: $(cat "$tmp/auto.err")"; fails=$((fails + 1)); }
+expect 0 '^path: (opencl|vulkan) \(.+\)$' -- "$RTCL" trace builtin:cornell --rays "$tmp/rays.txt" \
+    --stats --backend auto
+# No backend line without --verbose, auto or not.
+for b in opencl auto; do
+    "$RTCL" render builtin:cornell --width 32 --height 18 --backend $b -o "$tmp/x.png" 2>"$tmp/e.txt"
+    checks=$((checks + 1))
+    ! grep -q 'backend:' "$tmp/e.txt" || { echo "FAIL: --backend $b printed: $(cat "$tmp/e.txt")"; fails=$((fails + 1)); }
+done
 
 # No platform at all (the ICD loader reads no vendor file), and no Vulkan
 # driver either (else auto would take Vulkan).

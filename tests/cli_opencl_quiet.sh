@@ -6,12 +6,15 @@
 # a kernel macro) stays quiet too: PoCL's clang prints "N warnings
 # generated." on the process's stderr itself, which the library captures;
 # --verbose shows it with the build log, and a failed build's error has it.
+# (A run that loads a cached binary compiles nothing and has no log.)
 source "$RT_SOURCE_DIR/tests/shell_check.sh"
 
 if ! "$RTCL" devices >"$tmp/devices.txt" 2>&1; then
     echo "skipped: no OpenCL backend or device: $(head -1 "$tmp/devices.txt")"; exit 77
 fi
-export POCL_CACHE_DIR="$tmp/pocl-cache" # empty: every kernel is compiled afresh
+# Empty kernel caches, PoCL's and ours (README, "Kernel cache"): every
+# kernel is compiled afresh, and the cache's own writes must be quiet too.
+export POCL_CACHE_DIR="$tmp/pocl-cache" RTCL_CACHE_DIR="$tmp/rtcl-cache"
 mkdir -p "$POCL_CACHE_DIR"
 
 # quiet NAME CMD...: CMD exits 0 and its stderr, less rtcl's "wrote" line, is empty.
@@ -37,15 +40,17 @@ quiet "one-ray" "$RTCL" render builtin:keyframes --backend opencl --cl-one-ray -
 quiet "trace" "$RTCL" trace builtin:cornell --backend opencl \
     --rays "$tmp/rays.txt" --out "$tmp/hits.txt"
 [ -n "$(ls -A "$POCL_CACHE_DIR")" ] || echo "note: PoCL wrote no kernel cache (another driver?)"
+checks=$((checks + 1))
+ls "$RTCL_CACHE_DIR"/cl-*.bin >/dev/null 2>&1 || { echo "FAIL: no program binary cached"; fails=$((fails + 1)); }
 
 # A build that warns: -DPK_W=3 is redefined by the packet kernel's own
 # #define (to the 4 it always has), so the image is the same but clang warns
 # "macro redefined" and prints "1 warning generated." on stderr itself.
-rm -rf "${POCL_CACHE_DIR:?}"/*
+rm -rf "${POCL_CACHE_DIR:?}"/* "${RTCL_CACHE_DIR:?}"
 quiet "warning build" "$RTCL" render builtin:cornell --backend opencl --cl-options -DPK_W=3 \
     --width 48 --height 32 -o "$tmp/a.ppm"
 # --verbose shows both: the log's warning and what PoCL printed.
-rm -rf "${POCL_CACHE_DIR:?}"/*
+rm -rf "${POCL_CACHE_DIR:?}"/* "${RTCL_CACHE_DIR:?}"
 "$RTCL" render builtin:cornell --backend opencl --cl-options -DPK_W=3 --width 48 --height 32 \
     -o "$tmp/a.ppm" --verbose 2>"$tmp/verbose.txt"
 for want in 'opencl build log:' 'redefined' 'warnings? generated'; do

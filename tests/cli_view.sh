@@ -190,8 +190,8 @@ if cmp -s "$work/s_direct.exr" "$work/ref.exr"; then fail "direct lighting chang
 # device backend rtcl render names, or the CPU when it finds no device).
 run_rtcl render "$work/cornell.json" --width 8 --height 8 --backend auto -o "$work/probe.exr"
 case "$err" in
-*"rtcl render: backend: "*) auto=$(printf '%s\n' "$err" | sed -n 's/^rtcl render: backend: \([a-z]*\) .*/\1/p') ;;
 *"notice: "*"using the CPU"*) auto=cpu ;;
+*"backend "*) auto=$(printf '%s\n' "$err" | sed -n 's/^wrote .*, backend \([a-z]*\)[,)].*/\1/p') ;;
 *) auto=; fail "render --backend auto names no backend: $err" ;;
 esac
 printf '1 screenshot %s\n2 quit\n' "$work/auto.exr" >"$work/auto.txt"

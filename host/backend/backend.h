@@ -36,6 +36,10 @@ typedef struct rt_backend_config {
     rt_opencl_tuning opencl;
     rt_device_math device_math;
     int flush_denormals; /* rt_denormals: 1 for RT_DENORMALS_FLUSH */
+    /* rt_renderer_options.on_compile (NULL: none): called before a kernel
+     * build from source, never on a cached binary. */
+    void (*on_compile)(void *user, const char *backend, const char *device, const char *cache_dir);
+    void *on_compile_user;
 } rt_backend_config;
 
 /* The layout of the frame and what changed since the backend last saw one. */

@@ -242,9 +242,9 @@ const cli_option cli_renderer_options[] = {
              "the same bits",
      .fallback = "the widest the CPU runs"},
     {"--verbose", 0, CLI_FLAG, NULL, offsetof(cli_renderer_args, verbose),
-     .help = "print the device compiler's messages (the build log, and what the driver printed "
-             "while building) on stderr; without it they are shown only when the kernels fail "
-             "to build"},
+     .help = "print the backend and device that ran, and the device compiler's messages (the "
+             "build log, and what the driver printed while building), on stderr; without it "
+             "the build messages are shown only when the kernels fail to build"},
     {NULL}};
 
 const cli_option cli_backend_auto_options[] = {
@@ -325,6 +325,27 @@ static void device_backends(char *buf, size_t cap) {
     }
 }
 
+/* rt_renderer_options.on_compile: one line on a terminal before the first
+ * kernel build from source of the process (a pipe or a log file gets
+ * nothing: tests and scripts see no noise). user is the command's name. */
+static void compile_notice(void *user, const char *backend, const char *device,
+                           const char *cache_dir) {
+    static int shown;
+    if (shown || !isatty(STDERR_FILENO)) return;
+    shown = 1;
+    cli_progress_done();
+    if (cache_dir)
+        fprintf(stderr, "rtcl %s: compiling the %s kernels for %s (once; cached in %s)\n",
+                (const char *)user, !strcmp(backend, "opencl") ? "OpenCL" : backend, device,
+                cache_dir);
+    else
+        fprintf(stderr,
+                "rtcl %s: compiling the %s kernels for %s (not cached: RTCL_CACHE_DIR=off "
+                "or no writable cache folder)\n",
+                (const char *)user, !strcmp(backend, "opencl") ? "OpenCL" : backend, device);
+    fflush(stderr);
+}
+
 rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a) {
     if (a->device) {
         if (!cli_backend_takes_device(a->backend) || strchr(a->backend, ':')) {
@@ -352,6 +373,8 @@ rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a) {
     o.opencl.no_wavefront = a->cl_no_wavefront;
     o.opencl.packet_lanes = a->cl_packet_lanes;
     o.opencl.wave_queue_cap = (uint32_t)a->cl_wave_cap;
+    o.on_compile = compile_notice;
+    o.on_compile_user = (void *)command;
     rt_renderer *r = NULL;
     rt_error err;
     memset(&err, 0, sizeof err);
@@ -388,14 +411,20 @@ void cli_session_close(cli_session *out) {
 
 void cli_print_backend_choice(const char *command, const cli_renderer_args *a, const char *backend,
                               const char *device, const char *notice) {
-    char asked[64];
-    backend_of(a->backend, asked, sizeof asked);
     if (notice) {
         fprintf(stderr, "rtcl %s: notice: %s\n", command, notice);
-    } else if (!strcmp(asked, "auto") && backend) {
+    } else if (a->verbose && backend) {
         fprintf(stderr, "rtcl %s: backend: %s (%s)\n", command, backend,
                 device && device[0] ? device : "the CPU");
     }
+}
+
+const char *cli_backend_text(const char *backend, const char *device, char *buf, size_t cap) {
+    if (device && device[0])
+        snprintf(buf, cap, "backend %s, %s", backend ? backend : "?", device);
+    else
+        snprintf(buf, cap, "backend %s", backend ? backend : "?");
+    return buf;
 }
 
 void cli_print_build_log(const char *command, const rt_renderer *renderer) {

@@ -132,14 +132,19 @@ rt_renderer *cli_renderer_create(const char *command, cli_renderer_args *a);
  * by the backend registry (rt_backend_describe). */
 int cli_backend_takes_device(const char *spec);
 
-/* When the renderer options asked for "auto" (a->backend), the one line
- * on stderr that says what it chose: "rtcl COMMAND: backend: NAME
- * (DEVICE)" with the device that ran (rt_render_stats or rt_trace_stats),
- * or, when auto found no device, the renderer's notice instead ("rtcl
- * COMMAND: notice: ...: using the CPU"). Without auto, only that notice
- * (never set then). stdout is left alone (--json). */
+/* The renderer's notice when there is one (auto found no device: "rtcl
+ * COMMAND: notice: ...: using the CPU"), else with --verbose the line
+ * "rtcl COMMAND: backend: NAME (DEVICE)" with the device that ran
+ * (rt_render_stats or rt_trace_stats); else nothing: the backend auto chose
+ * is named by the command's own result line (render's "wrote", the --stats
+ * and --json output), not by a line of its own. On stderr; stdout is left
+ * alone (--json). */
 void cli_print_backend_choice(const char *command, const cli_renderer_args *a, const char *backend,
                               const char *device, const char *notice);
+
+/* "backend NAME, DEVICE" (or "backend NAME" without a device) into buf, for
+ * a result line; returns buf. */
+const char *cli_backend_text(const char *backend, const char *device, char *buf, size_t cap);
 
 /* ---- the renderer and the scene of a command ------------------------------ */
 

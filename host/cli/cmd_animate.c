@@ -11,6 +11,7 @@
 #include "cli_anim.h"
 #include "cli_util.h"
 #include "commands.h"
+#include "engines/bench_print.h"
 #include "video_out.h"
 
 typedef struct animate_args {
@@ -306,9 +307,11 @@ int cmd_animate(int argc, char **argv) {
             printf("{\"frame\": %d, \"time\": %.9g, ", k, t);
             cli_print_update_json(renderer, scene);
             printf(", \"upload_bytes\": %llu, \"build_ms\": %.3f, \"render_ms\": %.3f, "
-                   "\"write_ms\": %.3f, \"sah\": %.4f, \"backend\": \"%s\"}\n",
+                   "\"write_ms\": %.3f, \"sah\": %.4f, \"backend\": \"%s\", \"device\": ",
                    (unsigned long long)st.upload_bytes, st.build_ms, st.render_ms, write_ms,
                    st.sah_cost, st.backend ? st.backend : "?");
+            json_out_string(st.device);
+            printf("}\n");
             fflush(stdout);
         }
         cli_progress((void *)"animate", (double)(k - first + 1) / (double)(last - first + 1));

@@ -221,7 +221,11 @@ int cmd_render(int argc, char **argv) {
         print_stats(&st, cam.width, cam.height);
         print_memory(renderer, scene);
     }
-    fprintf(stderr, "wrote %s (%dx%d)\n", out_path, cam.width, cam.height);
+    /* The result line names the backend that ran (what --backend auto
+     * chose, issue 30 item 10) rather than a line of its own. */
+    char ran[192];
+    fprintf(stderr, "wrote %s (%dx%d, %s)\n", out_path, cam.width, cam.height,
+            cli_backend_text(st.backend, st.device, ran, sizeof ran));
     cli_session_close(&run);
     return 0;
 }

@@ -8,6 +8,7 @@
 
 #include "cli_util.h"
 #include "commands.h"
+#include "engines/bench_print.h"
 
 typedef struct trace_args {
     const char *rays, *out;
@@ -63,7 +64,7 @@ static const cli_option trace_options[] = {
              "time through wide BVHs); --out may then be left out"},
     {"--json", 0, CLI_FLAG, NULL, offsetof(trace_args, json),
      .help = "the same as one JSON object on stdout (ms_min, ms_median, mrays, rays, reps, "
-             "threads, backend, isa, packet_rays, single_rays, build_ms, any_hit)"},
+             "threads, backend, device, isa, packet_rays, single_rays, build_ms, any_hit)"},
     {"--packet-path", 0, CLI_CHOICE, "P", offsetof(trace_args, packet_path),
      .choices = path_choices,
      .help = "the packet backend's path: {choices} (auto: each group of 64 consecutive rays "
@@ -110,10 +111,12 @@ static void print_stats(const rt_trace_stats *ts, double *ms, int reps, double b
     if (json) {
         printf("{\"rays\": %llu, \"reps\": %d, \"threads\": %d, \"any_hit\": %s, \"ms_min\": %.3f, "
                "\"ms_median\": %.3f, \"mrays\": %.3f, \"build_ms\": %.3f, \"backend\": \"%s\", "
-               "\"isa\": \"%s\", \"packet_rays\": %llu, \"single_rays\": %llu}\n",
+               "\"device\": ",
                (unsigned long long)ts->rays, reps, threads, any_hit ? "true" : "false", min, median,
-               mrays, build_ms, ts->backend, ts->isa, (unsigned long long)ts->packet_rays,
-               (unsigned long long)ts->single_rays);
+               mrays, build_ms, ts->backend);
+        json_out_string(ts->device);
+        printf(", \"isa\": \"%s\", \"packet_rays\": %llu, \"single_rays\": %llu}\n", ts->isa,
+               (unsigned long long)ts->packet_rays, (unsigned long long)ts->single_rays);
         return;
     }
     printf("trace: %llu rays (%s), %d run%s%s: min %.3f ms, median %.3f ms, %.2f Mrays/s at the "
@@ -124,10 +127,10 @@ static void print_stats(const rt_trace_stats *ts, double *ms, int reps, double b
         printf("path: packet (%s): %llu rays in packets of 64 (coherent groups), %llu one at a "
                "time through wide BVHs\n",
                ts->isa, (unsigned long long)ts->packet_rays, (unsigned long long)ts->single_rays);
+    else if (!strcmp(ts->backend, "cpu"))
+        printf("path: cpu (the scalar oracle, one ray at a time through the binary BVHs)\n");
     else
-        printf("path: %s\n", !strcmp(ts->backend, "cpu") ? "cpu (the scalar oracle, one ray at a "
-                                                           "time through the binary BVHs)"
-                                                         : ts->backend);
+        printf("path: %s (%s)\n", ts->backend, ts->device[0] ? ts->device : "?");
     printf("builds: %.3f ms (BVHs and the backend's copies, not in the trace time)\n", build_ms);
 }
 

@@ -20,6 +20,7 @@
 #include "base/error.h"
 #include "opencl/cl_backend.h"
 #include "opencl/cl_device.h"
+#include "opencl/cl_program_cache.h"
 #include "opencl/cl_stderr.h"
 #include "rt_kernel_arg_index.h"
 #include "rt_shade.h" /* rt_wave_entry, rt_wave_record: the wavefront's buffers */
@@ -59,6 +60,8 @@ typedef struct cl_state {
     int flush;                /* ... and the denormal policy (1: flush) */
     rt_cl_math_plan plan;     /* what they give on the device (after open_device) */
     int probed_flush;         /* needs_probe: 1 when the probe saw the device flush */
+    void (*on_compile)(void *user, const char *backend, const char *device, const char *cache_dir);
+    void *on_compile_user;
     cl_context ctx;
     cl_command_queue queue;
     cl_program program;
@@ -112,6 +115,8 @@ static rt_status cl_create(const rt_backend_config *config, void **state, rt_err
     s->tune = config->opencl;
     s->math = config->device_math;
     s->flush = config->flush_denormals;
+    s->on_compile = config->on_compile;
+    s->on_compile_user = config->on_compile_user;
     s->tile = RT_CL_TILE_FIRST;
     *state = s;
     return RT_OK;
@@ -217,7 +222,7 @@ static void scene_defines(const rt_flat *f, char *out, size_t size) {
 
 static rt_status warm_up(cl_state *s, int wave, rt_error *err);
 static rt_status compile(cl_state *s, const rt_flat *f, const char *options, const char *defines,
-                         int lanes, char **log, rt_error *err);
+                         int lanes, const rt_cl_cache *cache, char **log, rt_error *err);
 static void keep_build_log(cl_state *s, const char *log, const char *printed);
 static void append_log(rt_error *err, const char *log);
 
@@ -255,11 +260,24 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
     s->k_camera = s->k_trace = s->k_shade = NULL;
     s->program = NULL;
     double t0 = rt_now_ms();
+    /* The kernel cache (cl_program_cache.h): a cached binary first, loaded
+     * under the capture as every build; the caller hears of a build from
+     * source before it starts, outside the capture. */
+    const char *src[2] = {rt_cl_source_rt_single_ray, rt_cl_source_rt_ray_packet};
+    rt_cl_cache *cache = malloc(sizeof *cache);
+    if (!cache) return rt_fail(err, RT_ERROR_OUT_OF_MEMORY, "out of memory");
+    rt_cl_cache_open(cache, &s->dev, lanes ? 2 : 1, src, options);
     rt_cl_stderr capture;
     rt_cl_stderr_begin(&capture);
+    s->program = rt_cl_cache_load(cache, s->ctx, s->dev.device_id, options);
+    free(rt_cl_stderr_end(&capture));
+    if (!s->program && s->on_compile)
+        s->on_compile(s->on_compile_user, "opencl", s->dev.name, cache->dir[0] ? cache->dir : NULL);
+    rt_cl_stderr_begin(&capture);
     char *log = NULL;
-    rt_status st = compile(s, f, options, defines, lanes, &log, err);
+    rt_status st = compile(s, f, options, defines, lanes, cache, &log, err);
     char *printed = rt_cl_stderr_end(&capture);
+    free(cache);
     keep_build_log(s, log, printed);
     if (st != RT_OK && s->build_log && s->build_log[0]) append_log(err, s->build_log);
     free(log);
@@ -308,11 +326,31 @@ static void append_log(rt_error *err, const char *log) {
         snprintf(err->message + used, sizeof err->message - used, "; build log:\n%s", log);
 }
 
-/* Builds the program with options, makes its kernels and warms them up
- * (PoCL compiles each kernel's code at its first launch). *log receives the
- * compiler's log (to free), on success and on failure. */
+static rt_status make_kernels(cl_state *s, const rt_flat *f, const char *options,
+                              const char *defines, int lanes, rt_error *err);
+
+/* Makes the kernels of s->program when it came from the cache, else builds
+ * the program from source first, and warms them up (PoCL compiles each
+ * kernel's code at its first launch); a program built from source is then
+ * saved in the cache, with that code. A cached program that fails is
+ * forgotten and built again from source. *log receives the compiler's log
+ * (to free), on success and on failure. */
 static rt_status compile(cl_state *s, const rt_flat *f, const char *options, const char *defines,
-                         int lanes, char **log, rt_error *err) {
+                         int lanes, const rt_cl_cache *cache, char **log, rt_error *err) {
+    if (s->program) {
+        *log = program_log(s->program, s->dev.device_id);
+        if (make_kernels(s, f, options, defines, lanes, err) == RT_OK) return RT_OK;
+        free(*log);
+        *log = NULL;
+        rt_cl_cache_forget(cache);
+        if (s->k_camera) clReleaseKernel(s->k_camera);
+        if (s->k_trace) clReleaseKernel(s->k_trace);
+        if (s->k_shade) clReleaseKernel(s->k_shade);
+        release_wave_kernels(s);
+        clReleaseProgram(s->program);
+        s->k_camera = s->k_trace = s->k_shade = NULL;
+        s->program = NULL;
+    }
     /* CPU devices get the packet kernel in the same program. */
     const char *src[2] = {rt_cl_source_rt_single_ray, rt_cl_source_rt_ray_packet};
     cl_int ce;
@@ -329,6 +367,15 @@ static rt_status compile(cl_state *s, const rt_flat *f, const char *options, con
                        "OpenCL kernel build failed on '%s' (%s; options: %s)", s->dev.name,
                        rt_cl_error_name(ce), options);
     }
+    rt_status st = make_kernels(s, f, options, defines, lanes, err);
+    if (st == RT_OK) rt_cl_cache_store(cache, s->program);
+    return st;
+}
+
+/* The kernels of the built s->program, warmed up. */
+static rt_status make_kernels(cl_state *s, const rt_flat *f, const char *options,
+                              const char *defines, int lanes, rt_error *err) {
+    cl_int ce = CL_SUCCESS;
     s->k_camera = clCreateKernel(s->program, "rt_k_camera", &ce);
     if (s->k_camera) s->k_trace = clCreateKernel(s->program, "rt_k_trace", &ce);
     if (s->k_trace) s->k_shade = clCreateKernel(s->program, "rt_k_shade", &ce);

@@ -56,6 +56,8 @@ static rt_status find_slot(rt_renderer *r, const rt_backend_ops *ops, const char
     config.opencl = r->opencl;
     config.device_math = r->device_math;
     config.flush_denormals = r->denormals == RT_DENORMALS_FLUSH;
+    config.on_compile = r->on_compile;
+    config.on_compile_user = r->on_compile_user;
     void *state = NULL;
     rt_status st = ops->create(&config, &state, err);
     if (st != RT_OK) return st;
@@ -137,6 +139,8 @@ rt_status rt_renderer_create(const rt_renderer_options *options, rt_renderer **o
     r->opencl = o.opencl;
     r->device_math = o.device_math;
     r->denormals = o.denormals;
+    r->on_compile = o.on_compile;
+    r->on_compile_user = o.on_compile_user;
     r->pool = rt_pool_create(o.threads);
     if (!r->pool) {
         free(r);

@@ -27,6 +27,8 @@ struct rt_renderer {
     rt_opencl_tuning opencl;
     rt_device_math device_math;
     rt_denormals denormals;
+    void (*on_compile)(void *user, const char *backend, const char *device, const char *cache_dir);
+    void *on_compile_user;
     rt_accel_cache accel;
     rt_backend_slot slots[RT_RENDERER_SLOTS];
     int slot_count;

@@ -29,6 +29,7 @@
 #include "rt_interface.h"
 #include "rt_shade.h"
 #include "vulkan/vk_internal.h"
+#include "vulkan/vk_pipeline_cache.h"
 
 /* Generated from kernels/vulkan/ at build time (cmake/embed_spirv.cmake). */
 extern const uint32_t rt_vk_spirv_rt_vk_main[], rt_vk_spirv_rt_vk_soft_test[],
@@ -129,6 +130,8 @@ typedef struct vk_state {
     rt_upload_memo memo; /* what the device holds of the layout */
     uint32_t tile;
     int lost; /* the device was lost: every later call fails with the reason */
+    /* The pipeline cache kept on disk (vk_pipeline_cache.h). */
+    rt_vk_pcache pcache;
 } vk_state;
 
 const uint32_t *rt_vk_module(const char *name, size_t *bytes) {
@@ -285,6 +288,7 @@ static void close_device(vk_state *s) {
         if (s->qpool) vkDestroyQueryPool(s->device, s->qpool, NULL);
         if (s->fence) vkDestroyFence(s->device, s->fence, NULL);
         if (s->cpool) vkDestroyCommandPool(s->device, s->cpool, NULL);
+        rt_vk_pcache_close(&s->pcache, s->device);
         vkDestroyDevice(s->device, NULL);
     }
     if (s->inst) vkDestroyInstance(s->inst, NULL);
@@ -476,7 +480,8 @@ static rt_status pipeline(vk_state *s, int p, const uint32_t spec[RT_VK_SPEC_COU
     ci.stage.pName = "main";
     ci.stage.pSpecializationInfo = &si;
     ci.layout = s->layout;
-    r = vkCreateComputePipelines(s->device, VK_NULL_HANDLE, 1, &ci, NULL, &s->pipe[p]);
+    VkPipelineCache cache = rt_vk_pcache_get(&s->pcache, s->device, s->phys);
+    r = vkCreateComputePipelines(s->device, cache, 1, &ci, NULL, &s->pipe[p]);
     if (r != VK_SUCCESS) {
         s->pipe[p] = VK_NULL_HANDLE;
         return vk_fail(s, r, "creating the compute pipeline", err);
@@ -490,6 +495,7 @@ static rt_status pipeline(vk_state *s, int p, const uint32_t spec[RT_VK_SPEC_COU
     double ignored;
     rt_status st = bind_all(s, err);
     if (st == RT_OK) st = dispatch(s, p, &none, &ignored, err);
+    if (st == RT_OK) rt_vk_pcache_save(&s->pcache, s->device); /* when it changed */
     *ms += rt_now_ms() - t0;
     return st;
 }
