@@ -149,9 +149,18 @@ static void test_default_view(void) {
     CHECK_EQ_INT(cam.width, 1024);
     CHECK_EQ_INT(cam.height, 576);
     CHECK_EQ_INT(s->light_count, 1);
-    const double off[3] = {0.25, 0.6, 0.3};
+    /* The default light beside the eye: eye + (0.3 u + 0.2 r) |c - eye|, with
+     * the camera's up u and right r (docs/SCENE_FORMAT.md, the default view). */
+    double f[3], r[3], u[3], eye[3];
+    for (int k = 0; k < 3; k++) eye[k] = c[k] + dir[k] / len * 0.9 * d, f[k] = -dir[k] / len;
+    r[0] = -f[2], r[1] = 0.0, r[2] = f[0]; /* f x (0, 1, 0) */
+    double rl = sqrt(r[0] * r[0] + r[2] * r[2]);
+    r[0] /= rl, r[2] /= rl;
+    u[0] = r[1] * f[2] - r[2] * f[1], u[1] = r[2] * f[0] - r[0] * f[2],
+    u[2] = r[0] * f[1] - r[1] * f[0]; /* r x f */
     for (int k = 0; k < 3; k++) {
-        CHECK(NEAR(s->lights[0].position[k], c[k] + off[k] * d));
+        CHECK_MSG(NEAR(s->lights[0].position[k], eye[k] + (0.3 * u[k] + 0.2 * r[k]) * 0.9 * d),
+                  "light[%d] = %g", k, (double)s->lights[0].position[k]);
         CHECK(s->lights[0].color[k] == 1.0f);
         CHECK(s->ambient[k] == 0.1f);
     }
