@@ -38,8 +38,7 @@ int main(int argc, char **argv) {
     const long n = strtol(argv[5], NULL, 10);
     const int trace = !(argc == 7 && !strcmp(argv[6], "--no-trace"));
     if ((strcmp(set, "diffuse") && strcmp(set, "random")) ||
-        (strcmp(query, "closest") && strcmp(query, "any")) || n < 1 ||
-        (argc == 7 && trace))
+        (strcmp(query, "closest") && strcmp(query, "any")) || n < 1 || (argc == 7 && trace))
         return usage();
     const int any_hit = !strcmp(query, "any"), embree = !strcmp(engine, "embree");
     rt_scene *scene;

@@ -86,7 +86,8 @@ void rt_surface_at(rt_ray r, rt_hit_d h, out rt_surface sf) {
 void rt_phong_ambient(rt_surface sf, out float o[3]) {
     uint m = sf.material;
     for (int k = 0; k < 3; k++, RT_VK_TICK)
-        o[k] = materials[m].emission[k] + (materials[m].ambient * materials[m].color[k]) * hdr.ambient[k];
+        o[k] = materials[m].emission[k] +
+               (materials[m].ambient * materials[m].color[k]) * hdr.ambient[k];
 }
 
 bool rt_phong_light(rt_surface sf, uint li, out rt_ray sr, out float Ln[3], out float ndl) {
