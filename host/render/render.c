@@ -9,7 +9,6 @@
 #include "base/error.h"
 #include "render/render_frame.h"
 #include "render/renderer_internal.h"
-#include "scene/scene.h"
 
 rt_render_options rt_render_options_default(void) {
     rt_render_options o;
@@ -216,9 +215,10 @@ rt_status rt_render(rt_renderer *r, rt_scene *scene, const rt_render_options *op
         rt_framebuffer_free(fb);
         return st;
     }
-    if (opt.aov == RT_AOV_NONE && scene->exposure != 0.0f) {
+    const float ev = rt_scene_exposure(scene);
+    if (opt.aov == RT_AOV_NONE && ev != 0.0f) {
         /* After shading, on the host: the same bits on every backend. */
-        const float scale = (float)exp2((double)scene->exposure);
+        const float scale = (float)exp2((double)ev);
         const size_t count = (size_t)fb->width * (size_t)fb->height * (size_t)fb->channels;
         for (size_t j = 0; j < count; j++) fb->pixels[j] = fb->pixels[j] * scale;
     }

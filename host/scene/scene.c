@@ -36,10 +36,6 @@ static int grow(void **array, uint32_t *capacity, uint32_t need, size_t elem) {
     return 1;
 }
 
-static int finite3(const float v[3]) {
-    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
-}
-
 void rt_mat4_identity(float m[16]) {
     memset(m, 0, 16 * sizeof(float));
     m[0] = m[5] = m[10] = m[15] = 1.0f;
@@ -93,10 +89,10 @@ rt_material rt_material_default(void) {
 rt_status rt_scene_check_finite(rt_scene *scene, uint32_t mesh_id, const float *positions,
                                 const float *normals, uint32_t vertex_count) {
     for (uint32_t v = 0; v < vertex_count; v++) {
-        if (!finite3(positions + 3 * (size_t)v))
+        if (!rt_scene_finite3(positions + 3 * (size_t)v))
             return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                                  "mesh %u: vertex %u has a NaN or infinite coordinate", mesh_id, v);
-        if (normals && !finite3(normals + 3 * (size_t)v))
+        if (normals && !rt_scene_finite3(normals + 3 * (size_t)v))
             return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                                  "mesh %u: normal %u has a NaN or infinite component", mesh_id, v);
     }
@@ -330,7 +326,7 @@ rt_status rt_material_add(rt_scene *scene, const rt_material *mat, uint32_t *mat
 /* RT_OK when position and color make a light (rt_light_add's rules), else
  * the scene's error naming the value. */
 static rt_status check_light(rt_scene *scene, const float position[3], const float color[3]) {
-    if (!finite3(position))
+    if (!rt_scene_finite3(position))
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                              "light: position (%g, %g, %g) must be finite", (double)position[0],
                              (double)position[1], (double)position[2]);
@@ -504,10 +500,6 @@ rt_status rt_scene_commit(rt_scene *scene) {
 
 /* ---- camera --------------------------------------------------------------- */
 
-static float dot3(const float a[3], const float b[3]) {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 static void cross3(const float a[3], const float b[3], float out[3]) {
     out[0] = a[1] * b[2] - a[2] * b[1];
     out[1] = a[2] * b[0] - a[0] * b[2];
@@ -515,7 +507,7 @@ static void cross3(const float a[3], const float b[3], float out[3]) {
 }
 
 static int normalize3(float v[3]) {
-    float len = sqrtf(dot3(v, v));
+    float len = sqrtf(rt_scene_dot3(v, v));
     if (!(len > 0.0f) || !isfinite(len)) return 0;
     v[0] /= len, v[1] /= len, v[2] /= len;
     return 1;
@@ -545,7 +537,8 @@ int rt_camera_frame_d(const rt_camera *c, double f[3], double r[3], double u[3])
 
 rt_status rt_camera_set(rt_scene *scene, const rt_camera *cam) {
     if (!scene || !cam) return RT_ERROR_INVALID_ARGUMENT;
-    if (!finite3(cam->position) || !finite3(cam->look_at) || !finite3(cam->up))
+    if (!rt_scene_finite3(cam->position) || !rt_scene_finite3(cam->look_at) ||
+        !rt_scene_finite3(cam->up))
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "camera: vectors must be finite");
     float fwd[3] = {cam->look_at[0] - cam->position[0], cam->look_at[1] - cam->position[1],
                     cam->look_at[2] - cam->position[2]};
@@ -566,7 +559,7 @@ rt_status rt_camera_set(rt_scene *scene, const rt_camera *cam) {
                                  (double)cam->position[2]);
         /* Not zero: too long for a float (the double frame below decides)
          * or too short (its square underflows to zero). */
-        if (finite3(fwd) && !(dot3(fwd, fwd) > 0.0f))
+        if (rt_scene_finite3(fwd) && !(rt_scene_dot3(fwd, fwd) > 0.0f))
             return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                                  "camera: the view direction from (%g, %g, %g) to (%g, %g, %g) is "
                                  "too short for a float",

@@ -8,6 +8,7 @@
 #ifndef RT_SCENE_H
 #define RT_SCENE_H
 
+#include <math.h>
 #include <stdint.h>
 
 #include "rt.h"
@@ -58,6 +59,15 @@ typedef struct rt_object_data {
 
 /* The mesh an object shows: its selected keyframe, or its blend while it
  * morphs between keyframes. Every reader of a scene goes through this. */
+/* Float vector helpers of the scene code (scene.c, scene_default_view.c):
+ * every component finite; a . b summed left to right. */
+static inline int rt_scene_finite3(const float v[3]) {
+    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
+}
+static inline float rt_scene_dot3(const float a[3], const float b[3]) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
 static inline uint32_t rt_object_shown_mesh(const rt_object_data *o) {
     return o->morphing ? o->morph_mesh : o->meshes[o->selected];
 }

@@ -8,14 +8,6 @@
 
 #include "scene/scene.h"
 
-static float dot3(const float a[3], const float b[3]) {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static int finite3(const float v[3]) {
-    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
-}
-
 /* One emitter: an object's triangles of one emissive material, summed. */
 typedef struct emitter {
     uint32_t object, material;
@@ -143,14 +135,14 @@ rt_status rt_scene_apply_default_view(rt_scene *scene, int width, int height) {
         return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT, "the scene has no triangles");
     float c[3], ext[3];
     for (int k = 0; k < 3; k++) c[k] = 0.5f * (bmin[k] + bmax[k]), ext[k] = bmax[k] - bmin[k];
-    float d = sqrtf(dot3(ext, ext));
+    float d = sqrtf(rt_scene_dot3(ext, ext));
     if (!isfinite(d)) {
         /* An extent whose square overflows a float (an object scaled by
          * 1e30): its length in double, where it cannot; a scene whose
          * extent itself is not a float has no default view. */
         double e2 = (double)ext[0] * ext[0] + (double)ext[1] * ext[1] + (double)ext[2] * ext[2];
         d = (float)sqrt(e2);
-        if (!isfinite(d) || !finite3(ext))
+        if (!isfinite(d) || !rt_scene_finite3(ext))
             return rt_scene_fail(scene, RT_ERROR_INVALID_ARGUMENT,
                                  "the scene's bounds (%g, %g, %g) .. (%g, %g, %g) are too large "
                                  "for a default camera: give the scene a camera",
@@ -159,7 +151,7 @@ rt_status rt_scene_apply_default_view(rt_scene *scene, int width, int height) {
     }
     if (!(d > 0.0f)) d = 1.0f; /* a single point: any distance will do */
     float dir[3] = {0.3f, 0.35f, 1.0f};
-    const float len = sqrtf(dot3(dir, dir));
+    const float len = sqrtf(rt_scene_dot3(dir, dir));
     for (int k = 0; k < 3; k++) dir[k] /= len;
     rt_camera cam;
     for (int k = 0; k < 3; k++) {
