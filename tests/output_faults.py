@@ -132,13 +132,18 @@ def interleave(rtcl, folder, ext):
     run_ok(render_args(rtcl, a_ref, 1024, 1024))
     run_ok(render_args(rtcl, b_ref, 640, 480))
     # The first writer is stopped while its temporary exists; a writer that
-    # got past its rename before the stop took effect is tried again.
+    # got past its rename before the stop took effect, or whose temporary lived
+    # too briefly for the poll to see on a loaded machine, is tried again.
+    seen = 0
     for attempt in range(20):
         first = subprocess.Popen(render_args(rtcl, out, 1024, 1024), stdout=subprocess.PIPE,
                                  stderr=subprocess.STDOUT, text=True)
         if not wait_for_temporary(first, folder, "out", "." + ext):
-            first.wait()
-            return ["interleave %s: the first writer's temporary never appeared" % ext]
+            first.communicate()
+            if first.returncode != 0:
+                return ["interleave %s: the first writer exited %s" % (ext, first.returncode)]
+            continue
+        seen += 1
         first.send_signal(signal.SIGSTOP)
         time.sleep(0.05)
         if temporaries(folder, "out", "." + ext):
@@ -146,6 +151,8 @@ def interleave(rtcl, folder, ext):
         first.send_signal(signal.SIGCONT)
         first.communicate()
     else:
+        if seen == 0:
+            return ["interleave %s: the first writer's temporary never appeared in 20 tries" % ext]
         return ["interleave %s: the first writer could never be stopped while writing" % ext]
     second = subprocess.run(render_args(rtcl, out, 640, 480), stdout=subprocess.PIPE,
                             stderr=subprocess.STDOUT, text=True)
