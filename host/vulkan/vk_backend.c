@@ -93,9 +93,14 @@ void rt_vk_test_reruns(uint32_t *items, uint32_t *resumes, uint32_t *dispatches)
     *dispatches = vk_last_reruns.dispatches;
 }
 
-enum { P_MAIN, P_SOFT, P_PROBE, P_COUNT };
+/* P_ALONE is rt_vk_main again, specialised with SC_RESUME = 1: the items
+ * rerun_cut traces alone, which may suspend and resume. Only that pipeline
+ * carries the iteration count and the state's save and load code (about
+ * half of rt_vk_main's compile time on lavapipe), and it is made only when
+ * a frame or trace first has an item to re-run. */
+enum { P_MAIN, P_SOFT, P_PROBE, P_ALONE, P_COUNT };
 static const char *const pipeline_names[P_COUNT] = {"rt_vk_main", "rt_vk_soft_test",
-                                                    "rt_vk_interface_test"};
+                                                    "rt_vk_interface_test", "rt_vk_main"};
 
 typedef struct vk_buf {
     VkBuffer buf;
@@ -514,6 +519,7 @@ static void scene_spec(const rt_flat *f, int flush, uint32_t kd_shared,
     /* The soft maths' denormal mode, the policy's. */
     spec[RT_VK_SPEC_DENORM_FLUSH] = flush ? 1u : 0u;
     spec[RT_VK_SPEC_KD_SHARED] = kd_shared;
+    spec[RT_VK_SPEC_RESUME] = 0u; /* rerun_cut makes the alone pipeline with 1 */
 }
 
 /* ---- buffers ----------------------------------------------------------------- */
@@ -752,11 +758,21 @@ static rt_status cut_error(vk_state *s, const rt_vk_push *push, size_t base, int
  * forbid re-runs. width > 0: the items are pixels of a frame that wide, else
  * rays numbered from base. */
 static rt_status rerun_cut(vk_state *s, const rt_vk_push *push, size_t base, int width,
-                           vk_reruns *rr, rt_error *err) {
+                           vk_reruns *rr, double *compile_ms, rt_error *err) {
     uint32_t *items = s->buf[RT_VK_BUF_ITEMS].map;
     uint32_t *pairs = items + push->list_at;
-    for (uint32_t i = 0; i < push->count; i++)
+    int any = 0;
+    for (uint32_t i = 0; i < push->count; i++) {
         if (items[i] && vk_test_no_rerun) return cut_error(s, push, base, width, i, 0, err);
+        any |= items[i] != 0;
+    }
+    if (!any) return RT_OK;
+    /* The alone pipeline: P_MAIN's specialisation with SC_RESUME = 1. */
+    uint32_t spec[RT_VK_SPEC_COUNT];
+    memcpy(spec, s->spec[P_MAIN], sizeof spec);
+    spec[RT_VK_SPEC_RESUME] = 1u;
+    rt_status made = pipeline(s, P_ALONE, spec, compile_ms, err);
+    if (made != RT_OK) return made;
     for (uint32_t next = 0; next < push->count;) {
         /* The next batch: up to RT_VK_SLOTS cut items, slot k each. */
         uint32_t m = 0;
@@ -774,7 +790,7 @@ static rt_status rerun_cut(vk_state *s, const rt_vk_push *push, size_t base, int
         while (m) {
             again.count = m;
             double ms;
-            rt_status st = dispatch(s, P_MAIN, &again, &ms, err);
+            rt_status st = dispatch(s, P_ALONE, &again, &ms, err);
             if (st != RT_OK) return st;
             rr->dispatches++;
             rr->ms += ms;
@@ -872,7 +888,7 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
         st = dispatch(s, P_MAIN, &push, &ms, err);
         uint32_t before = rr.dispatches;
         double before_ms = rr.ms;
-        if (st == RT_OK) st = rerun_cut(s, &push, 0, h->width, &rr, err);
+        if (st == RT_OK) st = rerun_cut(s, &push, 0, h->width, &rr, &stats->compile_ms, err);
         if (st != RT_OK) break;
         stats->launches += rr.dispatches - before;
         stats->kernel_ms[1] += ms + (rr.ms - before_ms);
@@ -933,7 +949,8 @@ static rt_status vk_trace(void *state, const rt_backend_layout *layout, const rt
             0, n, 0, 0, any_hit ? 1 : 0, 1, RT_VK_CANARY, 1, vk_test_ballast, RT_VK_TILE_MAX, 0};
         double ms = 0.0;
         st = dispatch(s, P_MAIN, &push, &ms, err);
-        if (st == RT_OK) st = rerun_cut(s, &push, first, 0, &rr, err);
+        double compile_ms = 0.0; /* the alone pipeline's, when it is made here */
+        if (st == RT_OK) st = rerun_cut(s, &push, first, 0, &rr, &compile_ms, err);
         if (st != RT_OK) break;
         memcpy(hits + first, s->buf[RT_VK_BUF_HITS].map, sizeof(rt_hit_d) * n);
         first += n;

@@ -130,7 +130,7 @@ void main() {
         i = items[j];
         rt_vk_slot = items[j + 1u] * RT_VK_STATE_WORDS;
         rt_vk_limit = RT_VK_TICK_LIMIT;
-        rt_vk_resuming = pc.resume != 0u;
+        rt_vk_resuming = SC_RESUME != 0u && pc.resume != 0u;
     } else if (i >= pc.count) {
         return;
     }

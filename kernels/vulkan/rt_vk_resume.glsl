@@ -100,6 +100,9 @@ uint rt_vk_slot = 0u;         /* the first word of this item's slot */
  * (the caller saves its position and returns); counts RT_VK_UNIT. Passive
  * while the item is resuming (the position to go on at is deeper down). */
 bool rt_vk_checkpoint() {
+    /* The pipeline of a tile's first pass never suspends: with SC_RESUME a
+     * constant 0 the driver drops the count and every save and load. */
+    if (SC_RESUME == 0u) return false;
     rt_vk_ticks += RT_VK_UNIT;
     if (rt_vk_resuming) return false;
     if (rt_vk_ticks > rt_vk_limit && rt_vk_worked) {
