@@ -14,7 +14,8 @@ With --strict the exit status is 1 when any leak, false hit, wrong primitive
 or t out of bound was found (the watertight default must have none); without
 it the failures are only reported (the other triangle tests). --json=FILE
 also writes the per-category figures (and their totals under "total") to
-FILE, for the speed-against-error study (bench/study_tri_tests.sh).
+FILE, for the speed-against-error study (bench/study_tri_tests.sh), with the
+median, 90th and 99th percentiles of t's relative error (bench/tri_t_error.sh).
 """
 import json
 import os
@@ -52,7 +53,7 @@ def main():
         if cat not in stats:
             order.append(cat)
             stats[cat] = dict(rays=0, leaks=0, false=0, prim=0, tbound=0, terr_max=0.0, terr_sum=0.0,
-                              terr_n=0, bary=0.0, either=0, either_hit=0, must=0)
+                              terr_n=0, bary=0.0, either=0, either_hit=0, must=0, terrs=[])
         s = stats[cat]
         for i, (e, h) in enumerate(zip(case['expect'], lines)):
             s['rays'] += 1
@@ -84,6 +85,7 @@ def main():
                     s['terr_max'] = max(s['terr_max'], err)
                     s['terr_sum'] += err
                     s['terr_n'] += 1
+                    s['terrs'].append(err)
                     s['bary'] = max(s['bary'], float(abs(Fr(float(h[2])) - u)),
                                     float(abs(Fr(float(h[3])) - v)))
                     if 't_tol' in e and err > e['t_tol']:
@@ -110,8 +112,15 @@ def main():
     if len(problems) > 12:
         print('  ... and %d more' % (len(problems) - 12))
     if json_out:
-        figures = {cat: dict(stats[cat], terr_mean=stats[cat]['terr_sum'] / stats[cat]['terr_n']
-                             if stats[cat]['terr_n'] else 0.0) for cat in order}
+        figures = {}
+        for cat in order:
+            s = dict(stats[cat])
+            errs = sorted(s.pop('terrs'))
+            s['terr_mean'] = s['terr_sum'] / s['terr_n'] if s['terr_n'] else 0.0
+            # The distribution of t's relative error (issue 26: beside the other tests).
+            for q in (50, 90, 99):
+                s['terr_p%d' % q] = errs[min(len(errs) - 1, len(errs) * q // 100)] if errs else 0.0
+            figures[cat] = s
         figures['total'] = tot
         with open(json_out, 'w') as f:
             json.dump({'label': label, 'categories': order, 'figures': figures}, f, indent=1)
