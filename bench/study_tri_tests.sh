@@ -27,15 +27,9 @@ else
             "$shared/armadillo_decimated/armadillo.obj" "$root/bench/scenes/sibenik_interior.json")
 fi
 
-# The robustness cases, generated once per version of the generator (it takes
-# some seconds: exact rational arithmetic) into the build folder.
-cases=$build/study_tri_cases
-stamp=$(cat "$root/tests/robust/gen_cases.py" "$root/tests/robust/exact.py" | sha256sum | cut -c1-16)
-if [ "$(cat "$cases/stamp" 2>/dev/null)" != "$stamp" ]; then
-    rm -rf "$cases"
-    python3 "$root/tests/robust/gen_cases.py" "$cases" >&2
-    echo "$stamp" >"$cases/stamp"
-fi
+# The robustness cases (generated once per version of the generator).
+. "$root/bench/robust_cases.sh"
+robust_cases "$build" "$root"
 # Only the closed-mesh categories (shared vertices and edges that must hit).
 mkdir -p "$data/cases"
 closed=$(python3 - "$cases/manifest.json" "$data/cases/manifest.json" <<'EOF'

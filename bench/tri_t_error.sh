@@ -16,14 +16,9 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 tests="watertight mt pluecker badouel"
 mkdir -p "$out"
 
-# The cases, generated once per version of the generator (exact arithmetic, some seconds).
-cases=$build/study_tri_cases
-stamp=$(cat "$root/tests/robust/gen_cases.py" "$root/tests/robust/exact.py" | sha256sum | cut -c1-16)
-if [ "$(cat "$cases/stamp" 2>/dev/null)" != "$stamp" ]; then
-    rm -rf "$cases"
-    python3 "$root/tests/robust/gen_cases.py" "$cases" >&2
-    echo "$stamp" >"$cases/stamp"
-fi
+# The robustness cases (generated once per version of the generator).
+. "$root/bench/robust_cases.sh"
+robust_cases "$build" "$root"
 # One row per long-triangle case (its category renamed to its name), one per closed-mesh
 # category; closest-hit queries only (check_hits measures no t on any-hit queries).
 mkdir -p "$out/cases"
