@@ -48,16 +48,19 @@ RT_FN int rt_trace_instance(const rt_scene_view *s, rt_u32 inst, const rt_ray *r
 
 /* The two-level traversal (Langr 2016, section 3.2.1): the object BVH, then
  * each reached instance's mesh BVH. With one identity instance the object BVH
- * is skipped. Returns 1 on a hit (for any_hit: some hit in range). */
-RT_FN int rt_trace(const rt_scene_view *s, const rt_ray *r, int any_hit, rt_hit_d *best,
-                   rt_counters *c) {
+ * is skipped. An instance whose mask has no bit of the ray's mask (ray_mask
+ * & in->mask == 0: rt_object_set_mask) is skipped where the traversal
+ * reaches it, before its box, so the hit is that of the scene without it.
+ * Returns 1 on a hit (for any_hit: some hit in range). */
+RT_FN int rt_trace_masked(const rt_scene_view *s, const rt_ray *r, rt_u32 ray_mask, int any_hit,
+                          rt_hit_d *best, rt_counters *c) {
     rt_ray_pre p;
     rt_ray_prepare(r, &p);
     rt_hit_init(best, r);
     c->rays++;
     if (s->hdr->instance_count == 0) return 0;
     if (RT_SCENE_FLAGS(s) & RT_SCENE_SINGLE) {
-        rt_trace_instance(s, 0, r, &p, any_hit, best, c);
+        if (ray_mask & s->instances[0].mask) rt_trace_instance(s, 0, r, &p, any_hit, best, c);
         return best->prim != RT_NO_HIT;
     }
     rt_u32 stack[RT_STACK_SIZE];
@@ -70,8 +73,12 @@ RT_FN int rt_trace(const rt_scene_view *s, const rt_ray *r, int any_hit, rt_hit_
         RT_GLOBAL const rt_node *n = &s->nodes[node];
         if (n->b & RT_NODE_LEAF_FLAG) {
             rt_u32 count = n->b & RT_NODE_COUNT_MASK;
-            for (rt_u32 e = n->a; e < n->a + count; e++)
-                if (rt_trace_instance(s, s->inst_ids[e], r, &p, any_hit, best, c)) return 1;
+            for (rt_u32 e = n->a; e < n->a + count; e++) {
+                rt_u32 inst = s->inst_ids[e];
+                if ((ray_mask & s->instances[inst].mask) != 0u &&
+                    rt_trace_instance(s, inst, r, &p, any_hit, best, c))
+                    return 1;
+            }
             if (sp == 0) break;
             node = stack[--sp];
             continue;
@@ -79,6 +86,12 @@ RT_FN int rt_trace(const rt_scene_view *s, const rt_ray *r, int any_hit, rt_hit_
         if (!rt_descend(s, n, r, &p, best, c, stack, &sp, &node)) break;
     }
     return best->prim != RT_NO_HIT;
+}
+
+/* rt_trace_masked with every mask bit: the rays of rendering. */
+RT_FN int rt_trace(const rt_scene_view *s, const rt_ray *r, int any_hit, rt_hit_d *best,
+                   rt_counters *c) {
+    return rt_trace_masked(s, r, 0xffffffffu, any_hit, best, c);
 }
 
 #endif /* RT_KERNELS_TRACE_H */

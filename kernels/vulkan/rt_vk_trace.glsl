@@ -50,8 +50,10 @@ bool rt_trace_instance(uint inst, rt_ray r, rt_ray_pre p, bool any_hit, inout rt
  * 2 before instance e of the node's leaf, 1 inside it (the mesh's position
  * deeper down). A resumed trace prepares the ray again (the same
  * operations, the same bits) and counts neither the ray nor the root box
- * again. */
-bool rt_trace(rt_ray r, bool any_hit, out rt_hit_d best, inout rt_counters c) {
+ * again. An instance whose mask has no bit of ray_mask is skipped where the
+ * traversal reaches it (rt_trace_masked of rt_trace.h). */
+bool rt_trace_masked(rt_ray r, uint ray_mask, bool any_hit, out rt_hit_d best,
+                     inout rt_counters c) {
     rt_ray_pre p;
     rt_ray_prepare(r, p);
     rt_hit_init(best, r);
@@ -63,7 +65,7 @@ bool rt_trace(rt_ray r, bool any_hit, out rt_hit_d best, inout rt_counters c) {
     }
     if (hdr.instance_count == 0u) return false;
     if ((RT_SCENE_FLAGS() & RT_SCENE_SINGLE) != 0u) {
-        rt_trace_instance(0u, r, p, any_hit, best, c);
+        if ((ray_mask & instances[0].mask) != 0u) rt_trace_instance(0u, r, p, any_hit, best, c);
         if (rt_vk_suspended) {
             w = ST_TOP;
             st_put_hit(w, best);
@@ -99,7 +101,10 @@ bool rt_trace(rt_ray r, bool any_hit, out rt_hit_d best, inout rt_counters c) {
                     stop = 2u;
                     break;
                 }
-                if (rt_trace_instance(inst_ids[e], r, p, any_hit, best, c)) return true;
+                uint inst = inst_ids[e];
+                if ((ray_mask & instances[inst].mask) != 0u &&
+                    rt_trace_instance(inst, r, p, any_hit, best, c))
+                    return true;
                 if (rt_vk_suspended) {
                     stop = 1u;
                     break;
@@ -127,6 +132,11 @@ bool rt_trace(rt_ray r, bool any_hit, out rt_hit_d best, inout rt_counters c) {
     st_put(w, e);
     st_put_bvh(w, 0, node, sp, stop == 3u ? 0u : stop);
     return false;
+}
+
+/* rt_trace_masked with every mask bit: the rays of rendering. */
+bool rt_trace(rt_ray r, bool any_hit, out rt_hit_d best, inout rt_counters c) {
+    return rt_trace_masked(r, 0xffffffffu, any_hit, best, c);
 }
 
 #endif
