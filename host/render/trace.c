@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* trace.c - rt_trace_rays: the caller's rays through the same layout and
- * traversal as rendering, on the renderer's backend; then each hit's
- * geometric normal and mesh, on the host, the same for every backend. */
+/* trace.c - rt_trace_rays: the caller's rays (with their masks, when given)
+ * through the same layout and traversal as rendering, on the renderer's
+ * backend; then each hit's geometric normal, mesh and ray id, on the host,
+ * the same for every backend. */
 #include <math.h>
 #include <stdatomic.h>
 #include <stdlib.h>
