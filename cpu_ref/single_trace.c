@@ -412,7 +412,7 @@ static int trace_instance(sw_ctx *x, rt_u32 inst, const rt_ray *r, const rt_ray_
          * the oracle's (rt_trace_instance, kernels/rt_kd.h) from its best hit
          * so far; what it finds is the oracle's by construction. */
         rt_counters c = {0, 0, 0};
-        const int done = rt_trace_instance(x->s, inst, r, p, x->any_hit, best, &c);
+        const int done = rt_trace_instance(x->s, inst, r, p, x->ray_mask, x->any_hit, best, &c);
         x->box_tests += c.box_tests;
         x->tri_tests += c.tri_tests;
         return done;

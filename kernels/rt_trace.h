@@ -23,11 +23,14 @@ RT_FN void rt_ray_to_object(RT_GLOBAL const rt_instance *in, const rt_ray *r, rt
     o->tmax = r->tmax;
 }
 
-/* Traces one instance: transforms the ray unless the instance is the
- * identity. */
+/* Traces one instance: nothing when its mask has no bit of the ray's
+ * (ray_mask & in->mask == 0: rt_object_set_mask), else the ray is
+ * transformed unless the instance is the identity. */
 RT_FN int rt_trace_instance(const rt_scene_view *s, rt_u32 inst, const rt_ray *r,
-                            const rt_ray_pre *p, int any_hit, rt_hit_d *best, rt_counters *c) {
+                            const rt_ray_pre *p, rt_u32 ray_mask, int any_hit, rt_hit_d *best,
+                            rt_counters *c) {
     RT_GLOBAL const rt_instance *in = &s->instances[inst];
+    if ((ray_mask & in->mask) == 0u) return 0;
     int kd = (RT_INST_FLAGS(in) & RT_INST_KD) != 0;
     float inst_lo = -RT_INF;
     if (!(RT_SCENE_FLAGS(s) & RT_SCENE_SINGLE) && !rt_inst_enter(in, r, p, &inst_lo)) return 0;
@@ -48,9 +51,9 @@ RT_FN int rt_trace_instance(const rt_scene_view *s, rt_u32 inst, const rt_ray *r
 
 /* The two-level traversal (Langr 2016, section 3.2.1): the object BVH, then
  * each reached instance's mesh BVH. With one identity instance the object BVH
- * is skipped. An instance whose mask has no bit of the ray's mask (ray_mask
- * & in->mask == 0: rt_object_set_mask) is skipped where the traversal
- * reaches it, before its box, so the hit is that of the scene without it.
+ * is skipped. An instance whose mask has no bit of the ray's mask is skipped
+ * where the traversal reaches it, before its box (rt_trace_instance), so the
+ * hit is that of the scene without it.
  * Returns 1 on a hit (for any_hit: some hit in range). */
 RT_FN int rt_trace_masked(const rt_scene_view *s, const rt_ray *r, rt_u32 ray_mask, int any_hit,
                           rt_hit_d *best, rt_counters *c) {
@@ -60,7 +63,7 @@ RT_FN int rt_trace_masked(const rt_scene_view *s, const rt_ray *r, rt_u32 ray_ma
     c->rays++;
     if (s->hdr->instance_count == 0) return 0;
     if (RT_SCENE_FLAGS(s) & RT_SCENE_SINGLE) {
-        if (ray_mask & s->instances[0].mask) rt_trace_instance(s, 0, r, &p, any_hit, best, c);
+        rt_trace_instance(s, 0, r, &p, ray_mask, any_hit, best, c);
         return best->prim != RT_NO_HIT;
     }
     rt_u32 stack[RT_STACK_SIZE];
@@ -73,12 +76,9 @@ RT_FN int rt_trace_masked(const rt_scene_view *s, const rt_ray *r, rt_u32 ray_ma
         RT_GLOBAL const rt_node *n = &s->nodes[node];
         if (n->b & RT_NODE_LEAF_FLAG) {
             rt_u32 count = n->b & RT_NODE_COUNT_MASK;
-            for (rt_u32 e = n->a; e < n->a + count; e++) {
-                rt_u32 inst = s->inst_ids[e];
-                if ((ray_mask & s->instances[inst].mask) != 0u &&
-                    rt_trace_instance(s, inst, r, &p, any_hit, best, c))
+            for (rt_u32 e = n->a; e < n->a + count; e++)
+                if (rt_trace_instance(s, s->inst_ids[e], r, &p, ray_mask, any_hit, best, c))
                     return 1;
-            }
             if (sp == 0) break;
             node = stack[--sp];
             continue;

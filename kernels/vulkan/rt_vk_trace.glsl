@@ -24,11 +24,13 @@ void rt_ray_to_object(uint inst, rt_ray r, out rt_ray o) {
 
 /* One call of rt_trace_mesh (and of rt_kd_trace_mesh) for both cases of the
  * C function (the ray transformed or not): one inlined copy of each
- * traversal. Keeps no state of its own: a resumed instance enters and
+ * traversal; nothing when the instance's mask has no bit of ray_mask (as in
+ * rt_trace.h). Keeps no state of its own: a resumed instance enters and
  * transforms the ray again (the same operations, the same bits, no counter)
  * and its mesh traversal loads its position. */
-bool rt_trace_instance(uint inst, rt_ray r, rt_ray_pre p, bool any_hit, inout rt_hit_d best,
-                       inout rt_counters c) {
+bool rt_trace_instance(uint inst, rt_ray r, rt_ray_pre p, uint ray_mask, bool any_hit,
+                       inout rt_hit_d best, inout rt_counters c) {
+    if ((ray_mask & instances[inst].mask) == 0u) return false;
     uint root = instances[inst].root;
     float inst_lo = -RT_INF;
     if ((RT_SCENE_FLAGS() & RT_SCENE_SINGLE) == 0u && !rt_inst_enter(inst, r, p, inst_lo))
@@ -51,7 +53,7 @@ bool rt_trace_instance(uint inst, rt_ray r, rt_ray_pre p, bool any_hit, inout rt
  * deeper down). A resumed trace prepares the ray again (the same
  * operations, the same bits) and counts neither the ray nor the root box
  * again. An instance whose mask has no bit of ray_mask is skipped where the
- * traversal reaches it (rt_trace_masked of rt_trace.h). */
+ * traversal reaches it (rt_trace_instance, as in rt_trace.h). */
 bool rt_trace_masked(rt_ray r, uint ray_mask, bool any_hit, out rt_hit_d best,
                      inout rt_counters c) {
     rt_ray_pre p;
@@ -65,7 +67,7 @@ bool rt_trace_masked(rt_ray r, uint ray_mask, bool any_hit, out rt_hit_d best,
     }
     if (hdr.instance_count == 0u) return false;
     if ((RT_SCENE_FLAGS() & RT_SCENE_SINGLE) != 0u) {
-        if ((ray_mask & instances[0].mask) != 0u) rt_trace_instance(0u, r, p, any_hit, best, c);
+        rt_trace_instance(0u, r, p, ray_mask, any_hit, best, c);
         if (rt_vk_suspended) {
             w = ST_TOP;
             st_put_hit(w, best);
@@ -101,10 +103,7 @@ bool rt_trace_masked(rt_ray r, uint ray_mask, bool any_hit, out rt_hit_d best,
                     stop = 2u;
                     break;
                 }
-                uint inst = inst_ids[e];
-                if ((ray_mask & instances[inst].mask) != 0u &&
-                    rt_trace_instance(inst, r, p, any_hit, best, c))
-                    return true;
+                if (rt_trace_instance(inst_ids[e], r, p, ray_mask, any_hit, best, c)) return true;
                 if (rt_vk_suspended) {
                     stop = 1u;
                     break;
