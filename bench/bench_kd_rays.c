@@ -123,7 +123,8 @@ static int bench_scene(const char *path, size_t n, int reps, int threads, rt_acc
             for (int q = 0; q < QUERIES; q++)
                 for (int b = 0; b < BACKENDS; b++)
                     for (int a = 0; a < ACCELS; a++) {
-                        rt_trace_options o = {q, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
+                        rt_trace_options o = {
+                            q, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO, NULL, NULL};
                         rt_hit *out = a == 0 ? ref : got;
                         double t0 = rt_now_ms();
                         rt_status st = rt_trace_rays(r[b][a], scene[a], rays[s], n, out, &o);

@@ -238,7 +238,7 @@ int main(int argc, char **argv) {
 
     rt_renderer *renderer = bench_renderer("cpu", threads);
     if (!renderer) return 1;
-    rt_trace_options opt = {0, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
+    rt_trace_options opt = {0, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO, NULL, NULL};
     static double ms[TESTS][MAX_RUNS];
     for (int r = -1; r < runs; r++) /* r = -1: the warm-up pass, not counted */
         for (int m = 0; m < TESTS; m++) {

@@ -45,7 +45,7 @@ int main(int argc, char **argv) {
     size_t hit_count[4] = {0};
     rt_renderer *renderer = bench_renderer(backend, 0);
     if (!renderer) return 1;
-    rt_trace_options opt = {0, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
+    rt_trace_options opt = {0, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO, NULL, NULL};
     /* One untimed pass builds the BVH and layout. */
     if (rt_trace_rays(renderer, scene, rays, n, hits, &opt) != RT_OK) {
         fprintf(stderr, "%s\n", rt_renderer_error(renderer));

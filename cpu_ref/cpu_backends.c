@@ -19,6 +19,7 @@ typedef struct trace_job {
     const rt_cpu_frame *tracers; /* flat, and for packets the wide BVHs and builds */
     int packets;                 /* 0: the scalar oracle */
     const rt_ray *rays;
+    const uint32_t *masks; /* NULL: every ray's mask is 0xffffffff */
     rt_hit_d *hits;
     size_t count;
     int any_hit;
@@ -42,11 +43,12 @@ static void trace_chunk(void *ctx, int worker, int workers) {
         if (first >= job->count) break;
         size_t n = job->count - first < TRACE_CHUNK ? job->count - first : TRACE_CHUNK;
         rt_counters c = {0, 0, 0};
+        const uint32_t *masks = job->masks ? job->masks + first : NULL;
         if (job->packets)
-            rt_packet_trace_rays(job->tracers, job->rays + first, n, job->hits + first,
+            rt_packet_trace_rays(job->tracers, job->rays + first, masks, n, job->hits + first,
                                  job->any_hit, job->path, &c, &packet_rays);
         else
-            rt_cpu_trace_rays(job->tracers->flat, job->rays + first, n, job->hits + first,
+            rt_cpu_trace_rays(job->tracers->flat, job->rays + first, masks, n, job->hits + first,
                               job->any_hit, &c);
     }
     atomic_fetch_add_explicit(&job->packet_rays, packet_rays, memory_order_relaxed);
@@ -98,13 +100,14 @@ static rt_status render_frame(const rt_backend_layout *layout, const rt_backend_
  * packets and single rays as rt_packet_trace_rays chooses. Returns the
  * number of rays that went in packets. */
 static uint64_t trace_all(const rt_backend_layout *layout, const rt_cpu_frame *tracers, int flush,
-                          const rt_ray *rays, size_t count, rt_hit_d *hits, int any_hit,
-                          rt_trace_path path) {
+                          const rt_ray *rays, const uint32_t *masks, size_t count, rt_hit_d *hits,
+                          int any_hit, rt_trace_path path) {
     trace_job job;
     memset(&job, 0, sizeof job);
     job.tracers = tracers;
     job.packets = tracers->wide != NULL;
     job.rays = rays;
+    job.masks = masks;
     job.hits = hits;
     job.count = count;
     job.any_hit = any_hit;
@@ -158,15 +161,16 @@ static rt_status cpu_render(void *state, const rt_backend_layout *layout,
 }
 
 static rt_status cpu_trace(void *state, const rt_backend_layout *layout, const rt_ray *rays,
-                           size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
-                           rt_trace_stats *stats, rt_error *err) {
+                           const uint32_t *masks, size_t count, rt_hit_d *hits, int any_hit,
+                           rt_trace_path path, rt_trace_stats *stats, rt_error *err) {
     (void)err;
     (void)path;
     (void)stats;
     rt_cpu_frame tracers;
     memset(&tracers, 0, sizeof tracers);
     tracers.flat = layout->flat;
-    trace_all(layout, &tracers, state != NULL, rays, count, hits, any_hit, RT_TRACE_PATH_AUTO);
+    trace_all(layout, &tracers, state != NULL, rays, masks, count, hits, any_hit,
+              RT_TRACE_PATH_AUTO);
     return RT_OK;
 }
 
@@ -278,8 +282,8 @@ static rt_status packet_render(void *state, const rt_backend_layout *layout,
 }
 
 static rt_status packet_trace(void *state, const rt_backend_layout *layout, const rt_ray *rays,
-                              size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
-                              rt_trace_stats *stats, rt_error *err) {
+                              const uint32_t *masks, size_t count, rt_hit_d *hits, int any_hit,
+                              rt_trace_path path, rt_trace_stats *stats, rt_error *err) {
     packet_state *s = state;
     const double t0 = rt_now_ms();
     rt_status st = ensure_single(s, layout, NULL, err);
@@ -291,7 +295,8 @@ static rt_status packet_trace(void *state, const rt_backend_layout *layout, cons
     tracers.wide = &s->packets.bvh;
     tracers.isa = s->isa;
     tracers.single = &s->single.bvh;
-    stats->packet_rays = trace_all(layout, &tracers, s->flush, rays, count, hits, any_hit, path);
+    stats->packet_rays =
+        trace_all(layout, &tracers, s->flush, rays, masks, count, hits, any_hit, path);
     stats->single_rays = count - stats->packet_rays;
     stats->isa = rt_cpu_isa_name(s->isa);
     return RT_OK;

@@ -77,10 +77,22 @@ int rt_cpu_isa_width(const rt_cpu_isa *isa) {
 
 void rt_pk_trace(const rt_cpu_isa *isa, const rt_scene_view *s, const rt_wide_bvh *w,
                  const rt_pk_rays *rays, int any_hit, rt_pk_hits *hits, rt_pk_counts *counts) {
-    isa->packet->trace(s, w, rays, any_hit, hits, counts);
+    isa->packet->trace(s, w, rays, NULL, any_hit, hits, counts);
+}
+
+void rt_pk_trace_masked(const rt_cpu_isa *isa, const rt_scene_view *s, const rt_wide_bvh *w,
+                        const rt_pk_rays *rays, const uint32_t *masks, int any_hit,
+                        rt_pk_hits *hits, rt_pk_counts *counts) {
+    isa->packet->trace(s, w, rays, masks, any_hit, hits, counts);
 }
 
 void rt_sw_trace(const rt_cpu_isa *isa, const rt_scene_view *s, const rt_wide_bvh *b,
                  const rt_ray *rays, size_t n, int any_hit, rt_hit_d *hits, rt_counters *c) {
-    isa->single->trace(s, b, rays, n, any_hit, hits, c);
+    isa->single->trace(s, b, rays, NULL, n, any_hit, hits, c);
+}
+
+void rt_sw_trace_masked(const rt_cpu_isa *isa, const rt_scene_view *s, const rt_wide_bvh *b,
+                        const rt_ray *rays, const uint32_t *masks, size_t n, int any_hit,
+                        rt_hit_d *hits, rt_counters *c) {
+    isa->single->trace(s, b, rays, masks, n, any_hit, hits, c);
 }

@@ -91,8 +91,9 @@ rt_status rt_cpu_render(const rt_cpu_frame *frame, rt_pool *pool, rt_cpu_counts 
     return RT_OK;
 }
 
-void rt_cpu_trace_rays(const rt_flat *flat, const rt_ray *rays, size_t n, rt_hit_d *hits,
-                       int any_hit, rt_counters *c) {
+void rt_cpu_trace_rays(const rt_flat *flat, const rt_ray *rays, const uint32_t *masks, size_t n,
+                       rt_hit_d *hits, int any_hit, rt_counters *c) {
     rt_scene_view v = rt_flat_view(flat);
-    for (size_t i = 0; i < n; i++) rt_trace(&v, &rays[i], any_hit, &hits[i], c);
+    for (size_t i = 0; i < n; i++)
+        rt_trace_masked(&v, &rays[i], masks ? masks[i] : 0xffffffffu, any_hit, &hits[i], c);
 }

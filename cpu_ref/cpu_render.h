@@ -56,11 +56,13 @@ void rt_cpu_finish_pixel(const rt_cpu_frame *frame, const rt_scene_view *view, i
  * (cpu_ref/ray_coherence.h) as a packet and the others one by one through
  * the single-ray tracer (path RT_TRACE_PATH_PACKETS or _SINGLE forces one;
  * without tracers->single every group is a packet); misses get prim =
- * RT_NO_HIT. *packet_rays counts the rays that went in packets. */
-void rt_cpu_trace_rays(const rt_flat *flat, const rt_ray *rays, size_t n, rt_hit_d *hits,
-                       int any_hit, rt_counters *c);
-void rt_packet_trace_rays(const rt_cpu_frame *tracers, const rt_ray *rays, size_t n, rt_hit_d *hits,
-                          int any_hit, rt_trace_path path, rt_counters *c, uint64_t *packet_rays);
+ * RT_NO_HIT. *packet_rays counts the rays that went in packets. masks[i]
+ * is ray i's mask (rt_trace_masked; NULL: 0xffffffff for every ray). */
+void rt_cpu_trace_rays(const rt_flat *flat, const rt_ray *rays, const uint32_t *masks, size_t n,
+                       rt_hit_d *hits, int any_hit, rt_counters *c);
+void rt_packet_trace_rays(const rt_cpu_frame *tracers, const rt_ray *rays, const uint32_t *masks,
+                          size_t n, rt_hit_d *hits, int any_hit, rt_trace_path path, rt_counters *c,
+                          uint64_t *packet_rays);
 
 /* The rest of a pixel's shading tree, as rt_shade_children (rt_shade.h)
  * computes it, every ray (and shadow ray) traced by the single-ray tracer

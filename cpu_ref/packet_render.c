@@ -218,8 +218,9 @@ static float coherent_org_span(const rt_flat *flat) {
     return 0.02f * e;
 }
 
-void rt_packet_trace_rays(const rt_cpu_frame *tr, const rt_ray *rays, size_t n, rt_hit_d *hits,
-                          int any_hit, rt_trace_path path, rt_counters *c, uint64_t *packet_rays) {
+void rt_packet_trace_rays(const rt_cpu_frame *tr, const rt_ray *rays, const uint32_t *masks,
+                          size_t n, rt_hit_d *hits, int any_hit, rt_trace_path path, rt_counters *c,
+                          uint64_t *packet_rays) {
     rt_scene_view v = rt_flat_view(tr->flat);
     const float span = coherent_org_span(tr->flat);
     for (size_t i = 0; i < n; i += RT_PK_LANES) {
@@ -228,7 +229,8 @@ void rt_packet_trace_rays(const rt_cpu_frame *tr, const rt_ray *rays, size_t n, 
             tr->single && path != RT_TRACE_PATH_PACKETS &&
             (path == RT_TRACE_PATH_SINGLE || !rt_rays_coherent(rays + i, count, span));
         if (single) {
-            rt_sw_trace(tr->isa, &v, tr->single, rays + i, count, any_hit, hits + i, c);
+            rt_sw_trace_masked(tr->isa, &v, tr->single, rays + i, masks ? masks + i : NULL, count,
+                               any_hit, hits + i, c);
             continue;
         }
         rt_pk_rays p;
@@ -238,7 +240,13 @@ void rt_packet_trace_rays(const rt_cpu_frame *tr, const rt_ray *rays, size_t n, 
         memset(&p, 0, sizeof p);
         p.valid = RT_PK_ALL >> (RT_PK_LANES - count);
         for (size_t l = 0; l < count; l++) rt_pk_set_ray(&p, (int)l, &rays[i + l]);
-        rt_pk_trace(tr->isa, &v, tr->wide, &p, any_hit, &h, &pc);
+        /* The lanes' masks, a whole packet of them (lanes past count: 0). */
+        uint32_t lane_masks[RT_PK_LANES];
+        if (masks) {
+            memset(lane_masks, 0, sizeof lane_masks);
+            memcpy(lane_masks, masks + i, sizeof(uint32_t) * count);
+        }
+        rt_pk_trace_masked(tr->isa, &v, tr->wide, &p, masks ? lane_masks : NULL, any_hit, &h, &pc);
         for (size_t l = 0; l < count; l++) rt_pk_get_hit(&h, (int)l, &hits[i + l]);
         c->rays += (rt_u32)pc.rays;
         c->box_tests += (rt_u32)pc.box_tests;

@@ -69,6 +69,8 @@ typedef struct pk_state {
      * entry distances (rt_inst_enter), for rt_hit_accepted. */
     uint32_t inst_ok[G];
     rt_vf inst_lo[G];
+    /* The lanes' ray masks (rt_trace_masked), when the caller gave them. */
+    const uint32_t *masks;
     rt_vi box[G], tri[G]; /* tests per lane, when per_lane */
     int per_lane;         /* counts->per_lane */
     float hi_max;         /* the greatest of hi (for the interval test) ... */
@@ -848,16 +850,22 @@ static pk_groups pk_inst_enter(pk_state *st, const pk_geom *p, const rt_instance
     pk_groups out = 0;
     for (pk_groups todo = gm; todo; todo &= todo - 1) {
         const int g = rt_lane_first(todo);
+        /* rt_trace_masked's mask test: the lanes whose mask shares a bit
+         * with the instance's (without masks every lane's is 0xffffffff). */
+        uint32_t lanes = in->mask ? (1u << N) - 1u : 0u;
+        if (st->masks)
+            lanes = rt_vbits((rt_vload_i(st->masks + N * g) & rt_vsplat_i((int32_t)in->mask)) !=
+                             rt_vsplat_i(0));
         if (st->s->hdr->flags & RT_SCENE_SINGLE) {
             st->inst_lo[g] = rt_vsplat(-RT_INF);
-            st->inst_ok[g] = (1u << N) - 1u;
-            out |= 1u << g;
+            st->inst_ok[g] = lanes;
+            if (lanes & st->alive[g]) out |= 1u << g;
             continue;
         }
         rt_vf lo = p->lo[g], hi = rt_vsplat(RT_INF);
         for (int k = 0; k < 3; k++) pk_slab_box(in->bmin[k], in->bmax[k], p, k, g, &lo, &hi);
         st->inst_lo[g] = lo;
-        st->inst_ok[g] = rt_vbits(lo <= pk_far(hi));
+        st->inst_ok[g] = rt_vbits(lo <= pk_far(hi)) & lanes;
         if (st->inst_ok[g] & st->alive[g]) out |= 1u << g;
     }
     return out;
@@ -888,13 +896,14 @@ static void pk_instance(pk_state *st, const pk_geom *world, rt_u32 inst, pk_grou
 }
 
 /* This build's entry point (rt_pk_tracer.trace). */
-void RT_PK_TRACE(const rt_scene_view *s, const rt_wide_bvh *w, const rt_pk_rays *rays, int any_hit,
-                 rt_pk_hits *hits, rt_pk_counts *counts);
-void RT_PK_TRACE(const rt_scene_view *s, const rt_wide_bvh *w, const rt_pk_rays *rays, int any_hit,
-                 rt_pk_hits *hits, rt_pk_counts *counts) {
+void RT_PK_TRACE(const rt_scene_view *s, const rt_wide_bvh *w, const rt_pk_rays *rays,
+                 const uint32_t *masks, int any_hit, rt_pk_hits *hits, rt_pk_counts *counts);
+void RT_PK_TRACE(const rt_scene_view *s, const rt_wide_bvh *w, const rt_pk_rays *rays,
+                 const uint32_t *masks, int any_hit, rt_pk_hits *hits, rt_pk_counts *counts) {
     pk_state st;
     st.s = s;
     st.w = w;
+    st.masks = masks;
     st.counts = counts;
     st.per_lane = counts->per_lane;
     st.any_hit = any_hit;

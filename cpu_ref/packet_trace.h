@@ -125,8 +125,8 @@ typedef struct rt_pk_counts {
  * per vector and its entry point. */
 typedef struct rt_pk_tracer {
     int lanes;
-    void (*trace)(const rt_scene_view *s, const rt_wide_bvh *w, const rt_pk_rays *rays, int any_hit,
-                  rt_pk_hits *hits, rt_pk_counts *counts);
+    void (*trace)(const rt_scene_view *s, const rt_wide_bvh *w, const rt_pk_rays *rays,
+                  const uint32_t *masks, int any_hit, rt_pk_hits *hits, rt_pk_counts *counts);
 } rt_pk_tracer;
 
 /* Traces the valid lanes (closest hit, or any hit when any_hit is set)
@@ -135,5 +135,12 @@ typedef struct rt_pk_tracer {
  * get a miss at t = inf. The tests are added to *counts. */
 void rt_pk_trace(const rt_cpu_isa *isa, const rt_scene_view *s, const rt_wide_bvh *w,
                  const rt_pk_rays *rays, int any_hit, rt_pk_hits *hits, rt_pk_counts *counts);
+
+/* rt_pk_trace with a ray mask per lane (masks[l] for lane l, RT_PK_LANES of
+ * them; NULL: 0xffffffff for every lane): a lane skips each instance whose
+ * mask has no bit of its own, as rt_trace_masked does. */
+void rt_pk_trace_masked(const rt_cpu_isa *isa, const rt_scene_view *s, const rt_wide_bvh *w,
+                        const rt_pk_rays *rays, const uint32_t *masks, int any_hit,
+                        rt_pk_hits *hits, rt_pk_counts *counts);
 
 #endif /* RT_PACKET_TRACE_H */

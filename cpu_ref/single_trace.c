@@ -40,6 +40,7 @@ typedef struct sw_ctx {
     rt_u32 method;
     int any_hit;
     uint64_t box_tests, tri_tests;
+    rt_u32 ray_mask; /* the ray being traced's (rt_trace_masked) */
 } sw_ctx;
 
 /* The ray as the box test reads it: org and inv in every lane, the byte
@@ -403,12 +404,15 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
 static int trace_instance(sw_ctx *x, rt_u32 inst, const rt_ray *r, const rt_ray_pre *p,
                           rt_hit_d *best) {
     const rt_instance *in = &x->s->instances[inst];
+    /* rt_trace_masked's mask test, where the traversal reaches an instance
+     * (its object BVH leaf, or the single instance). */
+    if (!(x->ray_mask & in->mask)) return 0;
     if (RT_INST_FLAGS(in) & RT_INST_KD) {
         /* A kd-tree mesh: no wide traversal for it, so the ray goes through
          * the oracle's (rt_trace_instance, kernels/rt_kd.h) from its best hit
          * so far; what it finds is the oracle's by construction. */
         rt_counters c = {0, 0, 0};
-        const int done = rt_trace_instance(x->s, inst, r, p, x->any_hit, best, &c);
+        const int done = rt_trace_instance(x->s, inst, r, p, x->ray_mask, x->any_hit, best, &c);
         x->box_tests += c.box_tests;
         x->tri_tests += c.tri_tests;
         return done;
@@ -453,13 +457,17 @@ static void trace_one(sw_ctx *x, const rt_wide_bvh *b, const rt_ray *r, rt_hit_d
 }
 
 /* This build's entry point (rt_sw_tracer.trace). */
-void RT_SW_TRACE(const rt_scene_view *s, const rt_wide_bvh *b, const rt_ray *rays, size_t n,
-                 int any_hit, rt_hit_d *hits, rt_counters *c);
-void RT_SW_TRACE(const rt_scene_view *s, const rt_wide_bvh *b, const rt_ray *rays, size_t n,
-                 int any_hit, rt_hit_d *hits, rt_counters *c) {
+void RT_SW_TRACE(const rt_scene_view *s, const rt_wide_bvh *b, const rt_ray *rays,
+                 const uint32_t *masks, size_t n, int any_hit, rt_hit_d *hits, rt_counters *c);
+void RT_SW_TRACE(const rt_scene_view *s, const rt_wide_bvh *b, const rt_ray *rays,
+                 const uint32_t *masks, size_t n, int any_hit, rt_hit_d *hits, rt_counters *c) {
     assert(b->shape.width == W && b->shape.blocks);
-    sw_ctx x = {s, b->nodes, b->blocks, b->inst_root, s->hdr->tri_method, any_hit, 0, 0};
-    for (size_t i = 0; i < n; i++) trace_one(&x, b, &rays[i], &hits[i]);
+    sw_ctx x = {s,       b->nodes, b->blocks, b->inst_root, s->hdr->tri_method,
+                any_hit, 0,        0,         0xffffffffu};
+    for (size_t i = 0; i < n; i++) {
+        if (masks) x.ray_mask = masks[i];
+        trace_one(&x, b, &rays[i], &hits[i]);
+    }
     c->rays += (rt_u32)n;
     c->box_tests += (rt_u32)x.box_tests;
     c->tri_tests += (rt_u32)x.tri_tests;

@@ -49,8 +49,8 @@ static inline rt_wide_shape rt_sw_shape(int width) {
  * width and its entry point. */
 typedef struct rt_sw_tracer {
     int width;
-    void (*trace)(const rt_scene_view *s, const rt_wide_bvh *b, const rt_ray *rays, size_t n,
-                  int any_hit, rt_hit_d *hits, rt_counters *c);
+    void (*trace)(const rt_scene_view *s, const rt_wide_bvh *b, const rt_ray *rays,
+                  const uint32_t *masks, size_t n, int any_hit, rt_hit_d *hits, rt_counters *c);
 } rt_sw_tracer;
 
 /* Traces rays[0 .. n-1] (closest hit, or any hit when any_hit is set)
@@ -61,5 +61,11 @@ typedef struct rt_sw_tracer {
  * one per triangle). */
 void rt_sw_trace(const rt_cpu_isa *isa, const rt_scene_view *s, const rt_wide_bvh *b,
                  const rt_ray *rays, size_t n, int any_hit, rt_hit_d *hits, rt_counters *c);
+
+/* rt_sw_trace with ray i's mask masks[i] (NULL: 0xffffffff for every ray),
+ * as rt_trace_masked takes it. */
+void rt_sw_trace_masked(const rt_cpu_isa *isa, const rt_scene_view *s, const rt_wide_bvh *b,
+                        const rt_ray *rays, const uint32_t *masks, size_t n, int any_hit,
+                        rt_hit_d *hits, rt_counters *c);
 
 #endif /* RT_SINGLE_TRACE_H */

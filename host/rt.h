@@ -211,6 +211,17 @@ rt_status rt_object_select_mesh(rt_scene *scene, uint32_t object_id, uint32_t ke
  * between two frames compose in the order they were queued. */
 rt_status rt_object_transform(rt_scene *scene, uint32_t object_id, const float matrix[16]);
 
+/* Sets the object's ray mask (0xffffffff for a new object). A ray of mask m
+ * (rt_trace_options.ray_masks) skips the object when (m & mask) == 0, on
+ * every backend, at the instance level of the traversal: the hits are those
+ * of the scene without the objects it skips, bit for bit. Rendering traces
+ * every ray (camera, shadow, reflection, refraction) with mask 0xffffffff,
+ * so an object of mask 0 is invisible in renders (and casts no shadow). The
+ * change reaches the backends with the next layout (rt_render or
+ * rt_trace_rays), as any scene edit does. RT_ERROR_INVALID_ARGUMENT for an
+ * object id out of range. */
+rt_status rt_object_set_mask(rt_scene *scene, uint32_t object_id, uint32_t mask);
+
 /* Applies queued transforms now. */
 rt_status rt_scene_commit(rt_scene *scene);
 
@@ -495,6 +506,9 @@ typedef struct rt_hit {
     int hit;
     float normal[3]; /* unit geometric normal in world space (see above) */
     uint32_t mesh;   /* the scene mesh id of the hit triangle */
+    /* The ray's id (rt_trace_options.ray_ids[i], or i when NULL), for every
+     * ray, hit or miss; the host sets it after any backend's trace. */
+    uint32_t ray_id;
 } rt_hit;
 
 /* What one rt_trace_rays call did (rt_trace_options.stats). */
@@ -530,6 +544,13 @@ typedef struct rt_trace_options {
     rt_triangle_test tri_test; /* RT_TRI_TEST_WATERTIGHT (0) unless set */
     rt_trace_stats *stats;     /* filled when not NULL */
     rt_trace_path packet_path; /* the packet backend's path [auto] */
+    /* Per ray, its mask: ray i skips every object whose mask
+     * (rt_object_set_mask) has no bit in common with ray_masks[i]. NULL:
+     * every ray's mask is 0xffffffff. */
+    const uint32_t *ray_masks;
+    /* Per ray, the id its hit reports (rt_hit.ray_id). NULL: ray i's id is
+     * i (its index in the call). */
+    const uint32_t *ray_ids;
 } rt_trace_options;
 
 /* Traces count rays through scene (after applying its queued transforms) on
@@ -847,6 +868,7 @@ typedef struct rt_object_info {
     int interpolate;         /* keyframes blend (rt_object_set_animation) */
     int morphing;            /* 1: a blend of two keyframes is shown now */
     uint32_t transform_keys; /* rt_object_set_transform_keys' count */
+    uint32_t mask;           /* rt_object_set_mask's, 0xffffffff unless set */
 } rt_object_info;
 
 /* Fills *out for object_id (RT_ERROR_INVALID_ARGUMENT for an id out of range). */

@@ -83,6 +83,9 @@ typedef struct rt_instance {
      * instance each): a hit must lie in its slabs (rt_hit_accepted). */
     float bmin[3];
     float bmax[3];
+    /* The object's ray mask (rt_object_set_mask, 0xffffffff unless set): a
+     * ray of mask m skips the instance when (m & mask) == 0 (rt_trace). */
+    rt_u32 mask;
 } rt_instance;
 
 typedef struct rt_material_d {

@@ -144,6 +144,7 @@ typedef struct pk_state {
     pk_i boxes, tris, rays;
     pk_i done; /* any hit: lanes that found an occluder */
     int any_hit;
+    pk_u ray_mask; /* the lanes' ray masks (rt_trace_masked) */
 } pk_state;
 
 /* Whether some lane of a -1/0 mask is set: OpenCL's any(), which on PoCL
@@ -712,6 +713,10 @@ static void pk_kd_mesh(const rt_scene_view *s, rt_u32 root, rt_u32 inst, const p
 static void pk_instance(const rt_scene_view *s, rt_u32 inst, const pk_ray *p, pk_i active,
                         pk_state *st) {
     RT_GLOBAL const rt_instance *in = &s->instances[inst];
+    /* rt_trace_masked's mask test: the lanes whose mask shares a bit with
+     * the instance's. */
+    active &= (st->ray_mask & (pk_u)in->mask) != (pk_u)0u;
+    if (!pk_any(active)) return;
     pk_ray o;
     if (RT_INST_FLAGS(in) & RT_INST_IDENTITY)
         o = *p;
@@ -742,10 +747,12 @@ static void pk_top(const rt_scene_view *s, const pk_ray *p, pk_i active, pk_stat
     }
 }
 
-/* Mirrors rt_trace (with rt_hit_init) for the lanes in active; the hits are
- * in st (prim RT_NO_HIT on a miss), the tests added to st's counters. */
+/* Mirrors rt_trace_masked (with rt_hit_init) for the lanes in active, lane
+ * l's mask lane l of ray_mask; the hits are in st (prim RT_NO_HIT on a
+ * miss), the tests added to st's counters. */
 static void pk_trace(const rt_scene_view *s, const pk_ray *p, pk_i active, int any_hit,
-                     pk_state *st) {
+                     pk_u ray_mask, pk_state *st) {
+    st->ray_mask = ray_mask;
     st->t = p->tmax;
     st->u = st->v = (pk_f)0.0f;
     st->prim = st->inst = st->entry = (pk_u)RT_NO_HIT;
@@ -971,7 +978,7 @@ static void pk_shade_root(const rt_scene_view *s, const pk_ray *p, const pk_stat
         pk_prepare(&sr);
         pk_state ss;
         ss.boxes = ss.tris = ss.rays = (pk_i)0;
-        pk_trace(s, &sr, ok, 1, &ss);
+        pk_trace(s, &sr, ok, 1, (pk_u)0xffffffffu, &ss);
         *boxes += ss.boxes;
         *tris += ss.tris;
         *rays += ss.rays;
@@ -1064,7 +1071,7 @@ __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int cha
     pk_load(ray, &p);
     pk_state st;
     st.boxes = st.tris = st.rays = (pk_i)0;
-    pk_trace(&s, &p, active, 0, &st);
+    pk_trace(&s, &p, active, 0, (pk_u)0xffffffffu, &st);
 
     rt_hit_d hit[RT_PK_LANES];
     rt_counters c[RT_PK_LANES];
@@ -1178,22 +1185,25 @@ __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int cha
  * count as one packet (the last one partial), as rt_k_trace would answer
  * each; counters[j] gets ray j's tests (counted per lane). */
 __kernel void rt_k_packet_trace(RT_VIEW_ARGS, uint count, __global const rt_ray *rays,
-                                __global rt_hit_d *hits, __global rt_counters *counters) {
+                                __global rt_hit_d *hits, __global rt_counters *counters,
+                                uint masked, __global const uint *masks) {
     uint i = (uint)get_global_id(0);
     uint first = i * RT_PK_LANES;
     if (first >= count) return;
     rt_scene_view s = RT_VIEW_INIT;
     rt_ray r[RT_PK_LANES];
     int inside[RT_PK_LANES];
+    uint m[RT_PK_LANES];
     for (int l = 0; l < RT_PK_LANES; l++) {
         inside[l] = first + (uint)l < count;
         r[l] = rays[inside[l] ? first + (uint)l : first]; /* outside: a copy, inactive */
+        m[l] = masked && inside[l] ? masks[first + (uint)l] : 0xffffffffu;
     }
     pk_ray p;
     pk_load(r, &p);
     pk_state st;
     st.boxes = st.tris = st.rays = (pk_i)0;
-    pk_trace(&s, &p, pk_vload(0, inside) != 0, 0, &st);
+    pk_trace(&s, &p, pk_vload(0, inside) != 0, 0, pk_vload(0, m), &st);
     rt_hit_d hit[RT_PK_LANES];
     rt_counters c[RT_PK_LANES];
     pk_unpack(&st, hit, c);

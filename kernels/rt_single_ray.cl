@@ -39,16 +39,18 @@ __kernel void rt_k_camera(__global const rt_scene_header *hdr, uint first, uint 
     rays[i] = r;
 }
 
-/* Closest (or any) hits of count rays; counters[i] gets the ray's tests. */
+/* Closest (or any) hits of count rays; counters[i] gets the ray's tests.
+ * Ray i's mask is masks[i] when masked, else 0xffffffff (rt_trace_masked). */
 __kernel void rt_k_trace(RT_VIEW_ARGS, uint count, int any_hit, __global const rt_ray *rays,
-                         __global rt_hit_d *hits, __global rt_counters *counters) {
+                         __global rt_hit_d *hits, __global rt_counters *counters, uint masked,
+                         __global const uint *masks) {
     uint i = (uint)get_global_id(0);
     if (i >= count) return;
     rt_scene_view s = RT_VIEW_INIT;
     rt_ray r = rays[i];
     rt_hit_d h;
     rt_counters c = {0, 0, 0};
-    rt_trace(&s, &r, any_hit, &h, &c);
+    rt_trace_masked(&s, &r, masked ? masks[i] : 0xffffffffu, any_hit, &h, &c);
     hits[i] = h;
     counters[i] = c;
 }

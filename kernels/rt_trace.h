@@ -23,11 +23,14 @@ RT_FN void rt_ray_to_object(RT_GLOBAL const rt_instance *in, const rt_ray *r, rt
     o->tmax = r->tmax;
 }
 
-/* Traces one instance: transforms the ray unless the instance is the
- * identity. */
+/* Traces one instance: nothing when its mask has no bit of the ray's
+ * (ray_mask & in->mask == 0: rt_object_set_mask), else the ray is
+ * transformed unless the instance is the identity. */
 RT_FN int rt_trace_instance(const rt_scene_view *s, rt_u32 inst, const rt_ray *r,
-                            const rt_ray_pre *p, int any_hit, rt_hit_d *best, rt_counters *c) {
+                            const rt_ray_pre *p, rt_u32 ray_mask, int any_hit, rt_hit_d *best,
+                            rt_counters *c) {
     RT_GLOBAL const rt_instance *in = &s->instances[inst];
+    if ((ray_mask & in->mask) == 0u) return 0;
     int kd = (RT_INST_FLAGS(in) & RT_INST_KD) != 0;
     float inst_lo = -RT_INF;
     if (!(RT_SCENE_FLAGS(s) & RT_SCENE_SINGLE) && !rt_inst_enter(in, r, p, &inst_lo)) return 0;
@@ -48,16 +51,19 @@ RT_FN int rt_trace_instance(const rt_scene_view *s, rt_u32 inst, const rt_ray *r
 
 /* The two-level traversal (Langr 2016, section 3.2.1): the object BVH, then
  * each reached instance's mesh BVH. With one identity instance the object BVH
- * is skipped. Returns 1 on a hit (for any_hit: some hit in range). */
-RT_FN int rt_trace(const rt_scene_view *s, const rt_ray *r, int any_hit, rt_hit_d *best,
-                   rt_counters *c) {
+ * is skipped. An instance whose mask has no bit of the ray's mask is skipped
+ * where the traversal reaches it, before its box (rt_trace_instance), so the
+ * hit is that of the scene without it.
+ * Returns 1 on a hit (for any_hit: some hit in range). */
+RT_FN int rt_trace_masked(const rt_scene_view *s, const rt_ray *r, rt_u32 ray_mask, int any_hit,
+                          rt_hit_d *best, rt_counters *c) {
     rt_ray_pre p;
     rt_ray_prepare(r, &p);
     rt_hit_init(best, r);
     c->rays++;
     if (s->hdr->instance_count == 0) return 0;
     if (RT_SCENE_FLAGS(s) & RT_SCENE_SINGLE) {
-        rt_trace_instance(s, 0, r, &p, any_hit, best, c);
+        rt_trace_instance(s, 0, r, &p, ray_mask, any_hit, best, c);
         return best->prim != RT_NO_HIT;
     }
     rt_u32 stack[RT_STACK_SIZE];
@@ -71,7 +77,8 @@ RT_FN int rt_trace(const rt_scene_view *s, const rt_ray *r, int any_hit, rt_hit_
         if (n->b & RT_NODE_LEAF_FLAG) {
             rt_u32 count = n->b & RT_NODE_COUNT_MASK;
             for (rt_u32 e = n->a; e < n->a + count; e++)
-                if (rt_trace_instance(s, s->inst_ids[e], r, &p, any_hit, best, c)) return 1;
+                if (rt_trace_instance(s, s->inst_ids[e], r, &p, ray_mask, any_hit, best, c))
+                    return 1;
             if (sp == 0) break;
             node = stack[--sp];
             continue;
@@ -79,6 +86,12 @@ RT_FN int rt_trace(const rt_scene_view *s, const rt_ray *r, int any_hit, rt_hit_
         if (!rt_descend(s, n, r, &p, best, c, stack, &sp, &node)) break;
     }
     return best->prim != RT_NO_HIT;
+}
+
+/* rt_trace_masked with every mask bit: the rays of rendering. */
+RT_FN int rt_trace(const rt_scene_view *s, const rt_ray *r, int any_hit, rt_hit_d *best,
+                   rt_counters *c) {
+    return rt_trace_masked(s, r, 0xffffffffu, any_hit, best, c);
 }
 
 #endif /* RT_KERNELS_TRACE_H */

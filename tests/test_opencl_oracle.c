@@ -444,7 +444,7 @@ static void check_hits_with(const char *name, rt_scene *s, ray_maker make) {
         rays[i].tmax = r.tmax;
     }
     for (int any = 0; any <= 1; any++) {
-        rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
+        rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO, NULL, NULL};
         CHECK(rt_trace_rays(renderer_for("cpu"), s, rays, N, a, &q) == RT_OK);
         rt_status st = rt_trace_rays(renderer_for("opencl"), s, rays, N, b, &q);
         CHECK_MSG(st == RT_OK, "%s", error_of("opencl"));
@@ -622,7 +622,7 @@ static void check_policy_matters(rt_scene *s) {
     o.denormals = denormals == RT_DENORMALS_FLUSH ? RT_DENORMALS_PRESERVE : RT_DENORMALS_FLUSH;
     rt_error err;
     rt_renderer *other = test_renderer_with(&o, &err);
-    rt_trace_options q = {0, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
+    rt_trace_options q = {0, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO, NULL, NULL};
     int differ = 0;
     if (other && rt_trace_rays(renderer_for("cpu"), s, rays, N, a, &q) == RT_OK &&
         rt_trace_rays(other, s, rays, N, b, &q) == RT_OK)

@@ -42,7 +42,7 @@ static void check_scene(const char *name, rt_scene *scene) {
     rt_wide_bvh wide;
     CHECK(rt_wide_build(flat, rt_pk_shape(), &wide) == RT_OK);
     rt_counters c = {0, 0, 0};
-    rt_cpu_trace_rays(flat, r, (size_t)rays, scalar, 0, &c);
+    rt_cpu_trace_rays(flat, r, NULL, (size_t)rays, scalar, 0, &c);
     rt_hit_d *b = malloc(sizeof(rt_hit_d) * (size_t)rays);
     int bad = 0, hits = 0;
     for (int i = 0; i < rays; i++) {
@@ -76,9 +76,9 @@ static void check_scene(const char *name, rt_scene *scene) {
             tracers.isa = variant;
             tracers.single = mixed ? &single : NULL;
             uint64_t in_packets = 0;
-            rt_packet_trace_rays(&tracers, r, (size_t)rays, packet, 0, RT_TRACE_PATH_AUTO, &c,
+            rt_packet_trace_rays(&tracers, r, NULL, (size_t)rays, packet, 0, RT_TRACE_PATH_AUTO, &c,
                                  &in_packets);
-            rt_packet_trace_rays(&tracers, r, (size_t)rays, any, 1, RT_TRACE_PATH_AUTO, &c,
+            rt_packet_trace_rays(&tracers, r, NULL, (size_t)rays, any, 1, RT_TRACE_PATH_AUTO, &c,
                                  &in_packets);
             CHECK(mixed || in_packets == 2 * (uint64_t)rays);
             int bad_packet = 0, bad_any = 0;

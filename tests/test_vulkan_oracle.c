@@ -182,7 +182,7 @@ static int same_hit(const rt_hit *a, const rt_hit *b) {
 static int differing_hits(rt_renderer *ra, rt_renderer *rb, rt_scene *s, const rt_ray *rays, int n,
                           int any, int *hits, char *first, size_t first_size) {
     rt_hit *a = malloc(sizeof *a * (size_t)n), *b = malloc(sizeof *b * (size_t)n);
-    rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
+    rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO, NULL, NULL};
     int differ = -1;
     *hits = 0;
     if (a && b && rt_trace_rays(ra, s, rays, (size_t)n, a, &q) == RT_OK) {
@@ -488,7 +488,7 @@ static void check_kd_stack(void) {
     rt_hit_d *got = malloc(sizeof *got * N);
     CHECK(rays && want && rd && got);
     for (int any = 0; any <= 1 && rays && want && rd && got; any++) {
-        rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
+        rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO, NULL, NULL};
         CHECK(rt_trace_rays(cpu_r, s, rays, N, want, &q) == RT_OK);
         for (int i = 0; i < N; i++) {
             memcpy(rd[i].org, rays[i].org, sizeof rd[i].org);
@@ -661,7 +661,7 @@ static void check_loop_limit(const rt_vk_device_info *dev) {
     if (s && rays && llvmpipe) {
         rt_vk_test_loop_limit(65000u, 0);
         rt_hit *h = malloc(sizeof *h * N);
-        rt_trace_options q = {0, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
+        rt_trace_options q = {0, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO, NULL, NULL};
         CHECK(h != NULL);
         if (h) {
             CHECK(rt_trace_rays(vk_r, s, rays, N, h, &q) == RT_ERROR_BACKEND);

@@ -87,7 +87,7 @@ static void check_trace(const char *name, rt_scene *s, const rt_ray *rays, size_
     rt_hit *a = malloc(sizeof *a * n), *b = malloc(sizeof *b * n);
     CHECK(a && b);
     for (int any = 0; any <= 1 && a && b; any++) {
-        rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
+        rt_trace_options q = {any, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO, NULL, NULL};
         CHECK(rt_trace_rays(cpu_r, s, rays, n, a, &q) == RT_OK);
         double t0 = rt_now_ms();
         rt_status st = rt_trace_rays(vk_r, s, rays, n, b, &q);

@@ -131,7 +131,7 @@ static void free_bufs(bufs *b) {
 
 static int trace_ours(rt_renderer *r, rt_scene *scene, const rt_ray *rays, size_t n, int any,
                       rt_hit *hits, double *ms) {
-    rt_trace_options o = {any, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO};
+    rt_trace_options o = {any, RT_TRI_TEST_WATERTIGHT, NULL, RT_TRACE_PATH_AUTO, NULL, NULL};
     double t0 = rt_now_ms();
     rt_status st = rt_trace_rays(r, scene, rays, n, hits, &o);
     *ms = rt_now_ms() - t0;

@@ -98,12 +98,14 @@ typedef struct rt_backend_ops {
     /* Traces count rays (closest hit, or any hit) after prepare; a miss has
      * prim = RT_NO_HIT. Invalid rays were made empty ranges by the caller.
      * path is the caller's rt_trace_options.packet_path (the packet
-     * backend's; others ignore it). Adds to stats (zeroed by the caller)
-     * build_ms for host builds it did, and the packet backend packet_rays,
-     * single_rays and isa. */
+     * backend's; others ignore it). masks: ray i's mask masks[i]
+     * (rt_trace_masked in kernels/rt_trace.h), or NULL for 0xffffffff on
+     * every ray. Adds to stats (zeroed by the caller) build_ms for host
+     * builds it did, and the packet backend packet_rays, single_rays and
+     * isa. */
     rt_status (*trace)(void *state, const rt_backend_layout *layout, const rt_ray *rays,
-                       size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
-                       rt_trace_stats *stats, rt_error *err);
+                       const uint32_t *masks, size_t count, rt_hit_d *hits, int any_hit,
+                       rt_trace_path path, rt_trace_stats *stats, rt_error *err);
     void (*destroy)(void *state);
     /* The device compiler's messages of the last program build: its log, then
      * what the driver printed on stderr meanwhile (the library keeps that off

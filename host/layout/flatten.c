@@ -516,6 +516,7 @@ static rt_status write_frame(const rt_scene *scene, const rt_bvh *top, const rt_
         in->mesh = m;
         in->tri_first = tri_base[m];
         in->tri_count = tri_span[m];
+        in->mask = ob->mask;
     }
     for (uint32_t i = 0; i < scene->material_count; i++) {
         const rt_material *s = &scene->materials[i];

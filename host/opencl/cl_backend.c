@@ -659,6 +659,8 @@ static rt_status ensure_ray_buffers(cl_state *s, uint32_t tile, rt_error *err) {
     rt_status st = ensure(s, RT_CL_BUF_RAYS, sizeof(rt_ray) * tile, &remade, err);
     if (st == RT_OK) st = ensure(s, RT_CL_BUF_HITS, sizeof(rt_hit_d) * tile, &remade, err);
     if (st == RT_OK) st = ensure(s, RT_CL_BUF_COUNTERS, sizeof(rt_counters) * tile, &remade, err);
+    /* A stub until a query with masks needs it whole (cl_trace). */
+    if (st == RT_OK) st = ensure(s, RT_CL_BUF_MASKS, sizeof(cl_uint), &remade, err);
     return st;
 }
 
@@ -900,8 +902,11 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
     if (st == RT_OK) st = set_arg(kt, RT_K_TRACE_ANY_HIT, sizeof any, &any, err);
     static const buf_arg trace_bufs[] = {{RT_K_TRACE_RAYS, RT_CL_BUF_RAYS},
                                          {RT_K_TRACE_HITS, RT_CL_BUF_HITS},
-                                         {RT_K_TRACE_COUNTERS, RT_CL_BUF_COUNTERS}};
+                                         {RT_K_TRACE_COUNTERS, RT_CL_BUF_COUNTERS},
+                                         {RT_K_TRACE_MASKS, RT_CL_BUF_MASKS}};
     if (st == RT_OK) st = SET_BUFS(s, kt, trace_bufs, err);
+    cl_uint unmasked = 0; /* rendering: every ray's mask is 0xffffffff */
+    if (st == RT_OK) st = set_arg(kt, RT_K_TRACE_MASKED, sizeof unmasked, &unmasked, err);
     if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_AOV, sizeof aov, &aov, err);
     if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_CHANNELS, sizeof channels, &channels, err);
     static const buf_arg shade_bufs[] = {{RT_K_SHADE_RAYS, RT_CL_BUF_RAYS},
@@ -1010,13 +1015,16 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
 }
 
 static rt_status cl_trace(void *state, const rt_backend_layout *layout, const rt_ray *rays,
-                          size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
-                          rt_trace_stats *stats, rt_error *err) {
+                          const uint32_t *masks, size_t count, rt_hit_d *hits, int any_hit,
+                          rt_trace_path path, rt_trace_stats *stats, rt_error *err) {
     cl_state *s = state;
     (void)path;
     (void)stats;
     (void)layout; /* cl_prepare uploaded it */
     rt_status st = ensure_ray_buffers(s, RT_CL_TILE_MAX, err);
+    int remade;
+    if (st == RT_OK && masks)
+        st = ensure(s, RT_CL_BUF_MASKS, sizeof(cl_uint) * RT_CL_TILE_MAX, &remade, err);
     /* Closest hits on a CPU device: packets of consecutive rays
      * (rt_k_packet_trace, the same hits); any hit: rt_k_trace, so that the
      * hit reported is the oracle's first one, not only some hit. */
@@ -1026,8 +1034,13 @@ static rt_status cl_trace(void *state, const rt_backend_layout *layout, const rt
                        (int)RT_K_PTRACE_HITS - (int)RT_K_PTRACE_RAYS ==
                            (int)RT_K_TRACE_HITS - (int)RT_K_TRACE_RAYS &&
                        (int)RT_K_PTRACE_COUNTERS - (int)RT_K_PTRACE_RAYS ==
-                           (int)RT_K_TRACE_COUNTERS - (int)RT_K_TRACE_RAYS,
-                   "rt_k_trace and rt_k_packet_trace take count, rays, hits, counters alike");
+                           (int)RT_K_TRACE_COUNTERS - (int)RT_K_TRACE_RAYS &&
+                       (int)RT_K_PTRACE_MASKED - (int)RT_K_PTRACE_RAYS ==
+                           (int)RT_K_TRACE_MASKED - (int)RT_K_TRACE_RAYS &&
+                       (int)RT_K_PTRACE_MASKS - (int)RT_K_PTRACE_RAYS ==
+                           (int)RT_K_TRACE_MASKS - (int)RT_K_TRACE_RAYS,
+                   "rt_k_trace and rt_k_packet_trace take count, rays, hits, counters, masked, "
+                   "masks alike");
     cl_uint a = packet ? RT_K_PTRACE_RAYS : RT_K_TRACE_RAYS; /* the rays argument */
     cl_int any = any_hit ? 1 : 0;
     if (st == RT_OK) st = set_view(s, k, err);
@@ -1035,11 +1048,17 @@ static rt_status cl_trace(void *state, const rt_backend_layout *layout, const rt
     if (st == RT_OK) st = set_arg(k, a, sizeof(cl_mem), &s->buf[RT_CL_BUF_RAYS], err);
     if (st == RT_OK) st = set_arg(k, a + 1, sizeof(cl_mem), &s->buf[RT_CL_BUF_HITS], err);
     if (st == RT_OK) st = set_arg(k, a + 2, sizeof(cl_mem), &s->buf[RT_CL_BUF_COUNTERS], err);
+    cl_uint masked = masks != NULL;
+    if (st == RT_OK) st = set_arg(k, a + 3, sizeof masked, &masked, err);
+    if (st == RT_OK) st = set_arg(k, a + 4, sizeof(cl_mem), &s->buf[RT_CL_BUF_MASKS], err);
     for (size_t first = 0; first < count && st == RT_OK;) {
         cl_uint n = (cl_uint)(count - first < s->tile ? count - first : s->tile);
         uint64_t ignored = 0;
         double ms = 0.0;
         st = write_buf(s, RT_CL_BUF_RAYS, 0, rays + first, sizeof(rt_ray) * n, &ignored, err);
+        if (st == RT_OK && masks)
+            st =
+                write_buf(s, RT_CL_BUF_MASKS, 0, masks + first, sizeof(cl_uint) * n, &ignored, err);
         if (st == RT_OK) st = set_arg(k, RT_K_TRACE_COUNT, sizeof n, &n, err);
         if (st == RT_OK)
             st = launch(s, k, packet ? (n + (cl_uint)s->lanes - 1) / (cl_uint)s->lanes : n,

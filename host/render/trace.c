@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* trace.c - rt_trace_rays: the caller's rays through the same layout and
- * traversal as rendering, on the renderer's backend; then each hit's
- * geometric normal and mesh, on the host, the same for every backend. */
+/* trace.c - rt_trace_rays: the caller's rays (with their masks, when given)
+ * through the same layout and traversal as rendering, on the renderer's
+ * backend; then each hit's geometric normal, mesh and ray id, on the host,
+ * the same for every backend. */
 #include <math.h>
 #include <stdatomic.h>
 #include <stdlib.h>
@@ -86,12 +87,13 @@ static void hit_normal(const rt_scene *scene, const rt_instance *in, uint32_t pr
     for (int k = 0; k < 3; k++) out[k] = (float)(n[k] / len);
 }
 
-/* The backend's hits into the caller's, with normals and meshes, in chunks
- * on the renderer's workers. */
+/* The backend's hits into the caller's, with normals, meshes and ray ids,
+ * in chunks on the renderer's workers. */
 typedef struct finish_job {
     const rt_scene *scene;
     const rt_flat *flat;
     const rt_hit_d *in;
+    const uint32_t *ids; /* rt_trace_options.ray_ids (NULL: the index) */
     rt_hit *out;
     size_t count;
     atomic_size_t next;
@@ -111,11 +113,13 @@ static void finish_chunk(void *ctx, int worker, int workers) {
             const rt_hit_d *d = &job->in[i];
             rt_hit *h = &job->out[i];
             h->hit = d->prim != RT_NO_HIT;
+            const uint32_t id = job->ids ? job->ids[i] : (uint32_t)i;
             if (!h->hit) {
-                *h = (rt_hit){INFINITY,           0.0f,      0.0f, UINT32_MAX, UINT32_MAX, 0,
-                              {0.0f, 0.0f, 0.0f}, UINT32_MAX};
+                *h = (rt_hit){INFINITY,           0.0f,       0.0f, UINT32_MAX, UINT32_MAX, 0,
+                              {0.0f, 0.0f, 0.0f}, UINT32_MAX, id};
                 continue;
             }
+            h->ray_id = id;
             h->t = d->t;
             h->u = d->u;
             h->v = d->v;
@@ -169,8 +173,8 @@ rt_status rt_trace_rays(rt_renderer *r, rt_scene *scene, const rt_ray *rays, siz
     st = fs.ops->prepare(fs.state, &fs.layout, &prep, &r->error);
     const double t1 = rt_now_ms();
     if (st == RT_OK)
-        st = fs.ops->trace(fs.state, &fs.layout, in, count, out, opt.any_hit != 0, opt.packet_path,
-                           &ts, &r->error);
+        st = fs.ops->trace(fs.state, &fs.layout, in, opt.ray_masks, count, out, opt.any_hit != 0,
+                           opt.packet_path, &ts, &r->error);
     /* The trace alone: the backend's builds inside it are build time. */
     ts.trace_ms = rt_now_ms() - t1 - ts.build_ms;
     ts.build_ms += fs.build_ms + prep.build_ms;
@@ -183,6 +187,7 @@ rt_status rt_trace_rays(rt_renderer *r, rt_scene *scene, const rt_ray *rays, siz
         job.scene = scene;
         job.flat = &fs.flat;
         job.in = out;
+        job.ids = opt.ray_ids;
         job.out = hits;
         job.count = count;
         atomic_init(&job.next, 0);

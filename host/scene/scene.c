@@ -429,6 +429,7 @@ rt_status rt_object_create(rt_scene *scene, uint32_t material_id, uint32_t *obje
     rt_object_data *o = &scene->objects[scene->object_count];
     memset(o, 0, sizeof *o);
     o->material = material_id;
+    o->mask = 0xffffffffu;
     o->morph_mesh = UINT32_MAX;
     rt_mat4_identity(o->transform);
     rt_mat4_identity(o->pending);
@@ -480,6 +481,15 @@ rt_status rt_object_transform(rt_scene *scene, uint32_t object_id, const float m
     rt_mat4_mul(matrix, o->pending, composed);
     memcpy(o->pending, composed, sizeof composed);
     o->has_pending = 1;
+    return RT_OK;
+}
+
+rt_status rt_object_set_mask(rt_scene *scene, uint32_t object_id, uint32_t mask) {
+    rt_object_data *o = object_at(scene, object_id);
+    if (!o) return RT_ERROR_INVALID_ARGUMENT;
+    if (o->mask == mask) return RT_OK;
+    o->mask = mask;
+    scene->version++; /* the layout's instances change: every backend uploads them again */
     return RT_OK;
 }
 

@@ -45,6 +45,7 @@ typedef struct rt_object_data {
     uint32_t mesh_capacity;
     uint32_t selected; /* index into meshes */
     uint32_t material;
+    uint32_t mask;       /* rt_object_set_mask's, 0xffffffff unless set */
     float transform[16]; /* object to world, row-major, p' = M p */
     float pending[16];   /* queued transforms, composed; identity when none */
     int has_pending;

@@ -61,5 +61,6 @@ rt_status rt_object_describe(const rt_scene *scene, uint32_t object_id, rt_objec
     out->interpolate = o->interpolate;
     out->morphing = o->morphing;
     out->transform_keys = o->transform_key_count;
+    out->mask = o->mask;
     return RT_OK;
 }

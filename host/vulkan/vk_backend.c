@@ -883,7 +883,7 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
         uint32_t per = s->tile;
         uint32_t n = pixels - first < per ? pixels - first : per;
         rt_vk_push push = {first,        n, (int32_t)frame->aov, frame->channels, 0, 0,
-                           RT_VK_CANARY, 1, vk_test_ballast,     RT_VK_TILE_MAX,  0};
+                           RT_VK_CANARY, 1, vk_test_ballast,     RT_VK_TILE_MAX,  0, 0};
         double ms = 0.0;
         st = dispatch(s, P_MAIN, &push, &ms, err);
         uint32_t before = rr.dispatches;
@@ -922,8 +922,8 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
 }
 
 static rt_status vk_trace(void *state, const rt_backend_layout *layout, const rt_ray *rays,
-                          size_t count, rt_hit_d *hits, int any_hit, rt_trace_path path,
-                          rt_trace_stats *stats, rt_error *err) {
+                          const uint32_t *masks, size_t count, rt_hit_d *hits, int any_hit,
+                          rt_trace_path path, rt_trace_stats *stats, rt_error *err) {
     vk_state *s = state;
     (void)path;   /* the packet backend's choice; one path here */
     (void)stats;  /* the renderer times the call */
@@ -939,14 +939,27 @@ static rt_status vk_trace(void *state, const rt_backend_layout *layout, const rt
     if (st == RT_OK)
         st = ensure(s, RT_VK_BUF_STATE, sizeof(uint32_t) * RT_VK_STATE_WORDS * RT_VK_SLOTS, &remade,
                     err);
+    if (st == RT_OK && masks)
+        st = ensure(s, RT_VK_BUF_MASKS, sizeof(uint32_t) * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK) st = bind_all(s, err);
     vk_reruns rr;
     memset(&rr, 0, sizeof rr);
     for (size_t first = 0; first < count && st == RT_OK;) {
         uint32_t n = (uint32_t)(count - first < s->tile ? count - first : s->tile);
         memcpy(s->buf[RT_VK_BUF_RAYS].map, rays + first, sizeof(rt_ray) * n);
-        rt_vk_push push = {
-            0, n, 0, 0, any_hit ? 1 : 0, 1, RT_VK_CANARY, 1, vk_test_ballast, RT_VK_TILE_MAX, 0};
+        if (masks) memcpy(s->buf[RT_VK_BUF_MASKS].map, masks + first, sizeof(uint32_t) * n);
+        rt_vk_push push = {0,
+                           n,
+                           0,
+                           0,
+                           any_hit ? 1 : 0,
+                           1,
+                           RT_VK_CANARY,
+                           1,
+                           vk_test_ballast,
+                           RT_VK_TILE_MAX,
+                           0,
+                           masks != NULL};
         double ms = 0.0;
         st = dispatch(s, P_MAIN, &push, &ms, err);
         double compile_ms = 0.0; /* the alone pipeline's, when it is made here */
@@ -998,7 +1011,7 @@ rt_status rt_vk_soft_math_run(const char *device, const uint32_t *operands, size
     for (size_t first = 0; first < count && st == RT_OK;) {
         uint32_t n = (uint32_t)(count - first < tile ? count - first : tile);
         memcpy(s->buf[RT_VK_BUF_RAYS].map, operands + 4 * first, 16 * (size_t)n);
-        rt_vk_push push = {0, n, 0, 0, 0, 0, 0, 1, 0, 0, 0};
+        rt_vk_push push = {0, n, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0};
         st = dispatch(s, P_SOFT, &push, &ms, err);
         if (st == RT_OK) memcpy(results + 3 * first, s->buf[RT_VK_BUF_HITS].map, 12 * (size_t)n);
         first += n;
@@ -1051,7 +1064,7 @@ rt_status rt_vk_trace_kd_stack(const char *device, const rt_flat *flat, const rt
     memset(&stats, 0, sizeof stats);
     st = vk_prepare(s, &layout, &stats, err);
     if (st == RT_OK)
-        st = vk_trace(s, &layout, rays, count, hits, any_hit, RT_TRACE_PATH_AUTO, NULL, err);
+        st = vk_trace(s, &layout, rays, NULL, count, hits, any_hit, RT_TRACE_PATH_AUTO, NULL, err);
     vk_destroy(s);
     return st;
 }

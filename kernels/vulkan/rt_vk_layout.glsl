@@ -42,6 +42,7 @@ struct rt_instance {
     uint tri_count;
     float bmin[3];
     float bmax[3];
+    uint mask;
 };
 struct rt_material_d {
     float color[3];

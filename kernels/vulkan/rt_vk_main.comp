@@ -180,7 +180,10 @@ void main() {
             }
             bool any = step == STEP_SHADOW || (step == STEP_QUERY && pc.any_hit != 0);
             rt_hit_d th;
-            bool occluded = rt_trace(step == STEP_SHADOW ? sr : e.ray, any, th, c);
+            /* A query's ray mask (masks[i] when the caller gave masks); every
+             * ray of a frame has mask 0xffffffff. */
+            uint mask = step == STEP_QUERY && pc.masked != 0u ? masks[i] : 0xffffffffu;
+            bool occluded = rt_trace_masked(step == STEP_SHADOW ? sr : e.ray, mask, any, th, c);
             if (rt_vk_suspended) {
                 where = 1u;
                 break;

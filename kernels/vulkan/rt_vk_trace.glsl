@@ -24,11 +24,13 @@ void rt_ray_to_object(uint inst, rt_ray r, out rt_ray o) {
 
 /* One call of rt_trace_mesh (and of rt_kd_trace_mesh) for both cases of the
  * C function (the ray transformed or not): one inlined copy of each
- * traversal. Keeps no state of its own: a resumed instance enters and
+ * traversal; nothing when the instance's mask has no bit of ray_mask (as in
+ * rt_trace.h). Keeps no state of its own: a resumed instance enters and
  * transforms the ray again (the same operations, the same bits, no counter)
  * and its mesh traversal loads its position. */
-bool rt_trace_instance(uint inst, rt_ray r, rt_ray_pre p, bool any_hit, inout rt_hit_d best,
-                       inout rt_counters c) {
+bool rt_trace_instance(uint inst, rt_ray r, rt_ray_pre p, uint ray_mask, bool any_hit,
+                       inout rt_hit_d best, inout rt_counters c) {
+    if ((ray_mask & instances[inst].mask) == 0u) return false;
     uint root = instances[inst].root;
     float inst_lo = -RT_INF;
     if ((RT_SCENE_FLAGS() & RT_SCENE_SINGLE) == 0u && !rt_inst_enter(inst, r, p, inst_lo))
@@ -50,8 +52,10 @@ bool rt_trace_instance(uint inst, rt_ray r, rt_ray_pre p, bool any_hit, inout rt
  * 2 before instance e of the node's leaf, 1 inside it (the mesh's position
  * deeper down). A resumed trace prepares the ray again (the same
  * operations, the same bits) and counts neither the ray nor the root box
- * again. */
-bool rt_trace(rt_ray r, bool any_hit, out rt_hit_d best, inout rt_counters c) {
+ * again. An instance whose mask has no bit of ray_mask is skipped where the
+ * traversal reaches it (rt_trace_instance, as in rt_trace.h). */
+bool rt_trace_masked(rt_ray r, uint ray_mask, bool any_hit, out rt_hit_d best,
+                     inout rt_counters c) {
     rt_ray_pre p;
     rt_ray_prepare(r, p);
     rt_hit_init(best, r);
@@ -63,7 +67,7 @@ bool rt_trace(rt_ray r, bool any_hit, out rt_hit_d best, inout rt_counters c) {
     }
     if (hdr.instance_count == 0u) return false;
     if ((RT_SCENE_FLAGS() & RT_SCENE_SINGLE) != 0u) {
-        rt_trace_instance(0u, r, p, any_hit, best, c);
+        rt_trace_instance(0u, r, p, ray_mask, any_hit, best, c);
         if (rt_vk_suspended) {
             w = ST_TOP;
             st_put_hit(w, best);
@@ -99,7 +103,7 @@ bool rt_trace(rt_ray r, bool any_hit, out rt_hit_d best, inout rt_counters c) {
                     stop = 2u;
                     break;
                 }
-                if (rt_trace_instance(inst_ids[e], r, p, any_hit, best, c)) return true;
+                if (rt_trace_instance(inst_ids[e], r, p, ray_mask, any_hit, best, c)) return true;
                 if (rt_vk_suspended) {
                     stop = 1u;
                     break;
@@ -127,6 +131,11 @@ bool rt_trace(rt_ray r, bool any_hit, out rt_hit_d best, inout rt_counters c) {
     st_put(w, e);
     st_put_bvh(w, 0, node, sp, stop == 3u ? 0u : stop);
     return false;
+}
+
+/* rt_trace_masked with every mask bit: the rays of rendering. */
+bool rt_trace(rt_ray r, bool any_hit, out rt_hit_d best, inout rt_counters c) {
+    return rt_trace_masked(r, 0xffffffffu, any_hit, best, c);
 }
 
 #endif
