@@ -19,6 +19,7 @@
  * (d) a render with one object's mask 0 equals the render of the scene
  *     built without it (image and depth, bits), also when the mask is set
  *     after a first frame on the same renderer.
+ * (e) a scene file's object masks ("mask") load and survive rt_scene_save_json.
  * The device backends skip with the reason when there is no device; the
  * program exits 77 when asked for vulkan and none traced. */
 #include <math.h>
@@ -435,6 +436,39 @@ static void check_api(void) {
     rt_scene_destroy(s);
 }
 
+/* The object masks of a scene file ("mask"): loaded, and kept by
+ * rt_scene_save_json (a saved scene traces as the one it was saved from). */
+static void check_json(void) {
+    static const char json[] =
+        "{\"meshes\": {\"t\": {\"positions\": [0,0,0, 1,0,0, 0,1,0], \"triangles\": [0,1,2]}},\n"
+        " \"objects\": [{\"mesh\": \"t\", \"mask\": 0}, {\"mesh\": \"t\", \"mask\": 4294967295},\n"
+        "             {\"mesh\": \"t\", \"mask\": 5}, {\"mesh\": \"t\"}]}\n";
+    static const uint32_t want[4] = {0u, 0xffffffffu, 5u, 0xffffffffu};
+    const char *path = test_write_temp("masks.json", json);
+    rt_scene *a = NULL, *b = NULL;
+    rt_error err;
+    CHECK_MSG(rt_scene_load(path, &a, &err) == RT_OK, "%s", err.message);
+    if (!a) return;
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s", path);
+    *strrchr(dir, '/') = '\0';
+    CHECK_MSG(rt_scene_save_json(a, dir, "masks_saved", &err) == RT_OK, "%s", err.message);
+    char saved[4200];
+    snprintf(saved, sizeof saved, "%s/masks_saved.json", dir);
+    CHECK_MSG(rt_scene_load(saved, &b, &err) == RT_OK, "%s: %s", saved, err.message);
+    for (uint32_t i = 0; i < 4; i++) {
+        rt_object_info ia, ib;
+        CHECK(rt_object_describe(a, i, &ia) == RT_OK);
+        CHECK_MSG(ia.mask == want[i], "object %u: mask %#x loaded, %#x in the file", i, ia.mask,
+                  want[i]);
+        if (b && rt_object_describe(b, i, &ib) == RT_OK)
+            CHECK_MSG(ib.mask == want[i], "object %u: mask %#x after saving, %#x before", i,
+                      ib.mask, want[i]);
+    }
+    rt_scene_destroy(a);
+    rt_scene_destroy(b);
+}
+
 static rt_renderer *make(const char *backend, const char *isa, rt_error *err) {
     rt_renderer_options ro = rt_renderer_options_default();
     ro.backend = backend;
@@ -483,6 +517,7 @@ int main(int argc, char **argv) {
         return TEST_END();
     }
     check_api();
+    check_json();
     check_scenes("cpu", cpu, s, single, "cpu", RT_TRACE_PATH_AUTO);
     check_render("cpu", cpu, "cpu");
     static const rt_trace_path paths[] = {RT_TRACE_PATH_AUTO, RT_TRACE_PATH_PACKETS,

@@ -98,6 +98,12 @@ static const error_case cases[] = {
      "objects[0].transform.matrix: expected 16 numbers, found 3"},
 
     /* values out of range */
+    {"mask_negative", "{\n" MESH_T "  'objects': [{'mesh': 't', 'mask': -1}]\n}", 3, 37,
+     "objects[0].mask: -1 is outside 0..4294967295"},
+    {"mask_too_large", "{\n" MESH_T "  'objects': [{'mesh': 't', 'mask': 4294967296}]\n}", 3, 37,
+     "objects[0].mask: 4294967296 is outside 0..4294967295"},
+    {"mask_fraction", "{\n" MESH_T "  'objects': [{'mesh': 't', 'mask': 1.5}]\n}", 3, 37,
+     "objects[0].mask: expected an integer in 0..4294967295, found 1.5"},
     {"shininess_fraction", "{\n  'materials': {'m': {'shininess': 2.5}},\n" MESH_T OBJ_T "}", 2, 36,
      "materials.m.shininess: expected an integer in 0..100000, found 2.5"},
     {"fov_too_wide",

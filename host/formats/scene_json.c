@@ -952,8 +952,9 @@ static rt_status load_transform_keys(loader *L, json_t *v, uint32_t object) {
 }
 
 static rt_status load_object(loader *L, json_t *v) {
-    static const char *const keys[] = {"mesh",      "keyframes", "frame",          "material",
-                                       "transform", "animation", "transform_keys", NULL};
+    static const char *const keys[] = {"mesh",           "keyframes", "frame",
+                                       "material",       "transform", "animation",
+                                       "transform_keys", "mask",      NULL};
     rt_status st = expect_object(L, v);
     if (st == RT_OK) st = check_keys(L, v, keys);
     if (st == RT_OK) st = exclusive(L, v, "mesh", "keyframes");
@@ -1025,6 +1026,11 @@ static rt_status load_object(loader *L, json_t *v) {
         st = load_transform_keys(L, tkeys, object);
         leave(L);
     }
+    /* "mask": the object's ray mask (rt_object_set_mask), a whole number. */
+    long long mask = 0xffffffffLL;
+    if (st == RT_OK) st = opt_int(L, v, "mask", 0, 0xffffffffLL, &mask);
+    if (st == RT_OK && rt_object_set_mask(L->scene, object, (uint32_t)mask) != RT_OK)
+        st = fail_scene(L);
     return st;
 }
 

@@ -286,6 +286,7 @@ rt_status rt_scene_save_json(const rt_scene *s, const char *dir, const char *nam
                 fprintf(f, "], \"frame\": %u", o->selected);
         }
         fprintf(f, ", \"material\": \"m%u\"", o->material);
+        if (o->mask != 0xffffffffu) fprintf(f, ", \"mask\": %u", o->mask);
         float id[16];
         rt_mat4_identity(id);
         /* Keyed transforms place the object at every time ("transform" and
