@@ -69,12 +69,6 @@ static int render(rt_renderer *r, rt_scene *s, rt_framebuffer *fb) {
     return st == RT_OK;
 }
 
-static int same_image(const rt_framebuffer *a, const rt_framebuffer *b) {
-    return a->width == b->width && a->height == b->height && a->channels == b->channels &&
-           memcmp(a->pixels, b->pixels,
-                  sizeof(float) * (size_t)a->width * a->height * a->channels) == 0;
-}
-
 static void test_backend(const char *backend) {
     uint32_t mesh, mat;
     rt_scene *s = grid(245, &mesh, &mat); /* 120,050 triangles */
@@ -106,7 +100,7 @@ static void test_backend(const char *backend) {
     if (!render(r, s, &again)) return;
     rt_renderer *fresh = renderer(backend);
     if (fresh && render(fresh, s, &fresh_fb)) {
-        CHECK_MSG(same_image(&again, &fresh_fb),
+        CHECK_MSG(test_same_fb(&again, &fresh_fb),
                   "%s: the image after the layout was remade from "
                   "the parked tree differs from a fresh renderer's",
                   backend);
