@@ -549,12 +549,15 @@ static void pk_tri(pk_state *st, const pk_geom *p, int g, uint32_t m, rt_u32 e, 
         pk_tri_lanes(st, p, g, z, e, inst);
         m &= ~z;
     }
-    const uint32_t inside = rt_vwt_inside(&x, m);
+    uint32_t inside = rt_vwt_inside(&x, m);
     if (!inside) return;
     rt_vf t = rt_vwt_t(&x, p->sz[g]);
     /* A t that the oracle takes from the plane (rt_tri_t.h): the shared
      * scalar function for those lanes (rare). */
-    uint32_t un = rt_vwt_unsure(&x, A, B, C, p->sx[g], p->sy[g], p->sz[g], inside);
+    uint32_t before;
+    uint32_t un =
+        rt_vwt_unsure(&x, A, B, C, p->sx[g], p->sy[g], p->sz[g], p->tmin[g], inside, &before);
+    inside &= ~before;
     if (un) {
         /* The triangle's part of both tiers, once. */
         const int ip = rt_tri_t_apex(tri);

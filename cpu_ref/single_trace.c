@@ -217,13 +217,15 @@ static int leaf_test(sw_ctx *x, rt_u32 first, rt_u32 count, rt_u32 inst, const r
                 if (tri_scalar(x, ent[rt_lane_first(m)], inst, r, p, best)) return 1;
             valid &= ~z;
         }
-        const uint32_t inside = rt_vwt_inside(&wt, valid);
+        uint32_t inside = rt_vwt_inside(&wt, valid);
         if (!inside) continue;
         rt_vf t = rt_vwt_t(&wt, sz);
         const rt_vf V = wt.V, Wf = wt.W, det = wt.det;
         /* A t that the oracle takes from the plane (rt_tri_t.h): the shared
          * scalar function for those lanes (rare). */
-        uint32_t un = rt_vwt_unsure(&wt, A, B, C, sx, sy, sz, inside);
+        uint32_t before;
+        uint32_t un = rt_vwt_unsure(&wt, A, B, C, sx, sy, sz, tmin, inside, &before);
+        inside &= ~before;
         if (un) un = sw_plane_tier1(blk, r, un, &t);
         for (; un; un &= un - 1) {
             const int l = rt_lane_first(un);

@@ -15,7 +15,8 @@
  *   rt_vwt_t:      T and t;
  *   rt_vwt_unsure: the lanes whose t may be off by more than RT_T_REL_BOUND,
  *                  which the oracle recomputes from the plane: the caller
- *                  replaces their t by rt_tri_t_plane's (rt_tri_t.h).
+ *                  replaces their t by rt_tri_t_plane's (rt_tri_t.h), and
+ *                  those of them surely crossed before tmin, which miss.
  * The range test of t and u = V / det, v = W / det are left to the tracer,
  * which divides only for the hit it keeps. */
 #ifndef RT_WATERTIGHT_LANES_H
@@ -80,10 +81,13 @@ static inline rt_vf rt_vwt_max(rt_vf a, rt_vf b) {
 }
 
 /* rt_tri_t_check per lane (after rt_vwt_t), a, b and c as for rt_vwt_edges,
- * sx, sy, sz the ray's shear and scale: the lanes of m whose t the oracle
- * takes from the plane, by the oracle's operations in the oracle's order. */
+ * sx, sy, sz the ray's shear and scale, tmin its start: the lanes of m whose
+ * t the oracle takes from the plane (RT_T_PLANE), by the oracle's operations
+ * in the oracle's order; *before gets the lanes of m that it drops as
+ * RT_T_BEFORE (misses: the caller takes them out of m). */
 static inline uint32_t rt_vwt_unsure(const rt_vwt *x, const rt_vf a[3], const rt_vf b[3],
-                                     const rt_vf c[3], rt_vf sx, rt_vf sy, rt_vf sz, uint32_t m) {
+                                     const rt_vf c[3], rt_vf sx, rt_vf sy, rt_vf sz, rt_vf tmin,
+                                     uint32_t m, uint32_t *before) {
     const rt_vf S = rt_vwt_max(rt_vabs(sx), rt_vabs(sy));
     const rt_vf K = rt_vwt_max(rt_vabs(a[2]), rt_vwt_max(rt_vabs(b[2]), rt_vabs(c[2])));
     const rt_vf P = rt_vwt_max(rt_vwt_max(rt_vabs(x->Ax), rt_vabs(x->Ay)),
@@ -96,7 +100,12 @@ static inline uint32_t rt_vwt_unsure(const rt_vwt *x, const rt_vf a[3], const rt
     const rt_vf adet = rt_vabs(x->det);
     const rt_vf lhs = (((S * K + rt_vsplat(0.75f) * P) * P) * (zmax - zmin)) * rt_vsplat(0.5f) +
                       (adet * Z) * rt_vsplat(0.0625f);
-    return rt_vbits(lhs > rt_vabs(x->t) * adet) & m;
+    const uint32_t unsure = rt_vbits(lhs > rt_vabs(x->t) * adet) & m;
+    *before = unsure ? rt_vbits((((tmin - x->t) * adet) * rt_vsplat(32768.0f) > lhs) &
+                                (lhs > rt_vsplat(RT_T_BEFORE_FLOOR))) &
+                           unsure
+                     : 0;
+    return unsure & ~*before;
 }
 
 /* The ray's part of rt_tri_t_plane's first tier per lane (the plane in

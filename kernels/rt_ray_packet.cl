@@ -317,10 +317,11 @@ static pk_f pk_tmax(pk_f a, pk_f b) {
     return select(b, a, a > b);
 }
 
-/* rt_tri_t_check per lane: the lanes whose fast t the oracle recomputes. */
+/* rt_tri_t_check per lane: the lanes whose fast t the oracle recomputes
+ * (RT_T_PLANE); *before gets those it drops as RT_T_BEFORE. */
 static pk_i pk_tri_t_check(pk_f Akz, pk_f Bkz, pk_f Ckz, pk_f sx, pk_f sy, pk_f Ax, pk_f Ay,
                            pk_f Bx, pk_f By, pk_f Cx, pk_f Cy, pk_f Az, pk_f Bz, pk_f Cz, pk_f det,
-                           pk_f t) {
+                           pk_f t, pk_f tmin, pk_i *before) {
     pk_f S = pk_tmax(fabs(sx), fabs(sy));
     pk_f K = pk_tmax(fabs(Akz), pk_tmax(fabs(Bkz), fabs(Ckz)));
     pk_f P = pk_tmax(pk_tmax(fabs(Ax), fabs(Ay)),
@@ -330,7 +331,9 @@ static pk_i pk_tri_t_check(pk_f Akz, pk_f Bkz, pk_f Ckz, pk_f sx, pk_f sy, pk_f 
     pk_f Z = pk_tmax(zmax, -zmin);
     pk_f adet = fabs(det);
     pk_f lhs = (((S * K + 0.75f * P) * P) * (zmax - zmin)) * 0.5f + (adet * Z) * 0.0625f;
-    return lhs > fabs(t) * adet;
+    pk_i unsure = lhs > fabs(t) * adet;
+    *before = unsure & (((tmin - t) * adet) * 32768.0f > lhs) & (lhs > RT_T_BEFORE_FLOOR);
+    return unsure & ~*before;
 }
 
 /* rt_tri_t_plane for the lanes of m (rare): per lane, the shared scalar
@@ -391,8 +394,10 @@ static pk_i pk_tri_watertight(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f
     pk_f Az = p->sz * Akz, Bz = p->sz * Bkz, Cz = p->sz * Ckz;
     pk_f T = (U * Az + V * Bz) + W * Cz;
     pk_f tt = PK_DIV(T, det);
+    pk_i before;
     pk_i unsure = ok & pk_tri_t_check(Akz, Bkz, Ckz, p->sx, p->sy, Ax, Ay, Bx, By, Cx, Cy, Az, Bz, Cz,
-                                      det, tt);
+                                      det, tt, tmin, &before);
+    ok &= ~before;
     if (pk_any(unsure)) tt = pk_tri_t_plane(tri, p, unsure, tt);
     ok &= (tt >= tmin) & (tt <= tmax);
     if (!pk_any(ok)) return ok;

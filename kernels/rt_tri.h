@@ -53,10 +53,12 @@ RT_FN int rt_tri_watertight(RT_GLOBAL const rt_tri *tri, const rt_ray *r, const 
     float T = (U * Az + V * Bz) + W * Cz;
     float tt = RT_DIV(T, det);
     /* A t that may be off by more than RT_T_REL_BOUND (long triangles crossed
-     * near the origin) is taken from the plane instead (rt_tri_t.h). */
-    if (rt_tri_t_check(A[kz], B[kz], C[kz], p->sx, p->sy, Ax, Ay, Bx, By, Cx, Cy, Az, Bz, Cz, det,
-                       tt))
-        tt = rt_tri_t_plane(tri, r, tt);
+     * near the origin) is taken from the plane instead, unless the crossing
+     * is surely before tmin (rt_tri_t.h). */
+    const int check = rt_tri_t_check(A[kz], B[kz], C[kz], p->sx, p->sy, Ax, Ay, Bx, By, Cx, Cy, Az,
+                                     Bz, Cz, det, tt, tmin);
+    if (check == RT_T_BEFORE) return 0;
+    if (check == RT_T_PLANE) tt = rt_tri_t_plane(tri, r, tt);
     if (!(tt >= tmin && tt <= tmax)) return 0;
     *t = tt;
     *u = RT_DIV(V, det);

@@ -51,22 +51,43 @@
  * |t|: 2^-17 = 7.6e-6. */
 #define RT_T_REL_BOUND 7.62939453125e-06f
 
+/* 2^-100 (exactly, in every language's decimal reading): below it
+ * rt_tri_t_check does not conclude RT_T_BEFORE. */
+#define RT_T_BEFORE_FLOOR 7.88860905221011805411728565283e-31f
+
 /* The larger of a and b, written out so that every language and SIMD layer
  * picks the same operand (max() differs on NaN). */
 RT_FN float rt_tri_t_max(float a, float b) {
     return a > b ? a : b;
 }
 
+/* What rt_tri_t_check says of the fast t. */
+#define RT_T_FAST   0 /* within RT_T_REL_BOUND of the exact t: keep it */
+#define RT_T_PLANE  1 /* maybe not: take t from the plane (rt_tri_t_plane) */
+#define RT_T_BEFORE 2 /* the exact t is surely below tmin: a miss, no plane needed */
+
 /* Whether the fast t may be off by more than RT_T_REL_BOUND |t|: the bound
  * above, multiplied out (no division) and by 2^17 u = 2^-7:
- * ((S K + 3/4 P) P R) / 2 + |det| Z / 16 > |t| |det|. The rounding of this
- * test is covered by the bound's slack. An overflow makes it 1, a NaN 0;
- * rt_tri_t_plane falls back to the fast t where its own result is not
+ * lhs = ((S K + 3/4 P) P R) / 2 + |det| Z / 16 > |t| |det|. The rounding of
+ * this test is covered by the bound's slack. An overflow makes it 1, a NaN
+ * 0; rt_tri_t_plane falls back to the fast t where its own result is not
  * finite, and a NaN t misses either way. Akz, Bkz, Ckz are A[kz], B[kz],
- * C[kz]; Az, Bz, Cz the scaled ones. */
+ * C[kz]; Az, Bz, Cz the scaled ones.
+ *
+ * Where the fast t is not trusted, it may still be surely below tmin:
+ * RT_T_BEFORE where ((tmin - t) |det|) 2^15 > lhs and lhs > 2^-100. The
+ * bound is B = 2^-17 lhs / |det|, so this says tmin - t > 4 B up to the
+ * test's three roundings (each a factor 1 +- u; lhs > 2^-100 keeps the
+ * product (tmin - t) |det| > 2^-115 out of the denormals, where rounding is
+ * not relative, in every denormal mode): tmin - t > 3 B, and the exact
+ * t <= t + B < tmin. The ray starts beyond the crossing, which is what rays
+ * leaving a surface do with its triangle and the neighbours they share an
+ * edge with; the plane would say the same (its t is within a few ulps of
+ * the exact one) at several times the cost. A pure function of the triangle
+ * and the ray (tmin is the ray's), so every traversal order agrees. */
 RT_FN int rt_tri_t_check(float Akz, float Bkz, float Ckz, float sx, float sy, float Ax, float Ay,
                          float Bx, float By, float Cx, float Cy, float Az, float Bz, float Cz,
-                         float det, float t) {
+                         float det, float t, float tmin) {
     const float S = rt_tri_t_max(RT_FABS(sx), RT_FABS(sy));
     const float K = rt_tri_t_max(RT_FABS(Akz), rt_tri_t_max(RT_FABS(Bkz), RT_FABS(Ckz)));
     const float P = rt_tri_t_max(rt_tri_t_max(RT_FABS(Ax), RT_FABS(Ay)),
@@ -77,7 +98,9 @@ RT_FN int rt_tri_t_check(float Akz, float Bkz, float Ckz, float sx, float sy, fl
     const float Z = rt_tri_t_max(zmax, -zmin);
     const float adet = RT_FABS(det);
     const float lhs = (((S * K + 0.75f * P) * P) * (zmax - zmin)) * 0.5f + (adet * Z) * 0.0625f;
-    return lhs > RT_FABS(t) * adet;
+    if (!(lhs > RT_FABS(t) * adet)) return RT_T_FAST;
+    if (((tmin - t) * adet) * 32768.0f > lhs && lhs > RT_T_BEFORE_FLOOR) return RT_T_BEFORE;
+    return RT_T_PLANE;
 }
 
 /* ---- float-float arithmetic ---------------------------------------------

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* test_core_tri.c - the ray/box and ray/triangle tests of kernels/rt_box.h and rt_tri.h
  * on hand-made cases: hit, miss, edge, vertex, parallel, degenerate, the
- * inclusive [tmin, tmax], both faces, and watertightness on a shared edge. */
+ * inclusive [tmin, tmax], both faces, watertightness on a shared edge, and
+ * rt_tri_t_check's early miss (RT_T_BEFORE) against the exact t. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -204,11 +205,112 @@ static void offset_any_normal(void) {
     CHECK(isnan(o[0]) && o[1] == p[1] && o[2] == p[2]);
 }
 
+/* A uniform float in [lo, hi) from a 64-bit LCG. */
+static float rnd(uint64_t *s, float lo, float hi) {
+    *s = *s * 6364136223846793005ull + 1442695040888963407ull;
+    return lo + (hi - lo) * (float)(*s >> 40) * 0x1p-24f;
+}
+
+/* rt_tri_t_check as rt_tri_watertight calls it (its preamble, repeated
+ * here to reach the check's verdict), for a ray that crosses the triangle;
+ * -1 where the edge functions say it does not. *t gets the fast t. */
+static int t_check_of(const rt_tri *tri, const rt_ray *r, float *t) {
+    rt_ray_pre p;
+    rt_ray_prepare(r, &p);
+    float A[3], B[3], C[3];
+    for (int i = 0; i < 3; i++) {
+        A[i] = tri->v0[i] - r->org[i];
+        B[i] = tri->v1[i] - r->org[i];
+        C[i] = tri->v2[i] - r->org[i];
+    }
+    const int kx = p.kx, ky = p.ky, kz = p.kz;
+    float Ax = A[kx] - p.sx * A[kz], Ay = A[ky] - p.sy * A[kz];
+    float Bx = B[kx] - p.sx * B[kz], By = B[ky] - p.sy * B[kz];
+    float Cx = C[kx] - p.sx * C[kz], Cy = C[ky] - p.sy * C[kz];
+    float U = Cx * By - Cy * Bx, V = Ax * Cy - Ay * Cx, W = Bx * Ay - By * Ax;
+    if (U == 0.0f || V == 0.0f || W == 0.0f) rt_edge_recheck(Ax, Ay, Bx, By, Cx, Cy, &U, &V, &W);
+    if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) return -1;
+    const float det = (U + V) + W;
+    if (det == 0.0f) return -1;
+    const float Az = p.sz * A[kz], Bz = p.sz * B[kz], Cz = p.sz * C[kz];
+    *t = ((U * Az + V * Bz) + W * Cz) / det;
+    return rt_tri_t_check(A[kz], B[kz], C[kz], p.sx, p.sy, Ax, Ay, Bx, By, Cx, Cy, Az, Bz, Cz, det,
+                          *t, r->tmin);
+}
+
+/* The exact t of the ray's crossing of the triangle's plane, in long
+ * double (64 significant bits: far finer than the margins tested). */
+static long double exact_t(const rt_tri *tri, const rt_ray *r) {
+    long double e[3], f[3], a[3], n[3];
+    for (int i = 0; i < 3; i++) {
+        e[i] = (long double)tri->v1[i] - tri->v0[i];
+        f[i] = (long double)tri->v2[i] - tri->v0[i];
+        a[i] = (long double)tri->v0[i] - r->org[i];
+    }
+    for (int i = 0; i < 3; i++) {
+        const int j = (i + 1) % 3, k = (i + 2) % 3;
+        n[i] = e[j] * f[k] - e[k] * f[j];
+    }
+    long double N = 0, D = 0;
+    for (int i = 0; i < 3; i++) N += n[i] * a[i], D += n[i] * r->dir[i];
+    return N / D;
+}
+
+/* Rays that leave a surface: from a point of the triangle (small and
+ * large triangles, slivers up to 1e4 long, near and far from the origin)
+ * moved off it by rt_offset_point, to either side, in random directions,
+ * with tmin 0. Every RT_T_BEFORE verdict must have its exact t below
+ * tmin, and the plane (the answer without the early miss) must say the
+ * same; and the verdict must be common here (else the test tests nothing). */
+static void t_before_cases(void) {
+    uint64_t s = 12345;
+    int before = 0, plane = 0, wrong = 0, changed = 0;
+    for (int i = 0; i < 200000; i++) {
+        const float scale = powf(10.0f, rnd(&s, -3.0f, 4.0f));
+        const float far = rnd(&s, 0.0f, 1.0f) < 0.5f ? 0.0f : powf(10.0f, rnd(&s, 0.0f, 4.0f));
+        const int sliver = rnd(&s, 0.0f, 1.0f) < 0.3f;
+        float c[3], v[3][3];
+        for (int k = 0; k < 3; k++) c[k] = rnd(&s, -far, far);
+        for (int j = 0; j < 3; j++)
+            for (int k = 0; k < 3; k++) v[j][k] = c[k] + scale * rnd(&s, -1.0f, 1.0f);
+        if (sliver) /* v2 close to the segment v0 v1 */
+            for (int k = 0; k < 3; k++)
+                v[2][k] = 0.5f * (v[0][k] + v[1][k]) + 1e-3f * scale * rnd(&s, -1.0f, 1.0f);
+        rt_tri tri = make_tri(v[0][0], v[0][1], v[0][2], v[1][0], v[1][1], v[1][2], v[2][0],
+                              v[2][1], v[2][2]);
+        float b0 = rnd(&s, 0.0f, 1.0f), b1 = rnd(&s, 0.0f, 1.0f);
+        if (b0 + b1 > 1.0f) b0 = 1.0f - b0, b1 = 1.0f - b1;
+        float pt[3], e1[3], e2[3], ng[3];
+        for (int k = 0; k < 3; k++) {
+            e1[k] = v[1][k] - v[0][k];
+            e2[k] = v[2][k] - v[0][k];
+            pt[k] = v[0][k] + b0 * e1[k] + b1 * e2[k];
+        }
+        rt_cross3(e1, e2, ng);
+        rt_normalize3(ng);
+        rt_ray r = make_ray(0, 0, 0, rnd(&s, -1.0f, 1.0f), rnd(&s, -1.0f, 1.0f),
+                            rnd(&s, -1.0f, 1.0f), 0.0f, INFINITY);
+        rt_offset_point(pt, ng, rnd(&s, 0.0f, 1.0f) < 0.5f ? 1.0f : -1.0f, r.org);
+        float t;
+        const int check = t_check_of(&tri, &r, &t);
+        if (check == RT_T_PLANE) plane++;
+        if (check != RT_T_BEFORE) continue;
+        before++;
+        if (!(exact_t(&tri, &r) < (long double)r.tmin)) wrong++;
+        if (rt_tri_t_plane(&tri, &r, t) >= r.tmin) changed++;
+    }
+    CHECK_MSG(wrong == 0, "RT_T_BEFORE for %d rays whose exact t is not below tmin", wrong);
+    CHECK_MSG(changed == 0, "RT_T_BEFORE for %d rays the plane would have hit", changed);
+    CHECK_MSG(before > 1000, "only %d RT_T_BEFORE verdicts (%d planes): the cases miss the rule",
+              before, plane);
+}
+
 int main(void) {
     for (int m = 0; m < 4; m++) triangle_cases(m);
     watertight_shared_edge();
     box_cases();
     offset_cases();
     offset_any_normal();
+    t_before_cases();
     return TEST_END();
 }

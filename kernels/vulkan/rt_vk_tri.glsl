@@ -44,8 +44,10 @@ bool rt_tri_watertight(uint e, rt_ray r, rt_ray_pre p, float tmin, float tmax, o
     float Az = p.sz * Akz, Bz = p.sz * Bkz, Cz = p.sz * Ckz;
     float T = (U * Az + V * Bz) + W * Cz;
     float tt = RT_DIV(T, det);
-    if (rt_tri_t_check(Akz, Bkz, Ckz, p.sx, p.sy, Ax, Ay, Bx, By, Cx, Cy, Az, Bz, Cz, det, tt))
-        tt = rt_tri_t_plane(e, r, tt);
+    int check = rt_tri_t_check(Akz, Bkz, Ckz, p.sx, p.sy, Ax, Ay, Bx, By, Cx, Cy, Az, Bz, Cz, det,
+                               tt, tmin);
+    if (check == RT_T_BEFORE) return false;
+    if (check == RT_T_PLANE) tt = rt_tri_t_plane(e, r, tt);
     if (!(tt >= tmin && tt <= tmax)) return false;
     t = tt;
     u = RT_DIV(V, det);

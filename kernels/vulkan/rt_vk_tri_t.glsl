@@ -10,14 +10,18 @@
 #include "rt_vk_view.glsl"
 
 #define RT_T_REL_BOUND 7.62939453125e-06
+#define RT_T_BEFORE_FLOOR 7.88860905221011805411728565283e-31
+#define RT_T_FAST   0
+#define RT_T_PLANE  1
+#define RT_T_BEFORE 2
 
 float rt_tri_t_max(float a, float b) {
     return a > b ? a : b;
 }
 
-bool rt_tri_t_check(float Akz, float Bkz, float Ckz, float sx, float sy, float Ax, float Ay,
-                    float Bx, float By, float Cx, float Cy, float Az, float Bz, float Cz, float det,
-                    float t) {
+int rt_tri_t_check(float Akz, float Bkz, float Ckz, float sx, float sy, float Ax, float Ay,
+                   float Bx, float By, float Cx, float Cy, float Az, float Bz, float Cz, float det,
+                   float t, float tmin) {
     float S = rt_tri_t_max(RT_FABS(sx), RT_FABS(sy));
     float K = rt_tri_t_max(RT_FABS(Akz), rt_tri_t_max(RT_FABS(Bkz), RT_FABS(Ckz)));
     float P = rt_tri_t_max(rt_tri_t_max(RT_FABS(Ax), RT_FABS(Ay)),
@@ -28,7 +32,9 @@ bool rt_tri_t_check(float Akz, float Bkz, float Ckz, float sx, float sy, float A
     float Z = rt_tri_t_max(zmax, -zmin);
     float adet = RT_FABS(det);
     float lhs = (((S * K + 0.75 * P) * P) * (zmax - zmin)) * 0.5 + (adet * Z) * 0.0625;
-    return lhs > RT_FABS(t) * adet;
+    if (!(lhs > RT_FABS(t) * adet)) return RT_T_FAST;
+    if (((tmin - t) * adet) * 32768.0 > lhs && lhs > RT_T_BEFORE_FLOOR) return RT_T_BEFORE;
+    return RT_T_PLANE;
 }
 
 void rt_ff_two_sum(float a, float b, out float s, out float e) {
