@@ -30,6 +30,14 @@
 #include "simd.h"
 #include "watertight_lanes.h"
 
+#if RT_VN == 8 && defined(__AVX2__)
+#include <simde/x86/avx2.h>
+/* The children's order by a sorting network in one vector (sw_order). */
+#define RT_SW_VECTOR_ORDER 1
+#else
+#define RT_SW_VECTOR_ORDER 0
+#endif
+
 #define RT_SW_TRACE RT_ISA_SYMBOL(rt_sw_trace)
 
 enum { W = RT_VN, NODE_WORDS = RT_WIDE_NODE_WORDS(W), BLOCK_WORDS = RT_WIDE_BLOCK_WORDS(W) };
@@ -41,7 +49,13 @@ typedef struct sw_ctx {
     int any_hit;
     uint64_t box_tests, tri_tests;
     rt_u32 ray_mask; /* the ray being traced's (rt_trace_masked) */
+    int prefetch;    /* the tree is larger than the caches (RT_SW_PREFETCH_BYTES) */
 } sw_ctx;
+
+/* Trees of more bytes than this (nodes and blocks) have their entered
+ * children's lines prefetched; smaller ones stay in the caches, where a
+ * prefetch is only instructions. */
+#define RT_SW_PREFETCH_BYTES (8u << 20)
 
 /* The ray as the box test reads it: org and inv in every lane, the byte
  * offsets of each axis's near and far planes in a node (rt_box_test's a and
@@ -49,7 +63,7 @@ typedef struct sw_ctx {
 typedef struct sw_ray {
     rt_vf org[3], inv[3];
     size_t near[3], far[3];
-    float lo;
+    rt_vf lo;
 } sw_ray;
 
 static inline void sw_ray_setup(const rt_ray *r, const rt_ray_pre *p, sw_ray *rv) {
@@ -59,7 +73,7 @@ static inline void sw_ray_setup(const rt_ray *r, const rt_ray_pre *p, sw_ray *rv
         rv->near[k] = (size_t)(p->sign[k] ? 3 + k : k) * W * 4;
         rv->far[k] = (size_t)(p->sign[k] ? k : 3 + k) * W * 4;
     }
-    rv->lo = rt_box_lo(r->tmin);
+    rv->lo = rt_vsplat(rt_box_lo(r->tmin));
 }
 
 /* rt_box_test on every child of node n against [rv->lo, hi]: bit c set when
@@ -76,7 +90,7 @@ static inline void sw_ray_setup(const rt_ray *r, const rt_ray_pre *p, sw_ray *rv
 static inline uint32_t node_test(const uint32_t *n, const sw_ray *rv, rt_vf hi, rt_vf *tnear,
                                  uint32_t *real) {
     const char *base = (const char *)n;
-    const rt_vf lo0 = rt_vsplat(rv->lo), inf = rt_vsplat(RT_INF);
+    const rt_vf lo0 = rv->lo, inf = rt_vsplat(RT_INF);
     rt_vf lo[3], h[3];
     for (int k = 0; k < 3; k++) {
         const rt_vf a = rt_vload(base + rv->near[k]), b = rt_vload(base + rv->far[k]);
@@ -268,32 +282,114 @@ static inline void prefetch(const sw_ctx *x, const uint32_t *child, const uint32
     for (int off = 0; off < bytes; off += 64) __builtin_prefetch(p + off);
 }
 
+/* A stack of children to visit: each one's ref and info words (a node's
+ * child and info lanes) and its entry distance. It holds the entered
+ * siblings of the path's nodes, at most W - 1 per level; the wide tree is
+ * no deeper than the binary one plus its entry node (which has one child),
+ * and host/layout/flatten.c rejects binary trees deeper than RT_STACK_SIZE.
+ * W more slots take sw_order's whole-vector stores. */
+enum { SW_STACK = (W - 1) * RT_STACK_SIZE + 1 + W };
+typedef struct sw_stack {
+    uint32_t ref[SW_STACK], info[SW_STACK];
+    float t[SW_STACK];
+} sw_stack;
+
+#if RT_SW_VECTOR_ORDER
+
+/* One compare-exchange step of a sorting network: each lane against its
+ * partner (p, the keys permuted), the larger kept where the lane's bit of
+ * take_max is set. */
+#define RT_SW_EXCHANGE(v, p, take_max)                                                             \
+    simde_mm256_blend_epi32(simde_mm256_min_epu32(v, p), simde_mm256_max_epu32(v, p), take_max)
+
+/* The eight keys of v in ascending order: Batcher's bitonic network, six
+ * steps; lane i meets lane i ^ j (j = 1, 2, 4) by a shuffle within 128-bit
+ * halves or a swap of the halves, and keeps the larger where i is the
+ * upper of the pair in an ascending run or the lower in a descending one. */
+static inline simde__m256i sw_sort8(simde__m256i v) {
+    v = RT_SW_EXCHANGE(v, simde_mm256_shuffle_epi32(v, 0xb1), 0x66); /* runs of 2 */
+    v = RT_SW_EXCHANGE(v, simde_mm256_shuffle_epi32(v, 0x4e), 0x3c); /* runs of 4 */
+    v = RT_SW_EXCHANGE(v, simde_mm256_shuffle_epi32(v, 0xb1), 0x5a);
+    v = RT_SW_EXCHANGE(v, simde_mm256_permute4x64_epi64(v, 0x4e), 0xf0); /* all 8 */
+    v = RT_SW_EXCHANGE(v, simde_mm256_shuffle_epi32(v, 0x4e), 0xcc);
+    v = RT_SW_EXCHANGE(v, simde_mm256_shuffle_epi32(v, 0xb1), 0xaa);
+    return v;
+}
+
+/* The k >= 2 entered children m of a node (child and info its lanes, tn
+ * their entry distances) in visiting order, without a branch: the first is
+ * returned (info above ref), the other k - 1 pushed so that the second is
+ * popped next. Closest hit: nearest first. Any hit: leaves first, then
+ * inner nodes farthest first (see traverse). The order decides only how
+ * soon a hit shrinks the range, never which children are visited.
+ *
+ * Each child is a key: its distance's bits with the sign and the three
+ * lowest bits cleared (a non-negative float's bits order as the float;
+ * the order of a negative or NaN distance only costs time), its slot in
+ * those three bits, and ~0 for the slots not entered, above every entered
+ * key, so that the k entered ones come first. */
+static inline uint64_t sw_order(uint32_t m, rt_vf tn, const uint32_t *child, const uint32_t *info,
+                                int any_hit, sw_stack *st, int *sp) {
+    const simde__m256i slot = simde_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    const simde__m256i body = simde_mm256_set1_epi32(0x7ffffff8);
+    const simde__m256i bits =
+        simde_mm256_and_si256((simde__m256i)tn, simde_mm256_set1_epi32(0x7fffffff));
+    simde__m256i key;
+    if (any_hit) {
+        const simde__m256i far_first =
+            simde_mm256_sub_epi32(simde_mm256_set1_epi32(0x7fffffff), bits);
+        const simde__m256i leaf =
+            simde_mm256_srai_epi32(simde_mm256_loadu_si256((const void *)info), 31);
+        key = simde_mm256_andnot_si256(leaf, simde_mm256_and_si256(far_first, body));
+    } else {
+        key = simde_mm256_and_si256(bits, body);
+    }
+    key = simde_mm256_or_si256(key, slot);
+    key = simde_mm256_or_si256(key, ~(simde__m256i)rt_vmask(m));
+    const simde__m256i sorted = sw_sort8(key);
+    /* Push the sorted keys k-1 .. 1 (farthest first): lane j of the pushed
+     * vector takes sorted lane (k - 1 - j) & 7; lanes from k - 1 on are
+     * written too, above the stack's top, and overwritten later. */
+    const int k = (int)rt_lane_count(m);
+    const simde__m256i seven = simde_mm256_set1_epi32(7);
+    const simde__m256i back =
+        simde_mm256_and_si256(simde_mm256_sub_epi32(simde_mm256_set1_epi32(k - 1), slot), seven);
+    const simde__m256i lanes =
+        simde_mm256_and_si256(simde_mm256_permutevar8x32_epi32(sorted, back), seven);
+    const simde__m256i refs = simde_mm256_loadu_si256((const void *)child);
+    const simde__m256i infos = simde_mm256_loadu_si256((const void *)info);
+    simde_mm256_storeu_si256((void *)(st->ref + *sp),
+                             simde_mm256_permutevar8x32_epi32(refs, lanes));
+    simde_mm256_storeu_si256((void *)(st->info + *sp),
+                             simde_mm256_permutevar8x32_epi32(infos, lanes));
+    simde_mm256_storeu_si256((void *)(st->t + *sp),
+                             simde_mm256_permutevar8x32_epi32((simde__m256i)tn, lanes));
+    *sp += k - 1;
+    const int first = simde_mm256_cvtsi256_si32(sorted) & 7;
+    return (uint64_t)info[first] << 32 | child[first];
+}
+#endif
+
 static int trace_instance(sw_ctx *x, rt_u32 inst, const rt_ray *r, const rt_ray_pre *p,
                           rt_hit_d *best);
 
 /* rt_trace_mesh (top == 0: the tree of instance inst) and rt_trace's object
  * BVH loop (top == 1), from entry node 'entry', children nearest first (for
- * any-hit rays leaves first, then farthest first). A child pushed on the stack is dropped when
- * popped if its entry distance lies beyond the range's upper end by then:
- * its box test would now fail. Returns 1 when an any-hit ray found a hit.
- *
- * The stack holds the entered siblings of the path's nodes, at most W - 1
- * per level; the wide tree is no deeper than the binary one plus its entry
- * node (which has one child), and host/layout/flatten.c rejects binary
- * trees deeper than RT_STACK_SIZE. */
+ * any-hit rays leaves first, then farthest first). A child pushed on the
+ * stack is dropped when popped if its entry distance lies beyond the
+ * range's upper end by then: its box test would now fail. Returns 1 when
+ * an any-hit ray found a hit. */
 static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entry, rt_u32 inst,
                                                           const rt_ray *r, const rt_ray_pre *p,
                                                           rt_hit_d *best, const int top) {
     sw_ray rv;
     sw_ray_setup(r, p, &rv);
-    /* A child is one 64-bit word, its info above its ref, written and read
-     * whole (a push soon popped then forwards from the store). */
-    uint64_t stack[(W - 1) * RT_STACK_SIZE + 1];
-    float stack_t[(W - 1) * RT_STACK_SIZE + 1];
+    sw_stack st;
     int sp = 0;
     rt_vf hi = range_hi(best->t);
     /* The entry node only tests the root's box: skipping a box test lets
-     * a ray test more, never fewer, so the traversal starts at the root. */
+     * a ray test more, never fewer, so the traversal starts at the root.
+     * A child is one 64-bit word, its info above its ref. */
     const uint32_t *en = x->nodes + (size_t)NODE_WORDS * entry;
     uint64_t cur = (uint64_t)en[7 * W] << 32 | en[6 * W];
     uint64_t boxes = 0;
@@ -301,8 +397,9 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
 #define RT_SW_REF(s) ((uint64_t)info[s] << 32 | child[s])
 #define RT_SW_PUSH(s)                                                                              \
     do {                                                                                           \
-        stack[sp] = RT_SW_REF(s);                                                                  \
-        stack_t[sp++] = d[s];                                                                      \
+        st.ref[sp] = child[s];                                                                     \
+        st.info[sp] = info[s];                                                                     \
+        st.t[sp++] = d[s];                                                                         \
     } while (0)
     for (;;) {
         const rt_u32 ref = (rt_u32)cur, cinfo = (rt_u32)(cur >> 32);
@@ -323,14 +420,26 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
             boxes += rt_lane_run(real);
             if (m) {
                 const uint32_t *child = n + 6 * W, *info = n + 7 * W;
-                /* Every entered child's lines are fetched now, while the
-                 * nearest is traversed (the others are probably next). */
-                for (uint32_t f = m; f; f &= f - 1) prefetch(x, child, info, rt_lane_first(f), top);
+                /* In a tree larger than the caches, every entered child's
+                 * lines are fetched now, while the nearest is traversed
+                 * (the others are probably next). */
+                if (x->prefetch)
+                    for (uint32_t f = m; f; f &= f - 1)
+                        prefetch(x, child, info, rt_lane_first(f), top);
                 const int s0 = rt_lane_first(m);
                 if (!(m & (m - 1))) { /* one child: on with it */
                     cur = RT_SW_REF(s0);
                     continue;
                 }
+#if RT_SW_VECTOR_ORDER
+                /* Three or more (any hit: two or more) by the network. */
+                const uint32_t m1 = m & (m - 1);
+                if (x->any_hit || (m1 & (m1 - 1))) {
+                    assert(sp + W <= SW_STACK);
+                    cur = sw_order(m, tn, child, info, x->any_hit, &st, &sp);
+                    continue;
+                }
+#endif
                 float d[W];
                 memcpy(d, &tn, sizeof d);
                 if (x->any_hit) {
@@ -383,7 +492,7 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
                     }
                     order[i] = s;
                 }
-                assert(sp + h - 1 <= (int)(sizeof stack / sizeof stack[0]));
+                assert(sp + h - 1 <= SW_STACK - W);
                 for (int i = h - 1; i > 0; i--) RT_SW_PUSH(order[i]);
                 cur = RT_SW_REF(order[0]);
                 continue;
@@ -391,9 +500,10 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
         }
         /* The next pushed child whose box test could still pass (a NaN hi
          * drops nothing, as in rt_box_test). */
-        while (sp > 0 && stack_t[sp - 1] > hi[0]) sp--;
+        while (sp > 0 && st.t[sp - 1] > hi[0]) sp--;
         if (sp == 0) break;
-        cur = stack[--sp];
+        sp--;
+        cur = (uint64_t)st.info[sp] << 32 | st.ref[sp];
     }
 #undef RT_SW_REF
 #undef RT_SW_PUSH
@@ -465,7 +575,10 @@ void RT_SW_TRACE(const rt_scene_view *s, const rt_wide_bvh *b, const rt_ray *ray
                  const uint32_t *masks, size_t n, int any_hit, rt_hit_d *hits, rt_counters *c) {
     assert(b->shape.width == W && b->shape.blocks);
     sw_ctx x = {s,       b->nodes, b->blocks, b->inst_root, s->hdr->tri_method,
-                any_hit, 0,        0,         0xffffffffu};
+                any_hit, 0,        0,         0xffffffffu,  0};
+    x.prefetch = ((uint64_t)b->node_count * NODE_WORDS + (uint64_t)b->block_count * BLOCK_WORDS) *
+                     sizeof(uint32_t) >
+                 RT_SW_PREFETCH_BYTES;
     for (size_t i = 0; i < n; i++) {
         if (masks) x.ray_mask = masks[i];
         trace_one(&x, b, &rays[i], &hits[i]);
