@@ -8,7 +8,7 @@ if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends \
     build-essential cmake ninja-build pkg-config git ca-certificates \
-    ocl-icd-opencl-dev opencl-c-headers pocl-opencl-icd clinfo \
+    ocl-icd-opencl-dev opencl-c-headers pocl-opencl-icd clinfo oclgrind \
     libvulkan-dev mesa-vulkan-drivers glslang-tools spirv-tools \
     libsdl2-dev xvfb xauth \
     libopenimageio-dev openimageio-tools \

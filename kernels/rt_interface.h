@@ -35,6 +35,17 @@ enum {
     RT_CL_BUF_COUNT
 };
 
+/* The OpenCL kernels, in the table's order: each kernel's completion
+ * counter in the DONE buffer (done[RT_CL_DONE_<KERNEL>], the work-items that
+ * reached their end). */
+#include "rt_interface_rows.h"
+#undef RT_CL_KERNEL
+#define RT_CL_KERNEL(ID, name, view) RT_CL_DONE_##ID,
+enum {
+#include "rt_interface.def"
+    RT_CL_DONE_COUNT
+};
+
 /* The Vulkan backend's buffers, each numbered by its binding; the bindings
  * are 0 .. RT_VK_BUF_COUNT - 1 (test_vulkan_interface checks it). */
 #include "rt_interface_rows.h"
@@ -120,6 +131,16 @@ static inline const char *rt_cl_buffer_what(int b) {
     if (b == RT_CL_BUF_##ID) return what;
 #define RT_CL_BUFFER(ID, what)                                                                     \
     if (b == RT_CL_BUF_##ID) return what;
+#include "rt_interface.def"
+    return "?";
+}
+
+/* The name of the OpenCL kernel RT_CL_DONE_<KERNEL> = k. */
+static inline const char *rt_cl_kernel_name(int k) {
+#include "rt_interface_rows.h"
+#undef RT_CL_KERNEL
+#define RT_CL_KERNEL(ID, name, view)                                                               \
+    if (k == RT_CL_DONE_##ID) return #name;
 #include "rt_interface.def"
     return "?";
 }

@@ -27,4 +27,26 @@
             kd_nodes                                                                               \
     }
 
+/* The completion check (docs/OPENCL.md, "Failures"): each work-item below
+ * count ends with RT_K_DONE, one atomic increment of its kernel's counter in
+ * done (RT_CL_DONE_<KERNEL>); after a tile the host compares the counters
+ * with the items it launched, so a launch the device cut short is an error,
+ * never an image with holes.
+ * Fault injection for tests: built with -DRT_TEST_SKIP=N (the host adds it
+ * when the environment has RTCL_TEST_OPENCL_SKIP=N), work-item i with
+ * i % N == N - 1 does not count itself, and the kernels whose results no
+ * other kernel reads (rt_k_shade, rt_k_wave_sum, rt_k_packet,
+ * rt_k_packet_trace) skip its work too (RT_K_SKIPPED at their start): the
+ * holes of a cut launch, without feeding unwritten rays or hits to a later
+ * kernel. */
+#ifdef RT_TEST_SKIP
+#define RT_K_SKIPPED(i) ((i) % (uint)(RT_TEST_SKIP) == (uint)(RT_TEST_SKIP)-1u)
+#else
+#define RT_K_SKIPPED(i) 0
+#endif
+#define RT_K_DONE(done, KERNEL, i)                                                                 \
+    do {                                                                                           \
+        if (!RT_K_SKIPPED(i)) atomic_inc(&(done)[RT_CL_DONE_##KERNEL]);                            \
+    } while (0)
+
 #endif /* RT_KERNEL_ARGS_H */

@@ -1051,9 +1051,9 @@ static void pk_unpack(const pk_state *st, rt_hit_d *hit, rt_counters *c) {
  * counters[i] gets the block's rays and tests (the host only adds them up:
  * a block's sum is 1/16 of the bytes to read back). */
 __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int channels,
-                          __global rt_counters *counters, __global float *fb) {
+                          __global rt_counters *counters, __global float *fb, __global uint *done) {
     uint i = (uint)get_global_id(0);
-    if (i >= count) return;
+    if (i >= count || RT_K_SKIPPED(i)) return;
     rt_scene_view s = RT_VIEW_INIT;
     const int w = hdr->width, h = hdr->height;
     const uint bw = ((uint)w + PK_W - 1u) / PK_W, block = first + i;
@@ -1184,6 +1184,7 @@ __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int cha
         sum.rays += c[l].rays;
     }
     counters[i] = sum;
+    RT_K_DONE(done, PACKET, i);
 }
 
 /* Ray queries, closest hit: rays RT_PK_LANES * i .. + RT_PK_LANES - 1 of
@@ -1191,10 +1192,10 @@ __kernel void rt_k_packet(RT_VIEW_ARGS, uint first, uint count, int aov, int cha
  * each; counters[j] gets ray j's tests (counted per lane). */
 __kernel void rt_k_packet_trace(RT_VIEW_ARGS, uint count, __global const rt_ray *rays,
                                 __global rt_hit_d *hits, __global rt_counters *counters,
-                                uint masked, __global const uint *masks) {
+                                uint masked, __global const uint *masks, __global uint *done) {
     uint i = (uint)get_global_id(0);
     uint first = i * RT_PK_LANES;
-    if (first >= count) return;
+    if (first >= count || RT_K_SKIPPED(i)) return;
     rt_scene_view s = RT_VIEW_INIT;
     rt_ray r[RT_PK_LANES];
     int inside[RT_PK_LANES];
@@ -1217,4 +1218,5 @@ __kernel void rt_k_packet_trace(RT_VIEW_ARGS, uint count, __global const rt_ray 
         hits[first + l] = hit[l];
         counters[first + l] = c[l];
     }
+    RT_K_DONE(done, PTRACE, i);
 }

@@ -31,19 +31,20 @@
 #include "rt_kernel_args.h" /* rt_shade.h, the view arguments, the AOV codes */
 
 __kernel void rt_k_camera(__global const rt_scene_header *hdr, uint first, uint count,
-                          __global rt_ray *rays) {
+                          __global rt_ray *rays, __global uint *done) {
     uint i = (uint)get_global_id(0);
     if (i >= count) return;
     rt_ray r;
     rt_camera_pixel_ray(hdr, first + i, &r);
     rays[i] = r;
+    RT_K_DONE(done, CAMERA, i);
 }
 
 /* Closest (or any) hits of count rays; counters[i] gets the ray's tests.
  * Ray i's mask is masks[i] when masked, else 0xffffffff (rt_trace_masked). */
 __kernel void rt_k_trace(RT_VIEW_ARGS, uint count, int any_hit, __global const rt_ray *rays,
                          __global rt_hit_d *hits, __global rt_counters *counters, uint masked,
-                         __global const uint *masks) {
+                         __global const uint *masks, __global uint *done) {
     uint i = (uint)get_global_id(0);
     if (i >= count) return;
     rt_scene_view s = RT_VIEW_INIT;
@@ -53,15 +54,16 @@ __kernel void rt_k_trace(RT_VIEW_ARGS, uint count, int any_hit, __global const r
     rt_trace_masked(&s, &r, masked ? masks[i] : 0xffffffffu, any_hit, &h, &c);
     hits[i] = h;
     counters[i] = c;
+    RT_K_DONE(done, TRACE, i);
 }
 
 /* Shades the tile's hits into fb (channels floats per pixel, the whole frame),
  * as rt_cpu_finish_pixel does; counters[i] gains the shading rays' tests. */
 __kernel void rt_k_shade(RT_VIEW_ARGS, uint first, uint count, int aov, int channels,
                          __global const rt_ray *rays, __global const rt_hit_d *hits,
-                         __global rt_counters *counters, __global float *fb) {
+                         __global rt_counters *counters, __global float *fb, __global uint *done) {
     uint i = (uint)get_global_id(0);
-    if (i >= count) return;
+    if (i >= count || RT_K_SKIPPED(i)) return;
     rt_scene_view s = RT_VIEW_INIT;
     rt_ray r = rays[i];
     rt_hit_d h = hits[i];
@@ -90,6 +92,7 @@ __kernel void rt_k_shade(RT_VIEW_ARGS, uint first, uint count, int aov, int chan
             out[0] = (float)(aov == AOV_BOX_TESTS ? c.box_tests : c.tri_tests);
     }
     counters[i] = c;
+    RT_K_DONE(done, SHADE, i);
 }
 
 /* ---- reflection and refraction as wavefront passes -------------------------
@@ -110,7 +113,7 @@ __kernel void rt_k_shade(RT_VIEW_ARGS, uint first, uint count, int aov, int chan
  * contiguous across the tile instead of a kilobyte apart. */
 
 __kernel void rt_k_wave_camera(__global const rt_scene_header *hdr, uint first, uint count,
-                               __global rt_wave_entry *queue) {
+                               __global rt_wave_entry *queue, __global uint *done) {
     uint i = (uint)get_global_id(0);
     if (i >= count) return;
     rt_wave_entry q;
@@ -120,6 +123,7 @@ __kernel void rt_k_wave_camera(__global const rt_scene_header *hdr, uint first, 
     q.pixel = i;
     q.slot = 0;
     queue[i] = q;
+    RT_K_DONE(done, WCAM, i);
 }
 
 /* Adds c to the pixel's counters (several rays of a pixel may be in one pass:
@@ -131,7 +135,8 @@ static void add_counters(__global uint *counters, uint pixel, const rt_counters 
 }
 
 __kernel void rt_k_wave_trace(RT_VIEW_ARGS, uint count, __global const rt_wave_entry *queue,
-                              __global rt_hit_d *hits, __global uint *counters) {
+                              __global rt_hit_d *hits, __global uint *counters,
+                              __global uint *done) {
     uint i = (uint)get_global_id(0);
     if (i >= count) return;
     rt_scene_view s = RT_VIEW_INIT;
@@ -141,13 +146,14 @@ __kernel void rt_k_wave_trace(RT_VIEW_ARGS, uint count, __global const rt_wave_e
     rt_trace(&s, &r, 0, &h, &c);
     hits[i] = h;
     add_counters(counters, queue[i].pixel, &c);
+    RT_K_DONE(done, WTRACE, i);
 }
 
 __kernel void rt_k_wave_shade(RT_VIEW_ARGS, uint count, __global const rt_wave_entry *queue,
                               __global const rt_hit_d *hits, __global uint *counters,
                               __global rt_wave_record *records, uint stride,
                               __global rt_wave_entry *next, __global uint *next_count,
-                              uint next_cap) {
+                              uint next_cap, __global uint *done) {
     uint i = (uint)get_global_id(0);
     if (i >= count) return;
     rt_scene_view s = RT_VIEW_INIT;
@@ -170,13 +176,14 @@ __kernel void rt_k_wave_shade(RT_VIEW_ARGS, uint count, __global const rt_wave_e
         uint at = atomic_inc(next_count);
         if (at < next_cap) next[at] = n; /* the host sees the overflow and redoes the tile */
     }
+    RT_K_DONE(done, WSHADE, i);
 }
 
 __kernel void rt_k_wave_sum(uint first, uint count, __global const rt_scene_header *hdr,
                             __global const rt_wave_record *records, uint stride, int channels,
-                            __global float *fb) {
+                            __global float *fb, __global uint *done) {
     uint i = (uint)get_global_id(0);
-    if (i >= count) return;
+    if (i >= count || RT_K_SKIPPED(i)) return;
     uint stack_slot[RT_SHADE_STACK], stack_depth[RT_SHADE_STACK];
     int sp = 0;
     float rgb[3] = {0.0f, 0.0f, 0.0f};
@@ -201,4 +208,5 @@ __kernel void rt_k_wave_sum(uint first, uint count, __global const rt_scene_head
     }
     __global float *out = fb + (size_t)(first + i) * (size_t)channels;
     for (int k = 0; k < 3; k++) out[k] = rgb[k];
+    RT_K_DONE(done, WSUM, i);
 }

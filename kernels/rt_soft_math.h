@@ -161,12 +161,15 @@ RT_SM_FN rt_u32 rt_sm_round_pack_(rt_u32 sign, rt_i32 e, rt_u32 sig, rt_u32 stic
  * the remainder in *r. Invariant: r < mb < 2^24, so 2r < 2^25 fits. */
 RT_SM_FN rt_u32 rt_sm_div_serial_(rt_u32 ma, rt_u32 mb, rt_u32 *rem) {
     rt_u32 r = ma - mb, q = 1u;
+    /* The quotient bit is a comparison, not the sign bit of r - mb: clang
+     * turns (q << 1) | (~t >> 31) into the funnel-shift intrinsic llvm.fshl,
+     * which some OpenCL implementations (Oclgrind) cannot run. Both < 2^25,
+     * so the two are the same bit. */
     for (int i = 0; i < 24; i++) {
         r <<= 1;
-        rt_u32 t = r - mb;
-        rt_u32 bit = (t >> 31) ^ 1u; /* r >= mb: no wrap-around (both < 2^25) */
+        rt_u32 bit = r >= mb ? 1u : 0u;
         q = (q << 1) | bit;
-        r = bit ? t : r;
+        r = bit ? r - mb : r;
     }
     *rem = r;
     return q;
@@ -279,10 +282,11 @@ RT_SM_FN rt_u32 rt_sm_sqrt_serial_(rt_u32 t, rt_u32 *rem_out) {
         rem = (rem << 2) | pair;
         rt_u32 trial = (root << 2) | 1u;
         root <<= 1;
-        rt_u32 d = rem - trial;
-        rt_u32 bit = (d >> 31) ^ 1u; /* rem < 2^28, trial < 2^27 */
+        /* A comparison, not the sign bit of rem - trial (rem < 2^28, trial <
+         * 2^27, so the same bit): see rt_sm_div_serial_ (no llvm.fshl). */
+        rt_u32 bit = rem >= trial ? 1u : 0u;
         root |= bit;
-        rem = bit ? d : rem;
+        rem = bit ? rem - trial : rem;
     }
     *rem_out = rem;
     return root;

@@ -182,13 +182,19 @@ RT_FN float rt_ff_sum_err(float a, float b, float s) {
     return (a - av) + (b - bv);
 }
 
+/* The vertex at offset k (0, 3 or 6) among the triangle's nine coordinates:
+ * v0, v1 or v2, each indexed 0..2 only. (Indexing the nine as one row
+ * through tri->v0 reads past v0's three elements, out of that array's
+ * bounds: Oclgrind reports "Index (6) exceeds static array size (3)".) */
+#define RT_TRI_VERTEX(tri, k) ((k) == 0 ? (tri)->v0 : ((k) == 3 ? (tri)->v1 : (tri)->v2))
+
 /* The apex of rt_tri_t_plane: the offset (0, 3 or 6) of the vertex opposite
  * the triangle's longest edge among its nine coordinates. */
 RT_FN int rt_tri_t_apex(RT_GLOBAL const rt_tri *tri) {
-    RT_GLOBAL const float *v = tri->v0;    /* v0, v1, v2: 9 floats in a row */
     float l0 = 0.0f, l1 = 0.0f, l2 = 0.0f; /* squared lengths of the edges opposite v0, v1, v2 */
     for (int i = 0; i < 3; i++) {
-        const float a = v[3 + i] - v[6 + i], b = v[6 + i] - v[i], c = v[i] - v[3 + i];
+        const float a = tri->v1[i] - tri->v2[i], b = tri->v2[i] - tri->v0[i],
+                    c = tri->v0[i] - tri->v1[i];
         l0 = l0 + a * a;
         l1 = l1 + b * b;
         l2 = l2 + c * c;
@@ -202,11 +208,12 @@ RT_FN int rt_tri_t_apex(RT_GLOBAL const rt_tri *tri) {
  * CPU packet tracer computes it once per triangle for a packet's rays. */
 RT_FN void rt_tri_t_normal(RT_GLOBAL const rt_tri *tri, int ip, float *e, float *f, float *n,
                            float *m) {
-    RT_GLOBAL const float *v = tri->v0;
     const int iq = ip == 6 ? 0 : ip + 3, is = iq == 6 ? 0 : iq + 3;
+    RT_GLOBAL const float *p = RT_TRI_VERTEX(tri, ip), *q = RT_TRI_VERTEX(tri, iq),
+                          *s = RT_TRI_VERTEX(tri, is);
     for (int i = 0; i < 3; i++) {
-        e[i] = v[iq + i] - v[ip + i];
-        f[i] = v[is + i] - v[ip + i];
+        e[i] = q[i] - p[i];
+        f[i] = s[i] - p[i];
     }
     for (int i = 0; i < 3; i++) {
         const int j = i == 2 ? 0 : i + 1, k = j == 2 ? 0 : j + 1;
@@ -221,12 +228,13 @@ RT_FN void rt_tri_t_normal(RT_GLOBAL const rt_tri *tri, int ip, float *e, float 
  * operand split once. */
 RT_FN void rt_tri_t_normal_ff(RT_GLOBAL const rt_tri *tri, int ip, const float *e, const float *f,
                               float *nh, float *nl) {
-    RT_GLOBAL const float *v = tri->v0;
     const int iq = ip == 6 ? 0 : ip + 3, is = iq == 6 ? 0 : iq + 3;
+    RT_GLOBAL const float *p = RT_TRI_VERTEX(tri, ip), *q = RT_TRI_VERTEX(tri, iq),
+                          *s = RT_TRI_VERTEX(tri, is);
     float el[3], es[3], et[3], fl[3], fs[3], ft[3];
     for (int i = 0; i < 3; i++) {
-        el[i] = rt_ff_sum_err(v[iq + i], -v[ip + i], e[i]);
-        fl[i] = rt_ff_sum_err(v[is + i], -v[ip + i], f[i]);
+        el[i] = rt_ff_sum_err(q[i], -p[i], e[i]);
+        fl[i] = rt_ff_sum_err(s[i], -p[i], f[i]);
         rt_ff_split(e[i], &es[i], &et[i]);
         rt_ff_split(f[i], &fs[i], &ft[i]);
     }
@@ -240,11 +248,11 @@ RT_FN void rt_tri_t_normal_ff(RT_GLOBAL const rt_tri *tri, int ip, const float *
 }
 
 RT_FN_RARE float rt_tri_t_plane(RT_GLOBAL const rt_tri *tri, const rt_ray *r, float t_fast) {
-    RT_GLOBAL const float *v = tri->v0; /* v0, v1, v2: 9 floats in a row */
     const int ip = rt_tri_t_apex(tri);
+    RT_GLOBAL const float *p = RT_TRI_VERTEX(tri, ip);
     float e[3], f[3], a[3], n[3], m[3];
     rt_tri_t_normal(tri, ip, e, f, n, m);
-    for (int i = 0; i < 3; i++) a[i] = v[ip + i] - r->org[i];
+    for (int i = 0; i < 3; i++) a[i] = p[i] - r->org[i];
     /* Tier 1: float, with its error bound. */
     float N = 0.0f, D = 0.0f, bn = 0.0f, bd = 0.0f;
     for (int i = 0; i < 3; i++) {
@@ -264,7 +272,7 @@ RT_FN_RARE float rt_tri_t_plane(RT_GLOBAL const rt_tri *tri, const rt_ray *r, fl
     rt_tri_t_normal_ff(tri, ip, e, f, nh, nl);
     float al[3], as[3], at[3], ds[3], dt[3];
     for (int i = 0; i < 3; i++) {
-        al[i] = rt_ff_sum_err(v[ip + i], -r->org[i], a[i]);
+        al[i] = rt_ff_sum_err(p[i], -r->org[i], a[i]);
         rt_ff_split(a[i], &as[i], &at[i]);
         rt_ff_split(r->dir[i], &ds[i], &dt[i]);
     }

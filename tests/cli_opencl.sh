@@ -104,6 +104,25 @@ for b in opencl auto; do
     ! grep -q 'backend:' "$tmp/e.txt" || { echo "FAIL: --backend $b printed: $(cat "$tmp/e.txt")"; fails=$((fails + 1)); }
 done
 
+# The completion check (docs/OPENCL.md, "Failures"): kernels built to leave
+# every 4th work-item unfinished (RTCL_TEST_OPENCL_SKIP, fault injection)
+# must fail the frame and the queries with status 2 and the reason, and write
+# no file. The device's kernels as they run by default (one program); the
+# other kernel paths are cut under Oclgrind in cli_oclgrind.sh.
+miss='opencl: kernel rt_k_[a-z_]+ on .+ finished [0-9]+ of [0-9]+ work-items .* cut the launch short'
+rm -f "$tmp/cut.png" "$tmp/cut.txt"
+expect 2 "$miss" -- env RTCL_TEST_OPENCL_SKIP=4 "$RTCL" render builtin:cornell --width 24 --height 16 \
+    --backend opencl -o "$tmp/cut.png"
+for any in "" --any-hit; do
+    expect 2 "$miss" -- env RTCL_TEST_OPENCL_SKIP=4 "$RTCL" trace builtin:cornell --rays "$tmp/rays.txt" \
+        --out "$tmp/cut.txt" --backend opencl $any
+done
+checks=$((checks + 1))
+[ ! -e "$tmp/cut.png" ] && [ ! -e "$tmp/cut.txt" ] ||
+    { echo "FAIL: a launch cut short still wrote its result"; fails=$((fails + 1)); }
+expect 2 'RTCL_TEST_OPENCL_SKIP must be a whole number' -- env RTCL_TEST_OPENCL_SKIP=x "$RTCL" render \
+    builtin:cornell --width 8 --height 8 --backend opencl -o "$tmp/cut.png"
+
 # No platform at all (the ICD loader reads no vendor file), and no Vulkan
 # driver either (else auto would take Vulkan).
 mkdir "$tmp/no_vendors"

@@ -45,5 +45,13 @@ for src in rt_single_ray.cl rt_ray_packet.cl; do
         echo "FAIL: $src native: no division found, so the search above proves nothing"
         fails=$((fails + 1))
     fi
+    # No funnel shift in either build: Oclgrind cannot run llvm.fshl/fshr
+    # ("Undefined external function"), which clang made of the soft maths'
+    # (q << 1) | (~t >> 31) (cli_oclgrind.sh runs the kernels there).
+    checks=$((checks + 1))
+    if grep -n -E '@llvm\.fsh[lr]\.' "$tmp/p.ll" "$tmp/n.ll" > "$tmp/found"; then
+        echo "FAIL: $src: a funnel-shift intrinsic in the kernels' IR:"; head -5 "$tmp/found"
+        fails=$((fails + 1))
+    fi
 done
 finish

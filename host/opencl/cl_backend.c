@@ -73,6 +73,10 @@ typedef struct cl_state {
     int lanes; /* the program's packet lanes (RT_PK_LANES); 0: no packet kernel */
     cl_mem buf[RT_CL_BUF_COUNT];
     size_t cap[RT_CL_BUF_COUNT];
+    /* The completion check: per kernel (RT_CL_DONE_*), the work-items launched
+     * since the DONE buffer was last cleared (done_begin, done_check). */
+    uint32_t launched[RT_CL_DONE_COUNT];
+    unsigned test_skip;  /* RTCL_TEST_OPENCL_SKIP: fault injection (-DRT_TEST_SKIP), 0: off */
     rt_upload_memo memo; /* what the device holds of the layout */
     uint32_t tile;
     /* The last program build's messages: the compiler's log, then what the
@@ -118,6 +122,22 @@ static rt_status cl_create(const rt_backend_config *config, void **state, rt_err
     s->on_compile = config->on_compile;
     s->on_compile_user = config->on_compile_user;
     s->tile = RT_CL_TILE_FIRST;
+    /* Tests only: kernels built to leave every Nth work-item unfinished
+     * (rt_kernel_args.h, RT_TEST_SKIP), so that the completion check must
+     * fail the frame or the query. */
+    const char *skip = getenv("RTCL_TEST_OPENCL_SKIP");
+    if (skip && *skip) {
+        char *end;
+        unsigned long n = strtoul(skip, &end, 10);
+        if (*end || n < 1 || n > 1000000u) {
+            free(s);
+            return rt_fail(err, RT_ERROR_INVALID_ARGUMENT,
+                           "opencl: RTCL_TEST_OPENCL_SKIP must be a whole number 1..1000000, not "
+                           "'%.64s'",
+                           skip);
+        }
+        s->test_skip = (unsigned)n;
+    }
     *state = s;
     return RT_OK;
 }
@@ -241,8 +261,11 @@ static rt_status build_program(cl_state *s, const rt_flat *f, double *compile_ms
     scene_defines(f, defines, sizeof defines);
     const char *extra = s->device_options;
     int lanes = packet_lanes(s);
-    char packet[32] = "";
+    char packet[64] = "";
     if (lanes) snprintf(packet, sizeof packet, " -DRT_PK_LANES=%d", lanes);
+    if (s->test_skip)
+        snprintf(packet + strlen(packet), sizeof packet - strlen(packet), " -DRT_TEST_SKIP=%u",
+                 s->test_skip);
     /* The exact build: no mad or fast-relaxed maths (they change results);
      * the maths profile and denormal policy of the plan. Study variants
      * append their options (device_options) after ours. */
@@ -534,12 +557,14 @@ static size_t local_size(cl_state *s, cl_kernel k) {
     return local;
 }
 
-/* Enqueues k over count items (the global size rounded up to the work-group
- * size; the kernels ignore items past count) without waiting: the launches of
- * a tile follow each other on the in-order queue, and the host waits once per
- * tile (see finish_launches). */
-static rt_status enqueue(cl_state *s, cl_kernel k, uint32_t count, const char *name, cl_event *ev,
+/* Enqueues k (the kernel RT_CL_DONE_<KERNEL> = kernel) over count items (the
+ * global size rounded up to the work-group size; the kernels ignore items past
+ * count) without waiting: the launches of a tile follow each other on the
+ * in-order queue, and the host waits once per tile (see finish_launches). The
+ * count is added to what the completion check expects. */
+static rt_status enqueue(cl_state *s, cl_kernel k, int kernel, uint32_t count, cl_event *ev,
                          rt_error *err) {
+    const char *name = rt_cl_kernel_name(kernel);
     size_t local = local_size(s, k);
     size_t global = ((size_t)count + local - 1) / local * local;
     if (global == 0) global = local;
@@ -548,6 +573,7 @@ static rt_status enqueue(cl_state *s, cl_kernel k, uint32_t count, const char *n
         return rt_fail(err, out_of_memory(ce) ? RT_ERROR_OUT_OF_MEMORY : RT_ERROR_BACKEND,
                        "kernel %s on '%s' (%u items): %s", name, s->dev.name, count,
                        rt_cl_error_name(ce));
+    s->launched[kernel] += count;
     return RT_OK;
 }
 
@@ -578,10 +604,10 @@ static rt_status finish_launches(cl_state *s, cl_event *ev, int n, double *ms, d
 }
 
 /* Enqueues k over count items, waits, and adds its profiled time to *ms. */
-static rt_status launch(cl_state *s, cl_kernel k, uint32_t count, const char *name, double *ms,
+static rt_status launch(cl_state *s, cl_kernel k, int kernel, uint32_t count, double *ms,
                         rt_error *err) {
     cl_event ev;
-    rt_status st = enqueue(s, k, count, name, &ev, err);
+    rt_status st = enqueue(s, k, kernel, count, &ev, err);
     if (st != RT_OK) return st;
     double longest;
     return finish_launches(s, &ev, 1, ms, &longest, err);
@@ -592,6 +618,10 @@ static rt_status launch(cl_state *s, cl_kernel k, uint32_t count, const char *na
  * the work-group function of a kernel at its first launch, which otherwise
  * lands in the first frame's time (about 1 s per kernel with a cold cache). */
 static rt_status warm_up(cl_state *s, int wave, rt_error *err) {
+    /* Not on Oclgrind, a simulator: it compiles at the build and interprets
+     * every work-item of a launch, so the large empty grid below cost it
+     * about 6 s per kernel (18 s of a 20 s 16x16 frame) and gained nothing. */
+    if (strstr(s->dev.platform, "Oclgrind")) return RT_OK;
     cl_mem stub = clCreateBuffer(s->ctx, CL_MEM_READ_WRITE, 64, NULL, NULL);
     if (!stub) return rt_fail(err, RT_ERROR_BACKEND, "cannot allocate a stub buffer");
     cl_uint zero = 0;
@@ -661,6 +691,48 @@ static rt_status ensure_ray_buffers(cl_state *s, uint32_t tile, rt_error *err) {
     if (st == RT_OK) st = ensure(s, RT_CL_BUF_COUNTERS, sizeof(rt_counters) * tile, &remade, err);
     /* A stub until a query with masks needs it whole (cl_trace). */
     if (st == RT_OK) st = ensure(s, RT_CL_BUF_MASKS, sizeof(cl_uint), &remade, err);
+    if (st == RT_OK)
+        st = ensure(s, RT_CL_BUF_DONE, sizeof(cl_uint) * RT_CL_DONE_COUNT, &remade, err);
+    return st;
+}
+
+/* ---- the completion check ----------------------------------------------------
+ *
+ * Every kernel's work-item that reaches its end adds 1 to its kernel's counter
+ * in the DONE buffer (RT_K_DONE in rt_kernel_args.h: one atomic per item).
+ * done_begin clears the counters before a tile's launches (a fill on the
+ * in-order queue) and done_check reads them after the last one (one read of
+ * RT_CL_DONE_COUNT words per tile) and compares each with the items the
+ * tile launched of that kernel (enqueue counts them). A device that cut a
+ * launch short (a simulator that stopped at an error, a driver that dropped
+ * work-groups) then fails the frame or the query instead of handing back an
+ * image with holes. */
+
+/* Binds the DONE buffer to argument arg (RT_K_<KERNEL>_DONE) of k. */
+static rt_status bind_done(cl_state *s, cl_kernel k, cl_uint arg, rt_error *err) {
+    return set_arg(k, arg, sizeof(cl_mem), &s->buf[RT_CL_BUF_DONE], err);
+}
+
+static rt_status zero_buf(cl_state *s, int b, size_t bytes, rt_error *err);
+
+static rt_status done_begin(cl_state *s, rt_error *err) {
+    memset(s->launched, 0, sizeof s->launched);
+    return zero_buf(s, RT_CL_BUF_DONE, sizeof(cl_uint) * RT_CL_DONE_COUNT, err);
+}
+
+/* Fails unless every work-item launched since done_begin finished; what
+ * names the work (e.g. "pixels 0..255"). */
+static rt_status done_check(cl_state *s, const char *what, rt_error *err) {
+    cl_uint done[RT_CL_DONE_COUNT];
+    rt_status st = read_buf(s, RT_CL_BUF_DONE, sizeof done, done, err);
+    for (int k = 0; k < RT_CL_DONE_COUNT && st == RT_OK; k++)
+        if (done[k] != s->launched[k])
+            st = rt_fail(err, RT_ERROR_BACKEND,
+                         "opencl: kernel %s on '%s' finished %u of %u work-items (%s): the "
+                         "device cut the launch short, so the result is incomplete and was not "
+                         "used",
+                         rt_cl_kernel_name(k), s->dev.name, (unsigned)done[k],
+                         (unsigned)s->launched[k], what);
     return st;
 }
 
@@ -727,9 +799,9 @@ static rt_status direct_tile(cl_state *s, cl_uint f, cl_uint n, rt_render_stats 
     if (st == RT_OK) st = set_arg(ks, RT_K_SHADE_COUNT, sizeof n, &n, err);
     cl_event ev[3];
     int queued = 0;
-    if (st == RT_OK) st = enqueue(s, kc, n, "rt_k_camera", &ev[queued], err);
-    if (st == RT_OK) st = enqueue(s, kt, n, "rt_k_trace", &ev[++queued], err);
-    if (st == RT_OK) st = enqueue(s, ks, n, "rt_k_shade", &ev[++queued], err);
+    if (st == RT_OK) st = enqueue(s, kc, RT_CL_DONE_CAMERA, n, &ev[queued], err);
+    if (st == RT_OK) st = enqueue(s, kt, RT_CL_DONE_TRACE, n, &ev[++queued], err);
+    if (st == RT_OK) st = enqueue(s, ks, RT_CL_DONE_SHADE, n, &ev[++queued], err);
     if (st == RT_OK) queued++;
     *longest = 0.0;
     if (queued == 3) {
@@ -750,7 +822,7 @@ static rt_status packet_tile(cl_state *s, cl_uint f, cl_uint n, rt_render_stats 
     rt_status st = set_arg(k, RT_K_PACKET_FIRST, sizeof f, &f, err);
     if (st == RT_OK) st = set_arg(k, RT_K_PACKET_COUNT, sizeof n, &n, err);
     double t = 0.0;
-    if (st == RT_OK) st = launch(s, k, n, "rt_k_packet", &t, err);
+    if (st == RT_OK) st = launch(s, k, RT_CL_DONE_PACKET, n, &t, err);
     stats->kernel_ms[1] += t;
     *longest = t;
     if (st == RT_OK) stats->launches++;
@@ -759,10 +831,10 @@ static rt_status packet_tile(cl_state *s, cl_uint f, cl_uint n, rt_render_stats 
 
 /* Launches k over count items, waits, adds the time to *ms and raises
  * *longest. */
-static rt_status timed(cl_state *s, cl_kernel k, uint32_t count, const char *name, double *ms,
+static rt_status timed(cl_state *s, cl_kernel k, int kernel, uint32_t count, double *ms,
                        double *longest, rt_error *err) {
     double t = 0.0;
-    rt_status st = launch(s, k, count, name, &t, err);
+    rt_status st = launch(s, k, kernel, count, &t, err);
     *ms += t;
     if (t > *longest) *longest = t;
     return st;
@@ -794,7 +866,7 @@ static rt_status wave_tile(cl_state *s, cl_uint slots, cl_uint cap, cl_uint f, c
     if (st == RT_OK) st = set_arg(kc, RT_K_WCAM_COUNT, sizeof n, &n, err);
     if (st == RT_OK)
         st = set_arg(kc, RT_K_WCAM_QUEUE, sizeof(cl_mem), &s->buf[RT_CL_BUF_QUEUE_A], err);
-    if (st == RT_OK) st = timed(s, kc, n, "rt_k_wave_camera", &stats->kernel_ms[0], longest, err);
+    if (st == RT_OK) st = timed(s, kc, RT_CL_DONE_WCAM, n, &stats->kernel_ms[0], longest, err);
     if (st == RT_OK) stats->launches++;
     cl_uint count = n;
     int in = RT_CL_BUF_QUEUE_A, out = RT_CL_BUF_QUEUE_B;
@@ -805,10 +877,10 @@ static rt_status wave_tile(cl_state *s, cl_uint slots, cl_uint cap, cl_uint f, c
         if (st == RT_OK) st = set_arg(ks, RT_K_WSHADE_QUEUE, sizeof(cl_mem), &s->buf[in], err);
         if (st == RT_OK) st = set_arg(ks, RT_K_WSHADE_NEXT, sizeof(cl_mem), &s->buf[out], err);
         if (st == RT_OK)
-            st = timed(s, kt, count, "rt_k_wave_trace", &stats->kernel_ms[1], longest, err);
+            st = timed(s, kt, RT_CL_DONE_WTRACE, count, &stats->kernel_ms[1], longest, err);
         if (st == RT_OK) st = zero_buf(s, RT_CL_BUF_QUEUE_COUNT, sizeof(cl_uint), err);
         if (st == RT_OK)
-            st = timed(s, ks, count, "rt_k_wave_shade", &stats->kernel_ms[2], longest, err);
+            st = timed(s, ks, RT_CL_DONE_WSHADE, count, &stats->kernel_ms[2], longest, err);
         cl_uint next = 0;
         if (st == RT_OK) st = read_buf(s, RT_CL_BUF_QUEUE_COUNT, sizeof next, &next, err);
         if (st != RT_OK) return st;
@@ -825,7 +897,7 @@ static rt_status wave_tile(cl_state *s, cl_uint slots, cl_uint cap, cl_uint f, c
     cl_kernel ksum = s->k_wsum;
     if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_FIRST, sizeof f, &f, err);
     if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_COUNT, sizeof n, &n, err);
-    if (st == RT_OK) st = timed(s, ksum, n, "rt_k_wave_sum", &stats->kernel_ms[2], longest, err);
+    if (st == RT_OK) st = timed(s, ksum, RT_CL_DONE_WSUM, n, &stats->kernel_ms[2], longest, err);
     if (st == RT_OK) stats->launches++;
     return st;
 }
@@ -878,6 +950,10 @@ static rt_status wave_setup(cl_state *s, cl_uint slots, uint32_t tile_max, cl_ui
     if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_STRIDE, sizeof stride, &stride, err);
     if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_CHANNELS, sizeof channels, &channels, err);
     if (st == RT_OK) st = set_arg(ksum, RT_K_WSUM_FB, sizeof(cl_mem), &s->buf[RT_CL_BUF_FB], err);
+    if (st == RT_OK) st = bind_done(s, kc, RT_K_WCAM_DONE, err);
+    if (st == RT_OK) st = bind_done(s, kt, RT_K_WTRACE_DONE, err);
+    if (st == RT_OK) st = bind_done(s, ks, RT_K_WSHADE_DONE, err);
+    if (st == RT_OK) st = bind_done(s, ksum, RT_K_WSUM_DONE, err);
     return st;
 }
 
@@ -889,7 +965,11 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
     size_t fb_bytes = sizeof(float) * (size_t)pixels * (size_t)frame->channels;
     int remade;
     rt_status st = ensure(s, RT_CL_BUF_FB, fb_bytes, &remade, err);
-    if (st == RT_OK) st = ensure_ray_buffers(s, RT_CL_TILE_MAX, err);
+    /* No tile holds more than the frame's pixels: a small frame gets small
+     * buffers (the buffers only grow). Oclgrind's race check pays for every
+     * byte of a buffer at every launch. */
+    if (st == RT_OK)
+        st = ensure_ray_buffers(s, pixels < RT_CL_TILE_MAX ? pixels : RT_CL_TILE_MAX, err);
     if (st != RT_OK) return named(err, st);
 
     cl_int aov = (cl_int)frame->aov, channels = frame->channels, any = 0;
@@ -914,6 +994,9 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
                                          {RT_K_SHADE_COUNTERS, RT_CL_BUF_COUNTERS},
                                          {RT_K_SHADE_FB, RT_CL_BUF_FB}};
     if (st == RT_OK) st = SET_BUFS(s, ks, shade_bufs, err);
+    if (st == RT_OK) st = bind_done(s, kc, RT_K_CAMERA_DONE, err);
+    if (st == RT_OK) st = bind_done(s, kt, RT_K_TRACE_DONE, err);
+    if (st == RT_OK) st = bind_done(s, ks, RT_K_SHADE_DONE, err);
 
     /* Images with reflection or refraction go through the wavefront; AOVs
      * (primary-ray values, or every ray's tests of a pixel) and scenes
@@ -928,7 +1011,12 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
         /* Tests shrink the queues to force the overflow path. */
         if (s->tune.wave_queue_cap > 0 && s->tune.wave_queue_cap < cap)
             cap = s->tune.wave_queue_cap;
-        st = wave_setup(s, slots, tmax, cap, channels, err);
+        /* The records' stride and the queues for this frame's tiles, which
+         * hold at most its pixels; a level queues at most slots rays per
+         * pixel, so a cap above that overflows no more than that does. */
+        uint32_t fit = pixels < tmax ? pixels : tmax;
+        if ((uint64_t)cap > (uint64_t)slots * fit) cap = slots * fit;
+        st = wave_setup(s, slots, fit, cap, channels, err);
         if (s->tile > tmax) s->tile = tmax;
     }
     if (st != RT_OK) return named(err, st);
@@ -950,6 +1038,7 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
         static const buf_arg packet_bufs[] = {{RT_K_PACKET_COUNTERS, RT_CL_BUF_COUNTERS},
                                               {RT_K_PACKET_FB, RT_CL_BUF_FB}};
         if (st == RT_OK) st = SET_BUFS(s, kp, packet_bufs, err);
+        if (st == RT_OK) st = bind_done(s, kp, RT_K_PACKET_DONE, err);
         if (st != RT_OK) return named(err, st);
     } else {
         snprintf(stats->kernels, sizeof stats->kernels, "one ray per work-item%s",
@@ -970,6 +1059,8 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
         cl_uint tile_px = lanes ? n * lanes : n;
         double longest = 0.0;
         int overflow = 0;
+        st = done_begin(s, err);
+        if (st != RT_OK) break;
         if (lanes) {
             st = packet_tile(s, first, n, stats, &longest, err);
         } else if (wave) {
@@ -981,6 +1072,16 @@ static rt_status cl_render(void *state, const rt_backend_layout *layout,
          * with the stack in the kernel (the same bits). */
         if (st == RT_OK && (overflow || (!lanes && !wave)))
             st = direct_tile(s, first, n, stats, &longest, err);
+        if (st == RT_OK) {
+            char what[96];
+            if (lanes)
+                snprintf(what, sizeof what, "blocks %u..%u of %ux%u pixels", (unsigned)first,
+                         (unsigned)(first + n - 1), (unsigned)bw, (unsigned)bh);
+            else
+                snprintf(what, sizeof what, "pixels %u..%u", (unsigned)first,
+                         (unsigned)(first + n - 1));
+            st = done_check(s, what, err);
+        }
         if (st != RT_OK) break;
         if (tile_px > stats->tile_pixels) stats->tile_pixels = tile_px;
         if (counts) {
@@ -1021,10 +1122,11 @@ static rt_status cl_trace(void *state, const rt_backend_layout *layout, const rt
     (void)path;
     (void)stats;
     (void)layout; /* cl_prepare uploaded it */
-    rt_status st = ensure_ray_buffers(s, RT_CL_TILE_MAX, err);
+    /* Tiles of at most count rays (as frames, small queries small buffers). */
+    uint32_t most = count < RT_CL_TILE_MAX ? (uint32_t)count : RT_CL_TILE_MAX;
+    rt_status st = ensure_ray_buffers(s, most, err);
     int remade;
-    if (st == RT_OK && masks)
-        st = ensure(s, RT_CL_BUF_MASKS, sizeof(cl_uint) * RT_CL_TILE_MAX, &remade, err);
+    if (st == RT_OK && masks) st = ensure(s, RT_CL_BUF_MASKS, sizeof(cl_uint) * most, &remade, err);
     /* Closest hits on a CPU device: packets of consecutive rays
      * (rt_k_packet_trace, the same hits); any hit: rt_k_trace, so that the
      * hit reported is the oracle's first one, not only some hit. */
@@ -1051,6 +1153,10 @@ static rt_status cl_trace(void *state, const rt_backend_layout *layout, const rt
     cl_uint masked = masks != NULL;
     if (st == RT_OK) st = set_arg(k, a + 3, sizeof masked, &masked, err);
     if (st == RT_OK) st = set_arg(k, a + 4, sizeof(cl_mem), &s->buf[RT_CL_BUF_MASKS], err);
+    _Static_assert((int)RT_K_PTRACE_DONE - (int)RT_K_PTRACE_RAYS ==
+                       (int)RT_K_TRACE_DONE - (int)RT_K_TRACE_RAYS,
+                   "rt_k_trace and rt_k_packet_trace take done alike");
+    if (st == RT_OK) st = bind_done(s, k, a + 5, err);
     for (size_t first = 0; first < count && st == RT_OK;) {
         cl_uint n = (cl_uint)(count - first < s->tile ? count - first : s->tile);
         uint64_t ignored = 0;
@@ -1060,9 +1166,15 @@ static rt_status cl_trace(void *state, const rt_backend_layout *layout, const rt
             st =
                 write_buf(s, RT_CL_BUF_MASKS, 0, masks + first, sizeof(cl_uint) * n, &ignored, err);
         if (st == RT_OK) st = set_arg(k, RT_K_TRACE_COUNT, sizeof n, &n, err);
+        if (st == RT_OK) st = done_begin(s, err);
         if (st == RT_OK)
-            st = launch(s, k, packet ? (n + (cl_uint)s->lanes - 1) / (cl_uint)s->lanes : n,
-                        packet ? "rt_k_packet_trace" : "rt_k_trace", &ms, err);
+            st = launch(s, k, packet ? RT_CL_DONE_PTRACE : RT_CL_DONE_TRACE,
+                        packet ? (n + (cl_uint)s->lanes - 1) / (cl_uint)s->lanes : n, &ms, err);
+        if (st == RT_OK) {
+            char what[64];
+            snprintf(what, sizeof what, "rays %zu..%zu", first, first + n - 1);
+            st = done_check(s, what, err);
+        }
         if (st == RT_OK) {
             cl_int ce = clEnqueueReadBuffer(s->queue, s->buf[RT_CL_BUF_HITS], CL_TRUE, 0,
                                             sizeof(rt_hit_d) * n, hits + first, 0, NULL, NULL);
