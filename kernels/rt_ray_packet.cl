@@ -317,11 +317,12 @@ static pk_f pk_tmax(pk_f a, pk_f b) {
     return select(b, a, a > b);
 }
 
-/* rt_tri_t_check per lane: the lanes whose fast t the oracle recomputes
- * (RT_T_PLANE); *before gets those it drops as RT_T_BEFORE. */
+/* rt_tri_t_check per lane: RT_T_FAST, RT_T_PLANE or RT_T_BEFORE in each
+ * lane (a verdict, not a pointer out: Oclgrind computed the packet kernel
+ * wrongly with a vector written through a pointer argument here). */
 static pk_i pk_tri_t_check(pk_f Akz, pk_f Bkz, pk_f Ckz, pk_f sx, pk_f sy, pk_f Ax, pk_f Ay,
                            pk_f Bx, pk_f By, pk_f Cx, pk_f Cy, pk_f Az, pk_f Bz, pk_f Cz, pk_f det,
-                           pk_f t, pk_f tmin, pk_i *before) {
+                           pk_f t, pk_f tmin) {
     pk_f S = pk_tmax(fabs(sx), fabs(sy));
     pk_f K = pk_tmax(fabs(Akz), pk_tmax(fabs(Bkz), fabs(Ckz)));
     pk_f P = pk_tmax(pk_tmax(fabs(Ax), fabs(Ay)),
@@ -332,8 +333,8 @@ static pk_i pk_tri_t_check(pk_f Akz, pk_f Bkz, pk_f Ckz, pk_f sx, pk_f sy, pk_f 
     pk_f adet = fabs(det);
     pk_f lhs = (((S * K + 0.75f * P) * P) * (zmax - zmin)) * 0.5f + (adet * Z) * 0.0625f;
     pk_i unsure = lhs > fabs(t) * adet;
-    *before = unsure & (((tmin - t) * adet) * 32768.0f > lhs) & (lhs > RT_T_BEFORE_FLOOR);
-    return unsure & ~*before;
+    pk_i before = unsure & (((tmin - t) * adet) * 32768.0f > lhs) & (lhs > RT_T_BEFORE_FLOOR);
+    return select(select((pk_i)RT_T_FAST, (pk_i)RT_T_PLANE, unsure), (pk_i)RT_T_BEFORE, before);
 }
 
 /* rt_tri_t_plane for the lanes of m (rare): per lane, the shared scalar
@@ -394,10 +395,10 @@ static pk_i pk_tri_watertight(RT_GLOBAL const rt_tri *tri, const pk_ray *p, pk_f
     pk_f Az = p->sz * Akz, Bz = p->sz * Bkz, Cz = p->sz * Ckz;
     pk_f T = (U * Az + V * Bz) + W * Cz;
     pk_f tt = PK_DIV(T, det);
-    pk_i before;
-    pk_i unsure = ok & pk_tri_t_check(Akz, Bkz, Ckz, p->sx, p->sy, Ax, Ay, Bx, By, Cx, Cy, Az, Bz, Cz,
-                                      det, tt, tmin, &before);
-    ok &= ~before;
+    pk_i check = pk_tri_t_check(Akz, Bkz, Ckz, p->sx, p->sy, Ax, Ay, Bx, By, Cx, Cy, Az, Bz, Cz,
+                                det, tt, tmin);
+    pk_i unsure = ok & (check == RT_T_PLANE);
+    ok &= check != RT_T_BEFORE;
     if (pk_any(unsure)) tt = pk_tri_t_plane(tri, p, unsure, tt);
     ok &= (tt >= tmin) & (tt <= tmax);
     if (!pk_any(ok)) return ok;
