@@ -9,7 +9,7 @@ $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends \
     build-essential cmake ninja-build pkg-config git ca-certificates \
     ocl-icd-opencl-dev opencl-c-headers pocl-opencl-icd clinfo oclgrind \
-    libvulkan-dev mesa-vulkan-drivers glslang-tools spirv-tools \
+    libvulkan-dev mesa-vulkan-drivers glslang-tools spirv-tools vulkan-validationlayers \
     libsdl2-dev xvfb xauth \
     libopenimageio-dev openimageio-tools \
     libsimde-dev libembree-dev libjansson-dev \
