@@ -248,12 +248,7 @@ static int out_of_memory(VkResult r) {
 
 /* Any failure of this backend reads "vulkan: ..." for the caller. */
 static rt_status named(rt_error *err, rt_status st) {
-    if (st != RT_OK && err && strncmp(err->message, "vulkan: ", 8) != 0) {
-        char reason[sizeof err->message];
-        memcpy(reason, err->message, sizeof reason);
-        snprintf(err->message, sizeof err->message, "vulkan: %.1000s", reason);
-    }
-    return st;
+    return rt_error_prefix(err, st, "vulkan: ");
 }
 
 static rt_status vk_fail(vk_state *s, VkResult r, const char *what, rt_error *err) {
