@@ -40,8 +40,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "rt_fp_mode.h"
-#include "rt_shared.h"
+#include "kernel_maths.h"
 
 /* The sign of a - b, exactly: -1, 0 or 1 (comparisons, so no difference is
  * rounded or flushed to zero). */
@@ -275,15 +274,7 @@ static uint32_t instance_crossings(const rt_scene_view *s, rt_u32 inst, const rt
     if (!(RT_SCENE_FLAGS(s) & RT_SCENE_SINGLE) && !rt_inst_enter(in, r, p, &inst_lo)) return 0;
     rt_ray o;
     rt_ray_pre op;
-    const rt_ray *ray = r;
-    if (RT_INST_FLAGS(in) & RT_INST_IDENTITY) {
-        op = *p;
-    } else {
-        rt_ray_to_object(in, r, &o);
-        rt_ray_prepare(&o, &op);
-        ray = &o;
-    }
-    op.inst_lo = inst_lo;
+    const rt_ray *ray = rt_cpu_instance_ray(in, r, p, inst_lo, &o, &op);
     if (!(RT_INST_FLAGS(in) & RT_INST_KD)) return bvh_mesh_crossings(s, in->root, ray, &op);
     list->count = 0;
     kd_mesh_crossings(s, in->root, ray, &op, list);

@@ -534,20 +534,12 @@ static int trace_instance(sw_ctx *x, rt_u32 inst, const rt_ray *r, const rt_ray_
      * ray test more). */
     const uint32_t *en = x->nodes + (size_t)NODE_WORDS * entry;
     const rt_u32 root_info = en[7 * W];
-    const int identity = (RT_INST_FLAGS(in) & RT_INST_IDENTITY) != 0;
     /* rt_trace_instance's instance box, for rt_hit_accepted. */
     float inst_lo = -RT_INF;
     if (!(RT_SCENE_FLAGS(x->s) & RT_SCENE_SINGLE) && !rt_inst_enter(in, r, p, &inst_lo)) return 0;
     rt_ray o;
     rt_ray_pre op;
-    if (identity) {
-        op = *p;
-    } else {
-        rt_ray_to_object(in, r, &o);
-        rt_ray_prepare(&o, &op);
-        r = &o;
-    }
-    op.inst_lo = inst_lo;
+    r = rt_cpu_instance_ray(in, r, p, inst_lo, &o, &op);
     p = &op;
     if (root_info & RT_NODE_LEAF_FLAG)
         return leaf_test(x, en[6 * W], root_info & RT_NODE_COUNT_MASK, inst, r, p, best);

@@ -15,17 +15,22 @@
 
 #include <string.h>
 
+/* Widens [*lo, *hi] over c[i] for i in [from, end). */
+static void widen_scalar(const float *c, uint32_t from, uint32_t end, float *lo, float *hi) {
+    float l = *lo, h = *hi;
+    for (uint32_t i = from; i < end; i++) {
+        l = c[i] < l ? c[i] : l;
+        h = c[i] > h ? c[i] : h;
+    }
+    *lo = l;
+    *hi = h;
+}
+
 void rt_thesis_centroid_bounds_scalar(float *const cent[3], uint32_t start, uint32_t end,
                                       float cmin[3], float cmax[3]) {
     for (int k = 0; k < 3; k++) {
-        const float *c = cent[k];
-        float lo = c[start], hi = c[start];
-        for (uint32_t i = start + 1; i < end; i++) {
-            lo = c[i] < lo ? c[i] : lo;
-            hi = c[i] > hi ? c[i] : hi;
-        }
-        cmin[k] = lo;
-        cmax[k] = hi;
+        cmin[k] = cmax[k] = cent[k][start];
+        widen_scalar(cent[k], start + 1, end, &cmin[k], &cmax[k]);
     }
 }
 
@@ -64,13 +69,9 @@ void rt_thesis_centroid_bounds_neon(float *const cent[3], uint32_t start, uint32
             lo = vminq_f32(lo, v);
             hi = vmaxq_f32(hi, v);
         }
-        float l = lanes_min(lo), h = lanes_max(hi);
-        for (; i < end; i++) {
-            l = c[i] < l ? c[i] : l;
-            h = c[i] > h ? c[i] : h;
-        }
-        cmin[k] = l;
-        cmax[k] = h;
+        cmin[k] = lanes_min(lo);
+        cmax[k] = lanes_max(hi);
+        widen_scalar(c, i, end, &cmin[k], &cmax[k]);
     }
 }
 

@@ -66,6 +66,15 @@ rt_status rt_fail(rt_error *err, rt_status status, const char *fmt, ...) {
     return status;
 }
 
+rt_status rt_error_prefix(rt_error *err, rt_status st, const char *prefix) {
+    if (st != RT_OK && err && strncmp(err->message, prefix, strlen(prefix)) != 0) {
+        char reason[sizeof err->message];
+        memcpy(reason, err->message, sizeof reason);
+        snprintf(err->message, sizeof err->message, "%s%.1000s", prefix, reason);
+    }
+    return st;
+}
+
 rt_status rt_error_copy(rt_error *dst, const rt_error *src) {
     if (dst && dst != src) *dst = *src;
     return src->status;

@@ -31,6 +31,12 @@ rt_fail(rt_error *err, rt_status status, const char *fmt, ...);
 /* Copies src into dst (if not NULL) and returns src's status. */
 rt_status rt_error_copy(rt_error *dst, const rt_error *src);
 
+/* When st is a failure and err's message does not start with prefix
+ * ("opencl: "), puts prefix before the message (the first 1000 characters
+ * of it). Returns st, so that a backend can write: return
+ * rt_error_prefix(err, st, "vulkan: "); */
+rt_status rt_error_prefix(rt_error *err, rt_status st, const char *prefix);
+
 /* Clears err to RT_OK with an empty message. */
 void rt_error_clear(rt_error *err);
 

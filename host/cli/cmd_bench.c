@@ -148,27 +148,33 @@ static void print_build_log(const rt_renderer *renderer) {
  * they are refused, or NULL. */
 static const char *misplaced(const bench_args *a) {
     int maths = a->device_math != RT_DEVICE_MATH_AUTO || a->denormals != RT_DENORMALS_PRESERVE;
-    if (a->animate && a->incoherent)
-        return "--animate and --incoherent are two benchmarks: run one at a time";
-    if (a->animate && a->accel >= 0)
-        return "--accel does not apply to --animate (morphing meshes keep BVHs)";
-    if (a->animate && a->no_render)
-        return "--no-render does not apply to --animate (it renders every frame)";
-    if (a->animate && maths)
-        return "--device-math and --denormals do not apply to --animate (it runs the packet "
-               "backend)";
-    if (a->animate && a->verbose)
-        return "--verbose does not apply to --animate (it runs the packet backend)";
-    if (!a->animate && (a->frames || a->fps > 0.0 || a->series || a->animation))
-        return "--frames, --fps, --series and --animation need --animate";
-    if (a->incoherent && a->accel >= 0)
-        return "--accel does not apply to --incoherent (it traces the scene's own structures)";
-    if (a->incoherent && maths)
-        return "--device-math and --denormals do not apply to --incoherent (it runs the CPU "
-               "backends)";
-    if (a->incoherent && a->verbose)
-        return "--verbose does not apply to --incoherent (it runs the CPU backends)";
-    if (a->rays && !a->incoherent) return "--rays applies to --incoherent only";
+    int animate_only = a->frames || a->fps > 0.0 || a->series || a->animation;
+    /* The first rule that holds gives the reason. */
+    const struct {
+        int holds;
+        const char *reason;
+    } rules[] = {
+        {a->animate && a->incoherent,
+         "--animate and --incoherent are two benchmarks: run one at a time"},
+        {a->animate && a->accel >= 0,
+         "--accel does not apply to --animate (morphing meshes keep BVHs)"},
+        {a->animate && a->no_render,
+         "--no-render does not apply to --animate (it renders every frame)"},
+        {a->animate && maths,
+         "--device-math and --denormals do not apply to --animate (it runs the packet backend)"},
+        {a->animate && a->verbose,
+         "--verbose does not apply to --animate (it runs the packet backend)"},
+        {!a->animate && animate_only, "--frames, --fps, --series and --animation need --animate"},
+        {a->incoherent && a->accel >= 0,
+         "--accel does not apply to --incoherent (it traces the scene's own structures)"},
+        {a->incoherent && maths,
+         "--device-math and --denormals do not apply to --incoherent (it runs the CPU backends)"},
+        {a->incoherent && a->verbose,
+         "--verbose does not apply to --incoherent (it runs the CPU backends)"},
+        {a->rays && !a->incoherent, "--rays applies to --incoherent only"},
+    };
+    for (size_t i = 0; i < sizeof rules / sizeof rules[0]; i++)
+        if (rules[i].holds) return rules[i].reason;
     return NULL;
 }
 

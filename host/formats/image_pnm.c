@@ -49,40 +49,44 @@ static unsigned char *start_file(const char *path, const rt_image *image, char k
     return bytes;
 }
 
-rt_status rt_pnm_encode(const char *path, const rt_image *image, unsigned char **out, size_t *size,
-                        rt_error *err) {
+/* PGM/PPM (8 bits a value, top row first) or, when pfm, PFM (little-endian
+ * floats, bottom row first). */
+static rt_status encode(const char *path, const rt_image *image, int pfm, unsigned char **out,
+                        size_t *size, rt_error *err) {
     size_t n, total;
+    char kind = image->channels == 1 ? (pfm ? 'f' : '5') : (pfm ? 'F' : '6');
     unsigned char *bytes =
-        start_file(path, image, image->channels == 1 ? '5' : '6', "255", 1, &n, &total, err);
+        start_file(path, image, kind, pfm ? "-1.0" : "255", pfm ? 4 : 1, &n, &total, err);
     if (!bytes) return err ? err->status : RT_ERROR_OUT_OF_MEMORY;
-    for (size_t i = 0; i < total - n; i++) bytes[n + i] = to_8bit(image->pixels[i]);
+    unsigned char *p = bytes + n;
+    size_t row = (size_t)image->width * (size_t)image->channels;
+    if (!pfm)
+        for (size_t i = 0; i < total - n; i++) p[i] = to_8bit(image->pixels[i]);
+    else
+        for (int y = image->height - 1; y >= 0; y--) { /* PFM stores the bottom row first */
+            const float *src = image->pixels + (size_t)y * row;
+            for (size_t i = 0; i < row; i++, p += 4) {
+                uint32_t u;
+                memcpy(&u, &src[i], 4);
+                p[0] = (unsigned char)u; /* little-endian, as the negative scale says */
+                p[1] = (unsigned char)(u >> 8);
+                p[2] = (unsigned char)(u >> 16);
+                p[3] = (unsigned char)(u >> 24);
+            }
+        }
     *out = bytes;
     *size = total;
     return RT_OK;
 }
 
+rt_status rt_pnm_encode(const char *path, const rt_image *image, unsigned char **out, size_t *size,
+                        rt_error *err) {
+    return encode(path, image, 0, out, size, err);
+}
+
 rt_status rt_pfm_encode(const char *path, const rt_image *image, unsigned char **out, size_t *size,
                         rt_error *err) {
-    size_t n, total;
-    unsigned char *bytes =
-        start_file(path, image, image->channels == 1 ? 'f' : 'F', "-1.0", 4, &n, &total, err);
-    if (!bytes) return err ? err->status : RT_ERROR_OUT_OF_MEMORY;
-    size_t row = (size_t)image->width * (size_t)image->channels;
-    unsigned char *p = bytes + n;
-    for (int y = image->height - 1; y >= 0; y--) { /* PFM stores the bottom row first */
-        const float *src = image->pixels + (size_t)y * row;
-        for (size_t i = 0; i < row; i++, p += 4) {
-            uint32_t u;
-            memcpy(&u, &src[i], 4);
-            p[0] = (unsigned char)u; /* little-endian, as the negative scale says */
-            p[1] = (unsigned char)(u >> 8);
-            p[2] = (unsigned char)(u >> 16);
-            p[3] = (unsigned char)(u >> 24);
-        }
-    }
-    *out = bytes;
-    *size = total;
-    return RT_OK;
+    return encode(path, image, 1, out, size, err);
 }
 
 /* ---- decoding --------------------------------------------------------- */

@@ -311,43 +311,42 @@ static rt_status check_range(loader *L, float f, range r) {
     return RT_OK;
 }
 
-/* obj.key, when present, into *out (else *out keeps its default). */
-static rt_status opt_float(loader *L, json_t *obj, const char *key, float *out, range r) {
+/* obj.key, entered (the path of its errors), or NULL when it is absent. */
+static json_t *opt_enter(loader *L, json_t *obj, const char *key) {
     json_t *v = json_object_get(obj, key);
-    if (!v) return RT_OK;
-    enter_key(L, key);
-    rt_status st = read_float(L, v, out);
-    if (st == RT_OK) st = check_range(L, *out, r);
+    if (v) enter_key(L, key);
+    return v;
+}
+
+/* Leaves the key opt_enter entered; returns st. */
+static rt_status opt_leave(loader *L, rt_status st) {
     leave(L);
     return st;
+}
+
+/* obj.key, when present, into *out (else *out keeps its default). */
+static rt_status opt_float(loader *L, json_t *obj, const char *key, float *out, range r) {
+    json_t *v = opt_enter(L, obj, key);
+    if (!v) return RT_OK;
+    rt_status st = read_float(L, v, out);
+    if (st == RT_OK) st = check_range(L, *out, r);
+    return opt_leave(L, st);
 }
 
 static rt_status opt_int(loader *L, json_t *obj, const char *key, long long min, long long max,
                          long long *out) {
-    json_t *v = json_object_get(obj, key);
-    if (!v) return RT_OK;
-    enter_key(L, key);
-    rt_status st = read_int(L, v, min, max, out);
-    leave(L);
-    return st;
+    json_t *v = opt_enter(L, obj, key);
+    return v ? opt_leave(L, read_int(L, v, min, max, out)) : RT_OK;
 }
 
 static rt_status opt_vec3(loader *L, json_t *obj, const char *key, float out[3]) {
-    json_t *v = json_object_get(obj, key);
-    if (!v) return RT_OK;
-    enter_key(L, key);
-    rt_status st = read_floats(L, v, out, 3);
-    leave(L);
-    return st;
+    json_t *v = opt_enter(L, obj, key);
+    return v ? opt_leave(L, read_floats(L, v, out, 3)) : RT_OK;
 }
 
 static rt_status opt_color(loader *L, json_t *obj, const char *key, float out[3]) {
-    json_t *v = json_object_get(obj, key);
-    if (!v) return RT_OK;
-    enter_key(L, key);
-    rt_status st = read_color(L, v, out);
-    leave(L);
-    return st;
+    json_t *v = opt_enter(L, obj, key);
+    return v ? opt_leave(L, read_color(L, v, out)) : RT_OK;
 }
 
 static rt_status require(loader *L, json_t *obj, const char *key) {

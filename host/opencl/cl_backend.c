@@ -756,12 +756,7 @@ static uint32_t next_tile(const cl_state *s, uint32_t tile, double longest_ms) {
 
 /* Any failure of this backend reads "opencl: ..." for the caller. */
 static rt_status named(rt_error *err, rt_status st) {
-    if (st != RT_OK && err && strncmp(err->message, "opencl: ", 8) != 0) {
-        char reason[sizeof err->message];
-        memcpy(reason, err->message, sizeof reason);
-        snprintf(err->message, sizeof err->message, "opencl: %.1000s", reason);
-    }
-    return st;
+    return rt_error_prefix(err, st, "opencl: ");
 }
 
 static rt_status cl_prepare(void *state, const rt_backend_layout *layout, rt_render_stats *stats,

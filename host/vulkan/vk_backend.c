@@ -248,12 +248,7 @@ static int out_of_memory(VkResult r) {
 
 /* Any failure of this backend reads "vulkan: ..." for the caller. */
 static rt_status named(rt_error *err, rt_status st) {
-    if (st != RT_OK && err && strncmp(err->message, "vulkan: ", 8) != 0) {
-        char reason[sizeof err->message];
-        memcpy(reason, err->message, sizeof reason);
-        snprintf(err->message, sizeof err->message, "vulkan: %.1000s", reason);
-    }
-    return st;
+    return rt_error_prefix(err, st, "vulkan: ");
 }
 
 static rt_status vk_fail(vk_state *s, VkResult r, const char *what, rt_error *err) {
@@ -855,6 +850,19 @@ static int vk_threads(const vk_state *s, uint32_t tile_pixels) {
     return n < 1 ? 1 : (int)n;
 }
 
+/* The buffers of every dispatch of the main pipeline besides its input and
+ * output, for a tile of RT_VK_TILE_MAX items: the counters, the items to
+ * re-run (rerun_cut) and the suspended items' state slots; in that order. */
+static rt_status ensure_main_buffers(vk_state *s, int *remade, rt_error *err) {
+    rt_status st = ensure(s, RT_VK_BUF_COUNTERS, sizeof(rt_counters) * RT_VK_TILE_MAX, remade, err);
+    if (st == RT_OK)
+        st = ensure(s, RT_VK_BUF_ITEMS, 2 * sizeof(uint32_t) * RT_VK_TILE_MAX, remade, err);
+    if (st == RT_OK)
+        st = ensure(s, RT_VK_BUF_STATE, sizeof(uint32_t) * RT_VK_STATE_WORDS * RT_VK_SLOTS, remade,
+                    err);
+    return st;
+}
+
 static rt_status vk_render(void *state, const rt_backend_layout *layout,
                            const rt_backend_frame *frame, rt_render_stats *stats, rt_error *err) {
     vk_state *s = state;
@@ -866,13 +874,7 @@ static rt_status vk_render(void *state, const rt_backend_layout *layout,
     size_t px_bytes = sizeof(float) * (size_t)frame->channels;
     int remade;
     rt_status st = ensure(s, RT_VK_BUF_FB, px_bytes * RT_VK_TILE_MAX, &remade, err);
-    if (st == RT_OK)
-        st = ensure(s, RT_VK_BUF_COUNTERS, sizeof(rt_counters) * RT_VK_TILE_MAX, &remade, err);
-    if (st == RT_OK)
-        st = ensure(s, RT_VK_BUF_ITEMS, 2 * sizeof(uint32_t) * RT_VK_TILE_MAX, &remade, err);
-    if (st == RT_OK)
-        st = ensure(s, RT_VK_BUF_STATE, sizeof(uint32_t) * RT_VK_STATE_WORDS * RT_VK_SLOTS, &remade,
-                    err);
+    if (st == RT_OK) st = ensure_main_buffers(s, &remade, err);
     if (st == RT_OK) st = bind_all(s, err);
     if (st != RT_OK) return named(err, st);
     vk_reruns rr;
@@ -932,13 +934,7 @@ static rt_status vk_trace(void *state, const rt_backend_layout *layout, const rt
     rt_status st = ensure(s, RT_VK_BUF_RAYS, sizeof(rt_ray) * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK)
         st = ensure(s, RT_VK_BUF_HITS, sizeof(rt_hit_d) * RT_VK_TILE_MAX, &remade, err);
-    if (st == RT_OK)
-        st = ensure(s, RT_VK_BUF_COUNTERS, sizeof(rt_counters) * RT_VK_TILE_MAX, &remade, err);
-    if (st == RT_OK)
-        st = ensure(s, RT_VK_BUF_ITEMS, 2 * sizeof(uint32_t) * RT_VK_TILE_MAX, &remade, err);
-    if (st == RT_OK)
-        st = ensure(s, RT_VK_BUF_STATE, sizeof(uint32_t) * RT_VK_STATE_WORDS * RT_VK_SLOTS, &remade,
-                    err);
+    if (st == RT_OK) st = ensure_main_buffers(s, &remade, err);
     if (st == RT_OK && masks)
         st = ensure(s, RT_VK_BUF_MASKS, sizeof(uint32_t) * RT_VK_TILE_MAX, &remade, err);
     if (st == RT_OK) st = bind_all(s, err);
