@@ -107,9 +107,7 @@ case_ keyframes.json 21 13 "$packet" --denormals flush --accel kd -- --device-ma
 
 # Ray queries: closest hits through rt_k_packet_trace, any hits through
 # rt_k_trace, the oracle's hit lines.
-awk 'BEGIN { srand(7); for (i = 0; i < 100; i++) printf "%f %f %f %f %f %f 0 inf\n",
-     rand() * 4 - 2, rand() * 3, rand() * 6 - 1, rand() - 0.5, rand() - 0.5, rand() - 0.5 }' \
-    > "$tmp/rays.txt"
+cornell_rays 7 100 "$tmp/rays.txt"
 for any in "" --any-hit; do
     expect 0 '' -- "$RTCL" trace "$RT_SOURCE_DIR/scenes/cornell.json" --rays "$tmp/rays.txt" \
         --out "$tmp/h_cpu.txt" $any

@@ -5,14 +5,7 @@
 # fails with status 2 and a reason, auto falls back to the CPU with a notice.
 source "$RT_SOURCE_DIR/tests/shell_check.sh"
 
-if ! "$RTCL" devices --api vulkan >"$tmp/devices.txt" 2>&1; then
-    if grep -q "no Vulkan backend" "$tmp/devices.txt"; then
-        echo "skipped: this build has no Vulkan backend"; exit 77
-    fi
-    if grep -q -E "no Vulkan (driver|device)|finds no device" "$tmp/devices.txt"; then
-        echo "skipped: no Vulkan device: $(cat "$tmp/devices.txt")"; exit 77
-    fi
-fi
+skip_without_vulkan
 expect 0 'device 0: .*' -- "$RTCL" devices --api vulkan
 expect 0 'float controls +round to nearest even (yes|no), denormals kept (yes|no)' -- \
     "$RTCL" devices --api vulkan --device 0

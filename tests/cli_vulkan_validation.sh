@@ -7,14 +7,7 @@
 # performance warning) and give the oracle's bytes.
 source "$RT_SOURCE_DIR/tests/shell_check.sh"
 
-if ! "$RTCL" devices --api vulkan >"$tmp/devices.txt" 2>&1; then
-    if grep -q "no Vulkan backend" "$tmp/devices.txt"; then
-        echo "skipped: this build has no Vulkan backend"; exit 77
-    fi
-    if grep -q -E "no Vulkan (driver|device)|finds no device" "$tmp/devices.txt"; then
-        echo "skipped: no Vulkan device: $(cat "$tmp/devices.txt")"; exit 77
-    fi
-fi
+skip_without_vulkan
 layer=
 for d in /usr/share/vulkan/explicit_layer.d /usr/local/share/vulkan/explicit_layer.d; do
     [ -f "$d/VkLayer_khronos_validation.json" ] && layer=$d/VkLayer_khronos_validation.json
@@ -68,9 +61,7 @@ for args in "builtin:cornell" "builtin:keyframes --direct" "$RT_SOURCE_DIR/scene
     same "render $args" "$tmp/cpu.pfm" "$tmp/vk.pfm"
 done
 
-awk 'BEGIN { srand(11); for (i = 0; i < 200; i++) printf "%f %f %f %f %f %f 0 inf\n",
-     rand() * 4 - 2, rand() * 3, rand() * 6 - 1, rand() - 0.5, rand() - 0.5, rand() - 0.5 }' \
-    >"$tmp/rays.txt"
+cornell_rays 11 200 "$tmp/rays.txt"
 for any in "" --any-hit; do
     expect 0 '' -- "$RTCL" trace "$RT_SOURCE_DIR/scenes/cornell.json" --rays "$tmp/rays.txt" \
         --out "$tmp/h_cpu.txt" $any

@@ -30,6 +30,26 @@ no_leak_check() {
     ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" LSAN_OPTIONS=detect_leaks=0 "$@"
 }
 
+# skip_without_vulkan: exits 77 (skipped) with the reason where this build
+# has no Vulkan backend or the loader finds no Vulkan device.
+skip_without_vulkan() {
+    "$RTCL" devices --api vulkan >"$tmp/devices.txt" 2>&1 && return 0
+    if grep -q "no Vulkan backend" "$tmp/devices.txt"; then
+        echo "skipped: this build has no Vulkan backend"; exit 77
+    fi
+    if grep -q -E "no Vulkan (driver|device)|finds no device" "$tmp/devices.txt"; then
+        echo "skipped: no Vulkan device: $(cat "$tmp/devices.txt")"; exit 77
+    fi
+}
+
+# cornell_rays SEED N FILE: N rays from the Cornell box's room (rtcl trace's
+# ray lines: origin, direction, tmin 0, tmax inf), the same for a seed.
+cornell_rays() {
+    awk -v seed="$1" -v n="$2" 'BEGIN { srand(seed); for (i = 0; i < n; i++)
+        printf "%f %f %f %f %f %f 0 inf\n", rand() * 4 - 2, rand() * 3, rand() * 6 - 1,
+        rand() - 0.5, rand() - 0.5, rand() - 0.5 }' >"$3"
+}
+
 finish() {
     echo "$(basename "$0"): $checks checks, $fails failed"
     [ "$fails" = 0 ]
