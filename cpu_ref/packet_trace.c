@@ -434,10 +434,10 @@ static inline rt_vf pick(rt_vi k0, rt_vi k1, const rt_vf *v) {
  * chains cost far more time per lane than its instruction count says. */
 static uint32_t pk_plane_tier1(const rt_tri *tri, int ip, const float *n, const float *m,
                                const pk_geom *p, int g, uint32_t un, rt_vf *t) {
-    const float *v = tri->v0; /* v0, v1, v2: 9 floats in a row */
+    const float *v = RT_TRI_VERTEX(tri, ip); /* the apex, a vertex of its own (rt_tri_t.h) */
     rt_vf a[3], nv[3], mv[3], d[3];
     for (int i = 0; i < 3; i++) {
-        a[i] = rt_vsplat(v[ip + i]) - p->org[i][g];
+        a[i] = rt_vsplat(v[i]) - p->org[i][g];
         nv[i] = rt_vsplat(n[i]);
         mv[i] = rt_vsplat(m[i]);
         d[i] = p->dir[i][g];
@@ -481,10 +481,10 @@ static uint32_t pk_plane_tier2(const rt_tri *tri, int ip, const float *e, const 
                                const pk_geom *p, int g, uint32_t un, rt_vf *t) {
     float nh[3], nl[3];
     rt_tri_t_normal_ff(tri, ip, e, f, nh, nl);
-    const float *v = tri->v0;
+    const float *v = RT_TRI_VERTEX(tri, ip);
     rt_vf a[3], al[3], as[3], at[3], ds[3], dt[3];
     for (int i = 0; i < 3; i++) {
-        const rt_vf vp = rt_vsplat(v[ip + i]), mo = -p->org[i][g];
+        const rt_vf vp = rt_vsplat(v[i]), mo = -p->org[i][g];
         a[i] = vp - p->org[i][g];
         al[i] = pk_ff_sum_err(vp, mo, a[i]);
         pk_ff_split(a[i], &as[i], &at[i]);
