@@ -49,7 +49,7 @@ typedef struct sw_ctx {
     int any_hit;
     uint64_t box_tests, tri_tests;
     rt_u32 ray_mask; /* the ray being traced's (rt_trace_masked) */
-    int prefetch;    /* the tree is larger than the caches (RT_SW_PREFETCH_BYTES) */
+    int prefetch;    /* the tree is larger than a core's L2 (RT_SW_PREFETCH_BYTES) */
 } sw_ctx;
 
 /* Trees of more bytes than this (nodes and blocks) have their entered
@@ -281,6 +281,12 @@ static inline void prefetch(const sw_ctx *x, const uint32_t *child, const uint32
     for (int off = 0; off < 4 * BLOCK_WORDS; off += 64) __builtin_prefetch(p + off);
 }
 
+/* A child as the traversal carries it: one 64-bit word, its info above its
+ * ref. */
+static inline uint64_t sw_child(uint32_t ref, uint32_t info) {
+    return (uint64_t)info << 32 | ref;
+}
+
 /* A stack of children to visit: each one's ref and info words (a node's
  * child and info lanes) and its entry distance. It holds the entered
  * siblings of the path's nodes, at most W - 1 per level; the wide tree is
@@ -365,7 +371,7 @@ static inline uint64_t sw_order(uint32_t m, rt_vf tn, const uint32_t *child, con
                              simde_mm256_permutevar8x32_epi32((simde__m256i)tn, lanes));
     *sp += k - 1;
     const int first = simde_mm256_cvtsi256_si32(sorted) & 7;
-    return (uint64_t)info[first] << 32 | child[first];
+    return sw_child(child[first], info[first]);
 }
 #endif
 
@@ -387,13 +393,12 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
     int sp = 0;
     rt_vf hi = range_hi(best->t);
     /* The entry node only tests the root's box: skipping a box test lets
-     * a ray test more, never fewer, so the traversal starts at the root.
-     * A child is one 64-bit word, its info above its ref. */
+     * a ray test more, never fewer, so the traversal starts at the root. */
     const uint32_t *en = x->nodes + (size_t)NODE_WORDS * entry;
-    uint64_t cur = (uint64_t)en[7 * W] << 32 | en[6 * W];
+    uint64_t cur = sw_child(en[6 * W], en[7 * W]);
     uint64_t boxes = 0;
     int found = 0;
-#define RT_SW_REF(s) ((uint64_t)info[s] << 32 | child[s])
+#define RT_SW_REF(s) sw_child(child[s], info[s])
 #define RT_SW_PUSH(s)                                                                              \
     do {                                                                                           \
         st.ref[sp] = child[s];                                                                     \
@@ -419,7 +424,7 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
             boxes += rt_lane_run(real);
             if (m) {
                 const uint32_t *child = n + 6 * W, *info = n + 7 * W;
-                /* In a tree larger than the caches, every entered child's
+                /* In a tree larger than a core's L2, every entered child's
                  * lines are fetched now, while the nearest is traversed
                  * (the others are probably next). */
                 if (x->prefetch)
@@ -502,7 +507,7 @@ static inline __attribute__((always_inline)) int traverse(sw_ctx *x, rt_u32 entr
         while (sp > 0 && st.t[sp - 1] > hi[0]) sp--;
         if (sp == 0) break;
         sp--;
-        cur = (uint64_t)st.info[sp] << 32 | st.ref[sp];
+        cur = sw_child(st.ref[sp], st.info[sp]);
     }
 #undef RT_SW_REF
 #undef RT_SW_PUSH
